@@ -1,0 +1,33 @@
+//! Atmoscope's physics in f64, independent of any GPU: spectra and reference tables, the
+//! constituents of the atmosphere (air, ozone, aerosols), ray geometry around the planet,
+//! optical depth, colour science, the sun's position, and the `Scene` preset format.
+//!
+//! Data flows Scene → [`Atmosphere`] (optical properties at any wavelength) → renderers.
+
+pub mod aerosol;
+pub mod atmosphere;
+pub mod colour;
+pub mod constants;
+pub mod geometry;
+pub mod mie;
+pub mod ozone;
+pub mod phase;
+pub mod profiles;
+pub mod quadrature;
+pub mod rayleigh;
+pub mod scene;
+pub mod solar;
+pub mod spectrum;
+pub mod sun;
+pub mod table;
+
+pub use atmosphere::{Atmosphere, OpticalDepth, Optics};
+pub use scene::{Scene, SceneError};
+pub use spectrum::Spectrum;
+
+/// Errors of the model's own constructors.
+#[derive(Debug, thiserror::Error)]
+pub enum ModelError {
+    #[error("invalid spectrum: {0}")]
+    InvalidSpectrum(String),
+}

@@ -1,0 +1,738 @@
+//! The scene: everything a user sets, and the RON preset format.
+//!
+//! Every struct is `#[serde(default)]`, so a preset names only what it changes, and unknown
+//! fields are rejected so a typo never passes silently. `version` guards against presets from
+//! a newer Atmoscope. `validate` checks every number against its documented range and reports
+//! the field's path; loading names the file, and parse errors carry the line, column and path.
+
+use crate::aerosol::AerosolType;
+use crate::constants::{EARTH_ATMOSPHERE_TOP_M, EARTH_RADIUS_M};
+use crate::ozone::{self, OzoneCrossSection};
+use crate::profiles::{AirProfile, OzoneProfile};
+use crate::solar::SolarSpectrum;
+use crate::sun::{self, DateTime, SunAngles};
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// The preset format version this build reads and writes.
+pub const SCENE_VERSION: u32 = 1;
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Scene {
+    /// Preset format version (this build: 1).
+    pub version: u32,
+    pub name: String,
+    pub description: String,
+    pub atmosphere: AtmosphereSettings,
+    pub sun: SunSettings,
+    pub camera: CameraSettings,
+    pub render: RenderSettings,
+    pub display: DisplaySettings,
+}
+
+impl Default for Scene {
+    /// The built-in default scene: a clear rural afternoon seen from the ground.
+    fn default() -> Scene {
+        Scene {
+            version: SCENE_VERSION,
+            name: "Default".into(),
+            description: "Rural aerosol, June ozone, sun 30° high, camera on the ground.".into(),
+            atmosphere: AtmosphereSettings::default(),
+            sun: SunSettings::default(),
+            camera: CameraSettings::default(),
+            render: RenderSettings::default(),
+            display: DisplaySettings::default(),
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct AtmosphereSettings {
+    /// Planet radius, km (1000–100 000; Earth 6360).
+    pub planet_radius_km: f64,
+    /// Height of the top of the atmosphere above the ground, km (10–1000; Earth 100).
+    pub top_km: f64,
+    pub air_profile: AirProfile,
+    /// Use the wavelength-dependent depolarisation of air in the Rayleigh phase function.
+    pub rayleigh_depolarisation: bool,
+    pub aerosol: AerosolSettings,
+    pub ozone: OzoneSettings,
+    /// Lambertian ground albedo (0–1).
+    pub ground_albedo: f64,
+    pub solar_spectrum: SolarSpectrum,
+}
+
+impl Default for AtmosphereSettings {
+    fn default() -> Self {
+        AtmosphereSettings {
+            planet_radius_km: EARTH_RADIUS_M / 1000.0,
+            top_km: EARTH_ATMOSPHERE_TOP_M / 1000.0,
+            air_profile: AirProfile::default(),
+            rayleigh_depolarisation: true,
+            aerosol: AerosolSettings::default(),
+            ozone: OzoneSettings::default(),
+            ground_albedo: 0.3,
+            solar_spectrum: SolarSpectrum::default(),
+        }
+    }
+}
+
+/// Aerosol phase function model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+pub enum AerosolPhase {
+    #[default]
+    HenyeyGreenstein,
+    CornetteShanks,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct AerosolSettings {
+    pub kind: AerosolType,
+    /// Aerosol optical depth at 550 nm, vertical, ground to top (0–5).
+    pub aod550: f64,
+    pub phase: AerosolPhase,
+    /// Used when `kind` is Custom.
+    pub custom: CustomAerosol,
+}
+
+impl Default for AerosolSettings {
+    fn default() -> Self {
+        AerosolSettings {
+            kind: AerosolType::Rural,
+            aod550: AerosolType::Rural.default_aod550(),
+            phase: AerosolPhase::default(),
+            custom: CustomAerosol::default(),
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct CustomAerosol {
+    /// Single-scattering albedo (0–1).
+    pub single_scattering_albedo: f64,
+    /// Asymmetry parameter g (−0.95–0.95).
+    pub asymmetry_g: f64,
+    /// Ångström exponent α: extinction ∝ (λ/550 nm)^−α (−1–4).
+    pub angstrom_exponent: f64,
+    /// Scale height of the exponential profile, km (0.1–100).
+    pub scale_height_km: f64,
+}
+
+impl Default for CustomAerosol {
+    fn default() -> Self {
+        CustomAerosol {
+            single_scattering_albedo: 0.9,
+            asymmetry_g: 0.7,
+            angstrom_exponent: 1.3,
+            scale_height_km: 1.2,
+        }
+    }
+}
+
+/// Where the total ozone column comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum OzoneColumn {
+    /// Monthly mean at Arosa (Dütsch 1973), month 1–12.
+    Month(u32),
+    /// Set directly, Dobson units (0–1000).
+    Du(f64),
+    /// The column of the chosen AFGL profile itself.
+    Profile,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct OzoneSettings {
+    pub profile: OzoneProfile,
+    pub column: OzoneColumn,
+    pub cross_section: OzoneCrossSection,
+    /// Temperature of the ozone cross-section, K (203–293; Bogumil only).
+    pub temperature_k: f64,
+}
+
+impl Default for OzoneSettings {
+    fn default() -> Self {
+        OzoneSettings {
+            profile: OzoneProfile::default(),
+            column: OzoneColumn::Month(6),
+            cross_section: OzoneCrossSection::default(),
+            temperature_k: 233.0,
+        }
+    }
+}
+
+impl OzoneSettings {
+    /// The total column this setting stands for, DU, given the atmosphere's top.
+    pub fn column_du(&self, top_m: f64) -> f64 {
+        match self.column {
+            OzoneColumn::Month(m) => ozone::monthly_column_du(m).unwrap_or(300.0),
+            OzoneColumn::Du(du) => du,
+            OzoneColumn::Profile => self.profile.native_column_du(top_m).unwrap_or(300.0),
+        }
+    }
+}
+
+/// Where the sun is.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum SunSettings {
+    /// Elevation above the horizon (−90–90°) and azimuth clockwise from north (0–360°).
+    Angles {
+        elevation_deg: f64,
+        azimuth_deg: f64,
+    },
+    /// From date, time and place (NOAA solar position).
+    Date {
+        time: DateTime,
+        /// Latitude, degrees north (−90–90).
+        latitude_deg: f64,
+        /// Longitude, degrees east (−180–180).
+        longitude_deg: f64,
+    },
+}
+
+impl Default for SunSettings {
+    fn default() -> Self {
+        SunSettings::Angles {
+            elevation_deg: 30.0,
+            azimuth_deg: 180.0,
+        }
+    }
+}
+
+impl SunSettings {
+    /// The sun's elevation and azimuth.
+    pub fn angles(&self) -> SunAngles {
+        match *self {
+            SunSettings::Angles {
+                elevation_deg,
+                azimuth_deg,
+            } => SunAngles {
+                elevation_deg,
+                azimuth_deg,
+            },
+            SunSettings::Date {
+                time,
+                latitude_deg,
+                longitude_deg,
+            } => sun::position(&time, latitude_deg, longitude_deg),
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct CameraSettings {
+    /// Height above the ground, m (0–100 000 km = 1e8 m).
+    pub altitude_m: f64,
+    /// View direction clockwise from north, degrees (0–360).
+    pub heading_deg: f64,
+    /// View elevation above the horizon, degrees (−90–90).
+    pub pitch_deg: f64,
+    /// Vertical field of view, degrees (1–170).
+    pub fov_deg: f64,
+}
+
+impl Default for CameraSettings {
+    fn default() -> Self {
+        CameraSettings {
+            altitude_m: 1.0,
+            heading_deg: 180.0,
+            pitch_deg: 10.0,
+            fov_deg: 70.0,
+        }
+    }
+}
+
+/// Rendering method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+pub enum Method {
+    /// Hillaire (2020): transmittance, multiple-scattering and sky-view LUTs.
+    #[default]
+    Hillaire,
+    /// The spectral path tracer (ground truth).
+    PathTracer,
+}
+
+/// Wavelengths a render samples.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum WavelengthSet {
+    /// 680/550/440 nm used directly as linear sRGB.
+    Rgb3,
+    /// 630/560/490/430 nm with a 3×4 matrix to sRGB (García Liñán 2023).
+    Spectral4,
+    /// N evenly spaced bands over 360–830 nm, N a multiple of 4 (4–128).
+    SpectralN(u32),
+}
+
+impl Default for WavelengthSet {
+    fn default() -> Self {
+        WavelengthSet::Spectral4
+    }
+}
+
+/// Quality presets: LUT sizes and sample counts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+pub enum Quality {
+    Low,
+    #[default]
+    Medium,
+    High,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(default, deny_unknown_fields)]
+pub struct RenderSettings {
+    pub method: Method,
+    pub wavelengths: WavelengthSet,
+    pub quality: Quality,
+}
+
+/// Tone mapping from linear radiance to display.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+pub enum ToneMap {
+    /// 1 − exp(−k·L), as in the papers.
+    #[default]
+    Exponential,
+    /// A filmic curve (ACES fit).
+    Filmic,
+    /// Exposure only, clipped.
+    Linear,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct DisplaySettings {
+    /// Exposure in stops (−20–20).
+    pub exposure_ev: f64,
+    pub tone_map: ToneMap,
+}
+
+impl Default for DisplaySettings {
+    fn default() -> Self {
+        DisplaySettings {
+            exposure_ev: 0.0,
+            tone_map: ToneMap::default(),
+        }
+    }
+}
+
+/// One field out of range.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FieldError {
+    /// Dotted path of the field, e.g. `atmosphere.aerosol.aod550`.
+    pub path: String,
+    /// What is wrong and what is allowed.
+    pub message: String,
+}
+
+impl fmt::Display for FieldError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.path, self.message)
+    }
+}
+
+/// Why a scene could not be loaded, parsed or accepted.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    #[error("{file}: cannot read: {source}")]
+    Io {
+        file: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{file}:{line}:{column}: {path}{message}")]
+    Parse {
+        file: PathBuf,
+        line: usize,
+        column: usize,
+        path: String,
+        message: String,
+    },
+    #[error(
+        "{file}: preset version {found} is newer than this Atmoscope reads (up to {supported}); update Atmoscope"
+    )]
+    NewerVersion {
+        file: PathBuf,
+        found: u32,
+        supported: u32,
+    },
+    #[error("{file}: {}", join_errors(.errors))]
+    Invalid {
+        file: PathBuf,
+        errors: Vec<FieldError>,
+    },
+    #[error("--set {assignment}: {message}")]
+    Override { assignment: String, message: String },
+}
+
+fn join_errors(errors: &[FieldError]) -> String {
+    errors
+        .iter()
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+struct Checker {
+    errors: Vec<FieldError>,
+}
+
+impl Checker {
+    fn range(&mut self, path: &str, value: f64, min: f64, max: f64, unit: &str) {
+        if !(value >= min && value <= max) {
+            self.errors.push(FieldError {
+                path: path.into(),
+                message: format!("is {value}{unit}, allowed {min}{unit} to {max}{unit}"),
+            });
+        }
+    }
+
+    fn fail(&mut self, path: &str, message: String) {
+        self.errors.push(FieldError {
+            path: path.into(),
+            message,
+        });
+    }
+}
+
+impl Scene {
+    /// Checks every field against its range; returns all problems at once.
+    pub fn validate(&self) -> Result<(), Vec<FieldError>> {
+        let mut c = Checker { errors: vec![] };
+        if self.version > SCENE_VERSION {
+            c.fail(
+                "version",
+                format!(
+                    "is {}, this build reads up to {SCENE_VERSION}",
+                    self.version
+                ),
+            );
+        }
+        let a = &self.atmosphere;
+        c.range(
+            "atmosphere.planet_radius_km",
+            a.planet_radius_km,
+            1000.0,
+            100_000.0,
+            " km",
+        );
+        c.range("atmosphere.top_km", a.top_km, 10.0, 1000.0, " km");
+        c.range("atmosphere.ground_albedo", a.ground_albedo, 0.0, 1.0, "");
+        c.range("atmosphere.aerosol.aod550", a.aerosol.aod550, 0.0, 5.0, "");
+        let ca = &a.aerosol.custom;
+        c.range(
+            "atmosphere.aerosol.custom.single_scattering_albedo",
+            ca.single_scattering_albedo,
+            0.0,
+            1.0,
+            "",
+        );
+        c.range(
+            "atmosphere.aerosol.custom.asymmetry_g",
+            ca.asymmetry_g,
+            -0.95,
+            0.95,
+            "",
+        );
+        c.range(
+            "atmosphere.aerosol.custom.angstrom_exponent",
+            ca.angstrom_exponent,
+            -1.0,
+            4.0,
+            "",
+        );
+        c.range(
+            "atmosphere.aerosol.custom.scale_height_km",
+            ca.scale_height_km,
+            0.1,
+            100.0,
+            " km",
+        );
+        let o = &a.ozone;
+        let (t_min, t_max) = ozone::TEMPERATURE_RANGE_K;
+        c.range(
+            "atmosphere.ozone.temperature_k",
+            o.temperature_k,
+            t_min,
+            t_max,
+            " K",
+        );
+        match o.column {
+            OzoneColumn::Month(m) if !(1..=12).contains(&m) => {
+                c.fail("atmosphere.ozone.column.Month", format!("is {m}, allowed 1 to 12"))
+            }
+            OzoneColumn::Du(du) => c.range("atmosphere.ozone.column.Du", du, 0.0, 1000.0, " DU"),
+            OzoneColumn::Profile if !matches!(o.profile, OzoneProfile::Afgl(_)) => c.fail(
+                "atmosphere.ozone.column",
+                format!("Profile needs an AFGL ozone profile, the profile is {:?}; give Month(m) or Du(x)", o.profile),
+            ),
+            _ => {}
+        }
+        match self.sun {
+            SunSettings::Angles {
+                elevation_deg,
+                azimuth_deg,
+            } => {
+                c.range("sun.Angles.elevation_deg", elevation_deg, -90.0, 90.0, "°");
+                c.range("sun.Angles.azimuth_deg", azimuth_deg, 0.0, 360.0, "°");
+            }
+            SunSettings::Date {
+                time,
+                latitude_deg,
+                longitude_deg,
+            } => {
+                c.range("sun.Date.time.year", time.year as f64, 1900.0, 2100.0, "");
+                c.range("sun.Date.time.month", time.month as f64, 1.0, 12.0, "");
+                c.range("sun.Date.time.day", time.day as f64, 1.0, 31.0, "");
+                c.range("sun.Date.time.hour", time.hour, 0.0, 24.0, " h");
+                c.range(
+                    "sun.Date.time.utc_offset_h",
+                    time.utc_offset_h,
+                    -12.0,
+                    14.0,
+                    " h",
+                );
+                c.range("sun.Date.latitude_deg", latitude_deg, -90.0, 90.0, "°");
+                c.range("sun.Date.longitude_deg", longitude_deg, -180.0, 180.0, "°");
+            }
+        }
+        let cam = &self.camera;
+        c.range("camera.altitude_m", cam.altitude_m, 0.0, 1e8, " m");
+        c.range("camera.heading_deg", cam.heading_deg, 0.0, 360.0, "°");
+        c.range("camera.pitch_deg", cam.pitch_deg, -90.0, 90.0, "°");
+        c.range("camera.fov_deg", cam.fov_deg, 1.0, 170.0, "°");
+        if let WavelengthSet::SpectralN(n) = self.render.wavelengths {
+            if n % 4 != 0 || !(4..=128).contains(&n) {
+                c.fail(
+                    "render.wavelengths.SpectralN",
+                    format!("is {n}, allowed a multiple of 4 from 4 to 128"),
+                );
+            }
+        }
+        c.range(
+            "display.exposure_ev",
+            self.display.exposure_ev,
+            -20.0,
+            20.0,
+            " EV",
+        );
+        if c.errors.is_empty() {
+            Ok(())
+        } else {
+            Err(c.errors)
+        }
+    }
+
+    /// Parses RON text; `file` names the source in messages.
+    pub fn from_ron(text: &str, file: &Path) -> Result<Scene, SceneError> {
+        #[derive(Deserialize)]
+        struct VersionOnly {
+            #[serde(default)]
+            version: u32,
+        }
+        let parse_error = |e: ron::error::SpannedError, path: String| SceneError::Parse {
+            file: file.into(),
+            line: e.span.start.line,
+            column: e.span.start.col,
+            path,
+            message: e.code.to_string(),
+        };
+        // A newer preset may have fields this build does not know: say "newer", not "unknown".
+        let options = ron::Options::default();
+        if let Ok(v) = options.from_str::<VersionOnly>(text) {
+            if v.version > SCENE_VERSION {
+                return Err(SceneError::NewerVersion {
+                    file: file.into(),
+                    found: v.version,
+                    supported: SCENE_VERSION,
+                });
+            }
+        }
+        let mut de =
+            ron::Deserializer::from_str(text).map_err(|e| parse_error(e, String::new()))?;
+        let scene: Scene = serde_path_to_error::deserialize(&mut de).map_err(|e| {
+            let path = e.path().to_string();
+            let path = if path == "." {
+                String::new()
+            } else {
+                format!("{path}: ")
+            };
+            let inner = e.into_inner();
+            let span = de.span_error(inner);
+            parse_error(span, path)
+        })?;
+        de.end()
+            .map_err(|e| parse_error(de.span_error(e), String::new()))?;
+        scene.validate().map_err(|errors| SceneError::Invalid {
+            file: file.into(),
+            errors,
+        })?;
+        Ok(scene)
+    }
+
+    /// Reads and validates a preset file.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+            file: path.into(),
+            source,
+        })?;
+        Scene::from_ron(&text, path)
+    }
+
+    /// The scene as pretty RON.
+    pub fn to_ron(&self) -> String {
+        let config = ron::ser::PrettyConfig::new()
+            .struct_names(false)
+            .depth_limit(4);
+        ron::ser::to_string_pretty(self, config)
+            .unwrap_or_else(|e| format!("// cannot serialise scene: {e}"))
+    }
+
+    /// Writes the scene as RON.
+    pub fn save(&self, path: &Path) -> Result<(), SceneError> {
+        std::fs::write(path, self.to_ron() + "\n").map_err(|source| SceneError::Io {
+            file: path.into(),
+            source,
+        })
+    }
+
+    /// Sets the field at a dotted `path` (e.g. `atmosphere.aerosol.aod550`) to `value`, given as
+    /// JSON (`0.3`, `true`, `{"Month":6}`) or as a bare word taken as a string (`DesertDust`).
+    /// The result is validated; on any error the scene is left unchanged.
+    pub fn set_path(&mut self, path: &str, value: &str) -> Result<(), SceneError> {
+        let assignment = format!("{path}={value}");
+        let fail = |message: String| SceneError::Override {
+            assignment: assignment.clone(),
+            message,
+        };
+        let mut tree = serde_json::to_value(&*self).map_err(|e| fail(e.to_string()))?;
+        let parsed: serde_json::Value = serde_json::from_str(value)
+            .unwrap_or_else(|_| serde_json::Value::String(value.to_string()));
+        let mut node = &mut tree;
+        let keys: Vec<&str> = path.split('.').collect();
+        for (i, key) in keys.iter().enumerate() {
+            let object = node.as_object_mut().ok_or_else(|| {
+                fail(format!(
+                    "`{}` is not a group of fields",
+                    keys[..i].join(".")
+                ))
+            })?;
+            if !object.contains_key(*key) {
+                // Switching an enum's variant (e.g. sun.Date while sun is Angles) replaces it whole.
+                let known: Vec<String> = object.keys().cloned().collect();
+                if i + 1 == keys.len()
+                    && known.len() == 1
+                    && key.chars().next().is_some_and(char::is_uppercase)
+                {
+                    object.clear();
+                } else {
+                    return Err(fail(format!(
+                        "no field `{key}` here; fields: {}",
+                        known.join(", ")
+                    )));
+                }
+                object.insert(key.to_string(), serde_json::Value::Null);
+            }
+            node = object
+                .get_mut(*key)
+                .ok_or_else(|| fail(format!("no field `{key}`")))?;
+        }
+        *node = parsed;
+        let scene: Scene = serde_json::from_value(tree).map_err(|e| fail(e.to_string()))?;
+        scene
+            .validate()
+            .map_err(|errors| fail(join_errors(&errors)))?;
+        *self = scene;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Scene, SceneError> {
+        Scene::from_ron(text, Path::new("test.ron"))
+    }
+
+    #[test]
+    fn default_scene_is_valid_and_round_trips() {
+        let s = Scene::default();
+        s.validate().unwrap();
+        assert_eq!(parse(&s.to_ron()).unwrap(), s);
+    }
+
+    #[test]
+    fn empty_preset_is_the_default_scene() {
+        assert_eq!(parse("()").unwrap(), Scene::default());
+    }
+
+    #[test]
+    fn out_of_range_names_file_field_and_range() {
+        let e = parse("(atmosphere: (aerosol: (aod550: 7.5)))")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("test.ron"), "{e}");
+        assert!(e.contains("atmosphere.aerosol.aod550"), "{e}");
+        assert!(e.contains("7.5") && e.contains("0 to 5"), "{e}");
+    }
+
+    #[test]
+    fn malformed_preset_names_line_and_field() {
+        let e = parse("(\n  atmosphere: (\n    ground_albedo: \"white\",\n  ),\n)").unwrap_err();
+        match &e {
+            SceneError::Parse { line, path, .. } => {
+                assert_eq!(*line, 3, "{e}");
+                assert!(path.contains("atmosphere.ground_albedo"), "{e}");
+            }
+            other => panic!("expected a parse error, got {other}"),
+        }
+        let e = parse("(camera: (altitud_m: 3.0))").unwrap_err().to_string();
+        assert!(e.contains("altitud_m"), "{e}");
+    }
+
+    #[test]
+    fn newer_version_is_refused_clearly() {
+        let e = parse("(version: 9, future_field: 1)").unwrap_err();
+        assert!(
+            matches!(e, SceneError::NewerVersion { found: 9, .. }),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn set_path_changes_one_field_and_validates() {
+        let mut s = Scene::default();
+        s.set_path("atmosphere.aerosol.aod550", "0.4").unwrap();
+        assert_eq!(s.atmosphere.aerosol.aod550, 0.4);
+        s.set_path("atmosphere.aerosol.kind", "DesertDust").unwrap();
+        assert_eq!(s.atmosphere.aerosol.kind, AerosolType::DesertDust);
+        s.set_path("atmosphere.ozone.column", r#"{"Du":280}"#)
+            .unwrap();
+        assert_eq!(s.atmosphere.ozone.column, OzoneColumn::Du(280.0));
+        let before = s.clone();
+        assert!(s.set_path("atmosphere.ground_albedo", "1.5").is_err());
+        assert!(s.set_path("atmosphere.nope", "1").is_err());
+        assert!(
+            s.set_path("render.wavelengths", r#"{"SpectralN":30}"#)
+                .is_err()
+        );
+        assert_eq!(s, before, "a failed override changes nothing");
+    }
+
+    #[test]
+    fn set_path_switches_sun_mode() {
+        let mut s = Scene::default();
+        s.set_path(
+            "sun.Date",
+            r#"{"time":{"year":2024,"month":6,"day":21,"hour":12,"utc_offset_h":2},"latitude_deg":46.8,"longitude_deg":9.7}"#,
+        )
+        .unwrap();
+        let a = s.sun.angles();
+        assert!(a.elevation_deg > 60.0 && a.elevation_deg < 70.0, "{a:?}");
+    }
+}
