@@ -1,0 +1,59 @@
+//! Command-line subcommands. Each loads a scene the same way (`SceneArgs`), works headless and
+//! reports bad input as an error naming the file, field and allowed range.
+
+mod info;
+mod presets_cmd;
+mod scene_args;
+
+pub use scene_args::SceneArgs;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "atmoscope",
+    version,
+    about = "An explorer of Earth's atmosphere: physically based sky rendering"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    /// Scene the explorer opens with (without a subcommand).
+    #[command(flatten)]
+    pub scene: SceneArgs,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Work with scene presets.
+    Presets {
+        #[command(subcommand)]
+        action: PresetsAction,
+    },
+    /// Optical depths, aerosol optics and sun transmittance of a scene, per wavelength.
+    Info(info::InfoArgs),
+}
+
+#[derive(Subcommand, Debug)]
+pub enum PresetsAction {
+    /// Check preset files (default: every shipped preset); exits non-zero on any failure.
+    Validate {
+        /// Preset files (.ron) to check.
+        files: Vec<std::path::PathBuf>,
+    },
+    /// List the shipped presets.
+    List,
+}
+
+pub fn run(command: Command) -> anyhow::Result<ExitCode> {
+    match command {
+        Command::Presets {
+            action: PresetsAction::Validate { files },
+        } => presets_cmd::validate(&files),
+        Command::Presets {
+            action: PresetsAction::List,
+        } => presets_cmd::list(),
+        Command::Info(args) => info::run(&args),
+    }
+}

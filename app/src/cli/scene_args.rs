@@ -1,0 +1,194 @@
+//! The scene options every scene-taking subcommand shares: a preset, named overrides for the
+//! common fields, and `--set PATH=VALUE` for any other field.
+
+use crate::presets::load_shipped;
+use anyhow::{Context, bail};
+use atmoscope_model::Scene;
+use atmoscope_model::aerosol::AerosolType;
+use atmoscope_model::profiles::{AirProfile, OzoneProfile};
+use atmoscope_model::scene::{OzoneColumn, SunSettings};
+use clap::Args;
+use std::path::PathBuf;
+
+#[derive(Args, Debug, Default, Clone)]
+pub struct SceneArgs {
+    /// Preset file (.ron), or the name of a shipped preset (see `atmoscope presets list`).
+    /// Without it the built-in default scene is used.
+    #[arg(long, value_name = "FILE")]
+    pub preset: Option<PathBuf>,
+    /// Camera height above the ground, m (0 to 1e8).
+    #[arg(long, value_name = "M")]
+    pub altitude_m: Option<f64>,
+    /// Sun zenith angle, degrees (0 to 180).
+    #[arg(
+        long,
+        value_name = "DEG",
+        conflicts_with = "sun_elevation_deg",
+        allow_hyphen_values = true
+    )]
+    pub sun_zenith_deg: Option<f64>,
+    /// Sun elevation above the horizon, degrees (−90 to 90).
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    pub sun_elevation_deg: Option<f64>,
+    /// Sun azimuth clockwise from north, degrees (0 to 360).
+    #[arg(long, value_name = "DEG")]
+    pub sun_azimuth_deg: Option<f64>,
+    /// Aerosol type: none, background, desert-dust, maritime-clean, maritime-mineral,
+    /// polar-antarctic, polar-arctic, remote-continental, rural, urban, custom. Sets the
+    /// type's typical AOD unless --aod550 is given.
+    #[arg(long, value_name = "TYPE")]
+    pub aerosol: Option<String>,
+    /// Aerosol optical depth at 550 nm (0 to 5).
+    #[arg(long, value_name = "TAU")]
+    pub aod550: Option<f64>,
+    /// Month 1–12: sets the total ozone column to that month's mean.
+    #[arg(long, value_name = "1-12", conflicts_with = "ozone_du")]
+    pub month: Option<u32>,
+    /// Total ozone column, Dobson units (0 to 1000).
+    #[arg(long, value_name = "DU")]
+    pub ozone_du: Option<f64>,
+    /// Ground albedo (0 to 1).
+    #[arg(long, value_name = "A")]
+    pub albedo: Option<f64>,
+    /// Air density profile: us-standard-1976, afgl-us-standard, afgl-tropical,
+    /// afgl-midlatitude-summer, afgl-midlatitude-winter, afgl-subarctic-summer,
+    /// afgl-subarctic-winter, exponential-fit.
+    #[arg(long, value_name = "NAME")]
+    pub air_profile: Option<String>,
+    /// Ozone profile: an AFGL name (keeps its own column unless --ozone-du or --month is
+    /// given), guimera, or fit.
+    #[arg(long, value_name = "NAME")]
+    pub ozone_profile: Option<String>,
+    /// Temperature of the ozone cross-section, K (203 to 293).
+    #[arg(long, value_name = "K")]
+    pub ozone_temperature_k: Option<f64>,
+    /// Planet radius, km (1000 to 100000).
+    #[arg(long, value_name = "KM")]
+    pub planet_radius_km: Option<f64>,
+    /// Height of the top of the atmosphere, km (10 to 1000).
+    #[arg(long, value_name = "KM")]
+    pub top_km: Option<f64>,
+    /// Any other scene field by its dotted path, value as JSON or a bare word, e.g.
+    /// `--set camera.fov_deg=50`, `--set atmosphere.aerosol.phase=CornetteShanks`. Repeatable.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub set: Vec<String>,
+}
+
+fn names<T: Copy>(all: &[T], name: fn(T) -> &'static str) -> String {
+    all.iter().map(|&t| name(t)).collect::<Vec<_>>().join(", ")
+}
+
+impl SceneArgs {
+    /// The scene: the preset (or default) with every override applied, validated.
+    pub fn scene(&self) -> anyhow::Result<Scene> {
+        let mut scene = match &self.preset {
+            None => Scene::default(),
+            Some(p) if p.exists() => Scene::load(p)?,
+            Some(p) => {
+                let name = p.to_string_lossy();
+                let file = if name.ends_with(".ron") {
+                    name.to_string()
+                } else {
+                    format!("{name}.ron")
+                };
+                match load_shipped(&file) {
+                    Some(result) => result?,
+                    None => bail!(
+                        "{}: no such file, nor a shipped preset (see `atmoscope presets list`)",
+                        p.display()
+                    ),
+                }
+            }
+        };
+        self.apply(&mut scene)?;
+        scene.validate().map_err(|errors| {
+            let list = errors
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join("; ");
+            anyhow::anyhow!("the scene after the command-line overrides is invalid: {list}")
+        })?;
+        Ok(scene)
+    }
+
+    fn apply(&self, scene: &mut Scene) -> anyhow::Result<()> {
+        let atm = &mut scene.atmosphere;
+        if let Some(v) = self.planet_radius_km {
+            atm.planet_radius_km = v;
+        }
+        if let Some(v) = self.top_km {
+            atm.top_km = v;
+        }
+        if let Some(name) = &self.air_profile {
+            atm.air_profile = AirProfile::from_cli_name(name).with_context(|| {
+                format!(
+                    "--air-profile {name}: unknown; choose one of {}",
+                    names(&AirProfile::all(), AirProfile::cli_name)
+                )
+            })?;
+        }
+        if let Some(name) = &self.aerosol {
+            let kind = AerosolType::from_cli_name(name).with_context(|| {
+                format!(
+                    "--aerosol {name}: unknown; choose one of {}",
+                    names(&AerosolType::ALL, AerosolType::cli_name)
+                )
+            })?;
+            atm.aerosol.kind = kind;
+            atm.aerosol.aod550 = kind.default_aod550();
+        }
+        if let Some(v) = self.aod550 {
+            atm.aerosol.aod550 = v;
+        }
+        if let Some(name) = &self.ozone_profile {
+            let profile = OzoneProfile::from_cli_name(name).with_context(|| {
+                format!(
+                    "--ozone-profile {name}: unknown; choose one of {}",
+                    names(&OzoneProfile::all(), OzoneProfile::cli_name)
+                )
+            })?;
+            atm.ozone.profile = profile;
+            match profile {
+                OzoneProfile::Afgl(_) => atm.ozone.column = OzoneColumn::Profile,
+                _ if atm.ozone.column == OzoneColumn::Profile => {
+                    atm.ozone.column = OzoneColumn::Month(6)
+                }
+                _ => {}
+            }
+        }
+        if let Some(m) = self.month {
+            atm.ozone.column = OzoneColumn::Month(m);
+        }
+        if let Some(du) = self.ozone_du {
+            atm.ozone.column = OzoneColumn::Du(du);
+        }
+        if let Some(t) = self.ozone_temperature_k {
+            atm.ozone.temperature_k = t;
+        }
+        if let Some(a) = self.albedo {
+            atm.ground_albedo = a;
+        }
+        if let Some(h) = self.altitude_m {
+            scene.camera.altitude_m = h;
+        }
+        let elevation = self
+            .sun_elevation_deg
+            .or(self.sun_zenith_deg.map(|z| 90.0 - z));
+        if elevation.is_some() || self.sun_azimuth_deg.is_some() {
+            // Named angles switch a date-placed sun to angles, starting where it stood.
+            let now = scene.sun.angles();
+            scene.sun = SunSettings::Angles {
+                elevation_deg: elevation.unwrap_or(now.elevation_deg),
+                azimuth_deg: self.sun_azimuth_deg.unwrap_or(now.azimuth_deg),
+            };
+        }
+        for assignment in &self.set {
+            let Some((path, value)) = assignment.split_once('=') else {
+                bail!("--set {assignment}: expected PATH=VALUE, e.g. camera.fov_deg=50");
+            };
+            scene.set_path(path.trim(), value.trim())?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,427 @@
+//! The Scene panel: every field of the scene as a control with its unit and a tooltip that
+//! explains the physics in a sentence or two.
+
+use super::Command;
+use crate::presets::SHIPPED;
+use atmoscope_model::Scene;
+use atmoscope_model::aerosol::AerosolType;
+use atmoscope_model::ozone::OzoneCrossSection;
+use atmoscope_model::profiles::{AirProfile, OzoneProfile};
+use atmoscope_model::scene::{
+    AerosolPhase, Method, OzoneColumn, Quality, SunSettings, ToneMap, WavelengthSet,
+};
+use atmoscope_model::solar::SolarSpectrum;
+use atmoscope_model::sun::DateTime;
+use eframe::egui::{self, ComboBox, DragValue, Slider};
+
+const MONTHS: [&str; 12] = [
+    "January",
+    "February",
+    "March",
+    "April",
+    "May",
+    "June",
+    "July",
+    "August",
+    "September",
+    "October",
+    "November",
+    "December",
+];
+
+/// Draws the panel; returns the commands its controls produced this frame.
+pub fn show(ui: &mut egui::Ui, current: &Scene) -> Vec<Command> {
+    let mut commands = Vec::new();
+    let mut s = current.clone();
+    ui.heading("Scene");
+    ComboBox::from_label("Preset")
+        .selected_text("Load a preset…")
+        .show_ui(ui, |ui| {
+            for (name, _) in SHIPPED {
+                if ui
+                    .selectable_label(false, name.trim_end_matches(".ron"))
+                    .clicked()
+                {
+                    commands.push(Command::LoadPreset(name));
+                }
+            }
+        })
+        .response
+        .on_hover_text("Scenes shipped with Atmoscope, each named for what it shows.");
+
+    egui::CollapsingHeader::new("Aerosols")
+        .default_open(true)
+        .show(ui, |ui| aerosol(ui, &mut s));
+    egui::CollapsingHeader::new("Ozone")
+        .default_open(true)
+        .show(ui, |ui| ozone(ui, &mut s));
+    egui::CollapsingHeader::new("Ground and air")
+        .default_open(true)
+        .show(ui, |ui| ground_and_air(ui, &mut s));
+    egui::CollapsingHeader::new("Sun")
+        .default_open(true)
+        .show(ui, |ui| sun(ui, &mut s));
+    egui::CollapsingHeader::new("Camera")
+        .default_open(true)
+        .show(ui, |ui| camera(ui, &mut s));
+    egui::CollapsingHeader::new("Rendering and display")
+        .default_open(false)
+        .show(ui, |ui| render(ui, &mut s));
+
+    if s != *current {
+        commands.push(Command::SetScene(Box::new(s)));
+    }
+    commands
+}
+
+fn aerosol(ui: &mut egui::Ui, s: &mut Scene) {
+    let a = &mut s.atmosphere.aerosol;
+    let before = a.kind;
+    ComboBox::from_label("Type")
+        .selected_text(a.kind.label())
+        .show_ui(ui, |ui| {
+            for t in AerosolType::ALL {
+                ui.selectable_value(&mut a.kind, t, t.label());
+            }
+        })
+        .response
+        .on_hover_text(
+            "Aerosols are liquid or solid particles in the air. Their size and material decide how strongly they \
+             scatter and absorb each colour: fine urban soot absorbs, coarse desert dust scatters almost greyly.",
+        );
+    if a.kind != before {
+        a.aod550 = a.kind.default_aod550();
+    }
+    ui.add_enabled(
+        a.kind != AerosolType::None,
+        Slider::new(&mut a.aod550, 0.0..=5.0).logarithmic(true).smallest_positive(0.001).text("AOD at 550 nm"),
+    )
+    .on_hover_text(
+        "Aerosol optical depth at 550 nm: how much a vertical beam of green light is dimmed by aerosols alone \
+         (by e^−AOD). 0.05 is very clean air, 0.5 a hazy polluted day, above 1 a dust storm.",
+    );
+    ui.horizontal(|ui| {
+        ui.radio_value(&mut a.phase, AerosolPhase::HenyeyGreenstein, "Henyey–Greenstein");
+        ui.radio_value(&mut a.phase, AerosolPhase::CornetteShanks, "Cornette–Shanks");
+    })
+    .response
+    .on_hover_text("The angular shape of aerosol scattering: strongly forward, which makes the bright halo around the sun.");
+    if a.kind == AerosolType::Custom {
+        let c = &mut a.custom;
+        ui.add(Slider::new(&mut c.single_scattering_albedo, 0.0..=1.0).text("single-scattering albedo"))
+            .on_hover_text("Share of the light a particle removes that it scatters; the rest it absorbs (1 = no absorption).");
+        ui.add(Slider::new(&mut c.asymmetry_g, -0.95..=0.95).text("asymmetry g"))
+            .on_hover_text("Mean cosine of the scattering angle: 0 scatters evenly, near 1 almost straight ahead.");
+        ui.add(Slider::new(&mut c.angstrom_exponent, -1.0..=4.0).text("Ångström exponent"))
+            .on_hover_text("How fast extinction falls with wavelength, ∝ λ^−α: about 0 for coarse dust, 1.5–2 for fine smoke.");
+        ui.add(
+            Slider::new(&mut c.scale_height_km, 0.1..=100.0)
+                .logarithmic(true)
+                .text("scale height (km)"),
+        )
+        .on_hover_text("Height over which the aerosol density falls by a factor e.");
+    }
+}
+
+fn ozone(ui: &mut egui::Ui, s: &mut Scene) {
+    let o = &mut s.atmosphere.ozone;
+    let afgl = matches!(o.profile, OzoneProfile::Afgl(_));
+    ui.horizontal(|ui| {
+        if ui.radio(matches!(o.column, OzoneColumn::Month(_)), "By month").clicked() {
+            o.column = OzoneColumn::Month(6);
+        }
+        if ui.radio(matches!(o.column, OzoneColumn::Du(_)), "Dobson units").clicked() {
+            o.column = OzoneColumn::Du(300.0);
+        }
+        if ui.add_enabled(afgl, egui::RadioButton::new(o.column == OzoneColumn::Profile, "Profile's own")).clicked() {
+            o.column = OzoneColumn::Profile;
+        }
+    })
+    .response
+    .on_hover_text(
+        "The total amount of ozone overhead. Ozone absorbs orange light (the Chappuis band), which keeps the \
+         twilight zenith blue. 300 DU would be a 3 mm layer at ground pressure.",
+    );
+    match &mut o.column {
+        OzoneColumn::Month(m) => {
+            ui.add(
+                Slider::new(m, 1..=12)
+                    .custom_formatter(|v, _| MONTHS[(v as usize).clamp(1, 12) - 1].to_string())
+                    .text("month"),
+            )
+            .on_hover_text(
+                "Monthly mean ozone at Arosa (47° N): highest in spring, lowest in autumn.",
+            );
+        }
+        OzoneColumn::Du(du) => {
+            ui.add(Slider::new(du, 0.0..=1000.0).suffix(" DU").text("column"))
+                .on_hover_text("Total ozone column in Dobson units; the Antarctic ozone hole falls below 220 DU.");
+        }
+        OzoneColumn::Profile => {}
+    }
+    ComboBox::from_label("Vertical profile")
+        .selected_text(o.profile.cli_name())
+        .show_ui(ui, |ui| {
+            for p in OzoneProfile::all() {
+                ui.selectable_value(&mut o.profile, p, p.cli_name());
+            }
+        })
+        .response
+        .on_hover_text(
+            "How ozone is spread with height: a layer peaking near 20–25 km in every profile.",
+        );
+    if o.column == OzoneColumn::Profile && !matches!(o.profile, OzoneProfile::Afgl(_)) {
+        o.column = OzoneColumn::Month(6);
+    }
+    ComboBox::from_label("Cross-section")
+        .selected_text(o.cross_section.cli_name())
+        .show_ui(ui, |ui| {
+            ui.selectable_value(
+                &mut o.cross_section,
+                OzoneCrossSection::Bogumil2003,
+                "bogumil-2003",
+            );
+            ui.selectable_value(
+                &mut o.cross_section,
+                OzoneCrossSection::Serdyuchenko233K,
+                "serdyuchenko-233k",
+            );
+        })
+        .response
+        .on_hover_text(
+            "Laboratory measurement of how strongly one ozone molecule absorbs each wavelength.",
+        );
+    ui.add_enabled(
+        o.cross_section == OzoneCrossSection::Bogumil2003,
+        Slider::new(&mut o.temperature_k, 203.0..=293.0)
+            .suffix(" K")
+            .text("temperature"),
+    )
+    .on_hover_text(
+        "Ozone absorbs slightly differently when cold; the ozone layer is near 220–240 K.",
+    );
+}
+
+fn ground_and_air(ui: &mut egui::Ui, s: &mut Scene) {
+    let atm = &mut s.atmosphere;
+    ui.add(Slider::new(&mut atm.ground_albedo, 0.0..=1.0).text("ground albedo")).on_hover_text(
+        "Share of light the ground reflects: ocean 0.06, forest 0.15, sand 0.4, fresh snow 0.9. A bright ground lights \
+         the sky from below.",
+    );
+    ComboBox::from_label("Air profile")
+        .selected_text(atm.air_profile.cli_name())
+        .show_ui(ui, |ui| {
+            for p in AirProfile::all() {
+                ui.selectable_value(&mut atm.air_profile, p, p.cli_name());
+            }
+        })
+        .response
+        .on_hover_text(
+            "Density of air with height. Air molecules scatter blue light about five times more than red (Rayleigh, ∝ λ⁻⁴), \
+             which makes the sky blue.",
+        );
+    ui.checkbox(&mut atm.rayleigh_depolarisation, "Rayleigh depolarisation")
+        .on_hover_text("Air molecules are not perfect spheres: about 3 % depolarisation makes side scattering slightly stronger.");
+    ComboBox::from_label("Solar spectrum")
+        .selected_text(atm.solar_spectrum.label())
+        .show_ui(ui, |ui| {
+            for sp in SolarSpectrum::ALL {
+                ui.selectable_value(&mut atm.solar_spectrum, sp, sp.label());
+            }
+        })
+        .response
+        .on_hover_text("The sun's light above the atmosphere, as measured; the tables differ by a few percent.");
+    ui.add(
+        Slider::new(&mut atm.planet_radius_km, 1000.0..=100_000.0)
+            .logarithmic(true)
+            .suffix(" km")
+            .text("planet radius"),
+    )
+    .on_hover_text(
+        "Earth's mean radius is 6360 km in sky models; a smaller planet curves the horizon more.",
+    );
+    ui.add(
+        Slider::new(&mut atm.top_km, 10.0..=1000.0)
+            .logarithmic(true)
+            .suffix(" km")
+            .text("top of atmosphere"),
+    )
+    .on_hover_text(
+        "Height above which the air is ignored; 100 km (the Kármán line) loses nothing visible.",
+    );
+}
+
+fn sun(ui: &mut egui::Ui, s: &mut Scene) {
+    let angles = s.sun.angles();
+    ui.horizontal(|ui| {
+        if ui
+            .radio(matches!(s.sun, SunSettings::Angles { .. }), "Angles")
+            .clicked()
+        {
+            s.sun = SunSettings::Angles {
+                elevation_deg: angles.elevation_deg,
+                azimuth_deg: angles.azimuth_deg,
+            };
+        }
+        if ui
+            .radio(
+                matches!(s.sun, SunSettings::Date { .. }),
+                "Date, time and place",
+            )
+            .clicked()
+            && matches!(s.sun, SunSettings::Angles { .. })
+        {
+            s.sun = SunSettings::Date {
+                time: DateTime {
+                    year: 2025,
+                    month: 6,
+                    day: 21,
+                    hour: 12.0,
+                    utc_offset_h: 2.0,
+                },
+                latitude_deg: 47.37,
+                longitude_deg: 8.54,
+            };
+        }
+    });
+    match &mut s.sun {
+        SunSettings::Angles {
+            elevation_deg,
+            azimuth_deg,
+        } => {
+            ui.add(Slider::new(elevation_deg, -90.0..=90.0).suffix("°").text("elevation")).on_hover_text(
+                "Height of the sun above the horizon. Low sun light crosses up to 40 times more air, so blue is scattered \
+                 away and the sun turns red; below 0° only the upper air is lit (twilight).",
+            );
+            ui.add(Slider::new(azimuth_deg, 0.0..=360.0).suffix("°").text("azimuth"))
+                .on_hover_text("Compass direction of the sun, clockwise from north (90° east, 180° south, 270° west).");
+        }
+        SunSettings::Date {
+            time,
+            latitude_deg,
+            longitude_deg,
+        } => {
+            ui.horizontal(|ui| {
+                ui.add(DragValue::new(&mut time.year).range(1900..=2100));
+                ui.add(
+                    DragValue::new(&mut time.month)
+                        .range(1..=12)
+                        .prefix("month "),
+                );
+                ui.add(DragValue::new(&mut time.day).range(1..=31).prefix("day "));
+            });
+            ui.add(Slider::new(&mut time.hour, 0.0..=23.99).text("local time (h)"));
+            ui.add(Slider::new(&mut time.utc_offset_h, -12.0..=14.0).text("UTC offset (h)"));
+            ui.add(
+                Slider::new(latitude_deg, -90.0..=90.0)
+                    .suffix("° N")
+                    .text("latitude"),
+            )
+            .on_hover_text(
+                "The sun's path depends on latitude: it never rises far at the poles in winter.",
+            );
+            ui.add(
+                Slider::new(longitude_deg, -180.0..=180.0)
+                    .suffix("° E")
+                    .text("longitude"),
+            );
+            ui.label(format!(
+                "→ elevation {:.2}°, azimuth {:.2}°",
+                angles.elevation_deg, angles.azimuth_deg
+            ))
+            .on_hover_text(
+                "Computed with the NOAA solar position equations (geometric, without refraction).",
+            );
+        }
+    }
+}
+
+fn camera(ui: &mut egui::Ui, s: &mut Scene) {
+    let c = &mut s.camera;
+    ui.add(Slider::new(&mut c.altitude_m, 0.0..=1e8).logarithmic(true).smallest_positive(1.0).suffix(" m").text("altitude"))
+        .on_hover_text(
+            "Camera height above the ground, from 1 m to 100 000 km. Half the air lies below 5.5 km; above 100 km the \
+             atmosphere is a thin glowing shell.",
+        );
+    ui.add(
+        Slider::new(&mut c.heading_deg, 0.0..=360.0)
+            .suffix("°")
+            .text("heading"),
+    )
+    .on_hover_text("Compass direction the camera looks, clockwise from north.");
+    ui.add(
+        Slider::new(&mut c.pitch_deg, -90.0..=90.0)
+            .suffix("°")
+            .text("pitch"),
+    )
+    .on_hover_text("How far the camera looks above (+) or below (−) the horizon.");
+    ui.add(
+        Slider::new(&mut c.fov_deg, 1.0..=170.0)
+            .suffix("°")
+            .text("field of view"),
+    )
+    .on_hover_text("Vertical angle the image covers; the eye's comfortable field is about 60°.");
+}
+
+fn render(ui: &mut egui::Ui, s: &mut Scene) {
+    let r = &mut s.render;
+    ComboBox::from_label("Method")
+        .selected_text(format!("{:?}", r.method))
+        .show_ui(ui, |ui| {
+            ui.selectable_value(&mut r.method, Method::Hillaire, "Hillaire 2020");
+            ui.selectable_value(&mut r.method, Method::PathTracer, "Path tracer");
+        })
+        .response
+        .on_hover_text("Hillaire 2020 is a real-time method with lookup tables; the path tracer is the slow, exact reference.");
+    let label = match r.wavelengths {
+        WavelengthSet::Rgb3 => "RGB3".to_string(),
+        WavelengthSet::Spectral4 => "Spectral4".to_string(),
+        WavelengthSet::SpectralN(n) => format!("Spectral{n}"),
+    };
+    ComboBox::from_label("Wavelengths")
+        .selected_text(label)
+        .show_ui(ui, |ui| {
+            ui.selectable_value(&mut r.wavelengths, WavelengthSet::Rgb3, "RGB3");
+            ui.selectable_value(&mut r.wavelengths, WavelengthSet::Spectral4, "Spectral4");
+            ui.selectable_value(&mut r.wavelengths, WavelengthSet::SpectralN(32), "SpectralN");
+        })
+        .response
+        .on_hover_text(
+            "RGB3 treats 680/550/440 nm as red, green and blue (fast, biased); Spectral4 maps four wavelengths to colour \
+             with a fitted matrix; SpectralN integrates N wavelengths against the eye's colour matching functions.",
+        );
+    if let WavelengthSet::SpectralN(n) = &mut r.wavelengths {
+        ui.add(Slider::new(n, 4..=128).step_by(4.0).text("N"));
+    }
+    ComboBox::from_label("Quality")
+        .selected_text(format!("{:?}", r.quality))
+        .show_ui(ui, |ui| {
+            for q in [Quality::Low, Quality::Medium, Quality::High] {
+                ui.selectable_value(&mut r.quality, q, format!("{q:?}"));
+            }
+        })
+        .response
+        .on_hover_text(
+            "Sizes of the lookup tables and sample counts: higher is more accurate and slower.",
+        );
+    let d = &mut s.display;
+    ui.add(
+        Slider::new(&mut d.exposure_ev, -20.0..=20.0)
+            .suffix(" EV")
+            .text("exposure"),
+    )
+    .on_hover_text(
+        "Brightness of the display in photographic stops: +1 doubles it. Twilight needs +5 to +10.",
+    );
+    ComboBox::from_label("Tone map")
+        .selected_text(format!("{:?}", d.tone_map))
+        .show_ui(ui, |ui| {
+            for t in [ToneMap::Exponential, ToneMap::Filmic, ToneMap::Linear] {
+                ui.selectable_value(&mut d.tone_map, t, format!("{t:?}"));
+            }
+        })
+        .response
+        .on_hover_text(
+            "How the sky's huge range of brightness is squeezed into what a screen can show.",
+        );
+}

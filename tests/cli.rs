@@ -1,0 +1,192 @@
+//! The `atmoscope` command line, run as a user would: presets, info, overrides and bad input.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn atmoscope(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_atmoscope"))
+        .args(args)
+        .output()
+        .expect("run atmoscope")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn temp_file(name: &str, text: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("atmoscope-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("write temp preset");
+    path
+}
+
+fn info_json(args: &[&str]) -> serde_json::Value {
+    let mut all = vec!["info", "--json"];
+    all.extend_from_slice(args);
+    let o = atmoscope(&all);
+    assert!(o.status.success(), "{}", stderr(&o));
+    serde_json::from_str(&stdout(&o)).expect("info prints JSON")
+}
+
+#[test]
+fn validates_every_shipped_preset() {
+    let o = atmoscope(&["presets", "validate"]);
+    assert!(o.status.success(), "{}{}", stdout(&o), stderr(&o));
+    let out = stdout(&o);
+    assert!(
+        out.contains("clear-noon.ron") && out.contains("whole-planet-40000km.ron"),
+        "{out}"
+    );
+    assert!(out.contains(" 0 invalid"), "{out}");
+}
+
+#[test]
+fn validate_reports_file_field_and_range_and_fails() {
+    let good = temp_file("good.ron", "(camera: (altitude_m: 1000.0))");
+    let bad = temp_file("bad.ron", "(atmosphere: (ground_albedo: 1.7))");
+    let broken = temp_file("broken.ron", "(atmosphere: (ground_albedo: ))");
+    let o = atmoscope(&[
+        "presets",
+        "validate",
+        good.to_str().unwrap(),
+        bad.to_str().unwrap(),
+        broken.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    let out = stdout(&o);
+    assert!(out.contains("ok    ") && out.contains("good.ron"), "{out}");
+    assert!(
+        out.contains("bad.ron: atmosphere.ground_albedo: is 1.7, allowed 0 to 1"),
+        "{out}"
+    );
+    assert!(out.contains("broken.ron:1:"), "{out}");
+    assert!(out.contains("1 valid, 2 invalid"), "{out}");
+}
+
+#[test]
+fn info_table_has_every_requested_wavelength() {
+    let o = atmoscope(&[
+        "info",
+        "--preset",
+        "clear-noon",
+        "--wavelengths-nm",
+        "400,550,700",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("Clear noon"), "{out}");
+    for w in ["400.0", "550.0", "700.0"] {
+        assert!(out.contains(w), "{w} missing: {out}");
+    }
+}
+
+#[test]
+fn info_json_reports_physical_values() {
+    let v = info_json(&[
+        "--aerosol",
+        "none",
+        "--ozone-du",
+        "300",
+        "--wavelengths-nm",
+        "550",
+    ]);
+    let row = &v["wavelengths"][0];
+    let rayleigh = row["optical_depth"]["rayleigh"].as_f64().unwrap();
+    assert!((rayleigh / 0.0973 - 1.0).abs() < 0.01, "{rayleigh}");
+    assert_eq!(row["optical_depth"]["aerosol"].as_f64(), Some(0.0));
+    assert_eq!(v["ozone_column_du"].as_f64(), Some(300.0));
+    let t = row["direct_transmittance"].as_f64().unwrap();
+    let total = row["optical_depth"]["total"].as_f64().unwrap();
+    // Default sun at 30°: the slant path is about twice the vertical one.
+    assert!((t.ln() / -total - 2.0).abs() < 0.05, "T {t}, τ {total}");
+}
+
+#[test]
+fn overrides_change_the_scene() {
+    let base = info_json(&["--wavelengths-nm", "550"]);
+    let high = info_json(&["--wavelengths-nm", "550", "--altitude-m", "10000"]);
+    let r0 = base["wavelengths"][0]["optical_depth"]["rayleigh"]
+        .as_f64()
+        .unwrap();
+    let r10 = high["wavelengths"][0]["optical_depth"]["rayleigh"]
+        .as_f64()
+        .unwrap();
+    assert!(r10 < 0.35 * r0, "at 10 km {r10} vs {r0}");
+
+    let dust = info_json(&[
+        "--wavelengths-nm",
+        "550",
+        "--aerosol",
+        "desert-dust",
+        "--aod550",
+        "0.7",
+        "--altitude-m",
+        "0",
+    ]);
+    assert!(
+        (dust["wavelengths"][0]["optical_depth"]["aerosol"]
+            .as_f64()
+            .unwrap()
+            - 0.7)
+            .abs()
+            < 1e-6
+    );
+    assert_eq!(dust["aerosol_type"], "desert-dust");
+
+    let night = info_json(&["--wavelengths-nm", "550", "--sun-zenith-deg", "100"]);
+    assert_eq!(
+        night["wavelengths"][0]["direct_transmittance"].as_f64(),
+        Some(0.0)
+    );
+    assert!((night["sun_elevation_deg"].as_f64().unwrap() + 10.0).abs() < 1e-12);
+
+    let january = info_json(&["--month", "1"]);
+    assert_eq!(january["ozone_column_du"].as_f64(), Some(347.0));
+
+    let afgl = info_json(&[
+        "--ozone-profile",
+        "afgl-tropical",
+        "--air-profile",
+        "afgl-tropical",
+    ]);
+    let du = afgl["ozone_column_du"].as_f64().unwrap();
+    assert!(
+        du > 200.0 && du < 350.0 && du != 347.0,
+        "AFGL keeps its own column: {du}"
+    );
+
+    let set = info_json(&[
+        "--set",
+        "atmosphere.aerosol.kind=Urban",
+        "--set",
+        "camera.altitude_m=2000",
+    ]);
+    assert_eq!(set["aerosol_type"], "urban");
+    assert_eq!(set["camera_altitude_m"].as_f64(), Some(2000.0));
+}
+
+#[test]
+fn bad_overrides_are_refused_with_the_allowed_values() {
+    let o = atmoscope(&["info", "--aerosol", "smog"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("desert-dust"), "{}", stderr(&o));
+    let o = atmoscope(&["info", "--albedo", "2"]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("atmosphere.ground_albedo: is 2, allowed 0 to 1"),
+        "{}",
+        stderr(&o)
+    );
+    let o = atmoscope(&["info", "--set", "camera.zoom=2"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("no field `zoom`"), "{}", stderr(&o));
+    let o = atmoscope(&["info", "--preset", "/no/such/file.ron"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("/no/such/file.ron"), "{}", stderr(&o));
+}

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Runs Atmoscope's whole test suite: unit tests, CLI and preset tests, and GPU tests on Mesa's
+# software Vulkan driver (lavapipe) when the machine has no GPU.
+#
+# On a machine without the Vulkan loader and lavapipe it installs them (Debian packages
+# mesa-vulkan-drivers, libvulkan1) when run as root; otherwise it says what to install.
+# With CI=true a missing GPU adapter fails the GPU tests instead of skipping them.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export PATH="$HOME/.cargo/bin:$PATH"
+
+packages=(mesa-vulkan-drivers libvulkan1)
+missing=()
+for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+        echo "tests/run.sh: installing ${missing[*]}" >&2
+        apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+    else
+        echo "tests/run.sh: GPU tests need ${missing[*]} (Debian/Ubuntu: sudo apt-get install ${missing[*]})" >&2
+    fi
+fi
+
+# wgpu would otherwise fall back to GL on llvmpipe without a word; lavapipe needs its threads.
+export WGPU_BACKEND="${WGPU_BACKEND:-vulkan}"
+export LP_NUM_THREADS="${LP_NUM_THREADS:-2}"
+
+cargo test --workspace --locked "$@"
