@@ -1,6 +1,7 @@
 //! Command-line subcommands. Each loads a scene the same way (`SceneArgs`), works headless and
 //! reports bad input as an error naming the file, field and allowed range.
 
+mod aerosols;
 mod info;
 mod presets_cmd;
 mod scene_args;
@@ -33,6 +34,8 @@ pub enum Command {
     },
     /// Optical depths, aerosol optics and sun transmittance of a scene, per wavelength.
     Info(info::InfoArgs),
+    /// The aerosol types: single-scattering albedo, asymmetry and Ångström exponent from Mie theory.
+    Aerosols(aerosols::AerosolsArgs),
 }
 
 #[derive(Subcommand, Debug)]
@@ -55,5 +58,6 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
             action: PresetsAction::List,
         } => presets_cmd::list(),
         Command::Info(args) => info::run(&args),
+        Command::Aerosols(args) => aerosols::run(&args),
     }
 }

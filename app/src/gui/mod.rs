@@ -121,3 +121,6 @@ pub fn run(args: SceneArgs) -> anyhow::Result<ExitCode> {
     .map_err(|e| anyhow::anyhow!("cannot open the explorer window: {e}"))?;
     Ok(ExitCode::SUCCESS)
 }
+
+#[cfg(test)]
+mod tests;

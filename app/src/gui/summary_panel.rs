@@ -23,6 +23,12 @@ impl SummaryPanel {
         &self.cached.as_ref().expect("just filled").1
     }
 
+    /// The summary last drawn.
+    #[cfg(test)]
+    pub fn shown(&self) -> Option<&Info> {
+        self.cached.as_ref().map(|(_, info)| info)
+    }
+
     pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene) {
         ui.heading(&scene.name);
         ui.label(&scene.description);
