@@ -82,6 +82,28 @@ pub struct Optics {
     pub aerosol_g: f64,
 }
 
+impl Optics {
+    /// Coefficients for the given densities.
+    pub fn coefficients(&self, d: &Densities) -> Coefficients {
+        let aerosol_ext = self.aerosol_optical_depth * d.aerosol_per_m;
+        Coefficients {
+            rayleigh_scattering: self.rayleigh_cross_section_m2 * d.air_m3,
+            ozone_absorption: self.ozone_cross_section_m2 * d.ozone_m3,
+            aerosol_scattering: aerosol_ext * self.aerosol_ssa,
+            aerosol_absorption: aerosol_ext * (1.0 - self.aerosol_ssa),
+        }
+    }
+}
+
+/// Number densities at one altitude.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Densities {
+    pub air_m3: f64,
+    pub ozone_m3: f64,
+    /// Aerosol profile per metre of unit-optical-depth column, m⁻¹.
+    pub aerosol_per_m: f64,
+}
+
 /// Local scattering and absorption coefficients, m⁻¹.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Coefficients {
@@ -266,15 +288,19 @@ impl Atmosphere {
         }
     }
 
+    /// Air (m⁻³), ozone (m⁻³) and aerosol-profile (m⁻¹ per unit optical depth) densities at
+    /// `h_m`, evaluated once for any number of wavelengths.
+    pub fn densities(&self, h_m: f64) -> Densities {
+        Densities {
+            air_m3: self.air_density_m3(h_m),
+            ozone_m3: self.ozone_density_m3(h_m),
+            aerosol_per_m: self.aerosol_density_per_m(h_m),
+        }
+    }
+
     /// Coefficients at altitude `h_m` for the given optics.
     pub fn coefficients(&self, optics: &Optics, h_m: f64) -> Coefficients {
-        let aerosol_ext = optics.aerosol_optical_depth * self.aerosol_density_per_m(h_m);
-        Coefficients {
-            rayleigh_scattering: optics.rayleigh_cross_section_m2 * self.air_density_m3(h_m),
-            ozone_absorption: optics.ozone_cross_section_m2 * self.ozone_density_m3(h_m),
-            aerosol_scattering: aerosol_ext * optics.aerosol_ssa,
-            aerosol_absorption: aerosol_ext * (1.0 - optics.aerosol_ssa),
-        }
+        optics.coefficients(&self.densities(h_m))
     }
 
     /// Aerosol phase function value for scattering-angle cosine `nu`.
@@ -345,14 +371,26 @@ impl Atmosphere {
     pub fn optical_depth(&self, optics: &Optics, ray: &Ray) -> OpticalDepth {
         match ray.atmosphere_segment(self.bottom_radius_m, self.top_radius_m) {
             None => OpticalDepth::default(),
-            Some((t0, t1)) => {
-                let [air, ozone, aerosol] = self.columns(ray, t0, t1);
-                OpticalDepth {
-                    rayleigh: optics.rayleigh_cross_section_m2 * air,
-                    ozone: optics.ozone_cross_section_m2 * ozone,
-                    aerosol: optics.aerosol_optical_depth * aerosol,
-                }
-            }
+            Some((t0, t1)) => self.optical_depth_between(optics, ray, t0, t1),
+        }
+    }
+
+    /// Optical depth along `ray` between distances `t0` and `t1` (both inside the atmosphere).
+    pub fn optical_depth_between(
+        &self,
+        optics: &Optics,
+        ray: &Ray,
+        t0: f64,
+        t1: f64,
+    ) -> OpticalDepth {
+        if t1 <= t0 {
+            return OpticalDepth::default();
+        }
+        let [air, ozone, aerosol] = self.columns(ray, t0, t1);
+        OpticalDepth {
+            rayleigh: optics.rayleigh_cross_section_m2 * air,
+            ozone: optics.ozone_cross_section_m2 * ozone,
+            aerosol: optics.aerosol_optical_depth * aerosol,
         }
     }
 

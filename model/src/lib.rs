@@ -6,9 +6,11 @@
 
 pub mod aerosol;
 pub mod atmosphere;
+pub mod camera;
 pub mod colour;
 pub mod constants;
 pub mod geometry;
+pub mod methods;
 pub mod mie;
 pub mod ozone;
 pub mod phase;

@@ -235,6 +235,9 @@ pub struct CameraSettings {
     pub pitch_deg: f64,
     /// Vertical field of view, degrees (1–170).
     pub fov_deg: f64,
+    /// Distance the camera is moved back over the planet's surface against its heading, km
+    /// (0–20 000), keeping its altitude; the sun stays fixed in the scene's frame.
+    pub back_km: f64,
 }
 
 impl Default for CameraSettings {
@@ -244,6 +247,7 @@ impl Default for CameraSettings {
             heading_deg: 180.0,
             pitch_deg: 10.0,
             fov_deg: 70.0,
+            back_km: 0.0,
         }
     }
 }
@@ -505,6 +509,7 @@ impl Scene {
         c.range("camera.heading_deg", cam.heading_deg, 0.0, 360.0, "°");
         c.range("camera.pitch_deg", cam.pitch_deg, -90.0, 90.0, "°");
         c.range("camera.fov_deg", cam.fov_deg, 1.0, 170.0, "°");
+        c.range("camera.back_km", cam.back_km, 0.0, 20_000.0, " km");
         if let WavelengthSet::SpectralN(n) = self.render.wavelengths {
             if n % 4 != 0 || !(4..=128).contains(&n) {
                 c.fail(

@@ -1,0 +1,158 @@
+//! Cameras and projections: which ray each pixel sees, in planet-centred coordinates (m).
+//!
+//! The world frame is the local frame at the scene's origin on the ground: +z up, +y north,
+//! +x east; the planet's centre is at (0, 0, −R). The sun direction is fixed in that frame. A
+//! camera may be moved `back_km` over the planet's surface against its heading (Leenman's orbit
+//! views); its own local frame then turns with the surface.
+
+use crate::geometry::{Ray, direction_from_angles};
+use crate::scene::CameraSettings;
+use glam::{DMat3, DVec3};
+use serde::{Deserialize, Serialize};
+
+/// How pixels map to directions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+pub enum Projection {
+    /// Pinhole camera with the scene's vertical field of view.
+    #[default]
+    Perspective,
+    /// Equidistant fisheye of the upper hemisphere: zenith at the centre, horizon on the
+    /// inscribed circle, the camera's heading at the top.
+    Fisheye,
+    /// Equirectangular panorama: azimuth across (heading at the centre), elevation up.
+    Panorama,
+}
+
+/// A camera placed in the world.
+#[derive(Debug, Clone, Copy)]
+pub struct Camera {
+    /// Position relative to the planet's centre, m.
+    pub position: DVec3,
+    /// Local frame at the camera: columns east, north, up.
+    pub frame: DMat3,
+    pub heading_deg: f64,
+    pub pitch_deg: f64,
+    pub fov_deg: f64,
+    pub projection: Projection,
+}
+
+impl Camera {
+    /// Places the camera of `settings` over a planet of radius `planet_radius_m`.
+    pub fn new(settings: &CameraSettings, planet_radius_m: f64, projection: Projection) -> Camera {
+        let r = planet_radius_m + settings.altitude_m;
+        // Rotate about the axis perpendicular to the heading: moving "back" by the angle back/R.
+        let angle = settings.back_km * 1000.0 / planet_radius_m;
+        let heading = direction_from_angles(0.0, settings.heading_deg);
+        let axis = DVec3::Z.cross(heading);
+        let rotation = if angle != 0.0 {
+            DMat3::from_axis_angle(axis.normalize(), -angle)
+        } else {
+            DMat3::IDENTITY
+        };
+        let up = rotation * DVec3::Z;
+        Camera {
+            position: up * r,
+            frame: rotation,
+            heading_deg: settings.heading_deg,
+            pitch_deg: settings.pitch_deg,
+            fov_deg: settings.fov_deg,
+            projection,
+        }
+    }
+
+    /// The world position of the camera measured from the scene origin's planet centre.
+    pub fn local_to_world(&self, local: DVec3) -> DVec3 {
+        self.frame * local
+    }
+
+    /// The ray through pixel (x, y) (0 ≤ x < width, top row y = 0) at sub-pixel offset (u, v)
+    /// ∈ [0, 1)², or None where the projection shows nothing (outside the fisheye circle).
+    pub fn ray(&self, x: f64, y: f64, width: u32, height: u32) -> Option<Ray> {
+        let (w, h) = (width as f64, height as f64);
+        let local = match self.projection {
+            Projection::Perspective => {
+                let tan_half = (self.fov_deg.to_radians() * 0.5).tan();
+                let sx = (2.0 * x / w - 1.0) * tan_half * w / h;
+                let sy = (1.0 - 2.0 * y / h) * tan_half;
+                let forward = direction_from_angles(self.pitch_deg, self.heading_deg);
+                let right = direction_from_angles(0.0, self.heading_deg + 90.0);
+                let up = right.cross(forward);
+                (forward + right * sx + up * sy).normalize()
+            }
+            Projection::Fisheye => {
+                let size = w.min(h);
+                let dx = (2.0 * x - w) / size;
+                let dy = (h - 2.0 * y) / size;
+                let rho = dx.hypot(dy);
+                if rho > 1.0 {
+                    return None;
+                }
+                let elevation = 90.0 * (1.0 - rho);
+                let azimuth = self.heading_deg + dx.atan2(dy).to_degrees();
+                direction_from_angles(elevation, azimuth)
+            }
+            Projection::Panorama => {
+                let azimuth = self.heading_deg + (x / w - 0.5) * 360.0;
+                let elevation = 90.0 - y / h * 180.0;
+                direction_from_angles(elevation, azimuth)
+            }
+        };
+        Some(Ray::new(self.position, self.frame * local))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const R: f64 = 6_360_000.0;
+
+    fn settings(alt: f64) -> CameraSettings {
+        CameraSettings {
+            altitude_m: alt,
+            heading_deg: 0.0,
+            pitch_deg: 0.0,
+            fov_deg: 60.0,
+            back_km: 0.0,
+        }
+    }
+
+    #[test]
+    fn perspective_centre_looks_along_heading_and_pitch() {
+        let mut s = settings(10.0);
+        s.heading_deg = 90.0;
+        s.pitch_deg = 30.0;
+        let c = Camera::new(&s, R, Projection::Perspective);
+        let ray = c.ray(50.0, 50.0, 100, 100).unwrap();
+        let expected = direction_from_angles(30.0, 90.0);
+        assert!((ray.direction - expected).length() < 1e-12);
+        assert!((ray.origin.length() - (R + 10.0)).abs() < 1e-6);
+    }
+
+    #[test]
+    fn fisheye_centre_is_the_zenith_and_corners_are_empty() {
+        let c = Camera::new(&settings(1.0), R, Projection::Fisheye);
+        assert!((c.ray(50.0, 50.0, 100, 100).unwrap().direction - DVec3::Z).length() < 1e-12);
+        assert!(c.ray(0.0, 0.0, 100, 100).is_none());
+        let top = c.ray(50.0, 0.0, 100, 100).unwrap().direction;
+        assert!(
+            (top - DVec3::Y).length() < 1e-12,
+            "heading north at the top edge: {top}"
+        );
+    }
+
+    #[test]
+    fn moving_back_keeps_altitude_and_turns_the_frame() {
+        let mut s = settings(100_000.0);
+        s.back_km = 1000.0;
+        let c = Camera::new(&s, R, Projection::Perspective);
+        assert!((c.position.length() - (R + 100_000.0)).abs() < 1e-6);
+        assert!(
+            c.position.y < -900_000.0,
+            "moved south, against the northward heading: {}",
+            c.position
+        );
+        let up = c.position.normalize();
+        assert!((c.frame * DVec3::Z - up).length() < 1e-12);
+    }
+}

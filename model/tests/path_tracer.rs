@@ -1,0 +1,175 @@
+//! The path tracer against the exact single-scattering integrator, energy conservation, seeds,
+//! and the hard regimes (twilight, space, exactly at the ground or the top).
+
+use atmoscope_model::Atmosphere;
+use atmoscope_model::aerosol::AerosolType;
+use atmoscope_model::geometry::{Ray, direction_from_angles};
+use atmoscope_model::methods::path_tracer::{
+    LANES, LaneOptics, Lanes, PathTracer, PathTracerSettings,
+};
+use atmoscope_model::methods::rng::Rng;
+use atmoscope_model::methods::single_scattering;
+use atmoscope_model::scene::{AtmosphereSettings, OzoneColumn};
+use glam::DVec3;
+
+/// Mean and standard error of `n` path samples per lane.
+fn estimate(pt: &PathTracer, ray: &Ray, lanes: &LaneOptics, n: u64, seed: u64) -> (Lanes, Lanes) {
+    let (mut sum, mut sum2) = ([0.0; LANES], [0.0; LANES]);
+    for k in 0..n {
+        let mut rng = Rng::new(seed, 0, k);
+        let l = pt.radiance(ray, lanes, &mut rng);
+        for i in 0..LANES {
+            sum[i] += l[i];
+            sum2[i] += l[i] * l[i];
+        }
+    }
+    let nf = n as f64;
+    let mean = sum.map(|s| s / nf);
+    let se =
+        std::array::from_fn(|i| ((sum2[i] / nf - mean[i] * mean[i]).max(0.0) / (nf - 1.0)).sqrt());
+    (mean, se)
+}
+
+fn at_altitude(atm: &Atmosphere, h: f64, elevation: f64, azimuth: f64) -> Ray {
+    Ray::new(
+        DVec3::new(0.0, 0.0, atm.bottom_radius_m + h),
+        direction_from_angles(elevation, azimuth),
+    )
+}
+
+#[test]
+fn single_order_path_tracing_agrees_with_the_exact_integrator() {
+    let mut s = AtmosphereSettings::default();
+    s.aerosol.kind = AerosolType::Rural;
+    s.aerosol.aod550 = 0.2;
+    s.ground_albedo = 0.3;
+    let atm = Atmosphere::new(&s);
+    let sun = direction_from_angles(25.0, 180.0);
+    let settings = PathTracerSettings {
+        max_order: Some(1),
+        sun_angular_radius_rad: 1e-6,
+    };
+    let pt = PathTracer::new(&atm, sun, settings);
+    let lanes = LaneOptics::new(&atm, [440.0, 520.0, 610.0, 700.0]);
+    let views = [
+        at_altitude(&atm, 1.0, 30.0, 90.0),    // side sky
+        at_altitude(&atm, 1.0, 20.0, 170.0),   // near the sun (aerosol forward peak)
+        at_altitude(&atm, 1.0, 80.0, 0.0),     // zenith
+        at_altitude(&atm, 5000.0, -20.0, 0.0), // ground seen from a plane
+    ];
+    for ray in views {
+        let (mean, se) = estimate(&pt, &ray, &lanes, 16000, 11);
+        for i in 0..LANES {
+            let exact = single_scattering::radiance(&atm, &ray, sun, lanes.wavelengths_nm[i]);
+            let z = (mean[i] - exact) / se[i];
+            assert!(
+                z.abs() < 3.0,
+                "{ray:?} λ {}: PT {} ± {} vs exact {exact} (z = {z:.2})",
+                lanes.wavelengths_nm[i],
+                mean[i],
+                se[i]
+            );
+        }
+    }
+}
+
+#[test]
+fn conservative_atmosphere_over_a_white_ground_reflects_all_sunlight() {
+    // A nearly flat planet (radius 100 000 km), no absorption, albedo 1, sun overhead: the
+    // upward flux leaving the top above the sub-solar point equals the incoming flux.
+    let mut s = AtmosphereSettings::default();
+    s.planet_radius_km = 100_000.0;
+    s.aerosol.kind = AerosolType::None;
+    s.ozone.column = OzoneColumn::Du(0.0);
+    s.ground_albedo = 1.0;
+    let atm = Atmosphere::new(&s);
+    let pt = PathTracer::new(&atm, DVec3::Z, PathTracerSettings::default());
+    let lanes = LaneOptics::new(&atm, [400.0, 500.0, 600.0, 700.0]);
+    let top = DVec3::new(0.0, 0.0, atm.top_radius_m + 1.0);
+    let n = 6000;
+    let mut flux = [0.0; LANES];
+    let mut flux2 = [0.0; LANES];
+    for k in 0..n {
+        let mut rng = Rng::new(5, 1, k);
+        // Cosine-weighted direction over the lower hemisphere: F = π·E[L].
+        let (r, phi) = (
+            rng.uniform().sqrt(),
+            2.0 * std::f64::consts::PI * rng.uniform(),
+        );
+        let dir = DVec3::new(r * phi.cos(), r * phi.sin(), -(1.0 - r * r).sqrt());
+        let l = pt.radiance(&Ray::new(top, dir), &lanes, &mut rng);
+        for i in 0..LANES {
+            let f = std::f64::consts::PI * l[i];
+            flux[i] += f;
+            flux2[i] += f * f;
+        }
+    }
+    for i in 0..LANES {
+        let mean = flux[i] / n as f64;
+        let se = ((flux2[i] / n as f64 - mean * mean) / (n as f64 - 1.0)).sqrt();
+        let ratio = mean / lanes.solar_irradiance[i];
+        let se_ratio = se / lanes.solar_irradiance[i];
+        assert!(
+            (ratio - 1.0).abs() < 3.0 * se_ratio + 0.01,
+            "λ {}: F_up/F_in = {ratio} ± {se_ratio}",
+            lanes.wavelengths_nm[i]
+        );
+    }
+}
+
+#[test]
+fn the_seed_makes_results_reproducible() {
+    let atm = Atmosphere::new(&AtmosphereSettings::default());
+    let pt = PathTracer::new(
+        &atm,
+        direction_from_angles(10.0, 0.0),
+        PathTracerSettings::default(),
+    );
+    let lanes = LaneOptics::new(&atm, [450.0, 550.0, 650.0, 750.0]);
+    let ray = at_altitude(&atm, 1.0, 15.0, 30.0);
+    let a = estimate(&pt, &ray, &lanes, 200, 42);
+    let b = estimate(&pt, &ray, &lanes, 200, 42);
+    let c = estimate(&pt, &ray, &lanes, 200, 43);
+    assert_eq!(a, b);
+    assert_ne!(a.0, c.0);
+}
+
+#[test]
+fn twilight_space_and_boundary_views_are_finite_and_non_negative() {
+    let atm = Atmosphere::new(&AtmosphereSettings::default());
+    let lanes = LaneOptics::new(&atm, [380.0, 500.0, 620.0, 800.0]);
+    let cases = [
+        (-6.0, at_altitude(&atm, 2.0, 10.0, 270.0)), // civil twilight
+        (-12.0, at_altitude(&atm, 2.0, 60.0, 0.0)),  // nautical twilight
+        (-3.0, at_altitude(&atm, 2.0, 5.0, 90.0)),   // Earth's shadow
+        (-3.0, at_altitude(&atm, 200_000.0, -15.0, 90.0)), // shadow from 200 km
+        (20.0, at_altitude(&atm, 400_000.0, -19.0, 0.0)), // limb from orbit
+        (30.0, at_altitude(&atm, 40_000_000.0, -90.0, 0.0)), // whole planet
+        (30.0, at_altitude(&atm, 0.0, -30.0, 0.0)),  // exactly at the ground, looking down
+        (30.0, at_altitude(&atm, 0.0, 30.0, 0.0)),   // exactly at the ground, looking up
+        (30.0, at_altitude(&atm, 100_000.0, 10.0, 0.0)), // exactly at the top, looking out
+        (30.0, at_altitude(&atm, 100_000.0, -10.0, 0.0)), // exactly at the top, looking in
+    ];
+    for (elevation, ray) in cases {
+        let pt = PathTracer::new(
+            &atm,
+            direction_from_angles(elevation, 270.0),
+            PathTracerSettings::default(),
+        );
+        let (mean, _) = estimate(&pt, &ray, &lanes, 100, 3);
+        for v in mean {
+            assert!(
+                v.is_finite() && v >= 0.0,
+                "sun {elevation}°, {ray:?}: {mean:?}"
+            );
+        }
+    }
+    // Something reaches the camera in twilight, through multiple scattering.
+    let pt = PathTracer::new(
+        &atm,
+        direction_from_angles(-6.0, 270.0),
+        PathTracerSettings::default(),
+    );
+    let (mean, _) = estimate(&pt, &at_altitude(&atm, 2.0, 10.0, 270.0), &lanes, 200, 3);
+    assert!(mean[1] > 0.0, "{mean:?}");
+}
