@@ -3,6 +3,7 @@
 
 mod cli;
 mod gui;
+mod images;
 mod presets;
 mod summary;
 

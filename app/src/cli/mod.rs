@@ -2,8 +2,11 @@
 //! reports bad input as an error naming the file, field and allowed range.
 
 mod aerosols;
+mod compare;
 mod info;
 mod presets_cmd;
+mod probe;
+mod reference;
 mod scene_args;
 
 pub use scene_args::SceneArgs;
@@ -36,6 +39,12 @@ pub enum Command {
     Info(info::InfoArgs),
     /// The aerosol types: single-scattering albedo, asymmetry and Ångström exponent from Mie theory.
     Aerosols(aerosols::AerosolsArgs),
+    /// Diffuse sky radiance in given directions, by the path tracer or exact single scattering.
+    Probe(probe::ProbeArgs),
+    /// Path-traced reference images (EXR + PNG preview) of a scene, a view or the whole view suite.
+    Reference(reference::ReferenceArgs),
+    /// Error metrics of an image against a reference (RMSE, ΔE2000, FLIP), with error maps.
+    Compare(compare::CompareArgs),
 }
 
 #[derive(Subcommand, Debug)]
@@ -59,5 +68,8 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         } => presets_cmd::list(),
         Command::Info(args) => info::run(&args),
         Command::Aerosols(args) => aerosols::run(&args),
+        Command::Probe(args) => probe::run(&args),
+        Command::Reference(args) => reference::run(&args),
+        Command::Compare(args) => compare::run(&args),
     }
 }

@@ -1,0 +1,241 @@
+//! `atmoscope probe`: diffuse sky radiance seen from the scene's camera in given directions
+//! (zenith angle from straight up, azimuth from the sun's), by the path tracer or the exact
+//! single-scattering integrator, plus the direct transmittance to the sun.
+
+use super::SceneArgs;
+use anyhow::bail;
+use atmoscope_model::camera::{Camera, Projection};
+use atmoscope_model::geometry::{Ray, direction_from_angles};
+use atmoscope_model::methods::path_tracer::{LANES, LaneOptics, PathTracer, PathTracerSettings};
+use atmoscope_model::methods::rng::Rng;
+use atmoscope_model::methods::single_scattering;
+use atmoscope_model::{Atmosphere, Scene};
+use clap::{Args, ValueEnum};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::process::ExitCode;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ProbeMethod {
+    PathTracer,
+    SingleScattering,
+}
+
+#[derive(Args, Debug)]
+pub struct ProbeArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// View zenith angles, degrees (0 = straight up, 180 = straight down).
+    #[arg(long, value_delimiter = ',', required = true, value_name = "LIST")]
+    pub view_zenith_deg: Vec<f64>,
+    /// View azimuths measured from the sun's azimuth, degrees (0 = towards the sun).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        required = true,
+        value_name = "LIST",
+        allow_hyphen_values = true
+    )]
+    pub view_azimuth_deg: Vec<f64>,
+    /// Wavelengths, nm (360 to 830).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "440,550,680",
+        value_name = "LIST"
+    )]
+    pub wavelengths_nm: Vec<f64>,
+    #[arg(long, value_enum, default_value = "path-tracer")]
+    pub method: ProbeMethod,
+    /// Highest scattering order (path tracer; 1 = single scattering). Default: all orders.
+    #[arg(long, value_name = "N")]
+    pub max_order: Option<u32>,
+    /// Paths per direction and wavelength batch (path tracer).
+    #[arg(long, default_value_t = 4096, value_name = "N")]
+    pub spp: u64,
+    /// Random seed (path tracer).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Serialize, Debug)]
+pub struct Sample {
+    pub view_zenith_deg: f64,
+    pub view_azimuth_deg: f64,
+    pub wavelength_nm: f64,
+    /// W·m⁻²·sr⁻¹·nm⁻¹ for the scene's solar spectrum.
+    pub radiance: f64,
+    /// Radiance over the extraterrestrial solar irradiance at that wavelength, sr⁻¹.
+    pub radiance_per_irradiance: f64,
+    /// Monte Carlo standard error of `radiance_per_irradiance` (0 for deterministic methods).
+    pub std_error: f64,
+}
+
+#[derive(Serialize, Debug)]
+pub struct Transmittance {
+    pub wavelength_nm: f64,
+    pub value: f64,
+}
+
+#[derive(Serialize, Debug)]
+pub struct Probe {
+    pub samples: Vec<Sample>,
+    pub direct_transmittance: Vec<Transmittance>,
+    pub method: String,
+    pub spp: u64,
+}
+
+/// Runs the probe.
+pub fn probe(scene: &Scene, args: &ProbeArgs) -> Probe {
+    let atm = Atmosphere::new(&scene.atmosphere);
+    let sun_angles = scene.sun.angles();
+    let sun = direction_from_angles(sun_angles.elevation_deg, sun_angles.azimuth_deg);
+    let camera = Camera::new(&scene.camera, atm.bottom_radius_m, Projection::Perspective);
+    let solar = atm.solar_spectrum.spectrum();
+    let directions: Vec<(f64, f64)> = args
+        .view_zenith_deg
+        .iter()
+        .flat_map(|&z| args.view_azimuth_deg.iter().map(move |&a| (z, a)))
+        .collect();
+    let settings = PathTracerSettings {
+        max_order: args.max_order,
+        ..PathTracerSettings::default()
+    };
+    let tracer = PathTracer::new(&atm, sun, settings);
+    let batches: Vec<Vec<f64>> = args
+        .wavelengths_nm
+        .chunks(LANES)
+        .map(<[f64]>::to_vec)
+        .collect();
+    let jobs: Vec<(usize, usize)> = (0..directions.len())
+        .flat_map(|d| (0..batches.len()).map(move |b| (d, b)))
+        .collect();
+    let results: Vec<Vec<Sample>> = jobs
+        .par_iter()
+        .map(|&(d, b)| {
+            let (zenith, azimuth) = directions[d];
+            let dir = camera.local_to_world(direction_from_angles(
+                90.0 - zenith,
+                sun_angles.azimuth_deg + azimuth,
+            ));
+            let ray = Ray::new(camera.position, dir);
+            let batch = &batches[b];
+            let lanes_nm: [f64; LANES] = std::array::from_fn(|i| batch[i.min(batch.len() - 1)]);
+            let (mean, se) = match args.method {
+                ProbeMethod::SingleScattering => (
+                    lanes_nm.map(|w| single_scattering::radiance(&atm, &ray, sun, w)),
+                    [0.0; LANES],
+                ),
+                ProbeMethod::PathTracer => {
+                    let lanes = LaneOptics::new(&atm, lanes_nm);
+                    let (mut sum, mut sum2) = ([0.0; LANES], [0.0; LANES]);
+                    for k in 0..args.spp {
+                        let mut rng = Rng::new(args.seed, (d * 1000 + b) as u64, k);
+                        let l = tracer.radiance(&ray, &lanes, &mut rng);
+                        for i in 0..LANES {
+                            sum[i] += l[i];
+                            sum2[i] += l[i] * l[i];
+                        }
+                    }
+                    let n = args.spp.max(2) as f64;
+                    let mean = sum.map(|s| s / n);
+                    let se = std::array::from_fn(|i| {
+                        ((sum2[i] / n - mean[i] * mean[i]).max(0.0) / (n - 1.0)).sqrt()
+                    });
+                    (mean, se)
+                }
+            };
+            batch
+                .iter()
+                .enumerate()
+                .map(|(i, &w)| {
+                    let e = solar.sample(w);
+                    Sample {
+                        view_zenith_deg: zenith,
+                        view_azimuth_deg: azimuth,
+                        wavelength_nm: w,
+                        radiance: mean[i],
+                        radiance_per_irradiance: mean[i] / e,
+                        std_error: se[i] / e,
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    let direct_transmittance = args
+        .wavelengths_nm
+        .iter()
+        .map(|&w| Transmittance {
+            wavelength_nm: w,
+            value: atm.transmittance_to_sun(&atm.optics(w), camera.position, sun),
+        })
+        .collect();
+    Probe {
+        samples: results.into_iter().flatten().collect(),
+        direct_transmittance,
+        method: match args.method {
+            ProbeMethod::PathTracer => "path-tracer".into(),
+            ProbeMethod::SingleScattering => "single-scattering".into(),
+        },
+        spp: if args.method == ProbeMethod::PathTracer {
+            args.spp
+        } else {
+            0
+        },
+    }
+}
+
+pub fn run(args: &ProbeArgs) -> anyhow::Result<ExitCode> {
+    if let Some(w) = args
+        .wavelengths_nm
+        .iter()
+        .find(|w| !(**w >= 360.0 && **w <= 830.0))
+    {
+        bail!("--wavelengths-nm: {w} nm is outside 360 to 830 nm");
+    }
+    if let Some(z) = args
+        .view_zenith_deg
+        .iter()
+        .find(|z| !(**z >= 0.0 && **z <= 180.0))
+    {
+        bail!("--view-zenith-deg: {z}° is outside 0 to 180°");
+    }
+    if args.spp < 2 {
+        bail!("--spp: at least 2 paths are needed for a standard error");
+    }
+    let scene = args.scene.scene()?;
+    let p = probe(&scene, args);
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&p)?);
+        return Ok(ExitCode::SUCCESS);
+    }
+    println!(
+        "scene: {}   method: {}{}",
+        scene.name,
+        p.method,
+        if p.spp > 0 {
+            format!(" ({} paths each)", p.spp)
+        } else {
+            String::new()
+        }
+    );
+    println!(" zenith°  azimuth°   λ (nm)   radiance (W/m²/sr/nm)   L/E (1/sr)    std. error");
+    for s in &p.samples {
+        println!(
+            "{:8.2}  {:8.2}  {:7.1}   {:>20.6e}   {:>10.6}    {:>10.2e}",
+            s.view_zenith_deg,
+            s.view_azimuth_deg,
+            s.wavelength_nm,
+            s.radiance,
+            s.radiance_per_irradiance,
+            s.std_error
+        );
+    }
+    println!("direct transmittance to the sun:");
+    for t in &p.direct_transmittance {
+        println!("  {:7.1} nm  {:.6}", t.wavelength_nm, t.value);
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,285 @@
+//! `atmoscope reference`: path-traced references of a scene or of views of the suite, written as
+//! linear EXR plus a PNG preview, with a progress bar showing samples per second and the noise.
+//! Results are cached under a hash of the scene and settings, so asking again is instant.
+
+use super::SceneArgs;
+use crate::images::{write_exr, write_png};
+use anyhow::{Context, bail};
+use atmoscope_model::Scene;
+use atmoscope_model::camera::Projection;
+use atmoscope_model::methods::path_tracer::PathTracerSettings;
+use atmoscope_model::reference::ReferenceRender;
+use atmoscope_model::views::{self, View};
+use clap::{Args, ValueEnum};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+
+/// Bumped whenever the path tracer's output changes, so old cache entries are not reused.
+const CACHE_VERSION: u32 = 1;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ProjectionArg {
+    Perspective,
+    Fisheye,
+    Panorama,
+}
+
+impl From<ProjectionArg> for Projection {
+    fn from(p: ProjectionArg) -> Projection {
+        match p {
+            ProjectionArg::Perspective => Projection::Perspective,
+            ProjectionArg::Fisheye => Projection::Fisheye,
+            ProjectionArg::Panorama => Projection::Panorama,
+        }
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct ReferenceArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// A named view of the suite (see `atmoscope reference --list-views`), applied on top of the scene.
+    #[arg(long, value_name = "NAME", conflicts_with = "suite")]
+    pub view: Option<String>,
+    /// Render every view of the suite into --out-dir.
+    #[arg(long, requires = "out_dir")]
+    pub suite: bool,
+    /// List the views of the suite and exit.
+    #[arg(long)]
+    pub list_views: bool,
+    /// Image size WxH (default: the view's size, or 320x180 for a scene).
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
+    /// Use each view's small CI size.
+    #[arg(long)]
+    pub ci_size: bool,
+    /// Projection for a scene without --view.
+    #[arg(long, value_enum, default_value = "perspective")]
+    pub projection: ProjectionArg,
+    /// Paths per pixel.
+    #[arg(long, value_name = "N", conflicts_with = "noise")]
+    pub spp: Option<u64>,
+    /// Stop when the mean relative standard error of pixel luminance falls to REL (e.g. 0.01).
+    #[arg(long, value_name = "REL")]
+    pub noise: Option<f64>,
+    /// Highest scattering order (1 = single scattering); default all.
+    #[arg(long, value_name = "N")]
+    pub max_order: Option<u32>,
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Output EXR file (a PNG preview is written beside it).
+    #[arg(long, value_name = "FILE.exr", required_unless_present_any = ["suite", "list_views"])]
+    pub out: Option<PathBuf>,
+    /// Output directory for --suite.
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: Option<PathBuf>,
+    /// Ignore and overwrite the cache.
+    #[arg(long)]
+    pub no_cache: bool,
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or("expected WxH, e.g. 320x180")?;
+    let w: u32 = w.parse().map_err(|_| format!("bad width {w:?}"))?;
+    let h: u32 = h.parse().map_err(|_| format!("bad height {h:?}"))?;
+    if w == 0 || h == 0 || w > 8192 || h > 8192 {
+        return Err("width and height must be 1 to 8192".into());
+    }
+    Ok((w, h))
+}
+
+/// What to render.
+struct Job {
+    scene: Scene,
+    projection: Projection,
+    size: (u32, u32),
+    out: PathBuf,
+}
+
+pub fn run(args: &ReferenceArgs) -> anyhow::Result<ExitCode> {
+    if args.list_views {
+        for v in views::suite() {
+            println!(
+                "{:20} {:?} {}x{} (CI {}x{})  {}",
+                v.name, v.projection, v.size.0, v.size.1, v.ci_size.0, v.ci_size.1, v.description
+            );
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
+    if let Some(n) = args.noise {
+        if !(n > 0.0 && n < 1.0) {
+            bail!("--noise: {n} is outside (0, 1); e.g. 0.01 for 1 %");
+        }
+    }
+    let base = args.scene.scene()?;
+    let view_size = |v: &View| {
+        args.size
+            .unwrap_or(if args.ci_size { v.ci_size } else { v.size })
+    };
+    let jobs: Vec<Job> = if args.suite {
+        let dir = args.out_dir.as_ref().context("--suite needs --out-dir")?;
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        views::suite()
+            .iter()
+            .map(|v| Job {
+                scene: v.apply(&base),
+                projection: v.projection,
+                size: view_size(v),
+                out: dir.join(format!("{}.exr", v.name)),
+            })
+            .collect()
+    } else {
+        let out = args.out.clone().context("--out FILE.exr is required")?;
+        match &args.view {
+            Some(name) => {
+                let v = views::find(name).with_context(|| {
+                    let names: Vec<_> = views::suite().iter().map(|v| v.name.as_str()).collect();
+                    format!(
+                        "--view {name}: no such view; the suite has {}",
+                        names.join(", ")
+                    )
+                })?;
+                vec![Job {
+                    scene: v.apply(&base),
+                    projection: v.projection,
+                    size: view_size(v),
+                    out,
+                }]
+            }
+            None => vec![Job {
+                scene: base,
+                projection: args.projection.into(),
+                size: args.size.unwrap_or((320, 180)),
+                out,
+            }],
+        }
+    };
+    for job in &jobs {
+        render_job(job, args)?;
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
+        (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+fn cache_dir() -> PathBuf {
+    if let Some(d) = std::env::var_os("ATMOSCOPE_CACHE_DIR") {
+        return PathBuf::from(d);
+    }
+    let base = std::env::var_os("XDG_CACHE_HOME")
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
+        .unwrap_or_else(std::env::temp_dir);
+    base.join("atmoscope").join("references")
+}
+
+fn render_job(job: &Job, args: &ReferenceArgs) -> anyhow::Result<()> {
+    let (w, h) = job.size;
+    let key = format!(
+        "v{CACHE_VERSION}|{}|{:?}|{w}x{h}|{:?}|{:?}|{:?}|{}",
+        job.scene.to_ron(),
+        job.projection,
+        args.spp,
+        args.noise,
+        args.max_order,
+        args.seed
+    );
+    let cached = cache_dir().join(format!("{:016x}.exr", fnv1a(key.as_bytes())));
+    let png = job.out.with_extension("png");
+    if cached.exists() && !args.no_cache {
+        std::fs::copy(&cached, &job.out)
+            .with_context(|| format!("cannot write {}", job.out.display()))?;
+        let (rgb, cw, ch) = crate::images::read_exr(&cached)?;
+        write_png(
+            &png,
+            &rgb,
+            cw,
+            ch,
+            job.scene.display.exposure_ev,
+            job.scene.display.tone_map,
+        )?;
+        eprintln!(
+            "{}: from the cache ({})",
+            job.out.display(),
+            cached.display()
+        );
+        return Ok(());
+    }
+    let settings = PathTracerSettings {
+        max_order: args.max_order,
+        ..PathTracerSettings::default()
+    };
+    let mut render = ReferenceRender::new(&job.scene, job.projection, w, h, args.seed, settings);
+    let target_spp = args
+        .spp
+        .unwrap_or(if args.noise.is_some() { 1 << 20 } else { 64 });
+    let bar = ProgressBar::new(target_spp);
+    bar.set_style(
+        ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} spp  {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar.set_prefix(
+        job.out
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default(),
+    );
+    let never = AtomicBool::new(false);
+    let start = Instant::now();
+    let mut pass = 1u64;
+    loop {
+        let done = render.samples_per_pixel();
+        if done >= target_spp {
+            break;
+        }
+        let step = pass.min(target_spp - done);
+        render.run_pass(step as u32, &never);
+        pass = (pass * 2).min(64);
+        let noise = render.mean_relative_error();
+        let rate =
+            render.samples_per_pixel() as f64 * (w * h) as f64 / start.elapsed().as_secs_f64();
+        bar.set_position(render.samples_per_pixel());
+        bar.set_message(format!("noise {:.2} %  {:.0} paths/s", noise * 100.0, rate));
+        if args
+            .noise
+            .is_some_and(|target| noise <= target && render.samples_per_pixel() >= 16)
+        {
+            break;
+        }
+    }
+    bar.finish();
+    let rgb = render.linear_srgb();
+    write_exr(&job.out, &rgb, w, h)?;
+    write_png(
+        &png,
+        &rgb,
+        w,
+        h,
+        job.scene.display.exposure_ev,
+        job.scene.display.tone_map,
+    )?;
+    if let Some(dir) = cached.parent() {
+        if std::fs::create_dir_all(dir).is_ok() {
+            // The cache is an optimisation: failing to fill it loses nothing.
+            let _ = std::fs::copy(&job.out, &cached);
+        }
+    }
+    eprintln!(
+        "{}: {} spp, noise {:.2} % (mean per-pixel relative standard error of luminance), {:.1} s; preview {}",
+        job.out.display(),
+        render.samples_per_pixel(),
+        render.mean_relative_error() * 100.0,
+        start.elapsed().as_secs_f64(),
+        png.display()
+    );
+    Ok(())
+}

@@ -1,0 +1,222 @@
+//! Error metrics between a test image and a reference, both linear sRGB radiance
+//! (W·m⁻²·sr⁻¹, row-major): RMSE and relative RMSE of radiance and of luminance; mean and
+//! 95th-percentile CIEDE2000 of the display-referred images (a fixed exposure and tone map,
+//! reported with the figures); LDR-FLIP (Andersson et al. 2020, NVIDIA's implementation through
+//! `nv-flip`) on those display images; and HDR-FLIP (Andersson et al. 2021): LDR-FLIP under the
+//! ACES tone curve at exposures spanning the reference's luminance range, per-pixel maximum.
+
+use crate::colour::{delta_e2000, linear_srgb_to_lab, linear_srgb_to_xyz, srgb_decode};
+use crate::display::{EXPOSURE_SCALE, display, to_u8};
+use crate::scene::ToneMap;
+use serde::Serialize;
+
+/// The display transform under which display-referred metrics are computed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DisplaySetup {
+    pub exposure_ev: f64,
+    pub tone_map: ToneMap,
+    /// Pixels per degree of visual angle for FLIP (67 = a 0.7 m viewing distance on a 24" 4K screen).
+    pub pixels_per_degree: f64,
+}
+
+impl Default for DisplaySetup {
+    fn default() -> Self {
+        DisplaySetup {
+            exposure_ev: 0.0,
+            tone_map: ToneMap::Exponential,
+            pixels_per_degree: 67.0,
+        }
+    }
+}
+
+/// Every metric of one comparison.
+#[derive(Debug, Clone, Serialize)]
+pub struct Comparison {
+    pub rmse: f64,
+    pub relative_rmse: f64,
+    pub luminance_rmse_cd_m2: f64,
+    pub luminance_relative_rmse: f64,
+    pub delta_e2000_mean: f64,
+    pub delta_e2000_p95: f64,
+    pub ldr_flip_mean: f64,
+    pub hdr_flip_mean: f64,
+    pub display: DisplaySetup,
+}
+
+/// Per-pixel error maps, for writing as images.
+pub struct ErrorMaps {
+    pub delta_e2000: Vec<f64>,
+    pub ldr_flip: Vec<f64>,
+}
+
+fn luminance_cd_m2(rgb: [f64; 3]) -> f64 {
+    683.0 * linear_srgb_to_xyz(rgb).y
+}
+
+fn rmse(pairs: impl Iterator<Item = (f64, f64)>) -> (f64, f64) {
+    let (mut se, mut sum, mut n) = (0.0, 0.0, 0usize);
+    for (t, r) in pairs {
+        se += (t - r) * (t - r);
+        sum += r.abs();
+        n += 1;
+    }
+    let rmse = (se / n.max(1) as f64).sqrt();
+    let mean = sum / n.max(1) as f64;
+    (rmse, if mean > 0.0 { rmse / mean } else { 0.0 })
+}
+
+fn percentile(values: &[f64], p: f64) -> f64 {
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    if v.is_empty() {
+        return 0.0;
+    }
+    v[((p * (v.len() - 1) as f64).round() as usize).min(v.len() - 1)]
+}
+
+fn to_rgb8(image: &[[f64; 3]], exposure_ev: f64, tone_map: ToneMap) -> Vec<u8> {
+    image
+        .iter()
+        .flat_map(|&c| display(c, exposure_ev, tone_map).map(to_u8))
+        .collect()
+}
+
+fn ldr_flip(reference: &[u8], test: &[u8], width: u32, height: u32, ppd: f64) -> Vec<f64> {
+    let r = nv_flip::FlipImageRgb8::with_data(width, height, reference);
+    let t = nv_flip::FlipImageRgb8::with_data(width, height, test);
+    nv_flip::flip(r, t, ppd as f32)
+        .to_vec()
+        .into_iter()
+        .map(f64::from)
+        .collect()
+}
+
+/// Compares `test` with `reference` (same size, `width` × `height`).
+pub fn compare(
+    test: &[[f64; 3]],
+    reference: &[[f64; 3]],
+    width: u32,
+    height: u32,
+    setup: DisplaySetup,
+) -> (Comparison, ErrorMaps) {
+    assert_eq!(test.len(), reference.len(), "images differ in size");
+    let (rmse_rgb, rel_rgb) = rmse(
+        test.iter()
+            .zip(reference)
+            .flat_map(|(t, r)| (0..3).map(move |c| (t[c], r[c]))),
+    );
+    let (rmse_l, rel_l) = rmse(
+        test.iter()
+            .zip(reference)
+            .map(|(t, r)| (luminance_cd_m2(*t), luminance_cd_m2(*r))),
+    );
+    let t8 = to_rgb8(test, setup.exposure_ev, setup.tone_map);
+    let r8 = to_rgb8(reference, setup.exposure_ev, setup.tone_map);
+    let lab = |px: &[u8]| {
+        linear_srgb_to_lab([px[0], px[1], px[2]].map(|v| srgb_decode(v as f64 / 255.0)))
+    };
+    let delta_e: Vec<f64> = t8
+        .chunks_exact(3)
+        .zip(r8.chunks_exact(3))
+        .map(|(t, r)| delta_e2000(lab(t), lab(r)))
+        .collect();
+    let flip = ldr_flip(&r8, &t8, width, height, setup.pixels_per_degree);
+    let hdr = hdr_flip(test, reference, width, height, setup.pixels_per_degree);
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+    let comparison = Comparison {
+        rmse: rmse_rgb,
+        relative_rmse: rel_rgb,
+        luminance_rmse_cd_m2: rmse_l,
+        luminance_relative_rmse: rel_l,
+        delta_e2000_mean: mean(&delta_e),
+        delta_e2000_p95: percentile(&delta_e, 0.95),
+        ldr_flip_mean: mean(&flip),
+        hdr_flip_mean: mean(&hdr),
+        display: setup,
+    };
+    (
+        comparison,
+        ErrorMaps {
+            delta_e2000: delta_e,
+            ldr_flip: flip,
+        },
+    )
+}
+
+/// HDR-FLIP: the reference's luminance range sets the exposures (from where its median maps to
+/// mid-grey down to where its maximum is not clipped, Andersson et al. 2021 §4); LDR-FLIP under
+/// ACES at each, and the per-pixel maximum.
+fn hdr_flip(
+    test: &[[f64; 3]],
+    reference: &[[f64; 3]],
+    width: u32,
+    height: u32,
+    ppd: f64,
+) -> Vec<f64> {
+    let y: Vec<f64> = reference
+        .iter()
+        .map(|&c| linear_srgb_to_xyz(c).y.max(0.0))
+        .filter(|&v| v > 0.0)
+        .collect();
+    if y.is_empty() {
+        return vec![0.0; test.len()];
+    }
+    let median = percentile(&y, 0.5);
+    let max = percentile(&y, 1.0);
+    // Exposure k·Y; tone-mapper input x = EXPOSURE_SCALE·2^ev·Y.
+    let ev_for = |target_x: f64, y: f64| (target_x / (EXPOSURE_SCALE * y)).log2();
+    let (start, stop) = (
+        ev_for(0.85, max).min(ev_for(0.18, median)),
+        ev_for(0.85, max).max(ev_for(0.18, median)),
+    );
+    let steps = ((stop - start).ceil() as usize).clamp(2, 12);
+    let mut out = vec![0.0f64; test.len()];
+    for k in 0..steps {
+        let ev = start + (stop - start) * k as f64 / (steps - 1) as f64;
+        let f = ldr_flip(
+            &to_rgb8(reference, ev, ToneMap::Filmic),
+            &to_rgb8(test, ev, ToneMap::Filmic),
+            width,
+            height,
+            ppd,
+        );
+        for (o, v) in out.iter_mut().zip(f) {
+            *o = o.max(v);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn gradient(w: u32, h: u32, scale: f64) -> Vec<[f64; 3]> {
+        (0..w * h)
+            .map(|i| [scale * (i % w) as f64, 5.0, scale * (i / w) as f64 + 1.0])
+            .collect()
+    }
+
+    #[test]
+    fn identical_images_have_zero_error() {
+        let a = gradient(16, 8, 1.0);
+        let (c, maps) = compare(&a, &a, 16, 8, DisplaySetup::default());
+        assert_eq!(c.rmse, 0.0);
+        assert_eq!(c.delta_e2000_mean, 0.0);
+        assert!(c.ldr_flip_mean < 1e-6 && c.hdr_flip_mean < 1e-6);
+        assert_eq!(maps.delta_e2000.len(), 128);
+    }
+
+    #[test]
+    fn a_brighter_image_has_the_expected_relative_error_and_visible_differences() {
+        let a = gradient(16, 8, 1.0);
+        let b: Vec<[f64; 3]> = a.iter().map(|c| c.map(|v| v * 1.1)).collect();
+        let (c, _) = compare(&b, &a, 16, 8, DisplaySetup::default());
+        assert!((c.relative_rmse - 0.1).abs() < 0.03, "{}", c.relative_rmse);
+        assert!((c.luminance_relative_rmse - 0.1).abs() < 0.03);
+        assert!(
+            c.delta_e2000_mean > 0.3 && c.ldr_flip_mean > 0.0 && c.hdr_flip_mean > 0.0,
+            "{c:?}"
+        );
+    }
+}
