@@ -190,3 +190,112 @@ fn bad_overrides_are_refused_with_the_allowed_values() {
     assert!(!o.status.success());
     assert!(stderr(&o).contains("/no/such/file.ron"), "{}", stderr(&o));
 }
+
+#[test]
+fn probe_json_has_the_documented_shape() {
+    let o = atmoscope(&[
+        "probe",
+        "--view-zenith-deg",
+        "60",
+        "--view-azimuth-deg",
+        "90,180",
+        "--wavelengths-nm",
+        "550",
+        "--spp",
+        "64",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
+    let samples = v["samples"].as_array().expect("samples");
+    assert_eq!(samples.len(), 2);
+    for s in samples {
+        for key in [
+            "view_zenith_deg",
+            "view_azimuth_deg",
+            "wavelength_nm",
+            "radiance",
+            "radiance_per_irradiance",
+            "std_error",
+        ] {
+            assert!(s[key].is_number(), "{key} missing in {s}");
+        }
+        assert!(s["radiance"].as_f64().unwrap() > 0.0);
+        assert!(
+            s["std_error"].as_f64().unwrap() > 0.0,
+            "Monte Carlo has an error"
+        );
+    }
+    assert_eq!(samples[1]["view_azimuth_deg"].as_f64(), Some(180.0));
+    let t = &v["direct_transmittance"][0];
+    assert_eq!(t["wavelength_nm"].as_f64(), Some(550.0));
+    assert!(t["value"].as_f64().unwrap() > 0.0 && t["value"].as_f64().unwrap() < 1.0);
+
+    let o = atmoscope(&[
+        "probe",
+        "--view-zenith-deg",
+        "60",
+        "--view-azimuth-deg",
+        "90",
+        "--method",
+        "single-scattering",
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
+    assert_eq!(v["samples"][0]["std_error"].as_f64(), Some(0.0));
+}
+
+#[test]
+fn reference_writes_exr_and_preview_and_caches_and_compare_reads_them() {
+    let dir = std::env::temp_dir().join(format!("atmoscope-ref-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("noon.exr");
+    let cache = dir.join("cache");
+    let run = || {
+        Command::new(env!("CARGO_BIN_EXE_atmoscope"))
+            .args([
+                "reference",
+                "--view",
+                "fisheye-sun30",
+                "--size",
+                "12x12",
+                "--spp",
+                "4",
+                "--out",
+            ])
+            .arg(&out)
+            .env("ATMOSCOPE_CACHE_DIR", &cache)
+            .output()
+            .expect("run")
+    };
+    let first = run();
+    assert!(first.status.success(), "{}", stderr(&first));
+    assert!(out.exists() && out.with_extension("png").exists());
+    assert!(stderr(&first).contains("4 spp"), "{}", stderr(&first));
+    let second = run();
+    assert!(second.status.success());
+    assert!(
+        stderr(&second).contains("from the cache"),
+        "{}",
+        stderr(&second)
+    );
+
+    let o = atmoscope(&[
+        "compare",
+        out.to_str().unwrap(),
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
+    assert_eq!(v["rmse"].as_f64(), Some(0.0));
+    assert_eq!(v["delta_e2000_mean"].as_f64(), Some(0.0));
+
+    let o = atmoscope(&["reference", "--view", "no-such-view", "--out", "x.exr"]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("ground-dawn"),
+        "lists the suite: {}",
+        stderr(&o)
+    );
+}

@@ -4,16 +4,16 @@
 //! random stream is keyed by (seed, pixel, sample index), so a render is the same for a given
 //! seed whatever the thread count or pass sizes. Per pixel it keeps spectral radiance in 10 nm
 //! bins, CIE XYZ, and the sum of squares of luminance for a standard error, so the noise level is
-//! always known. Wavelengths are drawn uniformly over 360–830 nm (pdf 1/470 nm⁻¹).
+//! always known. Each path's four wavelengths are drawn by `WavelengthSampler`: stratified in
+//! the inverse CDF of x̄+ȳ+z̄ plus a floor, so the eye's sensitive band gets most paths while
+//! every wavelength of 360–830 nm keeps a non-zero density (the pdf is divided out).
 
 use crate::Atmosphere;
 use crate::camera::{Camera, Projection};
 use crate::colour::{Xyz, cie1931, xyz_to_linear_srgb};
 use crate::constants::{MAX_LUMINOUS_EFFICACY_LM_PER_W, VISIBLE_MAX_NM, VISIBLE_MIN_NM};
 use crate::geometry::direction_from_angles;
-use crate::methods::path_tracer::{
-    LANES, LaneOptics, PathTracer, PathTracerSettings, hero_wavelengths,
-};
+use crate::methods::path_tracer::{LANES, LaneOptics, Lanes, PathTracer, PathTracerSettings};
 use crate::methods::rng::Rng;
 use crate::scene::Scene;
 use rayon::prelude::*;
@@ -23,6 +23,57 @@ use std::sync::atomic::{AtomicBool, Ordering};
 pub const BIN_WIDTH_NM: f64 = 10.0;
 /// Number of spectral bins over 360–830 nm.
 pub const BIN_COUNT: usize = 47;
+
+/// Draws the wavelengths of a path with density ∝ x̄ + ȳ + z̄ + floor over 360–830 nm.
+#[derive(Debug, Clone)]
+pub struct WavelengthSampler {
+    /// CDF at the 1 nm bin edges 360, 361, …, 830 nm.
+    cdf: Vec<f64>,
+    /// Density per bin, nm⁻¹.
+    pdf: Vec<f64>,
+}
+
+impl Default for WavelengthSampler {
+    fn default() -> Self {
+        let cmf = cie1931();
+        let bins = (VISIBLE_MAX_NM - VISIBLE_MIN_NM) as usize;
+        let weight: Vec<f64> = (0..bins)
+            .map(|k| {
+                let w = VISIBLE_MIN_NM + k as f64 + 0.5;
+                // The floor (a tenth of ȳ's peak) keeps the tails sampled for spectral bins.
+                cmf.x.sample(w) + cmf.y.sample(w) + cmf.z.sample(w) + 0.1
+            })
+            .collect();
+        let total: f64 = weight.iter().sum();
+        let pdf: Vec<f64> = weight.iter().map(|w| w / total).collect();
+        let mut cdf = vec![0.0];
+        for p in &pdf {
+            cdf.push(cdf.last().copied().unwrap_or(0.0) + p);
+        }
+        WavelengthSampler { cdf, pdf }
+    }
+}
+
+impl WavelengthSampler {
+    /// Four wavelengths from one uniform number, stratified in the CDF, with their densities
+    /// (nm⁻¹).
+    pub fn sample(&self, u: f64) -> (Lanes, Lanes) {
+        let mut wavelengths = [0.0; LANES];
+        let mut pdf = [0.0; LANES];
+        for i in 0..LANES {
+            let v = (u + i as f64 / LANES as f64) % 1.0;
+            let k = self
+                .cdf
+                .partition_point(|&c| c <= v)
+                .clamp(1, self.pdf.len())
+                - 1;
+            let frac = (v - self.cdf[k]) / self.pdf[k];
+            wavelengths[i] = VISIBLE_MIN_NM + k as f64 + frac.clamp(0.0, 1.0);
+            pdf[i] = self.pdf[k];
+        }
+        (wavelengths, pdf)
+    }
+}
 
 /// Accumulated estimates of one pixel.
 #[derive(Debug, Clone, Default)]
@@ -132,7 +183,7 @@ impl ReferenceRender {
     pub fn run_pass(&mut self, spp: u32, cancel: &AtomicBool) -> bool {
         let tracer = PathTracer::new(&self.atmosphere, self.sun, self.settings);
         let cmf = cie1931();
-        let span = VISIBLE_MAX_NM - VISIBLE_MIN_NM;
+        let sampler = WavelengthSampler::default();
         let (w, h, seed, camera) = (self.width, self.height, self.seed, self.camera);
         let atmosphere = &self.atmosphere;
         self.pixels
@@ -152,13 +203,13 @@ impl ReferenceRender {
                             continue;
                         };
                         pixel.covered = true;
-                        let lanes = LaneOptics::new(atmosphere, hero_wavelengths(rng.uniform()));
+                        let (wavelengths, pdf) = sampler.sample(rng.uniform());
+                        let lanes = LaneOptics::new(atmosphere, wavelengths);
                         let l = tracer.radiance(&ray, &lanes, &mut rng);
                         let mut xyz = [0.0; 3];
                         for i in 0..LANES {
                             let wl = lanes.wavelengths_nm[i];
-                            // Each lane is uniform over the span: weight span / LANES.
-                            let v = l[i] * span / LANES as f64;
+                            let v = l[i] / (LANES as f64 * pdf[i]);
                             xyz[0] += v * cmf.x.sample(wl);
                             xyz[1] += v * cmf.y.sample(wl);
                             xyz[2] += v * cmf.z.sample(wl);
@@ -235,6 +286,28 @@ mod tests {
                 .all(|c| c.iter().all(|v| v.is_finite()))
         );
         assert!(a.mean_relative_error().is_finite());
+    }
+
+    #[test]
+    fn the_wavelength_sampler_integrates_exactly() {
+        // E[f(λ)/(4·pdf(λ))] summed over the lanes is ∫f; check with f = 1 and f = ȳ.
+        let s = WavelengthSampler::default();
+        let (mut one, mut y) = (0.0, 0.0);
+        let n = 20_000;
+        for k in 0..n {
+            let (w, p) = s.sample((k as f64 + 0.5) / n as f64);
+            for i in 0..LANES {
+                assert!((VISIBLE_MIN_NM..=VISIBLE_MAX_NM).contains(&w[i]));
+                one += 1.0 / (LANES as f64 * p[i]);
+                y += cie1931().y.sample(w[i]) / (LANES as f64 * p[i]);
+            }
+        }
+        assert!((one / n as f64 - 470.0).abs() < 0.01, "{}", one / n as f64);
+        assert!(
+            (y / n as f64 / 106.857 - 1.0).abs() < 1e-3,
+            "{}",
+            y / n as f64
+        );
     }
 
     #[test]

@@ -2,6 +2,7 @@
 //! reports bad input as an error naming the file, field and allowed range.
 
 mod aerosols;
+mod bench;
 mod compare;
 mod info;
 mod presets_cmd;
@@ -45,6 +46,11 @@ pub enum Command {
     Reference(reference::ReferenceArgs),
     /// Error metrics of an image against a reference (RMSE, ΔE2000, FLIP), with error maps.
     Compare(compare::CompareArgs),
+    /// Benchmarks: run time and convergence (not part of the tests).
+    Bench {
+        #[command(subcommand)]
+        bench: bench::Bench,
+    },
 }
 
 #[derive(Subcommand, Debug)]
@@ -71,5 +77,6 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Probe(args) => probe::run(&args),
         Command::Reference(args) => reference::run(&args),
         Command::Compare(args) => compare::run(&args),
+        Command::Bench { bench } => bench::run(&bench),
     }
 }

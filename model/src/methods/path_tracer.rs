@@ -1,21 +1,23 @@
 //! The spectral path tracer: Atmoscope's ground truth.
 //!
-//! Each path carries four wavelengths (a hero wavelength and three others spaced evenly over
-//! 360–830 nm, Wilkie et al. 2014). Free flights use delta tracking against a majorant that is
-//! constant within altitude shells; with several wavelengths the collision type (Rayleigh
-//! scattering, aerosol scattering, null) is chosen with spectral tracking probabilities (Kutz et
-//! al. 2017), so every wavelength stays unbiased. Absorption is never sampled: its share of the
-//! extinction is carried in the weights. At each scattering event the sun is sampled inside its
-//! finite disk (next-event estimation) with ratio-tracked transmittance; the Lambertian ground
-//! gets the same treatment and continues by cosine sampling. All scattering orders, Russian
-//! roulette after the third, an optional maximum order (1 = single scattering).
+//! Each path carries four wavelengths (a hero wavelength and three others, Wilkie et al. 2014).
+//! Free flights use delta tracking against a majorant that is constant within altitude shells;
+//! with several wavelengths the collision type (Rayleigh scattering, aerosol scattering, null) is
+//! chosen with spectral tracking probabilities (Kutz et al. 2017), so every wavelength stays
+//! unbiased. Absorption is never sampled: its share of the extinction is carried in the weights.
+//! Next-event estimation to the sun (sampled inside its finite disk, transmittance by residual
+//! ratio tracking) is made at one point drawn along every path segment rather than only at collisions:
+//! in a thin sky most free flights escape without a collision, and this keeps every path
+//! contributing. The Lambertian ground gets its own next-event estimate and continues by cosine
+//! sampling. All scattering orders, Russian roulette from the second, an optional maximum order
+//! (1 = single scattering).
 //!
 //! The direct solar disk seen by a camera ray is not included: renderers add it analytically.
 //! Radiance is spectral radiance for the scene's solar spectrum, W·m⁻²·sr⁻¹·nm⁻¹.
 
 use super::rng::Rng;
 use crate::atmosphere::{Atmosphere, Optics};
-use crate::constants::{SUN_ANGULAR_RADIUS_RAD, VISIBLE_MAX_NM, VISIBLE_MIN_NM};
+use crate::constants::SUN_ANGULAR_RADIUS_RAD;
 use crate::geometry::{Ray, sphere_distances};
 use crate::phase;
 use crate::scene::AerosolPhase;
@@ -27,10 +29,12 @@ pub const LANES: usize = 4;
 /// A value per wavelength of a path.
 pub type Lanes = [f64; LANES];
 
-/// Altitudes (m) separating the majorant shells; denser low down, where density changes fast.
-const SHELL_ALTITUDES_M: [f64; 16] = [
-    0.0, 250.0, 500.0, 1000.0, 1500.0, 2000.0, 3000.0, 4500.0, 6500.0, 9000.0, 12_000.0, 16_000.0,
-    21_000.0, 28_000.0, 40_000.0, 60_000.0,
+/// Altitudes (m) separating the majorant shells: thin where density changes fast, so each
+/// shell's densest and thinnest air are close and the control variate below is tight.
+const SHELL_ALTITUDES_M: [f64; 28] = [
+    0.0, 250.0, 500.0, 1000.0, 1500.0, 2000.0, 2500.0, 3000.0, 4000.0, 5000.0, 6000.0, 7000.0,
+    8000.0, 9000.0, 10_000.0, 12_000.0, 14_000.0, 16_000.0, 18_000.0, 20_000.0, 23_000.0, 26_000.0,
+    30_000.0, 35_000.0, 40_000.0, 50_000.0, 60_000.0, 80_000.0,
 ];
 
 /// Settings of a path-traced estimate.
@@ -51,12 +55,37 @@ impl Default for PathTracerSettings {
     }
 }
 
-/// Densest values of each constituent within a shell.
+/// Densities of each constituent at one bound of a shell.
 #[derive(Debug, Clone, Copy)]
-struct ShellMax {
+struct ShellDensity {
     air_m3: f64,
     ozone_m3: f64,
     aerosol_per_m: f64,
+}
+
+impl ShellDensity {
+    fn extinction(&self, o: &Optics) -> f64 {
+        o.rayleigh_cross_section_m2 * self.air_m3
+            + o.ozone_cross_section_m2 * self.ozone_m3
+            + o.aerosol_optical_depth * self.aerosol_per_m
+    }
+}
+
+/// The densest (for the majorant) and thinnest (for the control) air of a shell.
+#[derive(Debug, Clone, Copy)]
+struct ShellBounds {
+    max: ShellDensity,
+    min: ShellDensity,
+}
+
+/// Per-path tracking coefficients of every shell, m⁻¹.
+struct PathMedium {
+    /// Majorant of every lane's extinction (delta tracking).
+    majorant: Vec<f64>,
+    /// Control extinction per lane, below the true one (residual ratio tracking).
+    control: Vec<Lanes>,
+    /// Majorant of the residual extinction − control over the lanes.
+    residual_majorant: Vec<f64>,
 }
 
 /// An atmosphere prepared for path tracing: shells and their density bounds.
@@ -65,7 +94,7 @@ pub struct PathTracer<'a> {
     pub settings: PathTracerSettings,
     /// Shell boundary radii, m, increasing, ending at the top of the atmosphere.
     shell_radii: Vec<f64>,
-    shell_max: Vec<ShellMax>,
+    shells: Vec<ShellBounds>,
     /// Unit direction to the sun's centre.
     sun: DVec3,
     /// Orthonormal basis around `sun` for sampling the disk.
@@ -94,11 +123,18 @@ impl LaneOptics {
     }
 }
 
-/// Wavelengths of a path: the hero from `u` ∈ [0, 1) and three more spaced by a quarter of the
-/// visible range, wrapping around. Each is uniformly distributed over 360–830 nm.
-pub fn hero_wavelengths(u: f64) -> Lanes {
-    let span = VISIBLE_MAX_NM - VISIBLE_MIN_NM;
-    std::array::from_fn(|i| VISIBLE_MIN_NM + ((u + i as f64 / LANES as f64) % 1.0) * span)
+/// The interval index and distance where the majorant optical depth along `intervals` reaches
+/// `target`, or None if the intervals hold less.
+fn locate(intervals: &[(f64, f64, usize)], majorants: &[f64], target: f64) -> Option<(usize, f64)> {
+    let mut acc = 0.0;
+    for (k, &(a, b, s)) in intervals.iter().enumerate() {
+        let step = majorants[s] * (b - a);
+        if acc + step >= target && majorants[s] > 0.0 {
+            return Some((k, (a + (target - acc) / majorants[s]).min(b)));
+        }
+        acc += step;
+    }
+    None
 }
 
 fn basis(n: DVec3) -> (DVec3, DVec3) {
@@ -128,26 +164,31 @@ impl<'a> PathTracer<'a> {
             .filter(|&z| z < thickness)
             .collect();
         altitudes.push(thickness);
-        let shell_max = altitudes
+        let shells = altitudes
             .windows(2)
             .map(|w| {
-                // Densities are monotone in most profiles; sample finely for ozone's peak and
-                // add a margin so the bound holds between samples.
-                let mut m = ShellMax {
-                    air_m3: 0.0,
-                    ozone_m3: 0.0,
-                    aerosol_per_m: 0.0,
-                };
-                for k in 0..=64 {
-                    let d = atmosphere.densities(w[0] + (w[1] - w[0]) * k as f64 / 64.0);
-                    m.air_m3 = m.air_m3.max(d.air_m3);
-                    m.ozone_m3 = m.ozone_m3.max(d.ozone_m3);
-                    m.aerosol_per_m = m.aerosol_per_m.max(d.aerosol_per_m);
-                }
-                ShellMax {
-                    air_m3: m.air_m3 * 1.02,
-                    ozone_m3: m.ozone_m3 * 1.05,
-                    aerosol_per_m: m.aerosol_per_m * 1.02,
+                // Sample each shell finely (ozone peaks inside one) and widen by a margin so the
+                // bounds hold between samples.
+                let samples: Vec<_> = (0..=64)
+                    .map(|k| atmosphere.densities(w[0] + (w[1] - w[0]) * k as f64 / 64.0))
+                    .collect();
+                let fold =
+                    |f: fn(f64, f64) -> f64,
+                     init: f64,
+                     g: fn(&crate::atmosphere::Densities) -> f64| {
+                        samples.iter().map(g).fold(init, f)
+                    };
+                ShellBounds {
+                    max: ShellDensity {
+                        air_m3: 1.02 * fold(f64::max, 0.0, |d| d.air_m3),
+                        ozone_m3: 1.05 * fold(f64::max, 0.0, |d| d.ozone_m3),
+                        aerosol_per_m: 1.02 * fold(f64::max, 0.0, |d| d.aerosol_per_m),
+                    },
+                    min: ShellDensity {
+                        air_m3: 0.98 * fold(f64::min, f64::INFINITY, |d| d.air_m3),
+                        ozone_m3: 0.95 * fold(f64::min, f64::INFINITY, |d| d.ozone_m3),
+                        aerosol_per_m: 0.98 * fold(f64::min, f64::INFINITY, |d| d.aerosol_per_m),
+                    },
                 }
             })
             .collect();
@@ -159,26 +200,32 @@ impl<'a> PathTracer<'a> {
                 .iter()
                 .map(|z| atmosphere.bottom_radius_m + z)
                 .collect(),
-            shell_max,
+            shells,
             sun,
             sun_basis: basis(sun),
             cos_sun_radius: settings.sun_angular_radius_rad.cos(),
         }
     }
 
-    fn majorants(&self, lanes: &LaneOptics) -> Vec<f64> {
-        self.shell_max
-            .iter()
-            .map(|m| {
-                lanes.optics.iter().fold(0.0f64, |acc, o| {
-                    acc.max(
-                        o.rayleigh_cross_section_m2 * m.air_m3
-                            + o.ozone_cross_section_m2 * m.ozone_m3
-                            + o.aerosol_optical_depth * m.aerosol_per_m,
-                    )
-                })
-            })
-            .collect()
+    fn medium(&self, lanes: &LaneOptics) -> PathMedium {
+        let mut medium = PathMedium {
+            majorant: vec![],
+            control: vec![],
+            residual_majorant: vec![],
+        };
+        for shell in &self.shells {
+            let max: Lanes = std::array::from_fn(|i| shell.max.extinction(&lanes.optics[i]));
+            let control: Lanes =
+                std::array::from_fn(|i| shell.min.extinction(&lanes.optics[i]).min(max[i]));
+            medium
+                .majorant
+                .push(max.iter().fold(0.0f64, |a, &b| a.max(b)));
+            medium
+                .residual_majorant
+                .push((0..LANES).fold(0.0f64, |a, i| a.max(max[i] - control[i])));
+            medium.control.push(control);
+        }
+        medium
     }
 
     fn segment(&self, ray: &Ray) -> Option<Segment> {
@@ -232,19 +279,19 @@ impl<'a> PathTracer<'a> {
                     .shell_radii
                     .partition_point(|&s| s <= mid)
                     .saturating_sub(1)
-                    .min(self.shell_max.len() - 1);
+                    .min(self.shells.len() - 1);
                 (w[0], w[1], shell)
             })
             .collect()
     }
 
-    /// Transmittance along the ray from its origin out of the atmosphere by ratio tracking; zero
-    /// when the ray meets the ground.
+    /// Transmittance along the ray from its origin out of the atmosphere; zero when the ray
+    /// meets the ground.
     fn transmittance(
         &self,
         ray: &Ray,
         lanes: &LaneOptics,
-        majorants: &[f64],
+        medium: &PathMedium,
         rng: &mut Rng,
     ) -> Lanes {
         let Some(seg) = self.segment(ray) else {
@@ -253,35 +300,8 @@ impl<'a> PathTracer<'a> {
         if seg.ground {
             return [0.0; LANES];
         }
-        let mut t_lanes = [1.0; LANES];
-        for (a, b, shell) in self.intervals(ray, seg.start, seg.end) {
-            let m = majorants[shell];
-            if m <= 0.0 {
-                continue;
-            }
-            let mut t = a;
-            loop {
-                t -= (1.0 - rng.uniform()).ln() / m;
-                if t >= b {
-                    break;
-                }
-                let x = ray.origin + ray.direction * t;
-                let d = self
-                    .atmosphere
-                    .densities(x.length() - self.atmosphere.bottom_radius_m);
-                for (i, o) in lanes.optics.iter().enumerate() {
-                    t_lanes[i] *= (1.0 - o.coefficients(&d).extinction() / m).max(0.0);
-                }
-                if t_lanes.iter().all(|&v| v < 1e-4) {
-                    // Unbiased termination of a negligible estimate.
-                    if rng.uniform() < 0.5 {
-                        return [0.0; LANES];
-                    }
-                    t_lanes.iter_mut().for_each(|v| *v *= 2.0);
-                }
-            }
-        }
-        t_lanes
+        let intervals = self.intervals(ray, seg.start, seg.end);
+        self.ratio_track(ray, &intervals, seg.end, lanes, medium, rng)
     }
 
     /// A direction inside the solar disk, uniformly over its solid angle.
@@ -294,35 +314,158 @@ impl<'a> PathTracer<'a> {
             .normalize()
     }
 
+    /// Transmittance along `ray` over the given intervals up to distance `until`, by residual
+    /// ratio tracking (Novák et al. 2014): the control extinction's part exactly, the residual
+    /// by ratio tracking against its own small majorant, so a tight majorant does not turn the
+    /// estimate into a coin toss.
+    fn ratio_track(
+        &self,
+        ray: &Ray,
+        intervals: &[(f64, f64, usize)],
+        until: f64,
+        lanes: &LaneOptics,
+        medium: &PathMedium,
+        rng: &mut Rng,
+    ) -> Lanes {
+        let mut tau_control = [0.0; LANES];
+        let mut ratio = [1.0; LANES];
+        for &(a, b, shell) in intervals {
+            if a >= until {
+                break;
+            }
+            let b = b.min(until);
+            let control = medium.control[shell];
+            for i in 0..LANES {
+                tau_control[i] += control[i] * (b - a);
+            }
+            let m = medium.residual_majorant[shell];
+            if m <= 0.0 {
+                continue;
+            }
+            let mut t = a;
+            loop {
+                t -= (1.0 - rng.uniform()).ln() / m;
+                if t >= b {
+                    break;
+                }
+                let d = self.atmosphere.densities(
+                    (ray.origin + ray.direction * t).length() - self.atmosphere.bottom_radius_m,
+                );
+                for (i, o) in lanes.optics.iter().enumerate() {
+                    ratio[i] *= 1.0 - (o.coefficients(&d).extinction() - control[i]) / m;
+                }
+            }
+        }
+        std::array::from_fn(|i| (ratio[i] * (-tau_control[i]).exp()).max(0.0))
+    }
+
     /// Radiance arriving at `ray.origin` from `-ray.direction` (the sky seen along the ray,
     /// without the direct solar disk), at the four wavelengths of `lanes`.
+    ///
+    /// Each path segment contributes the sunlight scattered once anywhere along it (one point
+    /// drawn with density ∝ m·e^(−τ̄), the majorant's truncated exponential, with ratio-tracked
+    /// transmittance to it) and, where the segment ends on the ground, the ground's direct
+    /// sunlight. Delta tracking then picks the vertex the path continues from, so segment k
+    /// carries scattering order k and no order is counted twice.
     pub fn radiance(&self, ray: &Ray, lanes: &LaneOptics, rng: &mut Rng) -> Lanes {
-        let majorants = self.majorants(lanes);
+        let medium = self.medium(lanes);
+        let majorants = &medium.majorant;
         let mut radiance = [0.0; LANES];
         let mut weight = [1.0; LANES];
         let mut ray = *ray;
-        let mut order = 0u32;
         let max_order = self.settings.max_order.unwrap_or(u32::MAX);
         let albedo = self.atmosphere.ground_albedo;
-        'path: loop {
+        let bottom = self.atmosphere.bottom_radius_m;
+        let mut order = 0u32;
+        loop {
             let Some(seg) = self.segment(&ray) else { break };
-            // Delta tracking with spectral-tracking event probabilities.
+            order += 1;
+            let intervals = self.intervals(&ray, seg.start, seg.end);
+            // Majorant optical depth over the segment, for the in-scattering point.
+            let tau_total: f64 = intervals
+                .iter()
+                .map(|&(a, b, s)| majorants[s] * (b - a))
+                .sum();
+            let p_collide = 1.0 - (-tau_total).exp();
+            if p_collide > 0.0 {
+                let target = -(1.0 - rng.uniform() * p_collide).ln();
+                if let Some((k, t)) = locate(&intervals, majorants, target) {
+                    let pdf = majorants[intervals[k].2] * (-target).exp() / p_collide;
+                    let x = ray.origin + ray.direction * t;
+                    let d = self.atmosphere.densities(x.length() - bottom);
+                    let view_t = self.ratio_track(&ray, &intervals, t, lanes, &medium, rng);
+                    let s_dir = self.sample_sun(rng);
+                    let sun_t = self.transmittance(&Ray::new(x, s_dir), lanes, &medium, rng);
+                    let nu = ray.direction.dot(s_dir);
+                    for i in 0..LANES {
+                        let c = lanes.optics[i].coefficients(&d);
+                        let source = c.rayleigh_scattering * self.phase(0, &lanes.optics[i], nu)
+                            + c.aerosol_scattering * self.phase(1, &lanes.optics[i], nu);
+                        radiance[i] +=
+                            weight[i] * view_t[i] * source * lanes.solar_irradiance[i] * sun_t[i]
+                                / pdf;
+                    }
+                }
+            }
+            if seg.ground {
+                let g = (ray.origin + ray.direction * seg.end).normalize() * (bottom + 1e-3);
+                let s_dir = self.sample_sun(rng);
+                let cos_s = g.normalize().dot(s_dir);
+                if cos_s > 0.0 && albedo > 0.0 {
+                    let view_t = self.ratio_track(&ray, &intervals, seg.end, lanes, &medium, rng);
+                    let sun_t = self.transmittance(&Ray::new(g, s_dir), lanes, &medium, rng);
+                    for i in 0..LANES {
+                        radiance[i] += weight[i] * view_t[i] * albedo / PI
+                            * cos_s
+                            * lanes.solar_irradiance[i]
+                            * sun_t[i];
+                    }
+                }
+            }
+            if order >= max_order {
+                break;
+            }
+            // Delta tracking with spectral-tracking probabilities picks the next vertex. A segment
+            // that leaves the atmosphere gets its first tentative collision forced inside it
+            // (the weight takes its probability), so paths go on collecting higher orders
+            // instead of escaping.
+            let mut forced = None;
+            if !seg.ground && p_collide > 0.0 {
+                forced = locate(
+                    &intervals,
+                    majorants,
+                    -(1.0 - rng.uniform() * p_collide).ln(),
+                );
+                if forced.is_some() {
+                    weight.iter_mut().for_each(|w| *w *= p_collide);
+                }
+            }
             let mut event = None;
-            'track: for (a, b, shell) in self.intervals(&ray, seg.start, seg.end) {
+            'track: for (k, &(a, b, shell)) in intervals.iter().enumerate() {
                 let m = majorants[shell];
                 if m <= 0.0 {
                     continue;
                 }
                 let mut t = a;
+                let mut at_forced = false;
+                if let Some((k0, t0)) = forced {
+                    if k < k0 {
+                        continue;
+                    }
+                    if k == k0 {
+                        t = t0;
+                        at_forced = true;
+                    }
+                }
                 loop {
-                    t -= (1.0 - rng.uniform()).ln() / m;
-                    if t >= b {
-                        break;
+                    if !std::mem::take(&mut at_forced) {
+                        t -= (1.0 - rng.uniform()).ln() / m;
+                        if t >= b {
+                            break;
+                        }
                     }
                     let x = ray.origin + ray.direction * t;
-                    let d = self
-                        .atmosphere
-                        .densities(x.length() - self.atmosphere.bottom_radius_m);
+                    let d = self.atmosphere.densities(x.length() - bottom);
                     let mut sigma = [[0.0; LANES]; 3]; // Rayleigh, aerosol scattering, null
                     for (i, o) in lanes.optics.iter().enumerate() {
                         let c = o.coefficients(&d);
@@ -334,7 +477,7 @@ impl<'a> PathTracer<'a> {
                         sigma.map(|s| (0..LANES).fold(0.0f64, |acc, i| acc.max(weight[i] * s[i])));
                     let total: f64 = score.iter().sum();
                     if total <= 0.0 {
-                        break 'path;
+                        return radiance;
                     }
                     let u = rng.uniform() * total;
                     let e = if u < score[0] {
@@ -354,64 +497,31 @@ impl<'a> PathTracer<'a> {
                     }
                 }
             }
-            let (x, normal) = match event {
+            match event {
                 Some((x, constituent)) => {
-                    order += 1;
-                    // Next-event estimation towards the sun.
-                    let s = self.sample_sun(rng);
-                    let nu = ray.direction.dot(s);
-                    let t_sun = self.transmittance(&Ray::new(x, s), lanes, &majorants, rng);
-                    for i in 0..LANES {
-                        let p = self.phase(constituent, &lanes.optics[i], nu);
-                        radiance[i] += weight[i] * p * lanes.solar_irradiance[i] * t_sun[i];
-                    }
-                    if order >= max_order {
-                        break;
-                    }
-                    // Continue in a direction drawn from the hero wavelength's phase function.
                     let dir = self.sample_phase(constituent, &lanes.optics[0], ray.direction, rng);
-                    let nu_new = ray.direction.dot(dir);
-                    let pdf = self.sampling_pdf(constituent, &lanes.optics[0], nu_new);
+                    let nu = ray.direction.dot(dir);
+                    let pdf = self.sampling_pdf(constituent, &lanes.optics[0], nu);
                     for i in 0..LANES {
-                        weight[i] *= self.phase(constituent, &lanes.optics[i], nu_new) / pdf;
+                        weight[i] *= self.phase(constituent, &lanes.optics[i], nu) / pdf;
                     }
                     ray = Ray::new(x, dir);
-                    (x, None)
                 }
-                None if seg.ground => {
-                    order += 1;
-                    let x = ray.origin + ray.direction * seg.end;
-                    let n = x.normalize();
-                    let x = n * (self.atmosphere.bottom_radius_m + 1e-3);
-                    let s = self.sample_sun(rng);
-                    let cos_s = n.dot(s);
-                    if cos_s > 0.0 {
-                        let t_sun = self.transmittance(&Ray::new(x, s), lanes, &majorants, rng);
-                        for i in 0..LANES {
-                            radiance[i] += weight[i] * albedo / PI
-                                * cos_s
-                                * lanes.solar_irradiance[i]
-                                * t_sun[i];
-                        }
-                    }
-                    if order >= max_order || albedo <= 0.0 {
-                        break;
-                    }
+                None if seg.ground && albedo > 0.0 => {
+                    let n = (ray.origin + ray.direction * seg.end).normalize();
                     weight.iter_mut().for_each(|w| *w *= albedo);
-                    (x, Some(n))
+                    // Cosine-weighted direction over the ground's upper hemisphere.
+                    let (t, b) = basis(n);
+                    let r = rng.uniform().sqrt();
+                    let phi = 2.0 * PI * rng.uniform();
+                    let dir = t * (r * phi.cos())
+                        + b * (r * phi.sin())
+                        + n * (1.0 - r * r).max(0.0).sqrt();
+                    ray = Ray::new(n * (bottom + 1e-3), dir);
                 }
                 None => break,
-            };
-            if let Some(n) = normal {
-                // Cosine-weighted direction over the ground's upper hemisphere.
-                let (t, b) = basis(n);
-                let r = rng.uniform().sqrt();
-                let phi = 2.0 * PI * rng.uniform();
-                let dir =
-                    t * (r * phi.cos()) + b * (r * phi.sin()) + n * (1.0 - r * r).max(0.0).sqrt();
-                ray = Ray::new(x, dir);
             }
-            if order >= 3 {
+            if order >= 2 {
                 let survive = weight.iter().fold(0.0f64, |a, &w| a.max(w)).min(1.0);
                 if survive <= 0.0 || rng.uniform() >= survive {
                     break;
