@@ -2,7 +2,6 @@
 
 use super::SceneArgs;
 use crate::summary::{Info, compute};
-use anyhow::bail;
 use clap::Args;
 use std::process::ExitCode;
 
@@ -24,13 +23,7 @@ pub struct InfoArgs {
 }
 
 pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
-    if let Some(w) = args
-        .wavelengths_nm
-        .iter()
-        .find(|w| !(**w >= 360.0 && **w <= 830.0))
-    {
-        bail!("--wavelengths-nm: {w} nm is outside 360 to 830 nm");
-    }
+    super::check_wavelengths(&args.wavelengths_nm)?;
     let scene = args.scene.scene()?;
     let info = compute(&scene, &args.wavelengths_nm);
     if args.json {

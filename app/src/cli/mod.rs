@@ -80,3 +80,14 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Bench { bench } => bench::run(&bench),
     }
 }
+
+/// Refuses wavelengths outside the visible range the model's tables cover.
+pub fn check_wavelengths(wavelengths_nm: &[f64]) -> anyhow::Result<()> {
+    match wavelengths_nm
+        .iter()
+        .find(|w| !(**w >= 360.0 && **w <= 830.0))
+    {
+        Some(w) => anyhow::bail!("--wavelengths-nm: {w} nm is outside 360 to 830 nm"),
+        None => Ok(()),
+    }
+}

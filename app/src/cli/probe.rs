@@ -188,13 +188,7 @@ pub fn probe(scene: &Scene, args: &ProbeArgs) -> Probe {
 }
 
 pub fn run(args: &ProbeArgs) -> anyhow::Result<ExitCode> {
-    if let Some(w) = args
-        .wavelengths_nm
-        .iter()
-        .find(|w| !(**w >= 360.0 && **w <= 830.0))
-    {
-        bail!("--wavelengths-nm: {w} nm is outside 360 to 830 nm");
-    }
+    super::check_wavelengths(&args.wavelengths_nm)?;
     if let Some(z) = args
         .view_zenith_deg
         .iter()
