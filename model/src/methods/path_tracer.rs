@@ -81,11 +81,27 @@ struct ShellBounds {
 /// Per-path tracking coefficients of every shell, m⁻¹.
 struct PathMedium {
     /// Majorant of every lane's extinction (delta tracking).
-    majorant: Vec<f64>,
+    majorant: [f64; SHELL_ALTITUDES_M.len()],
     /// Control extinction per lane, below the true one (residual ratio tracking).
-    control: Vec<Lanes>,
+    control: [Lanes; SHELL_ALTITUDES_M.len()],
     /// Majorant of the residual extinction − control over the lanes.
-    residual_majorant: Vec<f64>,
+    residual_majorant: [f64; SHELL_ALTITUDES_M.len()],
+}
+
+/// Most shell boundaries a ray can cross, twice each, plus its two ends.
+const MAX_CUTS: usize = 2 * SHELL_ALTITUDES_M.len() + 2;
+
+/// The pieces of a ray inside single shells: (start, end, shell), in order along the ray.
+struct Intervals {
+    items: [(f64, f64, usize); MAX_CUTS],
+    len: usize,
+}
+
+impl std::ops::Deref for Intervals {
+    type Target = [(f64, f64, usize)];
+    fn deref(&self) -> &Self::Target {
+        &self.items[..self.len]
+    }
 }
 
 /// An atmosphere prepared for path tracing: shells and their density bounds.
@@ -208,22 +224,20 @@ impl<'a> PathTracer<'a> {
     }
 
     fn medium(&self, lanes: &LaneOptics) -> PathMedium {
+        const N: usize = SHELL_ALTITUDES_M.len();
         let mut medium = PathMedium {
-            majorant: vec![],
-            control: vec![],
-            residual_majorant: vec![],
+            majorant: [0.0; N],
+            control: [[0.0; LANES]; N],
+            residual_majorant: [0.0; N],
         };
-        for shell in &self.shells {
+        for (k, shell) in self.shells.iter().enumerate() {
             let max: Lanes = std::array::from_fn(|i| shell.max.extinction(&lanes.optics[i]));
             let control: Lanes =
                 std::array::from_fn(|i| shell.min.extinction(&lanes.optics[i]).min(max[i]));
-            medium
-                .majorant
-                .push(max.iter().fold(0.0f64, |a, &b| a.max(b)));
-            medium
-                .residual_majorant
-                .push((0..LANES).fold(0.0f64, |a, i| a.max(max[i] - control[i])));
-            medium.control.push(control);
+            medium.majorant[k] = max.iter().fold(0.0f64, |a, &b| a.max(b));
+            medium.residual_majorant[k] =
+                (0..LANES).fold(0.0f64, |a, i| a.max(max[i] - control[i]));
+            medium.control[k] = control;
         }
         medium
     }
@@ -262,27 +276,42 @@ impl<'a> PathTracer<'a> {
     }
 
     /// The intervals of [start, end] along the ray, each inside one shell, with the shell index.
-    fn intervals(&self, ray: &Ray, start: f64, end: f64) -> Vec<(f64, f64, usize)> {
+    fn intervals(&self, ray: &Ray, start: f64, end: f64) -> Intervals {
         let (r, mu) = ray.r_mu();
-        let mut cuts = vec![start, end];
+        // Stack buffers: this runs several times per path, and allocation dominated its cost.
+        let mut cuts = [0.0f64; MAX_CUTS];
+        cuts[0] = start;
+        cuts[1] = end;
+        let mut n = 2;
         for &radius in &self.shell_radii[1..self.shell_radii.len() - 1] {
             if let Some((a, b)) = sphere_distances(r, mu, radius) {
-                cuts.extend([a, b].into_iter().filter(|&t| t > start && t < end));
+                for t in [a, b] {
+                    if t > start && t < end {
+                        cuts[n] = t;
+                        n += 1;
+                    }
+                }
             }
         }
-        cuts.sort_by(f64::total_cmp);
-        cuts.windows(2)
-            .filter(|w| w[1] > w[0])
-            .map(|w| {
+        let cuts = &mut cuts[..n];
+        cuts.sort_unstable_by(f64::total_cmp);
+        let mut out = Intervals {
+            items: [(0.0, 0.0, 0); MAX_CUTS],
+            len: 0,
+        };
+        for w in cuts.windows(2) {
+            if w[1] > w[0] {
                 let mid = crate::geometry::radius_at(r, mu, 0.5 * (w[0] + w[1]));
                 let shell = self
                     .shell_radii
                     .partition_point(|&s| s <= mid)
                     .saturating_sub(1)
                     .min(self.shells.len() - 1);
-                (w[0], w[1], shell)
-            })
-            .collect()
+                out.items[out.len] = (w[0], w[1], shell);
+                out.len += 1;
+            }
+        }
+        out
     }
 
     /// Transmittance along the ray from its origin out of the atmosphere; zero when the ray
