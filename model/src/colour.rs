@@ -4,7 +4,7 @@
 //! Matrices follow IEC 61966-2-1 (sRGB); CIEDE2000 follows Sharma, Wu & Dalal (2005), whose
 //! published test pairs pin it in the tests.
 
-use crate::constants::{MAX_LUMINOUS_EFFICACY_LM_PER_W, VISIBLE_MAX_NM, VISIBLE_MIN_NM};
+use crate::constants::{MAX_LUMINOUS_EFFICACY_LM_PER_W, VISIBLE_MAX_NM};
 use crate::spectrum::Spectrum;
 use crate::table::tables;
 use std::sync::OnceLock;
@@ -200,11 +200,6 @@ pub fn delta_e2000(lab1: Lab, lab2: Lab) -> f64 {
     let r_t = -(2.0 * d_theta * deg).sin() * r_c;
     let (tl, tc, th) = (dl / s_l, dc / s_c, dh / s_h);
     (tl * tl + tc * tc + th * th + r_t * tc * th).sqrt()
-}
-
-/// The visible range as integer nanometres, for loops over 1 nm bins.
-pub fn visible_range_nm() -> std::ops::RangeInclusive<u32> {
-    VISIBLE_MIN_NM as u32..=VISIBLE_MAX_NM as u32
 }
 
 #[cfg(test)]
