@@ -361,6 +361,16 @@ fn camera(ui: &mut egui::Ui, s: &mut Scene) {
             .text("field of view"),
     )
     .on_hover_text("Vertical angle the image covers; the eye's comfortable field is about 60°.");
+    ui.add(
+        Slider::new(&mut c.back_km, 0.0..=20_000.0)
+            .logarithmic(true)
+            .suffix(" km")
+            .text("moved back"),
+    )
+    .on_hover_text(
+        "Moves the camera back over the curved planet, against its heading, keeping its altitude: from \
+         orbit this shows the sunlit limb ahead. The sun stays where it is in the sky of the scene's origin.",
+    );
 }
 
 fn render(ui: &mut egui::Ui, s: &mut Scene) {

@@ -73,3 +73,12 @@ fn loading_a_preset_replaces_the_scene() {
     assert_eq!(h.state().scene.name, "Orbit at 400 km");
     assert!(h.state().message.is_none());
 }
+
+#[test]
+fn the_camera_can_be_moved_back_over_the_planet() {
+    let mut h = harness();
+    h.get_by_role_and_label(Role::Slider, "moved back")
+        .set_value_accesskit(1000.0);
+    h.run();
+    assert_eq!(h.state().scene.camera.back_km, 1000.0);
+}
