@@ -36,9 +36,7 @@ pub fn write_png(
         .iter()
         .flat_map(|&c| display(c, exposure_ev, tone_map).map(to_u8))
         .collect();
-    let img = ImageBuffer::<Rgb<u8>, _>::from_raw(width, height, data).context("image size")?;
-    img.save(path)
-        .with_context(|| format!("cannot write {}", path.display()))
+    save_rgb8(path, data, width, height)
 }
 
 /// A scalar error map as a PNG heat map (black → red → yellow → white over [0, max]).
@@ -61,6 +59,11 @@ pub fn write_heat_map(
             .map(to_u8)
         })
         .collect();
+    save_rgb8(path, data, width, height)
+}
+
+/// Saves 8-bit RGB rows as an image file (format from the extension).
+fn save_rgb8(path: &Path, data: Vec<u8>, width: u32, height: u32) -> anyhow::Result<()> {
     let img = ImageBuffer::<Rgb<u8>, _>::from_raw(width, height, data).context("image size")?;
     img.save(path)
         .with_context(|| format!("cannot write {}", path.display()))
