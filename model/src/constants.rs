@@ -17,6 +17,10 @@ pub const EARTH_ATMOSPHERE_TOP_M: f64 = 100_000.0;
 /// Angular radius of the sun seen from the Earth, radians (0.2666°).
 pub const SUN_ANGULAR_RADIUS_RAD: f64 = 0.2666 * std::f64::consts::PI / 180.0;
 
+/// Linear limb-darkening coefficient u of the sun's disk, I(μ′)/I(1) = 1 − u(1 − μ′): a
+/// visible-band mean (Neckel & Labs 1994 give ≈ 0.5–0.7 across 430–680 nm).
+pub const SUN_LIMB_DARKENING_U: f64 = 0.6;
+
 /// Visible range over which spectral quantities are integrated, nm (the CIE table's range).
 pub const VISIBLE_MIN_NM: f64 = 360.0;
 /// Upper end of the visible range, nm.

@@ -26,6 +26,7 @@ pub mod spectrum;
 pub mod sun;
 pub mod table;
 pub mod views;
+pub mod wavelengths;
 
 pub use atmosphere::{Atmosphere, OpticalDepth, Optics};
 pub use scene::{Scene, SceneError};

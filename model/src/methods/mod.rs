@@ -2,6 +2,7 @@
 //! `shaders/`). In f64 on the CPU; the path tracer is the ground truth every other method is
 //! measured against.
 
+pub mod hillaire;
 pub mod path_tracer;
 pub mod rng;
 pub mod single_scattering;

@@ -1,0 +1,195 @@
+//! Wavelength sets: which wavelengths a real-time method renders and how their radiances become
+//! linear sRGB. Every set is split into batches of four lanes (one `vec4` on the GPU).
+//!
+//! - RGB3: 680/550/440 nm read directly as R, G, B (the common shortcut; wrong in hue).
+//! - Spectral4: 630/560/490/430 nm with the 3×4 matrix of García Liñán (2023), taken from
+//!   `data/garcia_linan_2023_constants.csv`.
+//! - SpectralN: N equal bands over 360–830 nm; each lane is weighted by the CIE 1931 functions
+//!   integrated over its band, then XYZ → linear sRGB.
+//!
+//! Linear sRGB here is in the units of `colour::xyz_to_linear_srgb` applied to spectral radiance:
+//! Y = ∫ȳL dλ in W·m⁻²·sr⁻¹, so all three sets are directly comparable.
+
+use crate::colour::{Xyz, cie1931, xyz_to_linear_srgb};
+use crate::constants::{VISIBLE_MAX_NM, VISIBLE_MIN_NM};
+use crate::scene::WavelengthSet;
+use crate::table::tables;
+
+/// Lanes per batch (one `vec4<f32>` on the GPU).
+pub const LANES: usize = 4;
+
+/// RGB3's wavelengths, nm (R, G, B).
+pub const RGB3_NM: [f64; 3] = [680.0, 550.0, 440.0];
+
+/// Four wavelengths and the weights that turn their spectral radiances into linear sRGB.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WavelengthBatch {
+    /// Lane wavelengths, nm (a padding lane repeats a real wavelength with zero weight).
+    pub wavelengths_nm: [f64; LANES],
+    /// Band each lane stands for, nm; `None` for point samples (RGB3, Spectral4).
+    pub bandwidth_nm: Option<f64>,
+    /// Rows R, G, B: linear sRGB = Σ_lane to_srgb[row][lane] · L_lane, with L in
+    /// W·m⁻²·sr⁻¹·nm⁻¹.
+    pub to_srgb: [[f64; LANES]; 3],
+}
+
+/// ∫ȳ dλ over the visible range, nm: the weight that gives RGB3 the luminance scale of the
+/// spectral sets (a flat spectrum of 1 maps to R = G = B with Y = ∫ȳ dλ).
+pub fn y_bar_integral_nm() -> f64 {
+    let y = &cie1931().y;
+    y.bin_average(
+        0.5 * (VISIBLE_MIN_NM + VISIBLE_MAX_NM),
+        VISIBLE_MAX_NM - VISIBLE_MIN_NM,
+    ) * (VISIBLE_MAX_NM - VISIBLE_MIN_NM)
+}
+
+/// The published Spectral4 wavelengths (nm) and 3×4 matrix (rows R, G, B).
+pub fn garcia_linan_spectral4() -> ([f64; LANES], [[f64; LANES]; 3]) {
+    let t = tables::garcia_linan_constants();
+    let names = t.text("name");
+    let indices = t.text("index");
+    let values = t.numbers("value");
+    let mut wavelengths = [0.0; LANES];
+    let mut matrix = [[0.0; LANES]; 3];
+    for ((name, index), value) in names.iter().zip(&indices).zip(&values) {
+        match *name {
+            "wavelength" => {
+                let lane: usize = index.parse().expect("embedded table: lane index");
+                wavelengths[lane] = *value;
+            }
+            "M_srgb_from_samples" => {
+                // "col{lane}_row{channel}": column j holds the weights of sample j.
+                let rest = index.strip_prefix("col").expect("embedded table: col");
+                let (col, row) = rest.split_once("_row").expect("embedded table: row");
+                let (col, row): (usize, usize) = (
+                    col.parse().expect("embedded table: column"),
+                    row.parse().expect("embedded table: row"),
+                );
+                matrix[row][col] = *value;
+            }
+            _ => {}
+        }
+    }
+    (wavelengths, matrix)
+}
+
+/// The batches of a wavelength set, in rendering order.
+pub fn batches(set: WavelengthSet) -> Vec<WavelengthBatch> {
+    match set {
+        WavelengthSet::Rgb3 => {
+            let w = y_bar_integral_nm();
+            vec![WavelengthBatch {
+                wavelengths_nm: [RGB3_NM[0], RGB3_NM[1], RGB3_NM[2], RGB3_NM[1]],
+                bandwidth_nm: None,
+                to_srgb: [[w, 0.0, 0.0, 0.0], [0.0, w, 0.0, 0.0], [0.0, 0.0, w, 0.0]],
+            }]
+        }
+        WavelengthSet::Spectral4 => {
+            let (wavelengths_nm, to_srgb) = garcia_linan_spectral4();
+            vec![WavelengthBatch {
+                wavelengths_nm,
+                bandwidth_nm: None,
+                to_srgb,
+            }]
+        }
+        WavelengthSet::SpectralN(n) => spectral_n(n.max(LANES as u32) as usize),
+    }
+}
+
+fn spectral_n(n: usize) -> Vec<WavelengthBatch> {
+    let n = n.div_ceil(LANES) * LANES;
+    let width = (VISIBLE_MAX_NM - VISIBLE_MIN_NM) / n as f64;
+    let cmf = cie1931();
+    (0..n / LANES)
+        .map(|b| {
+            let mut wavelengths_nm = [0.0; LANES];
+            let mut to_srgb = [[0.0; LANES]; 3];
+            for lane in 0..LANES {
+                let centre = VISIBLE_MIN_NM + (b * LANES + lane) as f64 * width + 0.5 * width;
+                wavelengths_nm[lane] = centre;
+                let xyz = Xyz {
+                    x: cmf.x.bin_average(centre, width) * width,
+                    y: cmf.y.bin_average(centre, width) * width,
+                    z: cmf.z.bin_average(centre, width) * width,
+                };
+                let rgb = xyz_to_linear_srgb(xyz);
+                for row in 0..3 {
+                    to_srgb[row][lane] = rgb[row];
+                }
+            }
+            WavelengthBatch {
+                wavelengths_nm,
+                bandwidth_nm: Some(width),
+                to_srgb,
+            }
+        })
+        .collect()
+}
+
+/// Linear sRGB from per-batch lane radiances (W·m⁻²·sr⁻¹·nm⁻¹).
+pub fn to_linear_srgb(batches: &[WavelengthBatch], radiance: &[[f64; LANES]]) -> [f64; 3] {
+    let mut rgb = [0.0; 3];
+    for (batch, l) in batches.iter().zip(radiance) {
+        for row in 0..3 {
+            for lane in 0..LANES {
+                rgb[row] += batch.to_srgb[row][lane] * l[lane];
+            }
+        }
+    }
+    rgb
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::colour::{linear_srgb_to_xyz, spectrum_to_xyz};
+    use crate::spectrum::Spectrum;
+
+    #[test]
+    fn spectral4_is_the_published_matrix() {
+        let b = batches(WavelengthSet::Spectral4);
+        assert_eq!(b[0].wavelengths_nm, [630.0, 560.0, 490.0, 430.0]);
+        assert!((b[0].to_srgb[0][0] - 137.6723892).abs() < 1e-9);
+        assert!((b[0].to_srgb[2][3] - 117.4758528).abs() < 1e-9);
+        assert!((b[0].to_srgb[1][2] - 34.31665471).abs() < 1e-9);
+    }
+
+    #[test]
+    fn spectral_n_integrates_a_smooth_spectrum_like_the_cie_functions() {
+        // A smooth sky-like spectrum: the band sums must match the 1 nm integration.
+        let w: Vec<f64> = (360..=830).map(f64::from).collect();
+        let v: Vec<f64> = w.iter().map(|l| (450.0 / l).powi(4)).collect();
+        let spectrum = Spectrum::new(w, v).unwrap();
+        let exact = xyz_to_linear_srgb(spectrum_to_xyz(&spectrum));
+        for n in [32, 64] {
+            let b = batches(WavelengthSet::SpectralN(n));
+            assert_eq!(b.len(), n as usize / 4);
+            let lanes: Vec<[f64; 4]> = b
+                .iter()
+                .map(|b| b.wavelengths_nm.map(|l| spectrum.sample(l)))
+                .collect();
+            let rgb = to_linear_srgb(&b, &lanes);
+            for c in 0..3 {
+                assert!(
+                    (rgb[c] - exact[c]).abs() < 0.01 * exact[1],
+                    "N = {n}, channel {c}: {} vs {}",
+                    rgb[c],
+                    exact[c]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn rgb3_maps_a_flat_spectrum_to_the_spectral_luminance() {
+        let b = batches(WavelengthSet::Rgb3);
+        let rgb = to_linear_srgb(&b, &[[1.0; 4]]);
+        let y = linear_srgb_to_xyz(rgb).y;
+        assert!((y - y_bar_integral_nm()).abs() < 1e-6 * y);
+        assert!(
+            (y_bar_integral_nm() - 106.86).abs() < 0.1,
+            "{}",
+            y_bar_integral_nm()
+        );
+    }
+}
