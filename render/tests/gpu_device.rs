@@ -2,23 +2,10 @@
 //! computes. With `CI=true` (or `ATMOSCOPE_REQUIRE_GPU=1`) a missing adapter fails the run;
 //! elsewhere the test says loudly that it skipped.
 
-use atmoscope_render::{GpuContext, wgpu};
+mod common;
 
-fn gpu_required() -> bool {
-    std::env::var("CI").is_ok_and(|v| v == "true" || v == "1")
-        || std::env::var("ATMOSCOPE_REQUIRE_GPU").is_ok_and(|v| v == "1")
-}
-
-fn context() -> Option<GpuContext> {
-    match GpuContext::headless() {
-        Ok(c) => Some(c),
-        Err(e) if gpu_required() => panic!("GPU required in CI: {e}"),
-        Err(e) => {
-            eprintln!("SKIPPED: {e}");
-            None
-        }
-    }
-}
+use atmoscope_render::wgpu;
+use common::context;
 
 #[test]
 fn headless_device_is_the_requested_backend_and_computes() {

@@ -243,18 +243,31 @@ pub fn hits_ground(h: f64, mu: f64, big_r: f64) -> bool {
     mu < 0.0 && r * r * mu * mu - rho_squared(h, big_r) >= 0.0
 }
 
-/// Distance to the top of the atmosphere (radius `top`) from inside it.
+/// Distance to the top of the atmosphere (radius `top`) from inside it. Each root is formed
+/// without cancellation (the product of the roots is −(top² − r²)), which f32 needs.
 pub fn distance_to_top(h: f64, mu: f64, big_r: f64, top: f64) -> f64 {
     let r = big_r + h;
-    let disc = r * r * mu * mu + (top - r) * (top + r);
-    (-r * mu + disc.max(0.0).sqrt()).max(0.0)
+    let rm = r * mu;
+    let c = (top - big_r - h) * (top + r);
+    let q = (rm * rm + c).max(0.0).sqrt();
+    if rm > 0.0 {
+        (c / (rm + q)).max(0.0)
+    } else {
+        -rm + q
+    }
 }
 
-/// Distance to the ground along a ray that hits it.
+/// Distance to the ground along a ray that hits it, as (r² − R²)/(−r·mu + √disc) so that short
+/// distances near the ground keep their precision in f32.
 pub fn distance_to_ground(h: f64, mu: f64, big_r: f64) -> f64 {
-    let r = big_r + h;
-    let disc = r * r * mu * mu - rho_squared(h, big_r);
-    (-r * mu - disc.max(0.0).sqrt()).max(0.0)
+    let rm = (big_r + h) * mu;
+    let disc = (rm * rm - rho_squared(h, big_r)).max(0.0);
+    let denom = -rm + disc.sqrt();
+    if denom > 0.0 {
+        rho_squared(h, big_r) / denom
+    } else {
+        0.0
+    }
 }
 
 /// Altitude and radius at distance `t` along the ray (h, mu).
@@ -780,6 +793,8 @@ pub fn sky_view(
 
 /// Fractional texel coordinates (x, y) of a ground-bound direction in the aerial-perspective
 /// volume: φ as in the sky view, θ over [θ_horizon, π] with the same quadratic spacing.
+/// Rows sit at cell centres so that none is the horizon ray itself (whose ground hit is a coin
+/// toss between f32 and f64).
 pub fn aerial_perspective_texel_from_angles(
     p: &Params,
     h: f64,
@@ -790,14 +805,14 @@ pub fn aerial_perspective_texel_from_angles(
     let v = ((theta - (PI - beta)) / beta).clamp(0.0, 1.0).sqrt();
     let u = (phi / PI).clamp(0.0, 1.0).sqrt();
     let [w, hh, _] = AERIAL_PERSPECTIVE_SIZE;
-    (u * (w - 1) as f64, v * (hh - 1) as f64)
+    (u * (w - 1) as f64, v * hh as f64 - 0.5)
 }
 
 /// (φ, θ) of the aerial-perspective column at fractional coordinates (fx, fy).
 pub fn aerial_perspective_angles_from_texel(p: &Params, h: f64, fx: f64, fy: f64) -> (f64, f64) {
     let beta = horizon_beta(h, p.bottom_radius_m);
     let [w, hh, _] = AERIAL_PERSPECTIVE_SIZE;
-    let (u, v) = (fx / (w - 1) as f64, fy / (hh - 1) as f64);
+    let (u, v) = (fx / (w - 1) as f64, (fy + 0.5) / hh as f64);
     (PI * u * u, PI - beta + beta * v * v)
 }
 

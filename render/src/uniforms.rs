@@ -1,0 +1,205 @@
+//! GPU-side data: `#[repr(C)]` Pod structs built `From` the model's settings, and the integer
+//! codes of the enums the shaders switch on. `shaders/common/bindings.wgsl` declares the same
+//! layouts; a test checks the sizes with naga.
+
+use atmoscope_model::camera::{Camera, Projection};
+use atmoscope_model::display::EXPOSURE_SCALE;
+use atmoscope_model::methods::hillaire::{BatchOptics, Params, Spacing, Viewpoint};
+use atmoscope_model::scene::{AerosolPhase, Scene, ToneMap};
+use bytemuck::{Pod, Zeroable};
+use glam::DVec3;
+
+/// What the display pass shows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DisplayMode {
+    /// Exposure, tone map and sRGB encoding of the linear radiance.
+    Colour,
+    /// Luminance (cd/m²) in false colour, log scale from 10^log10_min to 10^log10_max.
+    Luminance { log10_min: f64, log10_max: f64 },
+}
+
+impl DisplayMode {
+    /// The default luminance map: 10⁻² to 10⁵ cd/m², deep twilight to a bright sky.
+    pub const LUMINANCE: DisplayMode = DisplayMode::Luminance {
+        log10_min: -2.0,
+        log10_max: 5.0,
+    };
+}
+
+pub fn projection_code(p: Projection) -> u32 {
+    match p {
+        Projection::Perspective => 0,
+        Projection::Fisheye => 1,
+        Projection::Panorama => 2,
+    }
+}
+
+pub fn tone_map_code(t: ToneMap) -> u32 {
+    match t {
+        ToneMap::Exponential => 0,
+        ToneMap::Filmic => 1,
+        ToneMap::Linear => 2,
+    }
+}
+
+pub fn phase_code(p: AerosolPhase) -> u32 {
+    match p {
+        AerosolPhase::HenyeyGreenstein => 0,
+        AerosolPhase::CornetteShanks => 1,
+    }
+}
+
+pub fn display_code(d: DisplayMode) -> u32 {
+    match d {
+        DisplayMode::Colour => 0,
+        DisplayMode::Luminance { .. } => 1,
+    }
+}
+
+pub fn spacing_code(s: Spacing) -> u32 {
+    match s {
+        Spacing::Uniform => 0,
+        Spacing::Quadratic => 1,
+        Spacing::QuadraticToEnd => 2,
+    }
+}
+
+/// `Globals` in bindings.wgsl.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct Globals {
+    pub planet: [f32; 4],
+    pub camera_position: [f32; 4],
+    pub camera_east: [f32; 4],
+    pub camera_north: [f32; 4],
+    pub camera_up: [f32; 4],
+    pub camera: [f32; 4],
+    pub sun: [f32; 4],
+    pub view: [u32; 4],
+    pub options: [u32; 4],
+    pub steps_a: [u32; 4],
+    pub steps_b: [u32; 4],
+    pub display: [f32; 4],
+}
+
+fn v4(v: DVec3, w: f64) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, w as f32]
+}
+
+/// Everything a frame needs besides the atmosphere's tables.
+pub struct FrameInputs<'a> {
+    pub scene: &'a Scene,
+    pub params: &'a Params,
+    pub camera: &'a Camera,
+    pub sun: DVec3,
+    pub viewpoint: Viewpoint,
+    pub size: [u32; 2],
+    pub mode: DisplayMode,
+}
+
+impl From<&FrameInputs<'_>> for Globals {
+    fn from(f: &FrameInputs<'_>) -> Globals {
+        let p = f.params;
+        let c = f.camera;
+        let (log10_min, log10_max) = match f.mode {
+            DisplayMode::Luminance {
+                log10_min,
+                log10_max,
+            } => (log10_min, log10_max),
+            DisplayMode::Colour => (0.0, 1.0),
+        };
+        Globals {
+            planet: [
+                p.bottom_radius_m as f32,
+                p.top_radius_m as f32,
+                p.thickness_m() as f32,
+                0.0,
+            ],
+            camera_position: v4(c.position, f.viewpoint.h),
+            camera_east: v4(c.frame.x_axis, 0.0),
+            camera_north: v4(c.frame.y_axis, 0.0),
+            camera_up: v4(c.frame.z_axis, 0.0),
+            camera: [
+                c.heading_deg.to_radians() as f32,
+                c.pitch_deg.to_radians() as f32,
+                (c.fov_deg.to_radians() * 0.5).tan() as f32,
+                0.0,
+            ],
+            sun: v4(f.sun, f.viewpoint.mu_s),
+            view: [
+                f.size[0],
+                f.size[1],
+                projection_code(c.projection),
+                display_code(f.mode),
+            ],
+            options: [
+                phase_code(p.aerosol_phase),
+                tone_map_code(f.scene.display.tone_map),
+                p.batches.len() as u32,
+                0,
+            ],
+            steps_a: [
+                p.steps.transmittance,
+                p.steps.multiple_scattering,
+                p.steps.ground_irradiance,
+                p.steps.sky_view,
+            ],
+            steps_b: [
+                p.steps.aerial_perspective_per_slice,
+                p.steps.ray_march,
+                0,
+                0,
+            ],
+            display: [
+                (EXPOSURE_SCALE * f.scene.display.exposure_ev.exp2()) as f32,
+                log10_min as f32,
+                log10_max as f32,
+                0.0,
+            ],
+        }
+    }
+}
+
+/// `Batch` in bindings.wgsl.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct Batch {
+    pub rayleigh_scattering: [f32; 4],
+    pub rayleigh_depolarisation: [f32; 4],
+    pub ozone_absorption: [f32; 4],
+    pub aerosol_scattering: [f32; 4],
+    pub aerosol_absorption: [f32; 4],
+    pub aerosol_g: [f32; 4],
+    pub solar_irradiance: [f32; 4],
+    pub ground_albedo: [f32; 4],
+    pub to_srgb_r: [f32; 4],
+    pub to_srgb_g: [f32; 4],
+    pub to_srgb_b: [f32; 4],
+}
+
+fn f4(v: [f64; 4]) -> [f32; 4] {
+    v.map(|x| x as f32)
+}
+
+impl From<&BatchOptics> for Batch {
+    fn from(b: &BatchOptics) -> Batch {
+        Batch {
+            rayleigh_scattering: f4(b.rayleigh_scattering),
+            rayleigh_depolarisation: f4(b.rayleigh_depolarisation),
+            ozone_absorption: f4(b.ozone_absorption),
+            aerosol_scattering: f4(b.aerosol_scattering),
+            aerosol_absorption: f4(b.aerosol_absorption),
+            aerosol_g: f4(b.aerosol_g),
+            solar_irradiance: f4(b.solar_irradiance),
+            ground_albedo: f4(b.ground_albedo),
+            to_srgb_r: f4(b.colour.to_srgb[0]),
+            to_srgb_g: f4(b.colour.to_srgb[1]),
+            to_srgb_b: f4(b.colour.to_srgb[2]),
+        }
+    }
+}
+
+/// The density profile as the shader's `array<vec4<f32>>`.
+pub fn profile(p: &Params) -> Vec<[f32; 4]> {
+    p.profile.iter().map(|&v| f4(v)).collect()
+}

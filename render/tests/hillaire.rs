@@ -1,0 +1,376 @@
+//! The Hillaire (2020) engine on a real device (lavapipe in CI): shaders parse and match the
+//! Rust layouts; every lookup table matches its f64 CPU twin texel by texel; rendered views
+//! match the CPU twin's render; every shipped preset renders finite, non-negative luminance;
+//! the pass graph runs exactly the passes whose inputs changed.
+
+mod common;
+
+use atmoscope_model::Atmosphere;
+use atmoscope_model::camera::{Camera, Projection};
+use atmoscope_model::colour::linear_srgb_to_xyz;
+use atmoscope_model::methods::hillaire::{self, Lut, Params, Tables};
+use atmoscope_model::metrics::{DisplaySetup, compare};
+use atmoscope_model::scene::{Quality, Scene, SunSettings, WavelengthSet};
+use atmoscope_render::prelude::{ShaderEntry, shader_source};
+use atmoscope_render::uniforms::{Batch, Globals};
+use atmoscope_render::{Engine, Pass, View};
+use common::context;
+
+#[test]
+fn every_shader_parses_validates_and_matches_the_rust_layouts() {
+    for entry in ShaderEntry::ALL {
+        let (file, _) = entry.file();
+        let src = shader_source(entry);
+        let module = naga::front::wgsl::parse_str(&src)
+            .unwrap_or_else(|e| panic!("{file}: {}", e.emit_to_string(&src)));
+        naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::default(),
+        )
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("{file}: {}", e.emit_to_string(&src)));
+        for (name, size) in [
+            ("Globals", std::mem::size_of::<Globals>()),
+            ("Batch", std::mem::size_of::<Batch>()),
+        ] {
+            let (_, ty) = module
+                .types
+                .iter()
+                .find(|(_, t)| t.name.as_deref() == Some(name))
+                .unwrap_or_else(|| panic!("{file}: no struct {name}"));
+            let naga::TypeInner::Struct { span, .. } = ty.inner else {
+                panic!("{name} is not a struct");
+            };
+            assert_eq!(span as usize, size, "{file}: size of {name}");
+        }
+    }
+}
+
+/// Worst |gpu − cpu| / (|cpu| + floor·max|cpu|) over every texel and lane.
+fn worst_error(gpu: &[[f32; 4]], cpu: &Lut, floor: f64) -> (f64, usize) {
+    assert_eq!(gpu.len(), cpu.data.len(), "table sizes differ");
+    let max = cpu
+        .data
+        .iter()
+        .flatten()
+        .fold(0.0_f64, |m, v| m.max(v.abs()));
+    let mut worst = (0.0, 0);
+    for (i, (g, c)) in gpu.iter().zip(&cpu.data).enumerate() {
+        for lane in 0..4 {
+            assert!(g[lane].is_finite(), "texel {i} lane {lane} is {}", g[lane]);
+            let e = (f64::from(g[lane]) - c[lane]).abs() / (c[lane].abs() + floor * max);
+            if e > worst.0 {
+                worst = (e, i);
+            }
+        }
+    }
+    worst
+}
+
+fn twilight_spectral8() -> Scene {
+    let mut s = Scene::default();
+    s.sun = SunSettings::Angles {
+        elevation_deg: -3.0,
+        azimuth_deg: 250.0,
+    };
+    s.camera.altitude_m = 2000.0;
+    s.render.wavelengths = WavelengthSet::SpectralN(8);
+    s.render.quality = Quality::Low;
+    s
+}
+
+#[test]
+fn every_lookup_table_matches_its_cpu_twin() {
+    let Some(gpu) = context() else { return };
+    for scene in [Scene::default(), twilight_spectral8()] {
+        let mut engine = Engine::new(&gpu.device, &gpu.queue);
+        let view = View::new(Projection::Perspective, 16, 16);
+        engine.render(&scene, &view);
+        let params = Params::new(
+            &Atmosphere::new(&scene.atmosphere),
+            scene.render.wavelengths,
+            scene.render.quality,
+        );
+        let camera = Camera::new(&scene.camera, params.bottom_radius_m, view.projection);
+        let cpu = Tables::compute(&params, hillaire::viewpoint(&scene, &camera));
+        let tables = [
+            (Pass::Transmittance, &cpu.transmittance),
+            (Pass::MultipleScattering, &cpu.multiple_scattering),
+            (Pass::GroundIrradiance, &cpu.ground_irradiance),
+            (Pass::SkyView, &cpu.sky_view),
+            (
+                Pass::AerialPerspective,
+                &cpu.aerial_perspective_inscattering,
+            ),
+        ];
+        let read = |t: &atmoscope_render::wgpu::Texture| engine.read_f32x4(t).expect("read-back");
+        for (pass, cpu_lut) in tables {
+            let texture = engine.lut_texture(pass).expect("table exists");
+            let (e, texel) = worst_error(&read(texture), cpu_lut, 1e-3);
+            eprintln!(
+                "{}: worst relative error {e:.2e} at texel {texel}",
+                pass.name()
+            );
+            assert!(
+                e < 2e-3,
+                "{} differs from its twin by {e:.2e} at texel {texel}",
+                pass.name()
+            );
+        }
+        let ap_t = engine
+            .aerial_perspective_transmittance()
+            .expect("volume exists");
+        let (e, texel) = worst_error(&read(ap_t), &cpu.aerial_perspective_transmittance, 1e-3);
+        assert!(
+            e < 2e-3,
+            "aerial-perspective transmittance: {e:.2e} at texel {texel}"
+        );
+    }
+}
+
+fn luminance(rgb: [f64; 3]) -> f64 {
+    linear_srgb_to_xyz(rgb).y
+}
+
+#[test]
+fn rendered_views_match_the_cpu_twin() {
+    let Some(gpu) = context() else { return };
+    let mut ground = Scene::default();
+    ground.camera.pitch_deg = -4.0;
+    ground.camera.heading_deg = 150.0;
+    let mut space = Scene::default();
+    space.camera.altitude_m = 400_000.0;
+    space.camera.pitch_deg = -70.0;
+    space.camera.fov_deg = 120.0;
+    let mut plane = Scene::default();
+    plane.camera.altitude_m = 10_000.0;
+    plane.camera.pitch_deg = -20.0;
+    let cases = [
+        (
+            "ground, perspective",
+            ground,
+            Projection::Perspective,
+            48,
+            32,
+        ),
+        ("fisheye", Scene::default(), Projection::Fisheye, 40, 40),
+        ("panorama", Scene::default(), Projection::Panorama, 64, 32),
+        (
+            "twilight fisheye, Spectral8",
+            twilight_spectral8(),
+            Projection::Fisheye,
+            40,
+            40,
+        ),
+        (
+            "10 km, looking down",
+            plane,
+            Projection::Perspective,
+            48,
+            32,
+        ),
+        ("from 400 km", space, Projection::Perspective, 48, 32),
+    ];
+    for (name, scene, projection, w, h) in cases {
+        let mut engine = Engine::new(&gpu.device, &gpu.queue);
+        engine.render(&scene, &View::new(projection, w, h));
+        let gpu_image: Vec<[f64; 3]> = engine
+            .read_radiance()
+            .expect("read-back")
+            .iter()
+            .map(|p| [p[0], p[1], p[2]].map(f64::from))
+            .collect();
+        let cpu_image = hillaire::render(&scene, projection, w, h);
+        let (c, _) = compare(&gpu_image, &cpu_image, w, h, DisplaySetup::default());
+        let off = gpu_image
+            .iter()
+            .zip(&cpu_image)
+            .filter(|(g, c)| {
+                let (lg, lc) = (luminance(**g), luminance(**c));
+                (lg - lc).abs() > 0.01 * lc.abs() + 1e-6
+            })
+            .count();
+        eprintln!(
+            "{name}: ΔE2000 mean {:.3}, p95 {:.3}; {off} of {} pixels off by > 1 % in luminance",
+            c.delta_e2000_mean,
+            c.delta_e2000_p95,
+            gpu_image.len()
+        );
+        assert!(
+            c.delta_e2000_mean < 0.3,
+            "{name}: ΔE2000 mean {}",
+            c.delta_e2000_mean
+        );
+        assert!(
+            off * 100 <= gpu_image.len(),
+            "{name}: {off} pixels differ by more than 1 % in luminance"
+        );
+    }
+}
+
+#[test]
+fn every_shipped_preset_renders_finite_non_negative_luminance() {
+    let Some(gpu) = context() else { return };
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../presets");
+    let mut count = 0;
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    for entry in std::fs::read_dir(&dir).expect("presets directory") {
+        let path = entry.expect("directory entry").path();
+        if path.extension().is_none_or(|e| e != "ron") {
+            continue;
+        }
+        let scene = Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        for projection in [Projection::Perspective, Projection::Fisheye] {
+            engine.render(&scene, &View::new(projection, 24, 16));
+            let image = engine.read_radiance().expect("read-back");
+            for (i, p) in image.iter().enumerate() {
+                let rgb = [p[0], p[1], p[2]].map(f64::from);
+                assert!(
+                    rgb.iter().all(|c| c.is_finite()) && luminance(rgb) >= 0.0,
+                    "{}: pixel {i} is {p:?}",
+                    path.display()
+                );
+            }
+            // From space the fisheye (the sky dome above the camera) is black by design.
+            if projection == Projection::Perspective {
+                assert!(
+                    image.iter().any(|p| p[1] > 0.0),
+                    "{}: a black image",
+                    path.display()
+                );
+            }
+        }
+        count += 1;
+    }
+    assert!(
+        count >= 10,
+        "only {count} presets found in {}",
+        dir.display()
+    );
+}
+
+#[test]
+fn each_frame_runs_only_the_passes_whose_inputs_changed() {
+    let Some(gpu) = context() else { return };
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    let mut scene = Scene::default();
+    let mut view = View::new(Projection::Perspective, 32, 18);
+    let run =
+        |engine: &mut Engine, scene: &Scene, view: &View| engine.render(scene, view).run.clone();
+    assert_eq!(
+        run(&mut engine, &scene, &view),
+        Pass::ALL.to_vec(),
+        "first frame"
+    );
+    let stats = engine.render(&scene, &view).clone();
+    assert!(
+        stats.run.is_empty(),
+        "an unchanged frame ran {:?}",
+        stats.run
+    );
+    assert_eq!(stats.skipped.len(), Pass::ALL.len());
+
+    scene.camera.heading_deg += 40.0;
+    scene.camera.pitch_deg += 10.0;
+    scene.camera.fov_deg = 90.0;
+    assert_eq!(
+        run(&mut engine, &scene, &view),
+        vec![Pass::Sky, Pass::Display],
+        "turning"
+    );
+    view.projection = Projection::Fisheye;
+    assert_eq!(
+        run(&mut engine, &scene, &view),
+        vec![Pass::Sky, Pass::Display],
+        "projection"
+    );
+
+    scene.display.exposure_ev += 1.0;
+    assert_eq!(
+        run(&mut engine, &scene, &view),
+        vec![Pass::Display],
+        "exposure"
+    );
+    view = view.luminance();
+    assert_eq!(
+        run(&mut engine, &scene, &view),
+        vec![Pass::Display],
+        "luminance map"
+    );
+
+    let SunSettings::Angles {
+        elevation_deg,
+        azimuth_deg,
+    } = scene.sun.clone()
+    else {
+        panic!("the default scene gives the sun by angles");
+    };
+    scene.sun = SunSettings::Angles {
+        elevation_deg,
+        azimuth_deg: azimuth_deg + 20.0,
+    };
+    assert_eq!(
+        run(&mut engine, &scene, &view),
+        vec![Pass::Sky, Pass::Display],
+        "sun azimuth"
+    );
+    scene.sun = SunSettings::Angles {
+        elevation_deg: elevation_deg - 10.0,
+        azimuth_deg,
+    };
+    let moved = run(&mut engine, &scene, &view);
+    assert_eq!(
+        moved,
+        vec![
+            Pass::SkyView,
+            Pass::AerialPerspective,
+            Pass::Sky,
+            Pass::Display
+        ],
+        "sun elevation"
+    );
+    scene.camera.altitude_m = 5000.0;
+    assert_eq!(run(&mut engine, &scene, &view), moved, "altitude");
+
+    view.width = 40;
+    assert_eq!(
+        run(&mut engine, &scene, &view),
+        vec![Pass::Sky, Pass::Display],
+        "size"
+    );
+
+    scene.atmosphere.ground_albedo = 0.8;
+    assert_eq!(
+        run(&mut engine, &scene, &view),
+        Pass::ALL.to_vec(),
+        "albedo"
+    );
+    scene.render.wavelengths = WavelengthSet::Rgb3;
+    assert_eq!(
+        run(&mut engine, &scene, &view),
+        Pass::ALL.to_vec(),
+        "wavelength set"
+    );
+    assert!(engine.render(&scene, &view).run.is_empty());
+}
+
+#[test]
+fn timing_reports_every_pass_that_ran() {
+    let Some(gpu) = context() else { return };
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    engine.set_timing(true);
+    let stats = engine
+        .render(
+            &Scene::default(),
+            &View::new(Projection::Perspective, 32, 18),
+        )
+        .clone();
+    assert_eq!(stats.timing_source, Some(engine.timing_source()));
+    assert_eq!(stats.timings_ms.len(), Pass::ALL.len());
+    assert!(
+        stats
+            .timings_ms
+            .iter()
+            .all(|(_, ms)| ms.is_finite() && *ms >= 0.0)
+    );
+}

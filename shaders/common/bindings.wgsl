@@ -1,0 +1,52 @@
+// Group 0, read by every pass. The layouts mirror `render/src/uniforms.rs`; a test checks
+// the sizes with naga. Physical numbers arrive here as data, never as literals.
+
+struct Globals {
+    // bottom radius (m), top radius (m), thickness (m), 0
+    planet: vec4<f32>,
+    // camera position from the planet's centre (m); w: camera altitude h (m)
+    camera_position: vec4<f32>,
+    // camera local frame (east, north, up) in world coordinates
+    camera_east: vec4<f32>,
+    camera_north: vec4<f32>,
+    camera_up: vec4<f32>,
+    // heading (rad), pitch (rad), tan(fov / 2), 0
+    camera: vec4<f32>,
+    // world direction to the sun; w: mu_s at the camera (the viewpoint of the view tables)
+    sun: vec4<f32>,
+    // width, height (pixels), projection, display mode
+    view: vec4<u32>,
+    // aerosol phase function, tone map, batch count, 0
+    options: vec4<u32>,
+    // steps: transmittance, multiple scattering, ground irradiance, sky view
+    steps_a: vec4<u32>,
+    // steps: aerial perspective per slice, ray march from space, 0, 0
+    steps_b: vec4<u32>,
+    // exposure scale, log10 luminance min and max (cd/m²), 0
+    display: vec4<f32>,
+}
+
+// The optics of one batch of four wavelengths (per unit of the density profile).
+struct Batch {
+    rayleigh_scattering: vec4<f32>,
+    rayleigh_depolarisation: vec4<f32>,
+    ozone_absorption: vec4<f32>,
+    aerosol_scattering: vec4<f32>,
+    aerosol_absorption: vec4<f32>,
+    aerosol_g: vec4<f32>,
+    solar_irradiance: vec4<f32>,
+    ground_albedo: vec4<f32>,
+    to_srgb_r: vec4<f32>,
+    to_srgb_g: vec4<f32>,
+    to_srgb_b: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> globals: Globals;
+@group(0) @binding(1) var<storage, read> batches: array<Batch>;
+// relative air, relative ozone, aerosol (1/m) at h = H·(i/(n−1))², and 0
+@group(0) @binding(2) var<storage, read> profile: array<vec4<f32>>;
+
+fn bottom_radius() -> f32 { return globals.planet.x; }
+fn top_radius() -> f32 { return globals.planet.y; }
+fn thickness() -> f32 { return globals.planet.z; }
+fn batch_count() -> u32 { return globals.options.z; }

@@ -1,0 +1,45 @@
+// Pass: aerial-perspective volume. One invocation marches one ground-bound direction of the
+// sun-aligned frame and writes (in-scattered radiance, transmittance) at the end of every slice.
+
+@group(1) @binding(0) var transmittance_lut: texture_2d_array<f32>;
+@group(1) @binding(1) var multiple_scattering_lut: texture_2d_array<f32>;
+@group(1) @binding(2) var inscattering_out: texture_storage_3d<rgba32float, write>;
+@group(1) @binding(3) var transmittance_out: texture_storage_3d<rgba32float, write>;
+
+@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= AERIAL_PERSPECTIVE_SIZE.xy) || id.z >= batch_count() {
+        return;
+    }
+    let layer = id.z;
+    let h = globals.camera_position.w;
+    let mu_s = globals.sun.w;
+    let angles = aerial_perspective_angles_from_texel(h, vec2<f32>(id.xy));
+    let omega = direction_from_phi_theta(angles.x, angles.y);
+    let mu = omega.z;
+    let nu = dot(omega, local_sun(mu_s));
+    var t_limit: f32;
+    if hits_ground(h, mu) {
+        t_limit = distance_to_ground(h, mu);
+    } else {
+        t_limit = distance_to_top(h, mu);
+    }
+    let e = batches[layer].solar_irradiance;
+    var inscattered = vec4<f32>(0.0);
+    var throughput = vec4<f32>(1.0);
+    var start = 0.0;
+    let depth = AERIAL_PERSPECTIVE_SIZE.z;
+    for (var k = 0u; k < depth; k++) {
+        let end = min(aerial_perspective_slice_distance(k), t_limit);
+        if end > start {
+            let l = integrate_inscattering(transmittance_lut, multiple_scattering_lut, layer,
+                vec4<f32>(h, mu, mu_s, nu), start, end, globals.steps_b.x, SPACING_UNIFORM);
+            inscattered += throughput * l.radiance * e;
+            throughput *= l.transmittance;
+            start = end;
+        }
+        let at = vec3<u32>(id.xy, layer * depth + k);
+        textureStore(inscattering_out, at, inscattered);
+        textureStore(transmittance_out, at, throughput);
+    }
+}

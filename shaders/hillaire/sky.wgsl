@@ -1,0 +1,178 @@
+// Pass: the view. Each pixel's ray is looked up in the sky-view table (sky), the aerial-
+// perspective volume (near ground) or the sky view plus transmittance (far ground); from above
+// the atmosphere it is ray-marched (Hillaire 2020 §6). Writes linear sRGB (Y = ∫ȳL dλ,
+// W·m⁻²·sr⁻¹) and coverage in alpha.
+
+@group(1) @binding(0) var transmittance_lut: texture_2d_array<f32>;
+@group(1) @binding(1) var multiple_scattering_lut: texture_2d_array<f32>;
+@group(1) @binding(2) var ground_irradiance_lut: texture_2d_array<f32>;
+@group(1) @binding(3) var sky_view_lut: texture_2d_array<f32>;
+@group(1) @binding(4) var aerial_perspective_inscattering: texture_3d<f32>;
+@group(1) @binding(5) var aerial_perspective_transmittance: texture_3d<f32>;
+@group(1) @binding(6) var radiance_out: texture_storage_2d<rgba32float, write>;
+
+// The ray through pixel (x, y) in world coordinates; w = 0 where the projection shows nothing.
+// Twin of model::camera::Camera::ray.
+fn camera_ray(x: f32, y: f32) -> vec4<f32> {
+    let w = f32(globals.view.x);
+    let h = f32(globals.view.y);
+    let heading = globals.camera.x;
+    let pitch = globals.camera.y;
+    var local: vec3<f32>;
+    switch globals.view.z {
+        case PROJECTION_FISHEYE: {
+            let size = min(w, h);
+            let dx = (2.0 * x - w) / size;
+            let dy = (h - 2.0 * y) / size;
+            let rho = sqrt(dx * dx + dy * dy);
+            if rho > 1.0 {
+                return vec4<f32>(0.0);
+            }
+            local = direction_from_angles(0.5 * PI * (1.0 - rho), heading + atan2(dx, dy));
+        }
+        case PROJECTION_PANORAMA: {
+            local = direction_from_angles(0.5 * PI - y / h * PI, heading + (x / w - 0.5) * 2.0 * PI);
+        }
+        default: {
+            let tan_half = globals.camera.z;
+            let sx = (2.0 * x / w - 1.0) * tan_half * w / h;
+            let sy = (1.0 - 2.0 * y / h) * tan_half;
+            let forward = direction_from_angles(pitch, heading);
+            let right = direction_from_angles(0.0, heading + 0.5 * PI);
+            let up = cross(right, forward);
+            local = normalize(forward + right * sx + up * sy);
+        }
+    }
+    let world = globals.camera_east.xyz * local.x + globals.camera_north.xyz * local.y
+        + globals.camera_up.xyz * local.z;
+    return vec4<f32>(world, 1.0);
+}
+
+// Limb-darkened sun disk per unit solar irradiance (sr⁻¹); twin of hillaire::sun_disk.
+fn sun_disk(dir: vec3<f32>, sun: vec3<f32>) -> f32 {
+    if dot(dir, sun) <= 0.0 {
+        return 0.0;
+    }
+    let gamma = asin(min(length(cross(dir, sun)), 1.0));
+    if gamma >= SUN_ANGULAR_RADIUS_RAD {
+        return 0.0;
+    }
+    let x = gamma / SUN_ANGULAR_RADIUS_RAD;
+    let mu_prime = sqrt(1.0 - x * x);
+    let limb = (1.0 - SUN_LIMB_DARKENING_U * (1.0 - mu_prime)) / (1.0 - SUN_LIMB_DARKENING_U / 3.0);
+    let half_angle = 0.5 * SUN_ANGULAR_RADIUS_RAD;
+    return limb / (4.0 * PI * sin(half_angle) * sin(half_angle));
+}
+
+fn ground_radiance(layer: u32, mu_s_g: f32) -> vec4<f32> {
+    let b = batches[layer];
+    let sun_t = sun_transmittance(transmittance_lut, layer, 0.0, mu_s_g);
+    let sky = ground_irradiance(ground_irradiance_lut, layer, mu_s_g);
+    return b.ground_albedo / PI * b.solar_irradiance * (sun_t * max(mu_s_g, 0.0) + sky);
+}
+
+fn aerial_perspective(layer: u32, h: f32, phi: f32, theta: f32, d: f32) -> Inscattering {
+    let f = aerial_perspective_texel_from_angles(h, phi, theta);
+    let fz = aerial_perspective_slice_from_distance(d);
+    let depth = AERIAL_PERSPECTIVE_SIZE.z;
+    let at = vec3<f32>(f, max(fz, 0.0));
+    var result: Inscattering;
+    result.radiance = lut_trilinear(aerial_perspective_inscattering, layer, depth, at);
+    result.transmittance = lut_trilinear(aerial_perspective_transmittance, layer, depth, at);
+    if fz < 0.0 {
+        let k = fz + 1.0;
+        result.radiance *= k;
+        result.transmittance = mix(vec4<f32>(1.0), result.transmittance, k);
+    }
+    return result;
+}
+
+// Twin of hillaire::radiance.
+fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
+    let big_r = bottom_radius();
+    let top = top_radius();
+    let h = globals.camera_position.w;
+    let r = big_r + h;
+    let sun = globals.sun.xyz;
+    let e = batches[layer].solar_irradiance;
+    let up = normalize(globals.camera_position.xyz);
+    let mu = dot(dir, up);
+    let mu_s = dot(sun, up);
+    let nu = dot(dir, sun);
+    let disk = sun_disk(dir, sun);
+    if h <= thickness() {
+        let dir_t = dir - up * mu;
+        let sun_t = sun - up * mu_s;
+        let l = length(dir_t) * length(sun_t);
+        var cos_phi = 1.0;
+        if l > 1e-12 {
+            cos_phi = dot(dir_t, sun_t) / l;
+        }
+        let phi = acos(clamp(cos_phi, -1.0, 1.0));
+        let theta = acos(clamp(mu, -1.0, 1.0));
+        if hits_ground(h, mu) {
+            let d = distance_to_ground(h, mu);
+            let mu_s_g = clamp((r * mu_s + d * nu) / big_r, -1.0, 1.0);
+            let lg = ground_radiance(layer, mu_s_g);
+            var s: Inscattering;
+            if d < AERIAL_PERSPECTIVE_MAX_DISTANCE_M {
+                s = aerial_perspective(layer, h, phi, theta, d);
+            } else {
+                let mu_g = clamp((r * mu + d) / big_r, -1.0, 1.0);
+                let t_g = transmittance(transmittance_lut, layer, 0.0, -mu_g);
+                let t_c = transmittance(transmittance_lut, layer, h, -mu);
+                s.transmittance = min(t_g / max(t_c, vec4<f32>(1e-30)), vec4<f32>(1.0));
+                s.radiance = sky_view(sky_view_lut, layer, h, phi, theta, true);
+            }
+            return s.radiance + s.transmittance * lg;
+        }
+        let s = sky_view(sky_view_lut, layer, h, phi, theta, false);
+        let tr = transmittance(transmittance_lut, layer, h, mu);
+        return s + tr * e * disk;
+    }
+    // Above the atmosphere: march from where the ray enters it.
+    let rm = r * mu;
+    let disc = rm * rm - (h - thickness()) * (r + top);
+    if mu >= 0.0 || disc < 0.0 {
+        return e * disk;
+    }
+    let t_entry = -rm - sqrt(disc);
+    let mu_e = clamp((rm + t_entry) / top, -1.0, 1.0);
+    let mu_s_e = clamp((r * mu_s + t_entry * nu) / top, -1.0, 1.0);
+    let ground = hits_ground(thickness(), mu_e);
+    var t_max: f32;
+    var spacing = SPACING_UNIFORM;
+    if ground {
+        t_max = distance_to_ground(thickness(), mu_e);
+        spacing = SPACING_QUADRATIC_TO_END;
+    } else {
+        t_max = distance_to_top(thickness(), mu_e);
+    }
+    let s = integrate_inscattering(transmittance_lut, multiple_scattering_lut, layer,
+        vec4<f32>(thickness(), mu_e, mu_s_e, nu), 0.0, t_max, globals.steps_b.y, spacing);
+    var behind = e * disk;
+    if ground {
+        let mu_s_g = clamp((top * mu_s_e + t_max * nu) / big_r, -1.0, 1.0);
+        behind = ground_radiance(layer, mu_s_g);
+    }
+    return s.radiance * e + s.transmittance * behind;
+}
+
+@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= globals.view.xy) {
+        return;
+    }
+    let ray = camera_ray(f32(id.x) + 0.5, f32(id.y) + 0.5);
+    if ray.w == 0.0 {
+        textureStore(radiance_out, id.xy, vec4<f32>(0.0));
+        return;
+    }
+    var rgb = vec3<f32>(0.0);
+    for (var layer = 0u; layer < batch_count(); layer++) {
+        let l = radiance(layer, ray.xyz);
+        let b = batches[layer];
+        rgb += vec3<f32>(dot(b.to_srgb_r, l), dot(b.to_srgb_g, l), dot(b.to_srgb_b, l));
+    }
+    textureStore(radiance_out, id.xy, vec4<f32>(rgb, 1.0));
+}

@@ -1,0 +1,28 @@
+// Pass: sky-view table at the camera's altitude, in the sun's azimuth frame: in-scattered
+// radiance to the top or the ground (Hillaire 2020 §5.3).
+
+@group(1) @binding(0) var transmittance_lut: texture_2d_array<f32>;
+@group(1) @binding(1) var multiple_scattering_lut: texture_2d_array<f32>;
+@group(1) @binding(2) var sky_view_out: texture_storage_2d_array<rgba32float, write>;
+
+@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= SKY_VIEW_SIZE) || id.z >= batch_count() {
+        return;
+    }
+    let h = globals.camera_position.w;
+    let mu_s = globals.sun.w;
+    let angles = sky_view_angles_from_texel(h, vec2<f32>(id.xy));
+    let omega = direction_from_phi_theta(angles.x, angles.y);
+    let mu = omega.z;
+    let nu = dot(omega, local_sun(mu_s));
+    var t_max: f32;
+    if hits_ground(h, mu) {
+        t_max = distance_to_ground(h, mu);
+    } else {
+        t_max = distance_to_top(h, mu);
+    }
+    let l = integrate_inscattering(transmittance_lut, multiple_scattering_lut, id.z,
+        vec4<f32>(h, mu, mu_s, nu), 0.0, t_max, globals.steps_a.w, SPACING_QUADRATIC);
+    textureStore(sky_view_out, id.xy, id.z, l.radiance * batches[id.z].solar_irradiance);
+}
