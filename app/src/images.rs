@@ -63,8 +63,86 @@ pub fn write_heat_map(
 }
 
 /// Saves 8-bit RGB rows as an image file (format from the extension).
-fn save_rgb8(path: &Path, data: Vec<u8>, width: u32, height: u32) -> anyhow::Result<()> {
+pub fn save_rgb8(path: &Path, data: Vec<u8>, width: u32, height: u32) -> anyhow::Result<()> {
     let img = ImageBuffer::<Rgb<u8>, _>::from_raw(width, height, data).context("image size")?;
     img.save(path)
         .with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// 3×5 pixel glyphs (rows top to bottom, 3 bits each, high bit left) for legend labels.
+fn glyph(c: char) -> u16 {
+    let rows: [u16; 5] = match c {
+        '0' => [7, 5, 5, 5, 7],
+        '1' => [2, 6, 2, 2, 7],
+        '2' => [7, 1, 7, 4, 7],
+        '3' => [7, 1, 7, 1, 7],
+        '4' => [5, 5, 7, 1, 1],
+        '5' => [7, 4, 7, 1, 7],
+        '6' => [7, 4, 7, 5, 7],
+        '7' => [7, 1, 2, 2, 2],
+        '8' => [7, 5, 7, 5, 7],
+        '9' => [7, 5, 7, 1, 7],
+        '-' => [0, 0, 7, 0, 0],
+        'e' => [0, 6, 7, 4, 3],
+        'c' => [0, 3, 4, 4, 3],
+        'd' => [1, 1, 7, 5, 7],
+        'm' => [0, 6, 7, 5, 5],
+        '/' => [1, 1, 2, 4, 4],
+        _ => [0; 5],
+    };
+    rows.iter().fold(0, |acc, r| (acc << 3) | r)
+}
+
+/// A legend strip for a luminance map `width` pixels wide: the false-colour bar from
+/// 10^log10_min to 10^log10_max cd/m² with a label at every power of ten. Returns RGB8 rows and
+/// their count.
+pub fn legend_strip(width: u32, log10_min: f64, log10_max: f64) -> (Vec<u8>, u32) {
+    let scale = if width >= 320 { 2 } else { 1 };
+    let (bar_top, bar_rows) = (4, 8);
+    let text_top = bar_top + bar_rows + 3;
+    let rows = text_top + 5 * scale + 4;
+    let w = width as usize;
+    let mut img = vec![0u8; w * rows * 3];
+    let margin = (w / 40).max(2);
+    let span = w.saturating_sub(2 * margin).max(1);
+    for x in 0..span {
+        let t = x as f64 / (span - 1).max(1) as f64;
+        let c = atmoscope_render::views::false_colour(t).map(to_u8);
+        for y in bar_top..bar_top + bar_rows {
+            let i = (y * w + margin + x) * 3;
+            img[i..i + 3].copy_from_slice(&c);
+        }
+    }
+    let mut text = |label: &str, x0: usize| {
+        for (k, ch) in label.chars().enumerate() {
+            let g = glyph(ch);
+            for gy in 0..5 {
+                for gx in 0..3 {
+                    if g >> (3 * (4 - gy) + (2 - gx)) & 1 == 1 {
+                        for sy in 0..scale {
+                            for sx in 0..scale {
+                                let x = x0 + (k * 4 + gx) * scale + sx;
+                                let y = text_top + gy * scale + sy;
+                                if x < w {
+                                    let i = (y * w + x) * 3;
+                                    img[i..i + 3].copy_from_slice(&[230, 230, 230]);
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    };
+    let first = log10_min.ceil() as i32;
+    let last = log10_max.floor() as i32;
+    for k in first..=last {
+        let t = (f64::from(k) - log10_min) / (log10_max - log10_min);
+        let label = format!("1e{k}");
+        let x = margin as f64 + t * (span - 1) as f64 - (label.len() * 2 * scale) as f64;
+        text(&label, x.max(0.0) as usize);
+    }
+    let unit = "cd/m2";
+    text(unit, w.saturating_sub(margin + unit.len() * 4 * scale));
+    (img, rows as u32)
 }

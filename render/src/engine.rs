@@ -289,9 +289,20 @@ impl Engine {
         }
     }
 
+    /// Forgets the previous frame, so the next one runs every pass (a full rebuild).
+    pub fn invalidate(&mut self) {
+        self.last = None;
+    }
+
     /// Turns per-pass timing on or off. Timing waits for the GPU at the end of each frame.
     pub fn set_timing(&mut self, on: bool) {
         self.measure = on;
+    }
+
+    /// Measures with fenced CPU wall time even where timestamp queries exist (software
+    /// drivers such as lavapipe stamp commands when they are recorded, not when they run).
+    pub fn force_cpu_timing(&mut self) {
+        self.timer = Timer::Cpu;
     }
 
     /// Where per-pass times come from on this device.

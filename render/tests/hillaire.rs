@@ -112,7 +112,7 @@ fn every_lookup_table_matches_its_cpu_twin() {
                 pass.name()
             );
             assert!(
-                e < 2e-3,
+                e < 1e-3,
                 "{} differs from its twin by {e:.2e} at texel {texel}",
                 pass.name()
             );
@@ -122,7 +122,7 @@ fn every_lookup_table_matches_its_cpu_twin() {
             .expect("volume exists");
         let (e, texel) = worst_error(&read(ap_t), &cpu.aerial_perspective_transmittance, 1e-3);
         assert!(
-            e < 2e-3,
+            e < 1e-3,
             "aerial-perspective transmittance: {e:.2e} at texel {texel}"
         );
     }

@@ -1,7 +1,8 @@
 //! `atmoscope bench`: run-time benchmarks (never timed tests). `bench path-tracer` renders views
 //! of the suite progressively and reports paths per second and the time each takes to reach a
 //! noise level, both for the mean per-pixel relative standard error of luminance and for the
-//! relative standard error of the image's mean luminance.
+//! relative standard error of the image's mean luminance. `bench gpu` and `bench accuracy` (in
+//! `bench_gpu`) measure the real-time engine.
 
 use anyhow::{Context, bail};
 use atmoscope_model::Scene;
@@ -18,6 +19,10 @@ use std::time::Instant;
 pub enum Bench {
     /// Path tracer speed and time to a noise level on views of the suite.
     PathTracer(PathTracerBench),
+    /// GPU time of each pass of the real-time engine and of whole frames, per wavelength set.
+    Gpu(super::bench_gpu::GpuBench),
+    /// ΔE2000 of the real-time engine against path-traced references of the view suite.
+    Accuracy(super::bench_gpu::AccuracyBench),
 }
 
 #[derive(Args, Debug)]
@@ -57,7 +62,14 @@ struct Row {
 }
 
 pub fn run(bench: &Bench) -> anyhow::Result<ExitCode> {
-    let Bench::PathTracer(args) = bench;
+    match bench {
+        Bench::PathTracer(args) => path_tracer(args),
+        Bench::Gpu(args) => super::bench_gpu::gpu_bench(args),
+        Bench::Accuracy(args) => super::bench_gpu::accuracy(args),
+    }
+}
+
+fn path_tracer(args: &PathTracerBench) -> anyhow::Result<ExitCode> {
     if !(args.noise > 0.0 && args.noise < 1.0) {
         bail!("--noise: {} is outside (0, 1)", args.noise);
     }

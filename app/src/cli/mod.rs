@@ -3,11 +3,13 @@
 
 mod aerosols;
 mod bench;
+mod bench_gpu;
 mod compare;
 mod info;
 mod presets_cmd;
 mod probe;
 mod reference;
+mod render;
 mod scene_args;
 
 pub use scene_args::SceneArgs;
@@ -44,6 +46,8 @@ pub enum Command {
     Probe(probe::ProbeArgs),
     /// Path-traced reference images (EXR + PNG preview) of a scene, a view or the whole view suite.
     Reference(reference::ReferenceArgs),
+    /// Render one view with the real-time GPU engine to PNG (as displayed) or EXR (linear).
+    Render(render::RenderArgs),
     /// Error metrics of an image against a reference (RMSE, ΔE2000, FLIP), with error maps.
     Compare(compare::CompareArgs),
     /// Benchmarks: run time and convergence (not part of the tests).
@@ -76,6 +80,7 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Aerosols(args) => aerosols::run(&args),
         Command::Probe(args) => probe::run(&args),
         Command::Reference(args) => reference::run(&args),
+        Command::Render(args) => render::run(&args),
         Command::Compare(args) => compare::run(&args),
         Command::Bench { bench } => bench::run(&bench),
     }

@@ -1,0 +1,304 @@
+//! Benchmarks of the real-time engine: `bench gpu` times every pass (GPU timestamps where the
+//! adapter has them, fenced CPU wall time otherwise) and whole frames per wavelength set;
+//! `bench accuracy` measures ΔE2000 against path-traced references of the view suite.
+
+use super::SceneArgs;
+use super::render::{gpu, parse_wavelengths};
+use crate::images::read_exr;
+use anyhow::Context;
+use atmoscope_model::Scene;
+use atmoscope_model::camera::Projection;
+use atmoscope_model::metrics::{DisplaySetup, compare};
+use atmoscope_model::scene::WavelengthSet;
+use atmoscope_model::views;
+use atmoscope_render::{Engine, Pass, View};
+use clap::Args;
+use serde::Serialize;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+#[derive(Args, Debug)]
+pub struct GpuBench {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Frame size WxH.
+    #[arg(long, value_name = "WxH", value_parser = super::reference::parse_size, default_value = "1280x720")]
+    pub size: (u32, u32),
+    /// Wavelength sets, comma-separated.
+    #[arg(long, value_delimiter = ',', value_parser = parse_wavelengths, default_value = "rgb3,spectral4,spectral32")]
+    pub sets: Vec<WavelengthSet>,
+    /// Repetitions of each measurement (the median is reported).
+    #[arg(long, default_value_t = 10)]
+    pub repeats: usize,
+    /// Time passes by fenced CPU wall time even where GPU timestamps exist.
+    #[arg(long)]
+    pub cpu_timing: bool,
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Serialize, Debug)]
+struct GpuRow {
+    wavelengths: String,
+    timing: String,
+    /// Median milliseconds of each table pass in a full rebuild.
+    lut_ms: Vec<(String, f64)>,
+    lut_total_ms: f64,
+    /// Median milliseconds of the sky and display passes of a frame with the camera turning.
+    sky_ms: f64,
+    display_ms: f64,
+    frame_gpu_ms: f64,
+    /// Median wall time of a turning-camera frame from `render` to the GPU being idle.
+    frame_wall_ms: f64,
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+}
+
+fn set_name(s: WavelengthSet) -> String {
+    match s {
+        WavelengthSet::Rgb3 => "rgb3".into(),
+        WavelengthSet::Spectral4 => "spectral4".into(),
+        WavelengthSet::SpectralN(n) => format!("spectral{n}"),
+    }
+}
+
+pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
+    let base = args.scene.scene()?;
+    let context = gpu()?;
+    eprintln!("adapter: {}", context.describe());
+    let (w, h) = args.size;
+    let view = View::new(Projection::Perspective, w, h);
+    let repeats = args.repeats.max(1);
+    let mut rows = Vec::new();
+    for &set in &args.sets {
+        let mut scene = base.clone();
+        scene.render.wavelengths = set;
+        let mut engine = Engine::new(&context.device, &context.queue);
+        engine.set_timing(true);
+        if args.cpu_timing {
+            engine.force_cpu_timing();
+        }
+        engine.render(&scene, &view);
+        engine.wait();
+        let mut lut: Vec<Vec<f64>> = vec![Vec::new(); Pass::ALL.len()];
+        for _ in 0..repeats {
+            engine.invalidate();
+            let stats = engine.render(&scene, &view).clone();
+            for (pass, ms) in stats.timings_ms {
+                lut[Pass::ALL.iter().position(|&p| p == pass).unwrap_or(0)].push(ms);
+            }
+        }
+        let (mut sky, mut display, mut wall) = (Vec::new(), Vec::new(), Vec::new());
+        for i in 0..repeats {
+            scene.camera.heading_deg = (base.camera.heading_deg + 1.0 + i as f64) % 360.0;
+            let start = Instant::now();
+            let stats = engine.render(&scene, &view).clone();
+            engine.wait();
+            wall.push(start.elapsed().as_secs_f64() * 1e3);
+            for (pass, ms) in stats.timings_ms {
+                match pass {
+                    Pass::Sky => sky.push(ms),
+                    Pass::Display => display.push(ms),
+                    _ => {}
+                }
+            }
+        }
+        let lut_ms: Vec<(String, f64)> = Pass::ALL
+            .iter()
+            .zip(lut)
+            .filter(|(p, _)| p.is_lut())
+            .map(|(p, v)| (p.name().to_string(), median(v)))
+            .collect();
+        let (sky_ms, display_ms) = (median(sky), median(display));
+        rows.push(GpuRow {
+            wavelengths: set_name(set),
+            timing: engine.timing_source().label().into(),
+            lut_total_ms: lut_ms.iter().map(|(_, ms)| ms).sum(),
+            lut_ms,
+            sky_ms,
+            display_ms,
+            frame_gpu_ms: sky_ms + display_ms,
+            frame_wall_ms: median(wall),
+        });
+    }
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&rows)?);
+        return Ok(ExitCode::SUCCESS);
+    }
+    println!(
+        "{w}x{h} perspective, median of {repeats}; times from {}",
+        rows.first().map_or("", |r| r.timing.as_str())
+    );
+    print!("{:12}", "set");
+    for (name, _) in rows.first().map_or(&[][..], |r| &r.lut_ms[..]) {
+        print!(" {name:>19}");
+    }
+    println!(
+        " {:>10} {:>8} {:>8} {:>12} {:>12}",
+        "LUTs", "sky", "display", "frame (GPU)", "frame (wall)"
+    );
+    for r in &rows {
+        print!("{:12}", r.wavelengths);
+        for (_, ms) in &r.lut_ms {
+            print!(" {:>16.2} ms", ms);
+        }
+        println!(
+            " {:>7.2} ms {:>5.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms",
+            r.lut_total_ms, r.sky_ms, r.display_ms, r.frame_gpu_ms, r.frame_wall_ms
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+#[derive(Args, Debug)]
+pub struct AccuracyBench {
+    /// Directory of path-traced references named `<view>.exr`
+    /// (from `atmoscope reference --suite --out-dir DIR`).
+    #[arg(long, value_name = "DIR")]
+    pub refs: PathBuf,
+    /// Views of the suite, comma-separated (default: every view with a reference in --refs).
+    #[arg(long, value_delimiter = ',')]
+    pub views: Vec<String>,
+    /// The spectral set the others are compared with.
+    #[arg(long, value_parser = parse_wavelengths, default_value = "spectral32")]
+    pub spectral: WavelengthSet,
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Serialize, Debug)]
+struct AccuracyRow {
+    view: String,
+    sun_elevation_deg: f64,
+    exposure_ev: f64,
+    /// (mean, p95) ΔE2000 against the path-traced reference, per set.
+    vs_reference: Vec<(String, f64, f64)>,
+    /// (mean, p95) ΔE2000 of Spectral4 and RGB3 against the spectral set.
+    vs_spectral: Vec<(String, f64, f64)>,
+}
+
+pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
+    let context = gpu()?;
+    let sets = [args.spectral, WavelengthSet::Spectral4, WavelengthSet::Rgb3];
+    let mut rows = Vec::new();
+    for v in views::suite() {
+        if !args.views.is_empty() && !args.views.iter().any(|n| n == v.name.as_str()) {
+            continue;
+        }
+        let path = args.refs.join(format!("{}.exr", v.name));
+        if !path.exists() {
+            if !args.views.is_empty() {
+                anyhow::bail!(
+                    "{}: no reference (run `atmoscope reference --suite --out-dir {}`)",
+                    path.display(),
+                    args.refs.display()
+                );
+            }
+            continue;
+        }
+        let (reference, w, h) =
+            read_exr(&path).with_context(|| format!("reference of {}", v.name))?;
+        let scene: Scene = v.apply(&Scene::default());
+        let setup = DisplaySetup {
+            exposure_ev: scene.display.exposure_ev,
+            tone_map: scene.display.tone_map,
+            ..DisplaySetup::default()
+        };
+        let images: Vec<Vec<[f64; 3]>> = sets
+            .iter()
+            .map(|&set| {
+                let mut s = scene.clone();
+                s.render.wavelengths = set;
+                let mut engine = Engine::new(&context.device, &context.queue);
+                engine.render(&s, &View::new(v.projection, w, h));
+                Ok(engine
+                    .read_radiance()?
+                    .iter()
+                    .map(|p| [p[0], p[1], p[2]].map(f64::from))
+                    .collect())
+            })
+            .collect::<anyhow::Result<_>>()?;
+        let de = |a: &[[f64; 3]], b: &[[f64; 3]]| {
+            let (c, _) = compare(a, b, w, h, setup);
+            (c.delta_e2000_mean, c.delta_e2000_p95)
+        };
+        let vs_reference = sets
+            .iter()
+            .zip(&images)
+            .map(|(&set, img)| {
+                let (m, p) = de(img, &reference);
+                (set_name(set), m, p)
+            })
+            .collect();
+        let vs_spectral = sets[1..]
+            .iter()
+            .zip(&images[1..])
+            .map(|(&set, img)| {
+                let (m, p) = de(img, &images[0]);
+                (set_name(set), m, p)
+            })
+            .collect();
+        rows.push(AccuracyRow {
+            view: v.name.clone(),
+            sun_elevation_deg: scene.sun.angles().elevation_deg,
+            exposure_ev: scene.display.exposure_ev,
+            vs_reference,
+            vs_spectral,
+        });
+        eprintln!("{} done", v.name);
+    }
+    if rows.is_empty() {
+        anyhow::bail!("no references found in {}", args.refs.display());
+    }
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&rows)?);
+        return Ok(ExitCode::SUCCESS);
+    }
+    let s = set_name(args.spectral);
+    println!("ΔE2000 mean / p95, display-referred at each view's exposure");
+    println!(
+        "{:20} {:>6}  {:>15} {:>15} {:>15}   {:>17} {:>17}",
+        "view",
+        "sun°",
+        format!("{s} vs ref"),
+        "spectral4 vs ref",
+        "rgb3 vs ref",
+        format!("spectral4 vs {s}"),
+        format!("rgb3 vs {s}")
+    );
+    for r in &rows {
+        print!("{:20} {:>6.1} ", r.view, r.sun_elevation_deg);
+        for (_, m, p) in r.vs_reference.iter().chain(&r.vs_spectral) {
+            print!(" {:>7.2} / {:>5.2}", m, p);
+        }
+        println!();
+    }
+    for (label, daylight) in [
+        ("daylight (sun ≥ 0°)", true),
+        ("twilight (sun < 0°)", false),
+    ] {
+        let group: Vec<&AccuracyRow> = rows
+            .iter()
+            .filter(|r| (r.sun_elevation_deg >= 0.0) == daylight)
+            .collect();
+        if group.is_empty() {
+            continue;
+        }
+        let mean = |f: &dyn Fn(&AccuracyRow) -> f64| {
+            group.iter().map(|r| f(r)).sum::<f64>() / group.len() as f64
+        };
+        println!(
+            "{label}, {} views: mean ΔE {s} vs ref {:.2} (p95 {:.2}); spectral4 vs {s} {:.2}; rgb3 vs {s} {:.2}",
+            group.len(),
+            mean(&|r| r.vs_reference[0].1),
+            mean(&|r| r.vs_reference[0].2),
+            mean(&|r| r.vs_spectral[0].1),
+            mean(&|r| r.vs_spectral[1].1),
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}

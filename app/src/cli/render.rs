@@ -1,0 +1,208 @@
+//! `atmoscope render`: one view of a scene rendered headless by the real-time engine, written as
+//! a display-referred PNG (a luminance map gets a legend strip) or as linear EXR radiance.
+
+use super::SceneArgs;
+use crate::images::{legend_strip, save_rgb8, write_exr};
+use anyhow::{Context, bail};
+use atmoscope_model::camera::Projection;
+use atmoscope_model::scene::{Method, WavelengthSet};
+use atmoscope_model::views;
+use atmoscope_render::{DisplayMode, Engine, GpuContext, View};
+use clap::{Args, ValueEnum};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ViewArg {
+    Perspective,
+    Fisheye,
+    Panorama,
+    /// Luminance in cd/m², log scale in false colour, on the fisheye sky dome.
+    Luminance,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum MethodArg {
+    Hillaire,
+    PathTracer,
+}
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// A named view of the suite (`atmoscope reference --list-views`), applied on the scene.
+    #[arg(long, value_name = "NAME")]
+    pub view: Option<String>,
+    /// Rendering method (default: the scene's).
+    #[arg(long, value_enum)]
+    pub method: Option<MethodArg>,
+    /// Wavelength set: rgb3, spectral4 or spectralN (N a multiple of 4, 4–128, e.g. spectral32).
+    #[arg(long, value_name = "SET", value_parser = parse_wavelengths)]
+    pub wavelengths: Option<WavelengthSet>,
+    /// Projection, or `luminance` for a false-colour luminance map of the sky dome.
+    #[arg(long, value_enum)]
+    pub projection: Option<ViewArg>,
+    /// Image size WxH (default: the view's size, or 1280x720).
+    #[arg(long, value_name = "WxH", value_parser = super::reference::parse_size)]
+    pub size: Option<(u32, u32)>,
+    /// Luminance map range as log10 of cd/m²: MIN,MAX.
+    #[arg(long, value_name = "MIN,MAX", value_parser = parse_range, allow_hyphen_values = true)]
+    pub luminance_range: Option<(f64, f64)>,
+    /// Output file: .png (as displayed) or .exr (linear radiance, W·m⁻²·sr⁻¹ as linear sRGB).
+    #[arg(long, value_name = "FILE")]
+    pub out: PathBuf,
+}
+
+/// Parses rgb3 | spectral4 | spectralN.
+pub fn parse_wavelengths(s: &str) -> Result<WavelengthSet, String> {
+    let lower = s.to_ascii_lowercase();
+    match lower.as_str() {
+        "rgb3" => Ok(WavelengthSet::Rgb3),
+        "spectral4" => Ok(WavelengthSet::Spectral4),
+        _ => {
+            let n: u32 = lower
+                .strip_prefix("spectral")
+                .and_then(|n| n.parse().ok())
+                .ok_or_else(|| format!("{s:?}: expected rgb3, spectral4 or spectralN"))?;
+            if n % 4 != 0 || !(4..=128).contains(&n) {
+                return Err(format!(
+                    "spectral{n}: N must be a multiple of 4 from 4 to 128"
+                ));
+            }
+            Ok(WavelengthSet::SpectralN(n))
+        }
+    }
+}
+
+fn parse_range(s: &str) -> Result<(f64, f64), String> {
+    let (a, b) = s.split_once(',').ok_or("expected MIN,MAX, e.g. -2,5")?;
+    let a: f64 = a.trim().parse().map_err(|_| format!("bad minimum {a:?}"))?;
+    let b: f64 = b.trim().parse().map_err(|_| format!("bad maximum {b:?}"))?;
+    if !(a < b) || a < -10.0 || b > 12.0 {
+        return Err("need -10 ≤ MIN < MAX ≤ 12 (log10 cd/m²)".into());
+    }
+    Ok((a, b))
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Format {
+    Png,
+    Exr,
+}
+
+fn format_of(path: &Path) -> anyhow::Result<Format> {
+    match path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .as_deref()
+    {
+        Some("png") => Ok(Format::Png),
+        Some("exr") => Ok(Format::Exr),
+        _ => bail!(
+            "--out {}: the file name must end in .png (as displayed) or .exr (linear radiance)",
+            path.display()
+        ),
+    }
+}
+
+/// Opens the headless GPU the engine renders on.
+pub fn gpu() -> anyhow::Result<GpuContext> {
+    GpuContext::headless().context("the real-time engine needs a GPU adapter")
+}
+
+pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
+    let format = format_of(&args.out)?;
+    let mut scene = args.scene.scene()?;
+    let mut projection = Projection::Perspective;
+    let mut size = (1280, 720);
+    if let Some(name) = &args.view {
+        let v = views::find(name).with_context(|| {
+            format!("--view {name}: no such view (see `atmoscope reference --list-views`)")
+        })?;
+        scene = v.apply(&scene);
+        projection = v.projection;
+        size = v.size;
+    }
+    if let Some(set) = args.wavelengths {
+        scene.render.wavelengths = set;
+    }
+    match args.method.map(|m| match m {
+        MethodArg::Hillaire => Method::Hillaire,
+        MethodArg::PathTracer => Method::PathTracer,
+    }) {
+        Some(Method::PathTracer) => bail!(
+            "--method path-tracer is the offline ground truth: use `atmoscope reference` for it"
+        ),
+        Some(m) => scene.render.method = m,
+        None => {}
+    }
+    let mut mode = DisplayMode::Colour;
+    if let Some(p) = args.projection {
+        projection = match p {
+            ViewArg::Perspective => Projection::Perspective,
+            ViewArg::Fisheye => Projection::Fisheye,
+            ViewArg::Panorama => Projection::Panorama,
+            ViewArg::Luminance => {
+                mode = DisplayMode::LUMINANCE;
+                Projection::Fisheye
+            }
+        };
+    }
+    if let (Some((log10_min, log10_max)), DisplayMode::Luminance { .. }) =
+        (args.luminance_range, mode)
+    {
+        mode = DisplayMode::Luminance {
+            log10_min,
+            log10_max,
+        };
+    }
+    let (width, height) = args.size.unwrap_or(size);
+    let gpu = gpu()?;
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    engine.render(
+        &scene,
+        &View {
+            projection,
+            mode,
+            width,
+            height,
+        },
+    );
+    match format {
+        Format::Exr => {
+            let rgb: Vec<[f64; 3]> = engine
+                .read_radiance()?
+                .iter()
+                .map(|p| [p[0], p[1], p[2]].map(f64::from))
+                .collect();
+            write_exr(&args.out, &rgb, width, height)?;
+        }
+        Format::Png => {
+            let mut rgb: Vec<u8> = engine
+                .read_display()?
+                .chunks_exact(4)
+                .flat_map(|p| [p[0], p[1], p[2]])
+                .collect();
+            let mut rows = height;
+            if let DisplayMode::Luminance {
+                log10_min,
+                log10_max,
+            } = mode
+            {
+                let (strip, strip_rows) = legend_strip(width, log10_min, log10_max);
+                rgb.extend(strip);
+                rows += strip_rows;
+            }
+            save_rgb8(&args.out, rgb, width, rows)?;
+        }
+    }
+    eprintln!(
+        "wrote {} ({width}x{height}, {:?}, {:?}) on {}",
+        args.out.display(),
+        scene.render.wavelengths,
+        projection,
+        gpu.describe()
+    );
+    Ok(ExitCode::SUCCESS)
+}
