@@ -134,15 +134,19 @@ pub fn legend_strip(width: u32, log10_min: f64, log10_max: f64) -> (Vec<u8>, u32
             }
         }
     };
+    let unit = "cd/m2";
+    let unit_x = w.saturating_sub(margin + unit.len() * 4 * scale);
+    text(unit, unit_x);
     let first = log10_min.ceil() as i32;
     let last = log10_max.floor() as i32;
     for k in first..=last {
         let t = (f64::from(k) - log10_min) / (log10_max - log10_min);
         let label = format!("1e{k}");
-        let x = margin as f64 + t * (span - 1) as f64 - (label.len() * 2 * scale) as f64;
-        text(&label, x.max(0.0) as usize);
+        let x = (margin as f64 + t * (span - 1) as f64 - (label.len() * 2 * scale) as f64).max(0.0);
+        // Labels that would run into the unit are left out.
+        if x as usize + (label.len() * 4 + 2) * scale < unit_x {
+            text(&label, x as usize);
+        }
     }
-    let unit = "cd/m2";
-    text(unit, w.saturating_sub(margin + unit.len() * 4 * scale));
     (img, rows as u32)
 }

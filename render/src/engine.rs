@@ -8,8 +8,8 @@
 //! the camera redraws the view, exposure re-runs only the display pass, an unchanged frame runs
 //! nothing.
 
-use crate::hillaire::{LutTextures, Pipelines};
-use crate::readback::{ReadbackError, read_texture, read_texture_f32x4};
+use crate::hillaire::{LutBuffers, Pipelines, Table, Variant};
+use crate::readback::{ReadbackError, read_buffer_f32x4, read_texture, read_texture_f32x4};
 use crate::uniforms::{self, DisplayMode, FrameInputs, Globals};
 use crate::views::View;
 use atmoscope_model::Atmosphere;
@@ -203,7 +203,7 @@ impl Snapshot {
 struct AtmosphereState {
     key: AtmosphereKey,
     params: Params,
-    luts: LutTextures,
+    luts: LutBuffers,
 }
 
 struct Target {
@@ -338,7 +338,7 @@ impl Engine {
                 key.wavelengths,
                 key.quality,
             );
-            let luts = LutTextures::new(&self.device, &self.pipelines, &self.globals, &params);
+            let luts = LutBuffers::new(&self.device, &self.pipelines, &self.globals, &params);
             self.queue.write_buffer(
                 &luts.batches,
                 0,
@@ -399,10 +399,28 @@ impl Engine {
         let (run, skipped): (Vec<Pass>, Vec<Pass>) = Pass::ALL
             .iter()
             .partition(|p| p.reads().intersects(changed));
+        let above = viewpoint.h > params.thickness_m();
+        let variants = [
+            (
+                Pass::Sky,
+                [uniforms::projection_code(view.projection), u32::from(above)],
+            ),
+            (
+                Pass::Display,
+                [
+                    uniforms::display_code(view.mode),
+                    uniforms::tone_map_code(scene.display.tone_map),
+                ],
+            ),
+        ];
+        let layers = params.batches.len() as u32;
+        for (pass, variant) in variants {
+            self.pipelines.ensure(&self.device, pass, variant);
+        }
         let timings_ms = if run.is_empty() {
             Vec::new()
         } else {
-            self.encode_and_submit(&run, params.batches.len() as u32, size)
+            self.encode_and_submit(&run, &variants, layers, size)
         };
         self.last = Some(snapshot);
         self.stats = FrameStats {
@@ -414,7 +432,13 @@ impl Engine {
         &self.stats
     }
 
-    fn encode_and_submit(&self, run: &[Pass], layers: u32, size: [u32; 2]) -> Vec<(Pass, f64)> {
+    fn encode_and_submit(
+        &self,
+        run: &[Pass],
+        variants: &[(Pass, Variant)],
+        layers: u32,
+        size: [u32; 2],
+    ) -> Vec<(Pass, f64)> {
         let (Some(state), Some(target)) = (&self.atmosphere, &self.target) else {
             return Vec::new();
         };
@@ -443,7 +467,14 @@ impl Engine {
                     Pass::Display => (&target.display_group, view_dispatch(size)),
                     lut => (state.luts.group(lut), lut_dispatch(lut, layers)),
                 };
-                cpass.set_pipeline(self.pipelines.pipeline(pass));
+                let variant = variants
+                    .iter()
+                    .find(|(p, _)| *p == pass)
+                    .map_or([0, 0], |(_, v)| *v);
+                let Some(pipeline) = self.pipelines.pipeline(pass, variant) else {
+                    continue;
+                };
+                cpass.set_pipeline(pipeline);
                 cpass.set_bind_group(0, &state.luts.group0, &[]);
                 cpass.set_bind_group(1, group, &[]);
                 cpass.dispatch_workgroups(dispatch[0], dispatch[1], dispatch[2]);
@@ -508,34 +539,19 @@ impl Engine {
         Ok(read_texture(&self.device, &self.queue, t)?)
     }
 
-    /// The GPU texture of one lookup table (layers are batches; the aerial-perspective volumes
-    /// stack each batch's slices along z).
-    pub fn lut_texture(&self, lut: Pass) -> Option<&wgpu::Texture> {
-        let luts = &self.atmosphere.as_ref()?.luts;
-        Some(match lut {
-            Pass::Transmittance => &luts.transmittance,
-            Pass::MultipleScattering => &luts.multiple_scattering,
-            Pass::GroundIrradiance => &luts.ground_irradiance,
-            Pass::SkyView => &luts.sky_view,
-            Pass::AerialPerspective => &luts.aerial_perspective_inscattering,
-            Pass::Sky | Pass::Display => return None,
-        })
-    }
-
-    /// The aerial perspective's transmittance volume (its in-scattering is `lut_texture`).
-    pub fn aerial_perspective_transmittance(&self) -> Option<&wgpu::Texture> {
-        Some(
-            &self
-                .atmosphere
-                .as_ref()?
-                .luts
-                .aerial_perspective_transmittance,
-        )
-    }
-
-    /// Reads any f32 texture of this engine back.
-    pub fn read_f32x4(&self, texture: &wgpu::Texture) -> Result<Vec<[f32; 4]>, EngineError> {
-        Ok(read_texture_f32x4(&self.device, &self.queue, texture)?)
+    /// Reads one lookup table back: every texel of every layer (batch), in the order of
+    /// `model::methods::hillaire::Lut`.
+    pub fn read_table(&self, table: Table) -> Result<Vec<[f32; 4]>, EngineError> {
+        let luts = &self
+            .atmosphere
+            .as_ref()
+            .ok_or(EngineError::NotRendered)?
+            .luts;
+        Ok(read_buffer_f32x4(
+            &self.device,
+            &self.queue,
+            luts.buffer(table),
+        )?)
     }
 }
 
@@ -579,7 +595,7 @@ impl Target {
     fn new(
         device: &wgpu::Device,
         pipelines: &Pipelines,
-        luts: &LutTextures,
+        luts: &LutBuffers,
         size: [u32; 2],
     ) -> Target {
         let texture = |label, format| {

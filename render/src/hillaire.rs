@@ -1,5 +1,5 @@
 //! Hillaire (2020) on the GPU: the pipelines of `shaders/hillaire/*.wgsl` (one entry file per
-//! pass), their bind group layouts, and the lookup-table textures. The f64 twin of every pass is
+//! pass), their bind group layouts, and the lookup tables (storage buffers of vec4 texels). The f64 twin of every pass is
 //! `atmoscope_model::methods::hillaire`.
 
 use crate::engine::Pass;
@@ -71,41 +71,116 @@ fn texture_out(
     }
 }
 
-use wgpu::TextureViewDimension::{D2, D2Array, D3};
+use wgpu::TextureViewDimension::D2;
 
-/// The group-1 layout of each pass: its input tables, then its outputs.
-fn pass_layout(pass: Pass) -> Vec<wgpu::BindGroupLayoutEntry> {
-    let tables = |n: u32| (0..n).map(|b| texture_in(b, D2Array)).collect::<Vec<_>>();
-    match pass {
-        Pass::Transmittance => vec![texture_out(0, LUT_FORMAT, D2Array)],
-        Pass::MultipleScattering => {
-            let mut v = tables(1);
-            v.push(texture_out(1, LUT_FORMAT, D2Array));
-            v
-        }
-        Pass::GroundIrradiance | Pass::SkyView => {
-            let mut v = tables(2);
-            v.push(texture_out(2, LUT_FORMAT, D2Array));
-            v
-        }
-        Pass::AerialPerspective => {
-            let mut v = tables(2);
-            v.push(texture_out(2, LUT_FORMAT, D3));
-            v.push(texture_out(3, LUT_FORMAT, D3));
-            v
-        }
-        Pass::Sky => {
-            let mut v = tables(4);
-            v.push(texture_in(4, D3));
-            v.push(texture_in(5, D3));
-            v.push(texture_out(6, LUT_FORMAT, D2));
-            v
-        }
-        Pass::Display => vec![
-            texture_in(0, D2),
-            texture_out(1, wgpu::TextureFormat::Rgba8Unorm, D2),
-        ],
+fn table(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: false },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
     }
+}
+
+/// The lookup tables, with their group-1 binding numbers (bindings.wgsl).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Table {
+    Transmittance,
+    MultipleScattering,
+    GroundIrradiance,
+    SkyView,
+    AerialPerspectiveInscattering,
+    AerialPerspectiveTransmittance,
+}
+
+impl Table {
+    pub const ALL: [Table; 6] = [
+        Table::Transmittance,
+        Table::MultipleScattering,
+        Table::GroundIrradiance,
+        Table::SkyView,
+        Table::AerialPerspectiveInscattering,
+        Table::AerialPerspectiveTransmittance,
+    ];
+
+    pub fn binding(self) -> u32 {
+        Table::ALL.iter().position(|&t| t == self).unwrap_or(0) as u32
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Table::Transmittance => "transmittance",
+            Table::MultipleScattering => "multiple scattering",
+            Table::GroundIrradiance => "ground irradiance",
+            Table::SkyView => "sky view",
+            Table::AerialPerspectiveInscattering => "aerial perspective (in-scattering)",
+            Table::AerialPerspectiveTransmittance => "aerial perspective (transmittance)",
+        }
+    }
+
+    /// Width, height and depth of one layer (batch).
+    pub fn size(self) -> [u32; 3] {
+        match self {
+            Table::Transmittance => [TRANSMITTANCE_SIZE[0], TRANSMITTANCE_SIZE[1], 1],
+            Table::MultipleScattering => {
+                [MULTIPLE_SCATTERING_SIZE[0], MULTIPLE_SCATTERING_SIZE[1], 1]
+            }
+            Table::GroundIrradiance => [GROUND_IRRADIANCE_SIZE, 1, 1],
+            Table::SkyView => [SKY_VIEW_SIZE[0], SKY_VIEW_SIZE[1], 1],
+            Table::AerialPerspectiveInscattering | Table::AerialPerspectiveTransmittance => {
+                AERIAL_PERSPECTIVE_SIZE
+            }
+        }
+    }
+
+    /// The tables a pass reads or writes.
+    pub fn of_pass(pass: Pass) -> &'static [Table] {
+        use Table::*;
+        match pass {
+            Pass::Transmittance => &[Transmittance],
+            Pass::MultipleScattering => &[Transmittance, MultipleScattering],
+            Pass::GroundIrradiance => &[Transmittance, MultipleScattering, GroundIrradiance],
+            Pass::SkyView => &[Transmittance, MultipleScattering, SkyView],
+            Pass::AerialPerspective => &[
+                Transmittance,
+                MultipleScattering,
+                AerialPerspectiveInscattering,
+                AerialPerspectiveTransmittance,
+            ],
+            Pass::Sky => &Table::ALL,
+            Pass::Display => &[],
+        }
+    }
+}
+
+/// Binding of the sky pass's radiance output and of the display pass's input and output.
+const RADIANCE_OUT: u32 = 6;
+const RADIANCE_IN: u32 = 7;
+const DISPLAY_OUT: u32 = 8;
+
+/// The group-1 layout of each pass: the tables it uses, then its image inputs and outputs.
+fn pass_layout(pass: Pass) -> Vec<wgpu::BindGroupLayoutEntry> {
+    let mut v: Vec<_> = Table::of_pass(pass)
+        .iter()
+        .map(|t| table(t.binding()))
+        .collect();
+    match pass {
+        Pass::Sky => v.push(texture_out(RADIANCE_OUT, LUT_FORMAT, D2)),
+        Pass::Display => {
+            v.push(texture_in(RADIANCE_IN, D2));
+            v.push(texture_out(
+                DISPLAY_OUT,
+                wgpu::TextureFormat::Rgba8Unorm,
+                D2,
+            ));
+        }
+        _ => {}
+    }
+    v
 }
 
 fn entry(pass: Pass) -> ShaderEntry {
@@ -120,11 +195,22 @@ fn entry(pass: Pass) -> ShaderEntry {
     }
 }
 
-/// Compiled pipelines and layouts of every pass.
+/// Which variant of a pass's pipeline a frame needs: the values of its pipeline constants
+/// (projection and camera above the atmosphere for the sky pass, display mode and tone map for
+/// the display pass; none for the tables).
+pub type Variant = [u32; 2];
+
+/// Compiled pipelines and layouts of every pass; pipeline variants are compiled on first use.
 pub struct Pipelines {
     group0: wgpu::BindGroupLayout,
     layouts: Vec<wgpu::BindGroupLayout>,
-    pipelines: Vec<wgpu::ComputePipeline>,
+    pipeline_layouts: Vec<wgpu::PipelineLayout>,
+    modules: Vec<wgpu::ShaderModule>,
+    pipelines: Vec<(Pass, Variant, wgpu::ComputePipeline)>,
+}
+
+fn pass_index(pass: Pass) -> usize {
+    Pass::ALL.iter().position(|&p| p == pass).unwrap_or(0)
 }
 
 impl Pipelines {
@@ -133,47 +219,82 @@ impl Pipelines {
             label: Some("group 0: globals, batches, profile"),
             entries: &[uniform(0), storage(1), storage(2)],
         });
-        let mut layouts = Vec::new();
-        let mut pipelines = Vec::new();
+        let mut p = Pipelines {
+            group0,
+            layouts: Vec::new(),
+            pipeline_layouts: Vec::new(),
+            modules: Vec::new(),
+            pipelines: Vec::new(),
+        };
         for pass in Pass::ALL {
             let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some(pass.name()),
                 entries: &pass_layout(pass),
             });
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(entry(pass).file().0),
-                source: wgpu::ShaderSource::Wgsl(shader_source(entry(pass)).into()),
-            });
-            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some(pass.name()),
-                bind_group_layouts: &[Some(&group0), Some(&layout)],
-                immediate_size: 0,
-            });
-            pipelines.push(
-                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            p.modules
+                .push(device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some(entry(pass).file().0),
+                    source: wgpu::ShaderSource::Wgsl(shader_source(entry(pass)).into()),
+                }));
+            p.pipeline_layouts.push(device.create_pipeline_layout(
+                &wgpu::PipelineLayoutDescriptor {
                     label: Some(pass.name()),
-                    layout: Some(&pipeline_layout),
-                    module: &module,
-                    entry_point: Some("main"),
-                    compilation_options: Default::default(),
-                    cache: None,
-                }),
-            );
-            layouts.push(layout);
+                    bind_group_layouts: &[Some(&p.group0), Some(&layout)],
+                    immediate_size: 0,
+                },
+            ));
+            p.layouts.push(layout);
         }
-        Pipelines {
-            group0,
-            layouts,
-            pipelines,
+        for pass in Pass::ALL.into_iter().filter(|p| p.is_lut()) {
+            p.ensure(device, pass, [0, 0]);
         }
+        p
     }
 
-    pub fn pipeline(&self, pass: Pass) -> &wgpu::ComputePipeline {
-        &self.pipelines[Pass::ALL.iter().position(|&p| p == pass).unwrap_or(0)]
+    /// Compiles the pipeline of `pass` for `variant` unless it exists.
+    pub fn ensure(&mut self, device: &wgpu::Device, pass: Pass, variant: Variant) {
+        if self
+            .pipelines
+            .iter()
+            .any(|(p, v, _)| *p == pass && *v == variant)
+        {
+            return;
+        }
+        let names: &[&str] = match pass {
+            Pass::Sky => &["PROJECTION", "ABOVE_ATMOSPHERE"],
+            Pass::Display => &["DISPLAY_MODE", "TONE_MAP"],
+            _ => &[],
+        };
+        let constants: Vec<(&str, f64)> = names
+            .iter()
+            .zip(variant)
+            .map(|(n, v)| (*n, f64::from(v)))
+            .collect();
+        let i = pass_index(pass);
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(pass.name()),
+            layout: Some(&self.pipeline_layouts[i]),
+            module: &self.modules[i],
+            entry_point: Some("main"),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: &constants,
+                ..Default::default()
+            },
+            cache: None,
+        });
+        self.pipelines.push((pass, variant, pipeline));
+    }
+
+    /// The pipeline of `pass` for `variant` (compiled by `ensure`).
+    pub fn pipeline(&self, pass: Pass, variant: Variant) -> Option<&wgpu::ComputePipeline> {
+        self.pipelines
+            .iter()
+            .find(|(p, v, _)| *p == pass && *v == variant)
+            .map(|(_, _, pipeline)| pipeline)
     }
 
     fn layout(&self, pass: Pass) -> &wgpu::BindGroupLayout {
-        &self.layouts[Pass::ALL.iter().position(|&p| p == pass).unwrap_or(0)]
+        &self.layouts[pass_index(pass)]
     }
 
     pub fn display_group(
@@ -182,11 +303,21 @@ impl Pipelines {
         radiance: &wgpu::Texture,
         display: &wgpu::Texture,
     ) -> wgpu::BindGroup {
-        bind(
-            device,
-            self.layout(Pass::Display),
-            &[view(radiance, D2), view(display, D2)],
-        )
+        let (radiance, display) = (view(radiance, D2), view(display, D2));
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("display"),
+            layout: self.layout(Pass::Display),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: RADIANCE_IN,
+                    resource: wgpu::BindingResource::TextureView(&radiance),
+                },
+                wgpu::BindGroupEntry {
+                    binding: DISPLAY_OUT,
+                    resource: wgpu::BindingResource::TextureView(&display),
+                },
+            ],
+        })
     }
 }
 
@@ -197,59 +328,39 @@ fn view(t: &wgpu::Texture, dimension: wgpu::TextureViewDimension) -> wgpu::Textu
     })
 }
 
-fn bind(
-    device: &wgpu::Device,
-    layout: &wgpu::BindGroupLayout,
-    views: &[wgpu::TextureView],
-) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry> = views
-        .iter()
-        .enumerate()
-        .map(|(i, v)| wgpu::BindGroupEntry {
-            binding: i as u32,
-            resource: wgpu::BindingResource::TextureView(v),
-        })
-        .collect();
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: None,
-        layout,
-        entries: &entries,
-    })
-}
-
 /// The tables of one atmosphere and wavelength set, the buffers they are computed from, and the
 /// bind groups of the table passes.
-pub struct LutTextures {
+pub struct LutBuffers {
     pub batches: wgpu::Buffer,
     pub profile: wgpu::Buffer,
     pub group0: wgpu::BindGroup,
-    pub transmittance: wgpu::Texture,
-    pub multiple_scattering: wgpu::Texture,
-    pub ground_irradiance: wgpu::Texture,
-    pub sky_view: wgpu::Texture,
-    pub aerial_perspective_inscattering: wgpu::Texture,
-    pub aerial_perspective_transmittance: wgpu::Texture,
+    tables: Vec<(Table, wgpu::Buffer)>,
     groups: Vec<(Pass, wgpu::BindGroup)>,
 }
 
-impl LutTextures {
+impl LutBuffers {
     pub fn new(
         device: &wgpu::Device,
         pipelines: &Pipelines,
         globals: &wgpu::Buffer,
         params: &Params,
-    ) -> LutTextures {
-        let layers = params.batches.len() as u32;
-        let buffer = |label, size: usize| {
+    ) -> LutBuffers {
+        let layers = params.batches.len() as u64;
+        let buffer = |label, size: u64, usage| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
-                size: size as u64,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                size,
+                usage,
                 mapped_at_creation: false,
             })
         };
-        let batches = buffer("batches", std::mem::size_of::<Batch>() * layers as usize);
-        let profile = buffer("profile", 16 * PROFILE_SAMPLES as usize);
+        let input = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
+        let batches = buffer(
+            "batches",
+            std::mem::size_of::<Batch>() as u64 * layers,
+            input,
+        );
+        let profile = buffer("profile", 16 * u64::from(PROFILE_SAMPLES), input);
         let group0 = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("group 0"),
             layout: &pipelines.group0,
@@ -269,105 +380,65 @@ impl LutTextures {
             ],
         });
         debug_assert_eq!(std::mem::size_of::<Globals>() % 16, 0);
-        let texture = |label, w: u32, h: u32, depth: u32, dimension| {
-            device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width: w,
-                    height: h,
-                    depth_or_array_layers: depth,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension,
-                format: LUT_FORMAT,
-                usage: wgpu::TextureUsages::STORAGE_BINDING
-                    | wgpu::TextureUsages::TEXTURE_BINDING
-                    | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
+        let tables: Vec<(Table, wgpu::Buffer)> = Table::ALL
+            .iter()
+            .map(|&t| {
+                let [w, h, d] = t.size();
+                let texels = u64::from(w * h * d) * layers;
+                let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC;
+                (t, buffer(t.name(), 16 * texels, usage))
             })
-        };
-        use wgpu::TextureDimension as Dim;
-        let [tw, th] = TRANSMITTANCE_SIZE;
-        let [mw, mh] = MULTIPLE_SCATTERING_SIZE;
-        let [sw, sh] = SKY_VIEW_SIZE;
-        let [aw, ah, ad] = AERIAL_PERSPECTIVE_SIZE;
-        let transmittance = texture("transmittance", tw, th, layers, Dim::D2);
-        let multiple_scattering = texture("multiple scattering", mw, mh, layers, Dim::D2);
-        let ground_irradiance = texture(
-            "ground irradiance",
-            GROUND_IRRADIANCE_SIZE,
-            1,
-            layers,
-            Dim::D2,
-        );
-        let sky_view = texture("sky view", sw, sh, layers, Dim::D2);
-        let ap_s = texture(
-            "aerial perspective in-scattering",
-            aw,
-            ah,
-            ad * layers,
-            Dim::D3,
-        );
-        let ap_t = texture(
-            "aerial perspective transmittance",
-            aw,
-            ah,
-            ad * layers,
-            Dim::D3,
-        );
-        let t = || view(&transmittance, D2Array);
-        let ms = || view(&multiple_scattering, D2Array);
-        let groups = vec![
-            (
-                Pass::Transmittance,
-                bind(device, pipelines.layout(Pass::Transmittance), &[t()]),
-            ),
-            (
-                Pass::MultipleScattering,
-                bind(
-                    device,
-                    pipelines.layout(Pass::MultipleScattering),
-                    &[t(), ms()],
-                ),
-            ),
-            (
-                Pass::GroundIrradiance,
-                bind(
-                    device,
-                    pipelines.layout(Pass::GroundIrradiance),
-                    &[t(), ms(), view(&ground_irradiance, D2Array)],
-                ),
-            ),
-            (
-                Pass::SkyView,
-                bind(
-                    device,
-                    pipelines.layout(Pass::SkyView),
-                    &[t(), ms(), view(&sky_view, D2Array)],
-                ),
-            ),
-            (
-                Pass::AerialPerspective,
-                bind(
-                    device,
-                    pipelines.layout(Pass::AerialPerspective),
-                    &[t(), ms(), view(&ap_s, D3), view(&ap_t, D3)],
-                ),
-            ),
-        ];
-        LutTextures {
+            .collect();
+        let mut luts = LutBuffers {
             batches,
             profile,
             group0,
-            transmittance,
-            multiple_scattering,
-            ground_irradiance,
-            sky_view,
-            aerial_perspective_inscattering: ap_s,
-            aerial_perspective_transmittance: ap_t,
-            groups,
+            tables,
+            groups: Vec::new(),
+        };
+        luts.groups = Pass::ALL
+            .iter()
+            .filter(|p| p.is_lut())
+            .map(|&p| (p, luts.bind(device, pipelines, p, None)))
+            .collect();
+        luts
+    }
+
+    /// The storage buffer of a table.
+    pub fn buffer(&self, table: Table) -> &wgpu::Buffer {
+        let i = self
+            .tables
+            .iter()
+            .position(|(t, _)| *t == table)
+            .unwrap_or(0);
+        &self.tables[i].1
+    }
+
+    fn bind(
+        &self,
+        device: &wgpu::Device,
+        pipelines: &Pipelines,
+        pass: Pass,
+        radiance: Option<&wgpu::TextureView>,
+    ) -> wgpu::BindGroup {
+        let mut entries: Vec<wgpu::BindGroupEntry> = Table::of_pass(pass)
+            .iter()
+            .map(|&t| wgpu::BindGroupEntry {
+                binding: t.binding(),
+                resource: self.buffer(t).as_entire_binding(),
+            })
+            .collect();
+        if let Some(view) = radiance {
+            entries.push(wgpu::BindGroupEntry {
+                binding: RADIANCE_OUT,
+                resource: wgpu::BindingResource::TextureView(view),
+            });
         }
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(pass.name()),
+            layout: pipelines.layout(pass),
+            entries: &entries,
+        })
     }
 
     /// The group-1 bind group of a table pass.
@@ -387,18 +458,6 @@ impl LutTextures {
         pipelines: &Pipelines,
         radiance: &wgpu::Texture,
     ) -> wgpu::BindGroup {
-        bind(
-            device,
-            pipelines.layout(Pass::Sky),
-            &[
-                view(&self.transmittance, D2Array),
-                view(&self.multiple_scattering, D2Array),
-                view(&self.ground_irradiance, D2Array),
-                view(&self.sky_view, D2Array),
-                view(&self.aerial_perspective_inscattering, D3),
-                view(&self.aerial_perspective_transmittance, D3),
-                view(radiance, D2),
-            ],
-        )
+        self.bind(device, pipelines, Pass::Sky, Some(&view(radiance, D2)))
     }
 }

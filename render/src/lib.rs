@@ -15,6 +15,7 @@ pub mod views;
 
 pub use engine::{Engine, EngineError, FrameStats, Inputs, Pass, TimingSource};
 pub use gpu::{GpuContext, GpuError};
+pub use hillaire::Table;
 pub use uniforms::DisplayMode;
 pub use views::View;
 

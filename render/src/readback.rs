@@ -52,17 +52,7 @@ pub fn read_texture(
         size,
     );
     queue.submit([encoder.finish()]);
-    let (tx, rx) = std::sync::mpsc::channel();
-    buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    device.poll(wgpu::PollType::wait_indefinitely())?;
-    rx.recv()
-        .map_err(|e| ReadbackError::Range(e.to_string()))??;
-    let data = buffer
-        .slice(..)
-        .get_mapped_range()
-        .map_err(|e| ReadbackError::Range(e.to_string()))?;
+    let data = map(device, &buffer)?;
     let mut out = Vec::with_capacity((row * size.height * images) as usize);
     for chunk in data.chunks_exact(padded as usize) {
         out.extend_from_slice(&chunk[..row as usize]);
@@ -78,4 +68,38 @@ pub fn read_texture_f32x4(
 ) -> Result<Vec<[f32; 4]>, ReadbackError> {
     let bytes = read_texture(device, queue, texture)?;
     Ok(bytemuck::pod_collect_to_vec(&bytes))
+}
+
+/// Every f32×4 element of a storage buffer (which needs `COPY_SRC` usage).
+pub fn read_buffer_f32x4(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    source: &wgpu::Buffer,
+) -> Result<Vec<[f32; 4]>, ReadbackError> {
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("read-back"),
+        size: source.size(),
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    encoder.copy_buffer_to_buffer(source, 0, &buffer, 0, source.size());
+    queue.submit([encoder.finish()]);
+    let bytes = map(device, &buffer)?;
+    Ok(bytemuck::pod_collect_to_vec(&bytes))
+}
+
+fn map(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>, ReadbackError> {
+    let (tx, rx) = std::sync::mpsc::channel();
+    buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device.poll(wgpu::PollType::wait_indefinitely())?;
+    rx.recv()
+        .map_err(|e| ReadbackError::Range(e.to_string()))??;
+    let data = buffer
+        .slice(..)
+        .get_mapped_range()
+        .map_err(|e| ReadbackError::Range(e.to_string()))?;
+    Ok(data.to_vec())
 }

@@ -10,7 +10,7 @@ struct Globals {
     camera_east: vec4<f32>,
     camera_north: vec4<f32>,
     camera_up: vec4<f32>,
-    // heading (rad), pitch (rad), tan(fov / 2), 0
+    // heading (rad), pitch (rad), tan(fov / 2), horizon angle β from the nadir at the camera (rad)
     camera: vec4<f32>,
     // world direction to the sun; w: mu_s at the camera (the viewpoint of the view tables)
     sun: vec4<f32>,
@@ -50,3 +50,12 @@ fn bottom_radius() -> f32 { return globals.planet.x; }
 fn top_radius() -> f32 { return globals.planet.y; }
 fn thickness() -> f32 { return globals.planet.z; }
 fn batch_count() -> u32 { return globals.options.z; }
+
+// Group 1: the tables, declared once for every pass; a pass's bind group layout holds only the
+// bindings its entry point uses (see render/src/hillaire.rs).
+@group(1) @binding(0) var<storage, read_write> transmittance_lut: array<vec4<f32>>;
+@group(1) @binding(1) var<storage, read_write> multiple_scattering_lut: array<vec4<f32>>;
+@group(1) @binding(2) var<storage, read_write> ground_irradiance_lut: array<vec4<f32>>;
+@group(1) @binding(3) var<storage, read_write> sky_view_lut: array<vec4<f32>>;
+@group(1) @binding(4) var<storage, read_write> aerial_perspective_inscattering: array<vec4<f32>>;
+@group(1) @binding(5) var<storage, read_write> aerial_perspective_transmittance: array<vec4<f32>>;

@@ -1,32 +1,39 @@
-// Manual bilinear and trilinear lookups with textureLoad: identical arithmetic to the f64 twin
-// (model::methods::hillaire::Lut), and no dependence on filterable float formats.
+// Lookup tables live in storage buffers of vec4 texels, indexed ((layer·depth + z)·height + y)·width
+// + x exactly like model::methods::hillaire::Lut. Buffer loads are plain memory reads, far
+// cheaper than texel fetches on software drivers, and the manual bilinear and trilinear
+// interpolation below is the twin of Lut::bilinear / Lut::trilinear.
 // Coordinates are fractional texel indices, clamped to the table.
 
-fn lut_bilinear(t: texture_2d_array<f32>, layer: u32, f: vec2<f32>) -> vec4<f32> {
-    let size = textureDimensions(t);
+struct Taps {
+    // indices of the four texels (x0 y0, x1 y0, x0 y1, x1 y1) and the weights in x and y
+    i: vec4<u32>,
+    w: vec2<f32>,
+}
+
+// Bilinear taps in slice `slice` (= layer·depth + z) of a width × height table.
+fn taps(size: vec2<u32>, slice: u32, f: vec2<f32>) -> Taps {
     let c = clamp(f, vec2<f32>(0.0), vec2<f32>(size) - 1.0);
     let i0 = vec2<u32>(floor(c));
     let i1 = min(i0 + 1u, size - 1u);
-    let w = c - floor(c);
-    let a = mix(textureLoad(t, i0, layer, 0), textureLoad(t, vec2<u32>(i1.x, i0.y), layer, 0), w.x);
-    let b = mix(textureLoad(t, vec2<u32>(i0.x, i1.y), layer, 0), textureLoad(t, i1, layer, 0), w.x);
-    return mix(a, b, w.y);
+    let base = slice * size.x * size.y;
+    var t: Taps;
+    t.i = vec4<u32>(
+        base + i0.y * size.x + i0.x,
+        base + i0.y * size.x + i1.x,
+        base + i1.y * size.x + i0.x,
+        base + i1.y * size.x + i1.x,
+    );
+    t.w = c - floor(c);
+    return t;
 }
 
-// A volume of `depth` slices per layer, stacked along z.
-fn lut_bilinear_3d(t: texture_3d<f32>, x0: u32, x1: u32, y0: u32, y1: u32, z: u32, w: vec2<f32>) -> vec4<f32> {
-    let a = mix(textureLoad(t, vec3<u32>(x0, y0, z), 0), textureLoad(t, vec3<u32>(x1, y0, z), 0), w.x);
-    let b = mix(textureLoad(t, vec3<u32>(x0, y1, z), 0), textureLoad(t, vec3<u32>(x1, y1, z), 0), w.x);
-    return mix(a, b, w.y);
+fn blend(a: vec4<f32>, b: vec4<f32>, c: vec4<f32>, d: vec4<f32>, w: vec2<f32>) -> vec4<f32> {
+    return mix(mix(a, b, w.x), mix(c, d, w.x), w.y);
 }
 
-fn lut_trilinear(t: texture_3d<f32>, layer: u32, depth: u32, f: vec3<f32>) -> vec4<f32> {
-    let size = vec3<u32>(textureDimensions(t).xy, depth);
-    let c = clamp(f, vec3<f32>(0.0), vec3<f32>(size) - 1.0);
-    let i0 = vec3<u32>(floor(c));
-    let i1 = min(i0 + 1u, size - 1u);
-    let w = c - floor(c);
-    let a = lut_bilinear_3d(t, i0.x, i1.x, i0.y, i1.y, layer * depth + i0.z, w.xy);
-    let b = lut_bilinear_3d(t, i0.x, i1.x, i0.y, i1.y, layer * depth + i1.z, w.xy);
-    return mix(a, b, w.z);
+// The slices (z0, z1) and weight of a fractional depth coordinate.
+fn depth_taps(depth: u32, fz: f32) -> vec3<f32> {
+    let c = clamp(fz, 0.0, f32(depth - 1u));
+    let z0 = floor(c);
+    return vec3<f32>(z0, min(z0 + 1.0, f32(depth - 1u)), c - z0);
 }

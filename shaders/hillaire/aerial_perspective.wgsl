@@ -1,11 +1,6 @@
 // Pass: aerial-perspective volume. One invocation marches one ground-bound direction of the
 // sun-aligned frame and writes (in-scattered radiance, transmittance) at the end of every slice.
 
-@group(1) @binding(0) var transmittance_lut: texture_2d_array<f32>;
-@group(1) @binding(1) var multiple_scattering_lut: texture_2d_array<f32>;
-@group(1) @binding(2) var inscattering_out: texture_storage_3d<rgba32float, write>;
-@group(1) @binding(3) var transmittance_out: texture_storage_3d<rgba32float, write>;
-
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if any(id.xy >= AERIAL_PERSPECTIVE_SIZE.xy) || id.z >= batch_count() {
@@ -32,14 +27,15 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     for (var k = 0u; k < depth; k++) {
         let end = min(aerial_perspective_slice_distance(k), t_limit);
         if end > start {
-            let l = integrate_inscattering(transmittance_lut, multiple_scattering_lut, layer,
+            let l = integrate_inscattering(layer,
                 vec4<f32>(h, mu, mu_s, nu), start, end, globals.steps_b.x, SPACING_UNIFORM);
             inscattered += throughput * l.radiance * e;
             throughput *= l.transmittance;
             start = end;
         }
-        let at = vec3<u32>(id.xy, layer * depth + k);
-        textureStore(inscattering_out, at, inscattered);
-        textureStore(transmittance_out, at, throughput);
+        let size = AERIAL_PERSPECTIVE_SIZE;
+        let i = ((layer * depth + k) * size.y + id.y) * size.x + id.x;
+        aerial_perspective_inscattering[i] = inscattered;
+        aerial_perspective_transmittance[i] = throughput;
     }
 }

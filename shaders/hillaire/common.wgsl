@@ -18,9 +18,9 @@ fn densities(h: f32) -> vec3<f32> {
     return mix(profile[i].xyz, profile[i + 1u].xyz, f);
 }
 
-fn medium(layer: u32, h: f32) -> Medium {
+// The batch is passed by value: load it once per invocation, not once per step.
+fn medium(b: Batch, h: f32) -> Medium {
     let d = densities(h);
-    let b = batches[layer];
     var m: Medium;
     m.rayleigh_scattering = b.rayleigh_scattering * d.x;
     m.aerosol_scattering = b.aerosol_scattering * d.z;
@@ -59,17 +59,19 @@ fn transmittance_h_mu_from_texel(f: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(h, mu);
 }
 
-fn transmittance(t: texture_2d_array<f32>, layer: u32, h: f32, mu: f32) -> vec4<f32> {
-    return lut_bilinear(t, layer, transmittance_texel_from_h_mu(h, mu));
+fn transmittance(layer: u32, h: f32, mu: f32) -> vec4<f32> {
+    let t = taps(TRANSMITTANCE_SIZE, layer, transmittance_texel_from_h_mu(h, mu));
+    return blend(transmittance_lut[t.i.x], transmittance_lut[t.i.y], transmittance_lut[t.i.z],
+        transmittance_lut[t.i.w], t.w);
 }
 
 // Transmittance to the sun times the visible fraction of its disk above the horizon.
-fn sun_transmittance(t: texture_2d_array<f32>, layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
+fn sun_transmittance(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
     let sin_h = bottom_radius() / (bottom_radius() + h);
     let cos_h = -sqrt(max(1.0 - sin_h * sin_h, 0.0));
     let edge = sin_h * SUN_ANGULAR_RADIUS_RAD;
     let visible = smoothstep(-edge, edge, mu_s - cos_h);
-    return transmittance(t, layer, h, mu_s) * visible;
+    return transmittance(layer, h, mu_s) * visible;
 }
 
 // ---- multiple scattering ----
@@ -83,8 +85,10 @@ fn multiple_scattering_h_mu_s_from_texel(f: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(x.y * thickness(), clamp(x.x * 2.0 - 1.0, -1.0, 1.0));
 }
 
-fn multiple_scattering(ms: texture_2d_array<f32>, layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
-    return lut_bilinear(ms, layer, multiple_scattering_texel_from_h_mu_s(h, mu_s));
+fn multiple_scattering(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
+    let t = taps(MULTIPLE_SCATTERING_SIZE, layer, multiple_scattering_texel_from_h_mu_s(h, mu_s));
+    return blend(multiple_scattering_lut[t.i.x], multiple_scattering_lut[t.i.y],
+        multiple_scattering_lut[t.i.z], multiple_scattering_lut[t.i.w], t.w);
 }
 
 // ---- ground irradiance ----
@@ -97,14 +101,19 @@ fn ground_irradiance_mu_s_from_texel(f: f32) -> f32 {
     return clamp(f / f32(GROUND_IRRADIANCE_SIZE - 1u) * 2.0 - 1.0, -1.0, 1.0);
 }
 
-fn ground_irradiance(gi: texture_2d_array<f32>, layer: u32, mu_s: f32) -> vec4<f32> {
-    return lut_bilinear(gi, layer, vec2<f32>(ground_irradiance_texel_from_mu_s(mu_s), 0.0));
+fn ground_irradiance(layer: u32, mu_s: f32) -> vec4<f32> {
+    let f = vec2<f32>(ground_irradiance_texel_from_mu_s(mu_s), 0.0);
+    let t = taps(vec2<u32>(GROUND_IRRADIANCE_SIZE, 1u), layer, f);
+    return blend(ground_irradiance_lut[t.i.x], ground_irradiance_lut[t.i.y],
+        ground_irradiance_lut[t.i.z], ground_irradiance_lut[t.i.w], t.w);
 }
 
 // ---- sky view and aerial perspective ----
 
+// β at the camera's altitude, the only altitude the sky view and aerial perspective are built
+// for; computed once per frame in f64 (hillaire::horizon_beta).
 fn horizon_beta(h: f32) -> f32 {
-    return atan2(bottom_radius(), sqrt(rho_squared(max(h, 0.0))));
+    return globals.camera.w;
 }
 
 fn sky_view_texel_from_angles(h: f32, phi: f32, theta: f32) -> vec2<f32> {
@@ -135,7 +144,7 @@ fn sky_view_angles_from_texel(h: f32, f: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(PI * x.x * x.x, theta);
 }
 
-fn sky_view(sv: texture_2d_array<f32>, layer: u32, h: f32, phi: f32, theta: f32, ground: bool) -> vec4<f32> {
+fn sky_view(layer: u32, h: f32, phi: f32, theta: f32, ground: bool) -> vec4<f32> {
     var f = sky_view_texel_from_angles(h, phi, theta);
     let half = f32(SKY_VIEW_SIZE.y / 2u);
     if ground {
@@ -143,7 +152,8 @@ fn sky_view(sv: texture_2d_array<f32>, layer: u32, h: f32, phi: f32, theta: f32,
     } else {
         f.y = min(f.y, half - 1.0);
     }
-    return lut_bilinear(sv, layer, f);
+    let t = taps(SKY_VIEW_SIZE, layer, f);
+    return blend(sky_view_lut[t.i.x], sky_view_lut[t.i.y], sky_view_lut[t.i.z], sky_view_lut[t.i.w], t.w);
 }
 
 fn aerial_perspective_texel_from_angles(h: f32, phi: f32, theta: f32) -> vec2<f32> {
@@ -188,8 +198,6 @@ struct Inscattering {
 
 // (h, mu, mu_s, nu) start the ray; the march covers [t0, t1].
 fn integrate_inscattering(
-    t_lut: texture_2d_array<f32>,
-    ms_lut: texture_2d_array<f32>,
     layer: u32,
     start: vec4<f32>,
     t0: f32,
@@ -214,9 +222,9 @@ fn integrate_inscattering(
         let ts = 0.5 * (seg.x + seg.y);
         let at = altitude_along(h, mu, ts);
         let mu_s_t = clamp((r * mu_s + ts * nu) / at.y, -1.0, 1.0);
-        let m = medium(layer, at.x);
-        let sun_t = sun_transmittance(t_lut, layer, at.x, mu_s_t);
-        let psi = multiple_scattering(ms_lut, layer, at.x, mu_s_t);
+        let m = medium(b, at.x);
+        let sun_t = sun_transmittance(layer, at.x, mu_s_t);
+        let psi = multiple_scattering(layer, at.x, mu_s_t);
         let weight = result.transmittance * segment_weight(m.extinction, dt);
         let source = (m.rayleigh_scattering * phase_r + m.aerosol_scattering * phase_a) * sun_t
             + (m.rayleigh_scattering + m.aerosol_scattering) * psi;

@@ -1,10 +1,6 @@
 // Pass: sky irradiance on horizontal ground per unit solar irradiance, E = π·mean(L) over
 // cosine-weighted stratified directions of the upper hemisphere.
 
-@group(1) @binding(0) var transmittance_lut: texture_2d_array<f32>;
-@group(1) @binding(1) var multiple_scattering_lut: texture_2d_array<f32>;
-@group(1) @binding(2) var ground_irradiance_out: texture_storage_2d_array<rgba32float, write>;
-
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= GROUND_IRRADIANCE_SIZE || id.y >= 1u || id.z >= batch_count() {
@@ -22,10 +18,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             let phi = 2.0 * PI * (f32(j) + 0.5) / f32(n_phi);
             let nu = dot(vec3<f32>(s * cos(phi), s * sin(phi), mu), sun);
             let t_max = distance_to_top(0.0, mu);
-            let l = integrate_inscattering(transmittance_lut, multiple_scattering_lut, id.z,
+            let l = integrate_inscattering(id.z,
                 vec4<f32>(0.0, mu, mu_s, nu), 0.0, t_max, globals.steps_a.z, SPACING_QUADRATIC);
             sum += l.radiance;
         }
     }
-    textureStore(ground_irradiance_out, id.xy, id.z, sum * (PI / f32(n_theta * n_phi)));
+    ground_irradiance_lut[id.z * GROUND_IRRADIANCE_SIZE + id.x] = sum * (PI / f32(n_theta * n_phi));
 }

@@ -1,9 +1,6 @@
 // Pass: multiple-scattering table Ψ_ms(h, mu_s) = L_2nd / (1 − f_ms), per unit solar irradiance
 // (Hillaire 2020 §5.5), with an isotropic phase and the sunlit ground bounce.
 
-@group(1) @binding(0) var transmittance_lut: texture_2d_array<f32>;
-@group(1) @binding(1) var multiple_scattering_out: texture_storage_2d_array<rgba32float, write>;
-
 fn sphere_direction(i: u32, n: u32) -> vec3<f32> {
     let mu = 1.0 - 2.0 * (f32(i / n) + 0.5) / f32(n);
     let phi = 2.0 * PI * (f32(i % n) + 0.5) / f32(n);
@@ -23,7 +20,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let r = bottom_radius() + h;
     let sun = local_sun(mu_s);
     let isotropic = 1.0 / (4.0 * PI);
-    let albedo = batches[layer].ground_albedo;
+    let b = batches[layer];
+    let albedo = b.ground_albedo;
     let n_dir = MULTIPLE_SCATTERING_DIRECTIONS_SQRT;
     let n = globals.steps_a.y;
     var l_2nd = vec4<f32>(0.0);
@@ -46,21 +44,22 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             let dt = seg.y - seg.x;
             let at = altitude_along(h, mu, ts);
             let mu_s_t = (r * mu_s + ts * nu) / at.y;
-            let m = medium(layer, at.x);
+            let m = medium(b, at.x);
             let weight = throughput * segment_weight(m.extinction, dt);
             let sca = m.rayleigh_scattering + m.aerosol_scattering;
-            let sun_t = sun_transmittance(transmittance_lut, layer, at.x, mu_s_t);
+            let sun_t = sun_transmittance(layer, at.x, mu_s_t);
             l_2nd += weight * sca * isotropic * sun_t;
             f_ms += weight * sca;
             throughput *= exp(-m.extinction * dt);
         }
         if ground {
             let mu_s_g = (r * mu_s + t_max * nu) / bottom_radius();
-            let sun_t = sun_transmittance(transmittance_lut, layer, 0.0, mu_s_g);
+            let sun_t = sun_transmittance(layer, 0.0, mu_s_g);
             l_2nd += throughput * sun_t * max(mu_s_g, 0.0) * albedo / PI;
         }
     }
     let count = f32(n_dir * n_dir);
     let psi = (l_2nd / count) / (1.0 - f_ms / count);
-    textureStore(multiple_scattering_out, id.xy, layer, psi);
+    let size = MULTIPLE_SCATTERING_SIZE;
+    multiple_scattering_lut[(layer * size.y + id.y) * size.x + id.x] = psi;
 }

@@ -3,13 +3,13 @@
 // the atmosphere it is ray-marched (Hillaire 2020 §6). Writes linear sRGB (Y = ∫ȳL dλ,
 // W·m⁻²·sr⁻¹) and coverage in alpha.
 
-@group(1) @binding(0) var transmittance_lut: texture_2d_array<f32>;
-@group(1) @binding(1) var multiple_scattering_lut: texture_2d_array<f32>;
-@group(1) @binding(2) var ground_irradiance_lut: texture_2d_array<f32>;
-@group(1) @binding(3) var sky_view_lut: texture_2d_array<f32>;
-@group(1) @binding(4) var aerial_perspective_inscattering: texture_3d<f32>;
-@group(1) @binding(5) var aerial_perspective_transmittance: texture_3d<f32>;
 @group(1) @binding(6) var radiance_out: texture_storage_2d<rgba32float, write>;
+
+// Pipeline constants: the engine compiles one variant per projection and per camera inside or
+// above the atmosphere, so that no pixel pays for branches the frame cannot take (software
+// drivers run both sides of a branch).
+override PROJECTION: u32 = PROJECTION_PERSPECTIVE;
+override ABOVE_ATMOSPHERE: bool = false;
 
 // The ray through pixel (x, y) in world coordinates; w = 0 where the projection shows nothing.
 // Twin of model::camera::Camera::ray.
@@ -19,7 +19,7 @@ fn camera_ray(x: f32, y: f32) -> vec4<f32> {
     let heading = globals.camera.x;
     let pitch = globals.camera.y;
     var local: vec3<f32>;
-    switch globals.view.z {
+    switch PROJECTION {
         case PROJECTION_FISHEYE: {
             let size = min(w, h);
             let dx = (2.0 * x - w) / size;
@@ -65,20 +65,34 @@ fn sun_disk(dir: vec3<f32>, sun: vec3<f32>) -> f32 {
 }
 
 fn ground_radiance(layer: u32, mu_s_g: f32) -> vec4<f32> {
-    let b = batches[layer];
-    let sun_t = sun_transmittance(transmittance_lut, layer, 0.0, mu_s_g);
-    let sky = ground_irradiance(ground_irradiance_lut, layer, mu_s_g);
-    return b.ground_albedo / PI * b.solar_irradiance * (sun_t * max(mu_s_g, 0.0) + sky);
+    // Field loads, not the whole struct: on software drivers every load is a per-lane gather.
+    let albedo = batches[layer].ground_albedo;
+    let e = batches[layer].solar_irradiance;
+    let sun_t = sun_transmittance(layer, 0.0, mu_s_g);
+    let sky = ground_irradiance(layer, mu_s_g);
+    return albedo / PI * e * (sun_t * max(mu_s_g, 0.0) + sky);
 }
 
 fn aerial_perspective(layer: u32, h: f32, phi: f32, theta: f32, d: f32) -> Inscattering {
     let f = aerial_perspective_texel_from_angles(h, phi, theta);
     let fz = aerial_perspective_slice_from_distance(d);
     let depth = AERIAL_PERSPECTIVE_SIZE.z;
-    let at = vec3<f32>(f, max(fz, 0.0));
+    let z = depth_taps(depth, max(fz, 0.0));
+    let a = taps(AERIAL_PERSPECTIVE_SIZE.xy, layer * depth + u32(z.x), f);
+    let b = taps(AERIAL_PERSPECTIVE_SIZE.xy, layer * depth + u32(z.y), f);
     var result: Inscattering;
-    result.radiance = lut_trilinear(aerial_perspective_inscattering, layer, depth, at);
-    result.transmittance = lut_trilinear(aerial_perspective_transmittance, layer, depth, at);
+    result.radiance = mix(
+        blend(aerial_perspective_inscattering[a.i.x], aerial_perspective_inscattering[a.i.y],
+            aerial_perspective_inscattering[a.i.z], aerial_perspective_inscattering[a.i.w], a.w),
+        blend(aerial_perspective_inscattering[b.i.x], aerial_perspective_inscattering[b.i.y],
+            aerial_perspective_inscattering[b.i.z], aerial_perspective_inscattering[b.i.w], b.w),
+        z.z);
+    result.transmittance = mix(
+        blend(aerial_perspective_transmittance[a.i.x], aerial_perspective_transmittance[a.i.y],
+            aerial_perspective_transmittance[a.i.z], aerial_perspective_transmittance[a.i.w], a.w),
+        blend(aerial_perspective_transmittance[b.i.x], aerial_perspective_transmittance[b.i.y],
+            aerial_perspective_transmittance[b.i.z], aerial_perspective_transmittance[b.i.w], b.w),
+        z.z);
     if fz < 0.0 {
         let k = fz + 1.0;
         result.radiance *= k;
@@ -100,7 +114,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     let mu_s = dot(sun, up);
     let nu = dot(dir, sun);
     let disk = sun_disk(dir, sun);
-    if h <= thickness() {
+    if !ABOVE_ATMOSPHERE {
         let dir_t = dir - up * mu;
         let sun_t = sun - up * mu_s;
         let l = length(dir_t) * length(sun_t);
@@ -119,15 +133,15 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
                 s = aerial_perspective(layer, h, phi, theta, d);
             } else {
                 let mu_g = clamp((r * mu + d) / big_r, -1.0, 1.0);
-                let t_g = transmittance(transmittance_lut, layer, 0.0, -mu_g);
-                let t_c = transmittance(transmittance_lut, layer, h, -mu);
+                let t_g = transmittance(layer, 0.0, -mu_g);
+                let t_c = transmittance(layer, h, -mu);
                 s.transmittance = min(t_g / max(t_c, vec4<f32>(1e-30)), vec4<f32>(1.0));
-                s.radiance = sky_view(sky_view_lut, layer, h, phi, theta, true);
+                s.radiance = sky_view(layer, h, phi, theta, true);
             }
             return s.radiance + s.transmittance * lg;
         }
-        let s = sky_view(sky_view_lut, layer, h, phi, theta, false);
-        let tr = transmittance(transmittance_lut, layer, h, mu);
+        let s = sky_view(layer, h, phi, theta, false);
+        let tr = transmittance(layer, h, mu);
         return s + tr * e * disk;
     }
     // Above the atmosphere: march from where the ray enters it.
@@ -148,7 +162,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     } else {
         t_max = distance_to_top(thickness(), mu_e);
     }
-    let s = integrate_inscattering(transmittance_lut, multiple_scattering_lut, layer,
+    let s = integrate_inscattering(layer,
         vec4<f32>(thickness(), mu_e, mu_s_e, nu), 0.0, t_max, globals.steps_b.y, spacing);
     var behind = e * disk;
     if ground {
@@ -171,8 +185,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var rgb = vec3<f32>(0.0);
     for (var layer = 0u; layer < batch_count(); layer++) {
         let l = radiance(layer, ray.xyz);
-        let b = batches[layer];
-        rgb += vec3<f32>(dot(b.to_srgb_r, l), dot(b.to_srgb_g, l), dot(b.to_srgb_b, l));
+        rgb += vec3<f32>(dot(batches[layer].to_srgb_r, l), dot(batches[layer].to_srgb_g, l),
+            dot(batches[layer].to_srgb_b, l));
     }
     textureStore(radiance_out, id.xy, vec4<f32>(rgb, 1.0));
 }

@@ -1,10 +1,6 @@
 // Pass: sky-view table at the camera's altitude, in the sun's azimuth frame: in-scattered
 // radiance to the top or the ground (Hillaire 2020 §5.3).
 
-@group(1) @binding(0) var transmittance_lut: texture_2d_array<f32>;
-@group(1) @binding(1) var multiple_scattering_lut: texture_2d_array<f32>;
-@group(1) @binding(2) var sky_view_out: texture_storage_2d_array<rgba32float, write>;
-
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if any(id.xy >= SKY_VIEW_SIZE) || id.z >= batch_count() {
@@ -22,7 +18,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     } else {
         t_max = distance_to_top(h, mu);
     }
-    let l = integrate_inscattering(transmittance_lut, multiple_scattering_lut, id.z,
+    let l = integrate_inscattering(id.z,
         vec4<f32>(h, mu, mu_s, nu), 0.0, t_max, globals.steps_a.w, SPACING_QUADRATIC);
-    textureStore(sky_view_out, id.xy, id.z, l.radiance * batches[id.z].solar_irradiance);
+    let i = (id.z * SKY_VIEW_SIZE.y + id.y) * SKY_VIEW_SIZE.x + id.x;
+    sky_view_lut[i] = l.radiance * batches[id.z].solar_irradiance;
 }

@@ -1,8 +1,12 @@
 // Pass: display. Linear radiance → exposure → tone map → sRGB (twin of model::display), or
 // luminance in cd/m² on a log scale in false colour (twin of render::views::false_colour).
 
-@group(1) @binding(0) var radiance_in: texture_2d<f32>;
-@group(1) @binding(1) var display_out: texture_storage_2d<rgba8unorm, write>;
+@group(1) @binding(7) var radiance_in: texture_2d<f32>;
+@group(1) @binding(8) var display_out: texture_storage_2d<rgba8unorm, write>;
+
+// Pipeline constants, one variant per display mode and tone map (see sky.wgsl).
+override DISPLAY_MODE: u32 = DISPLAY_COLOUR;
+override TONE_MAP: u32 = TONE_MAP_EXPONENTIAL;
 
 fn srgb_encode(linear: vec3<f32>) -> vec3<f32> {
     let c = clamp(linear, vec3<f32>(0.0), vec3<f32>(1.0));
@@ -10,7 +14,7 @@ fn srgb_encode(linear: vec3<f32>) -> vec3<f32> {
 }
 
 fn tone_map(x: vec3<f32>) -> vec3<f32> {
-    switch globals.options.y {
+    switch TONE_MAP {
         case TONE_MAP_FILMIC: {
             return (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
         }
@@ -37,7 +41,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let l = textureLoad(radiance_in, id.xy, 0);
     var out = vec3<f32>(0.0);
     if l.a > 0.0 {
-        if globals.view.w == DISPLAY_LUMINANCE {
+        if DISPLAY_MODE == DISPLAY_LUMINANCE {
             let y = dot(SRGB_TO_Y, l.rgb) * MAX_LUMINOUS_EFFICACY_LM_PER_W;
             let t = (log(max(y, 1e-30)) / log(10.0) - globals.display.y) / (globals.display.z - globals.display.y);
             out = false_colour(t);

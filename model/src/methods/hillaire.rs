@@ -699,7 +699,7 @@ pub struct Viewpoint {
 }
 
 /// Angle between the nadir and the horizon seen from altitude `h` (β in the paper).
-fn horizon_beta(h: f64, big_r: f64) -> f64 {
+pub fn horizon_beta(h: f64, big_r: f64) -> f64 {
     big_r.atan2(rho_squared(h.max(0.0), big_r).sqrt())
 }
 
