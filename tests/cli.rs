@@ -299,3 +299,98 @@ fn reference_writes_exr_and_preview_and_caches_and_compare_reads_them() {
         stderr(&o)
     );
 }
+
+/// Whether a missing GPU adapter must fail the run (CI) rather than skip.
+fn gpu_required() -> bool {
+    std::env::var("CI").is_ok_and(|v| v == "true" || v == "1")
+        || std::env::var("ATMOSCOPE_REQUIRE_GPU").is_ok_and(|v| v == "1")
+}
+
+#[test]
+fn render_writes_png_luminance_map_and_exr_and_refuses_bad_input() {
+    let dir = std::env::temp_dir().join(format!("atmoscope-render-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let png = dir.join("sky.png");
+    let o = atmoscope(&[
+        "render",
+        "--preset",
+        "clear-noon",
+        "--wavelengths",
+        "spectral8",
+        "--size",
+        "48x32",
+        "--out",
+        png.to_str().unwrap(),
+    ]);
+    if !o.status.success() && stderr(&o).contains("GPU adapter") && !gpu_required() {
+        eprintln!("SKIPPED: {}", stderr(&o));
+        return;
+    }
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = image::open(&png).expect("PNG written").to_rgb8();
+    assert_eq!(img.dimensions(), (48, 32));
+    let top = img.get_pixel(24, 0).0;
+    assert!(top[2] > top[0], "the sky at the top is blue: {top:?}");
+
+    let map = dir.join("luminance.png");
+    let o = atmoscope(&[
+        "render",
+        "--projection",
+        "luminance",
+        "--size",
+        "64x64",
+        "--luminance-range",
+        "-1,5",
+        "--out",
+        map.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (w, h) = image::open(&map)
+        .expect("map written")
+        .to_rgb8()
+        .dimensions();
+    assert_eq!(w, 64);
+    assert!(h > 64, "a legend strip below the map: height {h}");
+
+    let exr = dir.join("sky.exr");
+    let o = atmoscope(&[
+        "render",
+        "--view",
+        "fisheye-sun30",
+        "--size",
+        "32x32",
+        "--wavelengths",
+        "rgb3",
+        "--out",
+        exr.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let radiance = image::open(&exr).expect("EXR written").to_rgb32f();
+    let centre = radiance.get_pixel(16, 16).0;
+    assert!(
+        centre.iter().all(|c| c.is_finite() && *c > 0.0),
+        "{centre:?}"
+    );
+    assert_eq!(
+        radiance.get_pixel(0, 0).0,
+        [0.0; 3],
+        "outside the fisheye circle"
+    );
+
+    let o = atmoscope(&["render", "--out", dir.join("sky.jpg").to_str().unwrap()]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains(".png") && stderr(&o).contains(".exr"),
+        "{}",
+        stderr(&o)
+    );
+    let o = atmoscope(&[
+        "render",
+        "--wavelengths",
+        "spectral6",
+        "--out",
+        png.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("multiple of 4"), "{}", stderr(&o));
+}
