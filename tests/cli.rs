@@ -394,3 +394,37 @@ fn render_writes_png_luminance_map_and_exr_and_refuses_bad_input() {
     assert!(!o.status.success());
     assert!(stderr(&o).contains("multiple of 4"), "{}", stderr(&o));
 }
+
+#[test]
+fn fit_wavelengths_beats_the_published_matrix_and_writes_csv() {
+    let out = std::env::temp_dir().join(format!("atmoscope-fit-{}.csv", std::process::id()));
+    let o = atmoscope(&[
+        "fit-wavelengths",
+        "--views",
+        "fisheye-sun30",
+        "--grid",
+        "6",
+        "--spectral",
+        "spectral8",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let line = stdout(&o);
+    let number_after = |key: &str| -> f64 {
+        let rest = &line[line.find(key).expect(key) + key.len()..];
+        rest.trim_start()
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    assert!(
+        number_after("fitted") < number_after("published matrix"),
+        "{line}"
+    );
+    let csv = std::fs::read_to_string(&out).expect("CSV written");
+    assert!(csv.starts_with('#') && csv.contains("row,lane,value"));
+    assert_eq!(csv.lines().filter(|l| !l.starts_with('#')).count(), 13);
+}

@@ -157,6 +157,7 @@ pub mod tables {
     embedded_table!(opac_refractive_indices, "opac_refractive_indices.csv");
     embedded_table!(guimera_aerosol_types, "aerosol_guimera2018_type_params.csv");
     embedded_table!(garcia_linan_constants, "garcia_linan_2023_constants.csv");
+    embedded_table!(spectral4_fitted_matrix, "spectral4_fitted_matrix.csv");
 }
 
 #[cfg(test)]

@@ -2,8 +2,10 @@
 //! linear sRGB. Every set is split into batches of four lanes (one `vec4` on the GPU).
 //!
 //! - RGB3: 680/550/440 nm read directly as R, G, B (the common shortcut; wrong in hue).
-//! - Spectral4: 630/560/490/430 nm with the 3×4 matrix of García Liñán (2023), taken from
-//!   `data/garcia_linan_2023_constants.csv`.
+//! - Spectral4: 630/560/490/430 nm (García Liñán 2023) with a 3×4 matrix to linear sRGB refitted
+//!   by this project against SpectralN renders (`atmoscope fit-wavelengths`, stored in
+//!   `data/spectral4_fitted_matrix.csv`); the published matrix
+//!   (`data/garcia_linan_2023_constants.csv`) is kept for comparison.
 //! - SpectralN: N equal bands over 360–830 nm; each lane is weighted by the CIE 1931 functions
 //!   integrated over its band, then XYZ → linear sRGB.
 //!
@@ -73,6 +75,74 @@ pub fn garcia_linan_spectral4() -> ([f64; LANES], [[f64; LANES]; 3]) {
     (wavelengths, matrix)
 }
 
+/// The project's own Spectral4 matrix (rows R, G, B), from `atmoscope fit-wavelengths`.
+pub fn spectral4_fitted_matrix() -> [[f64; LANES]; 3] {
+    let t = tables::spectral4_fitted_matrix();
+    let mut m = [[0.0; LANES]; 3];
+    for ((row, lane), value) in t
+        .numbers("row")
+        .iter()
+        .zip(t.numbers("lane"))
+        .zip(t.numbers("value"))
+    {
+        m[*row as usize][lane as usize] = value;
+    }
+    m
+}
+
+/// The 3×4 matrix M minimising Σ w·|M·l − c|² over samples (lanes l, target linear sRGB c)
+/// with w = 1/Y(c)², so that errors count relative to each sample's luminance; None when the
+/// samples do not determine it.
+pub fn fit_matrix(samples: &[([f64; LANES], [f64; 3])]) -> Option<[[f64; LANES]; 3]> {
+    let mut a = [[0.0; LANES]; LANES];
+    let mut b = [[0.0; LANES]; 3];
+    for (l, c) in samples {
+        let y = crate::colour::linear_srgb_to_xyz(*c).y;
+        if !(y > 0.0) {
+            continue;
+        }
+        let w = 1.0 / (y * y);
+        for i in 0..LANES {
+            for j in 0..LANES {
+                a[i][j] += w * l[i] * l[j];
+            }
+            for row in 0..3 {
+                b[row][i] += w * l[i] * c[row];
+            }
+        }
+    }
+    let mut m = [[0.0; LANES]; 3];
+    for row in 0..3 {
+        m[row] = solve4(a, b[row])?;
+    }
+    Some(m)
+}
+
+/// Solves the 4×4 system a·x = b by Gaussian elimination with partial pivoting.
+fn solve4(mut a: [[f64; LANES]; LANES], mut b: [f64; LANES]) -> Option<[f64; LANES]> {
+    for col in 0..LANES {
+        let pivot = (col..LANES).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
+        if a[pivot][col].abs() < 1e-300 {
+            return None;
+        }
+        a.swap(col, pivot);
+        b.swap(col, pivot);
+        for r in col + 1..LANES {
+            let f = a[r][col] / a[col][col];
+            for k in col..LANES {
+                a[r][k] -= f * a[col][k];
+            }
+            b[r] -= f * b[col];
+        }
+    }
+    let mut x = [0.0; LANES];
+    for r in (0..LANES).rev() {
+        let sum: f64 = (r + 1..LANES).map(|k| a[r][k] * x[k]).sum();
+        x[r] = (b[r] - sum) / a[r][r];
+    }
+    Some(x)
+}
+
 /// The batches of a wavelength set, in rendering order.
 pub fn batches(set: WavelengthSet) -> Vec<WavelengthBatch> {
     match set {
@@ -85,11 +155,11 @@ pub fn batches(set: WavelengthSet) -> Vec<WavelengthBatch> {
             }]
         }
         WavelengthSet::Spectral4 => {
-            let (wavelengths_nm, to_srgb) = garcia_linan_spectral4();
+            let (wavelengths_nm, _) = garcia_linan_spectral4();
             vec![WavelengthBatch {
                 wavelengths_nm,
                 bandwidth_nm: None,
-                to_srgb,
+                to_srgb: spectral4_fitted_matrix(),
             }]
         }
         WavelengthSet::SpectralN(n) => spectral_n(n.max(LANES as u32) as usize),
@@ -146,12 +216,44 @@ mod tests {
     use crate::spectrum::Spectrum;
 
     #[test]
-    fn spectral4_is_the_published_matrix() {
+    fn the_published_spectral4_matrix_is_read_column_major() {
+        let (w, m) = garcia_linan_spectral4();
+        assert_eq!(w, [630.0, 560.0, 490.0, 430.0]);
+        assert!((m[0][0] - 137.6723892).abs() < 1e-9);
+        assert!((m[2][3] - 117.4758528).abs() < 1e-9);
+        assert!((m[1][2] - 34.31665471).abs() < 1e-9);
         let b = batches(WavelengthSet::Spectral4);
-        assert_eq!(b[0].wavelengths_nm, [630.0, 560.0, 490.0, 430.0]);
-        assert!((b[0].to_srgb[0][0] - 137.6723892).abs() < 1e-9);
-        assert!((b[0].to_srgb[2][3] - 117.4758528).abs() < 1e-9);
-        assert!((b[0].to_srgb[1][2] - 34.31665471).abs() < 1e-9);
+        assert_eq!(b[0].wavelengths_nm, w);
+        assert_eq!(b[0].to_srgb, spectral4_fitted_matrix());
+    }
+
+    #[test]
+    fn fitting_recovers_a_known_matrix() {
+        let truth = [
+            [120.0, 30.0, -35.0, 8.0],
+            [-9.0, 95.0, 30.0, -10.0],
+            [-2.0, -12.0, 30.0, 110.0],
+        ];
+        let samples: Vec<([f64; 4], [f64; 3])> = (0..50)
+            .map(|i| {
+                let x = i as f64 * 0.37;
+                let l = [
+                    1.0 + x.sin().abs(),
+                    1.2 + x.cos().abs(),
+                    1.5 + (2.0 * x).sin(),
+                    2.0 + (3.0 * x).cos(),
+                ];
+                let c = std::array::from_fn(|r| (0..4).map(|k| truth[r][k] * l[k]).sum());
+                (l, c)
+            })
+            .collect();
+        let m = fit_matrix(&samples).unwrap();
+        for r in 0..3 {
+            for k in 0..4 {
+                assert!((m[r][k] - truth[r][k]).abs() < 1e-6, "{m:?}");
+            }
+        }
+        assert!(fit_matrix(&[]).is_none());
     }
 
     #[test]

@@ -5,6 +5,7 @@ mod aerosols;
 mod bench;
 mod bench_gpu;
 mod compare;
+mod fit;
 mod info;
 mod presets_cmd;
 mod probe;
@@ -50,6 +51,8 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Error metrics of an image against a reference (RMSE, ΔE2000, FLIP), with error maps.
     Compare(compare::CompareArgs),
+    /// Refit the Spectral4 matrix against SpectralN renders over the view suite.
+    FitWavelengths(fit::FitArgs),
     /// Benchmarks: run time and convergence (not part of the tests).
     Bench {
         #[command(subcommand)]
@@ -82,6 +85,7 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Reference(args) => reference::run(&args),
         Command::Render(args) => render::run(&args),
         Command::Compare(args) => compare::run(&args),
+        Command::FitWavelengths(args) => fit::run(&args),
         Command::Bench { bench } => bench::run(&bench),
     }
 }

@@ -1,0 +1,158 @@
+//! `atmoscope fit-wavelengths`: refits the Spectral4 matrix (García Liñán 2023's method, done by
+//! this project) against SpectralN renders of the Hillaire method over the view suite, and
+//! writes it as the CSV the model embeds (`model/data/spectral4_fitted_matrix.csv`).
+
+use super::render::parse_wavelengths;
+use anyhow::{Context, bail};
+use atmoscope_model::Atmosphere;
+use atmoscope_model::Scene;
+use atmoscope_model::camera::Camera;
+use atmoscope_model::colour::linear_srgb_to_xyz;
+use atmoscope_model::geometry::direction_from_angles;
+use atmoscope_model::methods::hillaire::{self, Params, Tables, sun_disk};
+use atmoscope_model::scene::WavelengthSet;
+use atmoscope_model::views;
+use atmoscope_model::wavelengths::{fit_matrix, garcia_linan_spectral4, to_linear_srgb};
+use clap::Args;
+use rayon::prelude::*;
+use std::fmt::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Args, Debug)]
+pub struct FitArgs {
+    /// The spectral set the fit targets.
+    #[arg(long, value_parser = parse_wavelengths, default_value = "spectral32")]
+    pub spectral: WavelengthSet,
+    /// Directions per view: a GRID × GRID raster of the view's own projection.
+    #[arg(long, default_value_t = 16)]
+    pub grid: u32,
+    /// Views of the suite to fit on, comma-separated (default: all 21).
+    #[arg(long, value_delimiter = ',')]
+    pub views: Vec<String>,
+    /// Write the matrix as CSV here (the model embeds model/data/spectral4_fitted_matrix.csv).
+    #[arg(long, value_name = "FILE.csv")]
+    pub out: Option<PathBuf>,
+}
+
+type Sample = ([f64; 4], [f64; 3]);
+
+/// (Spectral4 lanes, SpectralN linear sRGB) for every covered direction of the raster.
+fn samples(
+    scene: &Scene,
+    projection: atmoscope_model::camera::Projection,
+    grid: u32,
+    set: WavelengthSet,
+) -> Vec<Sample> {
+    let atm = Atmosphere::new(&scene.atmosphere);
+    let p4 = Params::new(&atm, WavelengthSet::Spectral4, scene.render.quality);
+    let pn = Params::new(&atm, set, scene.render.quality);
+    let camera = Camera::new(&scene.camera, atm.bottom_radius_m, projection);
+    let vp = hillaire::viewpoint(scene, &camera);
+    let (t4, tn) = (Tables::compute(&p4, vp), Tables::compute(&pn, vp));
+    let a = scene.sun.angles();
+    let sun = direction_from_angles(a.elevation_deg, a.azimuth_deg);
+    let colours: Vec<_> = pn.batches.iter().map(|b| b.colour.clone()).collect();
+    (0..grid * grid)
+        .into_par_iter()
+        .filter_map(|i| {
+            let ray = camera.ray(
+                f64::from(i % grid) + 0.5,
+                f64::from(i / grid) + 0.5,
+                grid,
+                grid,
+            )?;
+            if sun_disk(ray.direction, sun) > 0.0 {
+                return None;
+            }
+            let at = (ray.origin, scene.camera.altitude_m);
+            let l4 = hillaire::radiance(&p4, &t4, 0, at, ray.direction, sun);
+            let ln: Vec<[f64; 4]> = (0..pn.batches.len())
+                .map(|b| hillaire::radiance(&pn, &tn, b, at, ray.direction, sun))
+                .collect();
+            Some((l4, to_linear_srgb(&colours, &ln)))
+        })
+        .collect()
+}
+
+/// Mean relative error of luminance-weighted colour: |M·l − c| / Y(c).
+fn mean_error(m: &[[f64; 4]; 3], samples: &[Sample]) -> f64 {
+    let errors: Vec<f64> = samples
+        .iter()
+        .map(|(l, c)| {
+            let e: f64 = (0..3)
+                .map(|r| {
+                    let v: f64 = (0..4).map(|k| m[r][k] * l[k]).sum();
+                    (v - c[r]).powi(2)
+                })
+                .sum();
+            e.sqrt() / linear_srgb_to_xyz(*c).y
+        })
+        .collect();
+    errors.iter().sum::<f64>() / errors.len().max(1) as f64
+}
+
+pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
+    if !matches!(args.spectral, WavelengthSet::SpectralN(_)) {
+        bail!("--spectral must be a spectralN set, e.g. spectral32");
+    }
+    for name in &args.views {
+        views::find(name).with_context(|| format!("--views: no view {name}"))?;
+    }
+    let mut all = Vec::new();
+    let chosen = views::suite()
+        .iter()
+        .filter(|v| args.views.is_empty() || args.views.contains(&v.name));
+    for v in chosen {
+        let scene = v.apply(&Scene::default());
+        let s = samples(&scene, v.projection, args.grid.max(2), args.spectral);
+        eprintln!("{}: {} samples", v.name, s.len());
+        all.extend(
+            s.into_iter()
+                .filter(|(_, c)| linear_srgb_to_xyz(*c).y > 0.0),
+        );
+    }
+    let m = fit_matrix(&all).context("the samples do not determine a matrix")?;
+    let (_, published) = garcia_linan_spectral4();
+    println!(
+        "{} samples; mean relative colour error against {:?}: published matrix {:.4}, fitted {:.4}",
+        all.len(),
+        args.spectral,
+        mean_error(&published, &all),
+        mean_error(&m, &all)
+    );
+    let mut csv = String::from(
+        "# Spectral4 matrix: linear sRGB (rows R, G, B) from spectral radiance at 630/560/490/430 nm (lanes 0-3).\n",
+    );
+    writeln!(
+        csv,
+        "# Fitted by Atmoscope (`atmoscope fit-wavelengths --spectral spectral{} --grid {}`): weighted least squares (weights 1/Y²)\n\
+         # against Hillaire-method {:?} renders of views of presets/views/suite.ron ({}; sun disk excluded), as García Liñán (2023) did against full spectral renders.",
+        match args.spectral {
+            WavelengthSet::SpectralN(n) => n,
+            _ => 0,
+        },
+        args.grid,
+        args.spectral,
+        if args.views.is_empty() {
+            "all 21".to_string()
+        } else {
+            args.views.join(", ")
+        }
+    )?;
+    csv.push_str("row,lane,value\n");
+    for (r, row) in m.iter().enumerate() {
+        for (k, v) in row.iter().enumerate() {
+            writeln!(csv, "{r},{k},{v:.9}")?;
+        }
+    }
+    match &args.out {
+        Some(path) => {
+            std::fs::write(path, &csv)
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            eprintln!("wrote {}", path.display());
+        }
+        None => print!("{csv}"),
+    }
+    Ok(ExitCode::SUCCESS)
+}
