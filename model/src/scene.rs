@@ -279,7 +279,7 @@ impl Default for WavelengthSet {
     }
 }
 
-/// Quality presets: LUT sizes and sample counts.
+/// Quality presets: the real-time method's ray-marching sample counts (×1, ×2, ×4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
 pub enum Quality {
     Low,

@@ -2,8 +2,8 @@
 //!
 //! Backends come from `WGPU_BACKEND` when set (CI sets `vulkan`, so Mesa's lavapipe is used and
 //! the silent GL fallback, which reads 3D storage textures back as zeros, cannot happen).
-//! Optional features the engine can use (timestamp queries, filterable f32 textures) are
-//! requested only when the adapter offers them.
+//! The optional feature the engine uses (timestamp queries) is requested only when the adapter
+//! offers it.
 
 /// Why no GPU device could be had.
 #[derive(Debug, thiserror::Error)]
@@ -26,7 +26,7 @@ pub struct GpuContext {
 
 /// Features the engine uses when present.
 pub fn optional_features() -> wgpu::Features {
-    wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::FLOAT32_FILTERABLE
+    wgpu::Features::TIMESTAMP_QUERY
 }
 
 impl GpuContext {

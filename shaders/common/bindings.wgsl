@@ -14,9 +14,9 @@ struct Globals {
     camera: vec4<f32>,
     // world direction to the sun; w: mu_s at the camera (the viewpoint of the view tables)
     sun: vec4<f32>,
-    // width, height (pixels), projection, display mode
+    // width, height (pixels); projection and display mode (the passes read them as pipeline constants)
     view: vec4<u32>,
-    // aerosol phase function, tone map, batch count, 0
+    // aerosol phase function, tone map (a pipeline constant of the display pass), batch count, 0
     options: vec4<u32>,
     // steps: transmittance, multiple scattering, ground irradiance, sky view
     steps_a: vec4<u32>,
