@@ -3,7 +3,7 @@
 //! `atmoscope_model::methods::hillaire`.
 
 use crate::engine::Pass;
-use crate::prelude::{ShaderEntry, shader_source};
+use crate::prelude::shader_source;
 use crate::uniforms::{Batch, Globals};
 use atmoscope_model::methods::hillaire::{
     AERIAL_PERSPECTIVE_SIZE, GROUND_IRRADIANCE_SIZE, MULTIPLE_SCATTERING_SIZE, PROFILE_SAMPLES,
@@ -183,18 +183,6 @@ fn pass_layout(pass: Pass) -> Vec<wgpu::BindGroupLayoutEntry> {
     v
 }
 
-fn entry(pass: Pass) -> ShaderEntry {
-    match pass {
-        Pass::Transmittance => ShaderEntry::Transmittance,
-        Pass::MultipleScattering => ShaderEntry::MultipleScattering,
-        Pass::GroundIrradiance => ShaderEntry::GroundIrradiance,
-        Pass::SkyView => ShaderEntry::SkyView,
-        Pass::AerialPerspective => ShaderEntry::AerialPerspective,
-        Pass::Sky => ShaderEntry::Sky,
-        Pass::Display => ShaderEntry::Display,
-    }
-}
-
 /// Which variant of a pass's pipeline a frame needs: the values of its pipeline constants
 /// (projection and camera above the atmosphere for the sky pass, display mode and tone map for
 /// the display pass; none for the tables).
@@ -233,8 +221,8 @@ impl Pipelines {
             });
             p.modules
                 .push(device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some(entry(pass).file().0),
-                    source: wgpu::ShaderSource::Wgsl(shader_source(entry(pass)).into()),
+                    label: Some(pass.shader_file().0),
+                    source: wgpu::ShaderSource::Wgsl(shader_source(pass).into()),
                 }));
             p.pipeline_layouts.push(device.create_pipeline_layout(
                 &wgpu::PipelineLayoutDescriptor {

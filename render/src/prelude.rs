@@ -2,6 +2,7 @@
 //! placement codes, the sun's size, colour conversion rows, enum codes) written from its one
 //! home in the model crate, followed by the common WGSL files and one pass's entry file.
 
+use crate::engine::Pass;
 use crate::uniforms::{
     DisplayMode, display_code, phase_code, projection_code, spacing_code, tone_map_code,
 };
@@ -18,66 +19,39 @@ use std::fmt::Write;
 /// Workgroup edge of every compute pass (WORKGROUP_SIZE × WORKGROUP_SIZE × 1).
 pub const WORKGROUP_SIZE: u32 = 8;
 
-/// A pass's WGSL entry file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum ShaderEntry {
-    Transmittance,
-    MultipleScattering,
-    GroundIrradiance,
-    SkyView,
-    AerialPerspective,
-    Sky,
-    Display,
-}
-
-impl ShaderEntry {
-    pub const ALL: [ShaderEntry; 7] = [
-        ShaderEntry::Transmittance,
-        ShaderEntry::MultipleScattering,
-        ShaderEntry::GroundIrradiance,
-        ShaderEntry::SkyView,
-        ShaderEntry::AerialPerspective,
-        ShaderEntry::Sky,
-        ShaderEntry::Display,
-    ];
-
-    /// Path under `shaders/` and text of the entry file.
-    pub fn file(self) -> (&'static str, &'static str) {
+impl Pass {
+    /// Path under `shaders/` and text of the pass's WGSL entry file.
+    pub fn shader_file(self) -> (&'static str, &'static str) {
         match self {
-            ShaderEntry::Transmittance => (
+            Pass::Transmittance => (
                 "hillaire/transmittance.wgsl",
                 include_str!("../../shaders/hillaire/transmittance.wgsl"),
             ),
-            ShaderEntry::MultipleScattering => (
+            Pass::MultipleScattering => (
                 "hillaire/multiple_scattering.wgsl",
                 include_str!("../../shaders/hillaire/multiple_scattering.wgsl"),
             ),
-            ShaderEntry::GroundIrradiance => (
+            Pass::GroundIrradiance => (
                 "hillaire/ground_irradiance.wgsl",
                 include_str!("../../shaders/hillaire/ground_irradiance.wgsl"),
             ),
-            ShaderEntry::SkyView => (
+            Pass::SkyView => (
                 "hillaire/sky_view.wgsl",
                 include_str!("../../shaders/hillaire/sky_view.wgsl"),
             ),
-            ShaderEntry::AerialPerspective => (
+            Pass::AerialPerspective => (
                 "hillaire/aerial_perspective.wgsl",
                 include_str!("../../shaders/hillaire/aerial_perspective.wgsl"),
             ),
-            ShaderEntry::Sky => (
+            Pass::Sky => (
                 "hillaire/sky.wgsl",
                 include_str!("../../shaders/hillaire/sky.wgsl"),
             ),
-            ShaderEntry::Display => (
+            Pass::Display => (
                 "views/display.wgsl",
                 include_str!("../../shaders/views/display.wgsl"),
             ),
         }
-    }
-
-    /// Whether the entry uses the Hillaire method's shared functions.
-    fn is_hillaire(self) -> bool {
-        !matches!(self, ShaderEntry::Display)
     }
 }
 
@@ -224,14 +198,15 @@ pub fn wgsl_prelude() -> String {
 }
 
 /// The complete WGSL module of one pass.
-pub fn shader_source(entry: ShaderEntry) -> String {
+pub fn shader_source(pass: Pass) -> String {
     let mut s = wgsl_prelude();
     for part in COMMON {
         s.push_str(part);
     }
-    if entry.is_hillaire() {
+    // Every pass but the display belongs to the Hillaire method.
+    if pass != Pass::Display {
         s.push_str(HILLAIRE_COMMON);
     }
-    s.push_str(entry.file().1);
+    s.push_str(pass.shader_file().1);
     s
 }

@@ -11,16 +11,16 @@ use atmoscope_model::colour::linear_srgb_to_xyz;
 use atmoscope_model::methods::hillaire::{self, Lut, Params, Tables};
 use atmoscope_model::metrics::{DisplaySetup, compare};
 use atmoscope_model::scene::{Quality, Scene, SunSettings, WavelengthSet};
-use atmoscope_render::prelude::{ShaderEntry, shader_source};
+use atmoscope_render::prelude::shader_source;
 use atmoscope_render::uniforms::{Batch, Globals};
 use atmoscope_render::{Engine, Pass, Table, View};
 use common::context;
 
 #[test]
 fn every_shader_parses_validates_and_matches_the_rust_layouts() {
-    for entry in ShaderEntry::ALL {
-        let (file, _) = entry.file();
-        let src = shader_source(entry);
+    for pass in Pass::ALL {
+        let (file, _) = pass.shader_file();
+        let src = shader_source(pass);
         let module = naga::front::wgsl::parse_str(&src)
             .unwrap_or_else(|e| panic!("{file}: {}", e.emit_to_string(&src)));
         naga::valid::Validator::new(

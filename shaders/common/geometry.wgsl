@@ -32,6 +32,14 @@ fn distance_to_ground(h: f32, mu: f32) -> f32 {
     return 0.0;
 }
 
+// Distance to where the ray leaves the atmosphere: the ground if it hits it, else the top.
+fn distance_to_boundary(h: f32, mu: f32) -> f32 {
+    if hits_ground(h, mu) {
+        return distance_to_ground(h, mu);
+    }
+    return distance_to_top(h, mu);
+}
+
 // (altitude, radius) at distance t along the ray (h, mu).
 fn altitude_along(h: f32, mu: f32, t: f32) -> vec2<f32> {
     let r = bottom_radius() + h;

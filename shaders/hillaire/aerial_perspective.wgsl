@@ -13,12 +13,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let omega = direction_from_phi_theta(angles.x, angles.y);
     let mu = omega.z;
     let nu = dot(omega, local_sun(mu_s));
-    var t_limit: f32;
-    if hits_ground(h, mu) {
-        t_limit = distance_to_ground(h, mu);
-    } else {
-        t_limit = distance_to_top(h, mu);
-    }
+    let t_limit = distance_to_boundary(h, mu);
     let e = batches[layer].solar_irradiance;
     var inscattered = vec4<f32>(0.0);
     var throughput = vec4<f32>(1.0);

@@ -12,12 +12,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let omega = direction_from_phi_theta(angles.x, angles.y);
     let mu = omega.z;
     let nu = dot(omega, local_sun(mu_s));
-    var t_max: f32;
-    if hits_ground(h, mu) {
-        t_max = distance_to_ground(h, mu);
-    } else {
-        t_max = distance_to_top(h, mu);
-    }
+    let t_max = distance_to_boundary(h, mu);
     let l = integrate_inscattering(id.z,
         vec4<f32>(h, mu, mu_s, nu), 0.0, t_max, globals.steps_a.w, SPACING_QUADRATIC);
     let i = (id.z * SKY_VIEW_SIZE.y + id.y) * SKY_VIEW_SIZE.x + id.x;

@@ -270,6 +270,15 @@ pub fn distance_to_ground(h: f64, mu: f64, big_r: f64) -> f64 {
     }
 }
 
+/// Distance to where the ray leaves the atmosphere: the ground if it hits it, else the top.
+pub fn distance_to_boundary(h: f64, mu: f64, big_r: f64, top: f64) -> f64 {
+    if hits_ground(h, mu, big_r) {
+        distance_to_ground(h, mu, big_r)
+    } else {
+        distance_to_top(h, mu, big_r, top)
+    }
+}
+
 /// Altitude and radius at distance `t` along the ray (h, mu).
 pub fn altitude_along(h: f64, mu: f64, t: f64, big_r: f64) -> (f64, f64) {
     let r = big_r + h;
@@ -750,11 +759,7 @@ pub fn compute_sky_view_lut(p: &Params, t: &Lut, ms: &Lut, vp: Viewpoint) -> Lut
         let omega = direction_from_phi_theta(phi, theta);
         let (mu, nu) = (omega.z, omega.dot(local_sun(vp.mu_s)));
         let big_r = p.bottom_radius_m;
-        let t_max = if hits_ground(vp.h, mu, big_r) {
-            distance_to_ground(vp.h, mu, big_r)
-        } else {
-            distance_to_top(vp.h, mu, big_r, p.top_radius_m)
-        };
+        let t_max = distance_to_boundary(vp.h, mu, big_r, p.top_radius_m);
         let (l, _) = integrate_inscattering(
             p,
             t,
@@ -842,11 +847,7 @@ pub fn compute_aerial_perspective(p: &Params, t: &Lut, ms: &Lut, vp: Viewpoint) 
             let (phi, theta) = aerial_perspective_angles_from_texel(p, vp.h, x as f64, y as f64);
             let omega = direction_from_phi_theta(phi, theta);
             let (mu, nu) = (omega.z, omega.dot(local_sun(vp.mu_s)));
-            let t_limit = if hits_ground(vp.h, mu, big_r) {
-                distance_to_ground(vp.h, mu, big_r)
-            } else {
-                distance_to_top(vp.h, mu, big_r, p.top_radius_m)
-            };
+            let t_limit = distance_to_boundary(vp.h, mu, big_r, p.top_radius_m);
             let e = p.batches[layer].solar_irradiance;
             let mut inscattered = [0.0; LANES];
             let mut throughput = [1.0; LANES];
