@@ -91,6 +91,26 @@ fn ldr_flip(reference: &[u8], test: &[u8], width: u32, height: u32, ppd: f64) ->
         .collect()
 }
 
+fn delta_e2000_of_rgb8(test: &[u8], reference: &[u8]) -> Vec<f64> {
+    let lab = |px: &[u8]| {
+        linear_srgb_to_lab([px[0], px[1], px[2]].map(|v| srgb_decode(v as f64 / 255.0)))
+    };
+    test.chunks_exact(3)
+        .zip(reference.chunks_exact(3))
+        .map(|(t, r)| delta_e2000(lab(t), lab(r)))
+        .collect()
+}
+
+/// Per-pixel CIEDE2000 between the display-referred images of `test` and `reference` (same
+/// size): the cheap part of [`compare`], for interactive use.
+pub fn delta_e2000_map(test: &[[f64; 3]], reference: &[[f64; 3]], setup: DisplaySetup) -> Vec<f64> {
+    assert_eq!(test.len(), reference.len(), "images differ in size");
+    delta_e2000_of_rgb8(
+        &to_rgb8(test, setup.exposure_ev, setup.tone_map),
+        &to_rgb8(reference, setup.exposure_ev, setup.tone_map),
+    )
+}
+
 /// Compares `test` with `reference` (same size, `width` × `height`).
 pub fn compare(
     test: &[[f64; 3]],
@@ -112,14 +132,7 @@ pub fn compare(
     );
     let t8 = to_rgb8(test, setup.exposure_ev, setup.tone_map);
     let r8 = to_rgb8(reference, setup.exposure_ev, setup.tone_map);
-    let lab = |px: &[u8]| {
-        linear_srgb_to_lab([px[0], px[1], px[2]].map(|v| srgb_decode(v as f64 / 255.0)))
-    };
-    let delta_e: Vec<f64> = t8
-        .chunks_exact(3)
-        .zip(r8.chunks_exact(3))
-        .map(|(t, r)| delta_e2000(lab(t), lab(r)))
-        .collect();
+    let delta_e = delta_e2000_of_rgb8(&t8, &r8);
     let flip = ldr_flip(&r8, &t8, width, height, setup.pixels_per_degree);
     let hdr = hdr_flip(test, reference, width, height, setup.pixels_per_degree);
     let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
@@ -218,5 +231,15 @@ mod tests {
             c.delta_e2000_mean > 0.3 && c.ldr_flip_mean > 0.0 && c.hdr_flip_mean > 0.0,
             "{c:?}"
         );
+    }
+
+    #[test]
+    fn the_delta_e_map_is_the_one_compare_reports() {
+        let a = gradient(16, 8, 1.0);
+        let b: Vec<[f64; 3]> = a.iter().map(|c| c.map(|v| v * 1.3)).collect();
+        let (_, maps) = compare(&b, &a, 16, 8, DisplaySetup::default());
+        let map = delta_e2000_map(&b, &a, DisplaySetup::default());
+        assert_eq!(map, maps.delta_e2000);
+        assert!(map.iter().any(|&d| d > 1.0));
     }
 }

@@ -527,6 +527,19 @@ impl Engine {
         self.target.as_ref().map(|t| &t.display)
     }
 
+    /// A sampled view of the displayed image that decodes its sRGB bytes to linear colour, for
+    /// compositors that work in linear light (egui-wgpu). Recreated when the view's size changes.
+    pub fn display_view_srgb(&self) -> Option<wgpu::TextureView> {
+        self.display_texture().map(|t| {
+            t.create_view(&wgpu::TextureViewDescriptor {
+                label: Some("display (sRGB view)"),
+                format: Some(wgpu::TextureFormat::Rgba8UnormSrgb),
+                usage: Some(wgpu::TextureUsages::TEXTURE_BINDING),
+                ..Default::default()
+            })
+        })
+    }
+
     /// Reads the linear radiance back, row-major from the top row.
     pub fn read_radiance(&self) -> Result<Vec<[f32; 4]>, EngineError> {
         let t = self.radiance_texture().ok_or(EngineError::NotRendered)?;
@@ -598,7 +611,7 @@ impl Target {
         luts: &LutBuffers,
         size: [u32; 2],
     ) -> Target {
-        let texture = |label, format| {
+        let texture = |label, format, view_formats: &[wgpu::TextureFormat]| {
             device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
                 size: wgpu::Extent3d {
@@ -613,11 +626,16 @@ impl Target {
                 usage: wgpu::TextureUsages::STORAGE_BINDING
                     | wgpu::TextureUsages::TEXTURE_BINDING
                     | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
+                view_formats,
             })
         };
-        let radiance = texture("radiance", wgpu::TextureFormat::Rgba32Float);
-        let display = texture("display", wgpu::TextureFormat::Rgba8Unorm);
+        let radiance = texture("radiance", wgpu::TextureFormat::Rgba32Float, &[]);
+        // The sRGB view lets a UI sample the encoded bytes as linear colour (egui decodes).
+        let display = texture(
+            "display",
+            wgpu::TextureFormat::Rgba8Unorm,
+            &[wgpu::TextureFormat::Rgba8UnormSrgb],
+        );
         let sky_group = luts.sky_group(device, pipelines, &radiance);
         let display_group = pipelines.display_group(device, &radiance, &display);
         Target {

@@ -1,43 +1,195 @@
 //! The explorer window (eframe + egui on wgpu). Panels live one per module and return what they
-//! want changed; the app applies it once per frame and repaints only when something changed.
+//! want changed; the app applies it once per frame. Only the active tab's views are drawn, each
+//! engine skips passes whose inputs did not change, and the window repaints only on input or
+//! while background work (path tracing, inspection, exports) is in progress.
 
+mod compare_tab;
+mod files;
+mod gpu_view;
+mod inspector;
+mod jobs;
+mod lut_tab;
+mod performance_panel;
+mod reference_tab;
 mod scene_panel;
+mod sky_tab;
 mod summary_panel;
 
 use crate::cli::SceneArgs;
 use crate::presets::load_shipped;
 use atmoscope_model::Scene;
+use compare_tab::{CompareSettings, CompareTab};
 use eframe::egui;
+use files::ExportKind;
+use gpu_view::{Gpu, GpuView};
+use inspector::{Inspector, Probe};
+use jobs::Job;
+use lut_tab::{LutSettings, LutTab};
+use reference_tab::{ReferenceSettings, ReferenceTab};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::time::Instant;
 
-/// Storage key of the last scene.
+/// Storage keys of the last scene and layout.
 const SCENE_KEY: &str = "scene";
+const LAYOUT_KEY: &str = "layout";
+
+/// The centre tabs, with their shortcut keys 1–6.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+pub enum Tab {
+    #[default]
+    Sky,
+    Fisheye,
+    Luminance,
+    Compare,
+    Luts,
+    Reference,
+}
+
+impl Tab {
+    pub const ALL: [Tab; 6] = [
+        Tab::Sky,
+        Tab::Fisheye,
+        Tab::Luminance,
+        Tab::Compare,
+        Tab::Luts,
+        Tab::Reference,
+    ];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Tab::Sky => "Sky",
+            Tab::Fisheye => "Fisheye",
+            Tab::Luminance => "Luminance",
+            Tab::Compare => "Compare",
+            Tab::Luts => "LUTs",
+            Tab::Reference => "Reference",
+        }
+    }
+
+    fn key(self) -> egui::Key {
+        const KEYS: [egui::Key; 6] = [
+            egui::Key::Num1,
+            egui::Key::Num2,
+            egui::Key::Num3,
+            egui::Key::Num4,
+            egui::Key::Num5,
+            egui::Key::Num6,
+        ];
+        KEYS[Tab::ALL.iter().position(|&t| t == self).unwrap_or(0)]
+    }
+}
+
+/// Everything about the window that is not the scene; restored on start.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct Layout {
+    pub tab: Tab,
+    /// Texels per screen pixel of the views (0.25–1): lower is faster on a software renderer.
+    pub render_scale: f32,
+    /// Luminance map range, log10 cd/m².
+    pub luminance_log10_range: [f64; 2],
+    pub compare: CompareSettings,
+    pub luts: LutSettings,
+    pub reference: ReferenceSettings,
+    pub show_inspector: bool,
+    pub show_performance: bool,
+}
+
+impl Default for Layout {
+    fn default() -> Self {
+        Layout {
+            tab: Tab::Sky,
+            render_scale: 1.0,
+            luminance_log10_range: [-2.0, 5.0],
+            compare: CompareSettings::default(),
+            luts: LutSettings::default(),
+            reference: ReferenceSettings::default(),
+            show_inspector: true,
+            show_performance: true,
+        }
+    }
+}
 
 /// What a panel asks the app to do.
 pub enum Command {
-    /// Replace the scene (already validated by the panel's widgets' ranges).
+    /// Replace the scene (validated before it is applied).
     SetScene(Box<Scene>),
     /// Load a shipped preset by file name.
     LoadPreset(&'static str),
+    /// Load a preset file; on any error the scene stays as it was.
+    LoadFile(PathBuf),
+    SaveFile(PathBuf),
+    CopyRon,
+    Export(ExportKind, PathBuf),
+    /// Analyse pixel (x, y) of the active view.
+    Inspect { tab: Tab, x: u32, y: u32 },
+}
+
+/// GPU state, present when eframe runs on wgpu.
+struct Views {
+    gpu: Gpu,
+    main: GpuView,
+    compare: CompareTab,
+    reference: ReferenceTab,
 }
 
 pub struct ExplorerApp {
     scene: Scene,
-    summary: summary_panel::SummaryPanel,
-    /// A message for the user (e.g. why a preset did not load), dismissible.
+    layout: Layout,
+    views: Option<Views>,
+    luts: LutTab,
+    inspector: Inspector,
+    /// A message for the user (why a preset did not load), dismissible.
     message: Option<String>,
+    /// What the last finished export or save did.
+    notice: Option<String>,
+    exports: Vec<Job<anyhow::Result<Option<String>>>>,
+    last_frame: Option<Instant>,
+    ui_frame_ms: f64,
+    /// Print each frame's passes and times to stderr (ATMOSCOPE_FRAME_LOG=1).
+    frame_log: bool,
 }
 
 impl ExplorerApp {
-    pub fn new(scene: Scene) -> ExplorerApp {
+    pub fn new(scene: Scene, layout: Layout, render_state: Option<&eframe::egui_wgpu::RenderState>) -> ExplorerApp {
+        let views = render_state.map(|rs| {
+            let gpu = Gpu::from_render_state(rs);
+            Views {
+                main: GpuView::new(&gpu),
+                compare: CompareTab::new(&gpu),
+                reference: ReferenceTab::new(&gpu),
+                gpu,
+            }
+        });
         ExplorerApp {
             scene,
-            summary: summary_panel::SummaryPanel::default(),
+            layout,
+            views,
+            luts: LutTab::default(),
+            inspector: Inspector::default(),
             message: None,
+            notice: None,
+            exports: Vec::new(),
+            last_frame: None,
+            ui_frame_ms: 0.0,
+            frame_log: std::env::var_os("ATMOSCOPE_FRAME_LOG").is_some(),
         }
     }
 
-    fn apply(&mut self, command: Command) {
+    fn load_file(&mut self, path: &Path) {
+        match Scene::load(path) {
+            Ok(scene) => {
+                self.scene = scene;
+                self.message = None;
+                self.notice = Some(format!("loaded {}", path.display()));
+            }
+            Err(e) => self.message = Some(e.to_string()),
+        }
+    }
+
+    fn apply(&mut self, ctx: &egui::Context, command: Command) {
         match command {
             Command::SetScene(scene) => match scene.validate() {
                 Ok(()) => self.scene = *scene,
@@ -56,13 +208,294 @@ impl ExplorerApp {
                 Some(Err(e)) => self.message = Some(e.to_string()),
                 None => self.message = Some(format!("no shipped preset {name}")),
             },
+            Command::LoadFile(path) => self.load_file(&path),
+            Command::SaveFile(path) => match std::fs::write(&path, self.scene.to_ron()) {
+                Ok(()) => self.notice = Some(format!("saved {}", path.display())),
+                Err(e) => self.message = Some(format!("cannot write {}: {e}", path.display())),
+            },
+            Command::CopyRon => {
+                ctx.copy_text(self.scene.to_ron());
+                self.notice = Some("copied the scene as RON".into());
+            }
+            Command::Export(kind, path) => self.export(ctx, kind, path),
+            Command::Inspect { tab, x, y } => self.inspect(ctx, tab, x, y),
         }
+    }
+
+    fn export(&mut self, ctx: &egui::Context, kind: ExportKind, path: PathBuf) {
+        let Some(views) = &mut self.views else {
+            self.message = Some("exports need the GPU renderer".into());
+            return;
+        };
+        let Some(view) = views.main.view() else {
+            self.message = Some("nothing has been drawn yet".into());
+            return;
+        };
+        let (w, h) = (view.width, view.height);
+        let label = format!("exporting {}", path.display());
+        let job = match kind {
+            ExportKind::Png => match views.main.display_rgba8() {
+                Ok(rgba) => Job::spawn(label, ctx, move |_| {
+                    files::write_display_png(&path, &rgba, w, h)
+                        .map(|()| Some(format!("wrote {} ({w}×{h}, as displayed)", path.display())))
+                }),
+                Err(e) => return self.message = Some(e.to_string()),
+            },
+            ExportKind::Exr => match views.main.radiance() {
+                Ok(r) => Job::spawn(label, ctx, move |_| {
+                    files::write_radiance_exr(&path, &r.rgba, w, h)
+                        .map(|()| Some(format!("wrote {} ({w}×{h}, linear radiance)", path.display())))
+                }),
+                Err(e) => return self.message = Some(e.to_string()),
+            },
+            ExportKind::PanoramaExr => {
+                let (gpu, scene) = (views.gpu.clone(), self.scene.clone());
+                Job::spawn(label, ctx, move |p| files::export_panorama(&gpu, &scene, &path, p))
+            }
+        };
+        self.exports.push(job);
+    }
+
+    fn inspect(&mut self, ctx: &egui::Context, tab: Tab, x: u32, y: u32) {
+        let Some(views) = &mut self.views else { return };
+        let Some(view) = views.main.view() else { return };
+        let Some(ray) = sky_tab::ray_at(&self.scene, &view, x, y) else {
+            return;
+        };
+        let displayed = views.main.radiance().ok().and_then(|r| r.at(x, y));
+        let (elevation, azimuth) = inspector::angles_of(ray.direction);
+        self.inspector.inspect(
+            ctx,
+            Probe {
+                label: format!(
+                    "{} pixel ({x}, {y}): elevation {elevation:.2}°, azimuth {azimuth:.2}°",
+                    tab.label()
+                ),
+                scene: self.scene.clone(),
+                ray,
+                displayed,
+            },
+        );
+        self.layout.show_inspector = true;
+    }
+
+    /// Collects finished background work.
+    fn poll_jobs(&mut self) {
+        let mut i = 0;
+        while i < self.exports.len() {
+            match self.exports[i].take() {
+                Some(result) => {
+                    self.exports.remove(i);
+                    match result {
+                        Ok(Ok(Some(done))) => self.notice = Some(done),
+                        Ok(Ok(None)) => self.notice = Some("export cancelled".into()),
+                        Ok(Err(e)) => self.message = Some(format!("{e:#}")),
+                        Err(e) => self.message = Some(e),
+                    }
+                }
+                None => i += 1,
+            }
+        }
+        if let Some(e) = self.inspector.poll() {
+            self.message = Some(e);
+        }
+    }
+
+    fn busy(&self) -> bool {
+        !self.exports.is_empty()
+            || self.inspector.job().is_some()
+            || self
+                .views
+                .as_ref()
+                .is_some_and(|v| v.reference.job().is_some() && self.layout.tab == Tab::Reference)
+    }
+
+    fn shortcuts(&mut self, ctx: &egui::Context) -> Vec<Command> {
+        use egui::{Key, KeyboardShortcut, Modifiers};
+        let mut commands = Vec::new();
+        let ctrl = |k| KeyboardShortcut::new(Modifiers::COMMAND, k);
+        let ctrl_shift = |k| KeyboardShortcut::new(Modifiers::COMMAND | Modifiers::SHIFT, k);
+        ctx.input_mut(|i| {
+            if i.consume_shortcut(&ctrl_shift(Key::C)) {
+                commands.push(Command::CopyRon);
+            }
+            if i.consume_shortcut(&ctrl_shift(Key::E)) {
+                if let Some(p) = files::pick_export(ExportKind::Exr) {
+                    commands.push(Command::Export(ExportKind::Exr, p));
+                }
+            }
+            if i.consume_shortcut(&ctrl(Key::E)) {
+                if let Some(p) = files::pick_export(ExportKind::Png) {
+                    commands.push(Command::Export(ExportKind::Png, p));
+                }
+            }
+            if i.consume_shortcut(&ctrl(Key::O)) {
+                if let Some(p) = files::pick_preset_to_open() {
+                    commands.push(Command::LoadFile(p));
+                }
+            }
+            if i.consume_shortcut(&ctrl(Key::S)) {
+                if let Some(p) = files::pick_preset_to_save(&self.scene) {
+                    commands.push(Command::SaveFile(p));
+                }
+            }
+        });
+        // Plain keys only when no text field has the keyboard.
+        if !ctx.egui_wants_keyboard_input() {
+            ctx.input(|i| {
+                for tab in Tab::ALL {
+                    if i.key_pressed(tab.key()) && i.modifiers.is_none() {
+                        self.layout.tab = tab;
+                    }
+                }
+                if i.key_pressed(Key::I) && i.modifiers.is_none() {
+                    self.layout.show_inspector ^= true;
+                }
+                if i.key_pressed(Key::P) && i.modifiers.is_none() {
+                    self.layout.show_performance ^= true;
+                }
+            });
+        }
+        for file in ctx.input(|i| i.raw.dropped_files.clone()) {
+            commands.push(Command::LoadFile(file.path().to_path_buf()));
+        }
+        commands
+    }
+
+    fn menu(&mut self, ui: &mut egui::Ui) -> Vec<Command> {
+        let mut commands = Vec::new();
+        egui::MenuBar::new().ui(ui, |ui| {
+            ui.menu_button("File", |ui| {
+                if ui.button("Open preset…  (Ctrl+O)").clicked() {
+                    commands.extend(files::pick_preset_to_open().map(Command::LoadFile));
+                }
+                if ui.button("Save preset…  (Ctrl+S)").clicked() {
+                    commands.extend(files::pick_preset_to_save(&self.scene).map(Command::SaveFile));
+                }
+                if ui.button("Copy scene as RON  (Ctrl+Shift+C)").clicked() {
+                    commands.push(Command::CopyRon);
+                }
+                ui.separator();
+                for (kind, key) in [
+                    (ExportKind::Png, "  (Ctrl+E)"),
+                    (ExportKind::Exr, "  (Ctrl+Shift+E)"),
+                    (ExportKind::PanoramaExr, ""),
+                ] {
+                    if ui.button(format!("{}…{key}", kind.title())).clicked() {
+                        commands.extend(files::pick_export(kind).map(|p| Command::Export(kind, p)));
+                    }
+                }
+            });
+            ui.menu_button("View", |ui| {
+                ui.checkbox(&mut self.layout.show_inspector, "Inspector  (I)");
+                ui.checkbox(&mut self.layout.show_performance, "Performance  (P)");
+                ui.horizontal(|ui| {
+                    ui.label("render scale");
+                    for s in [0.25, 0.5, 1.0] {
+                        ui.selectable_value(&mut self.layout.render_scale, s, format!("{:.0} %", s * 100.0));
+                    }
+                })
+                .response
+                .on_hover_text("Texels per screen pixel: a lower scale draws faster on a software renderer.");
+            });
+            ui.separator();
+            for tab in Tab::ALL {
+                ui.selectable_value(&mut self.layout.tab, tab, tab.label());
+            }
+        });
+        commands
+    }
+
+    fn centre(&mut self, ui: &mut egui::Ui) -> Vec<Command> {
+        let Some(views) = &mut self.views else {
+            ui.label("Atmoscope needs eframe's wgpu renderer to draw the views.");
+            return Vec::new();
+        };
+        let tab = self.layout.tab;
+        match tab {
+            Tab::Sky | Tab::Fisheye | Tab::Luminance => {
+                sky_tab::show(ui, &self.scene, &mut views.main, tab, &mut self.layout)
+            }
+            Tab::Compare => {
+                views.compare.show(ui, &self.scene, &mut self.layout);
+                Vec::new()
+            }
+            Tab::Luts => {
+                // The tables of the current scene: redraw the main view if the scene changed.
+                let view = views.main.view().unwrap_or_else(|| {
+                    sky_tab::view_for(Tab::Sky, &self.layout, [320, 180])
+                });
+                views.main.render(&self.scene, &view);
+                self.luts.show(ui, &self.scene, &views.main, &mut self.layout.luts);
+                Vec::new()
+            }
+            Tab::Reference => {
+                views.reference.show(ui, &self.scene, &mut self.layout.reference);
+                Vec::new()
+            }
+        }
+    }
+
+    fn log_frame(&self) {
+        let Some(views) = &self.views else { return };
+        let s = views.main.stats();
+        let ms: f64 = s.timings_ms.iter().map(|(_, ms)| ms).sum();
+        eprintln!(
+            "frame: tab {:?}, view {:?}, passes run {:?}, skipped {}, pass time {ms:.1} ms, frame wall {:.1} ms, UI interval {:.1} ms",
+            self.layout.tab,
+            views.main.view().map(|v| (v.width, v.height)),
+            s.run.iter().map(|p| p.name()).collect::<Vec<_>>(),
+            s.skipped.len(),
+            if s.run.is_empty() { 0.0 } else { views.main.last_frame_ms },
+            self.ui_frame_ms
+        );
     }
 }
 
 impl eframe::App for ExplorerApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
-        let mut commands = Vec::new();
+        let ctx = ui.ctx().clone();
+        let now = Instant::now();
+        if let Some(last) = self.last_frame {
+            self.ui_frame_ms = (now - last).as_secs_f64() * 1e3;
+        }
+        self.last_frame = Some(now);
+        self.poll_jobs();
+        let mut commands = self.shortcuts(&ctx);
+        egui::Panel::top("menu").show(ui, |ui| commands.extend(self.menu(ui)));
+        egui::Panel::bottom("status").show(ui, |ui| {
+            if let Some(message) = &self.message {
+                let mut dismissed = false;
+                ui.horizontal(|ui| {
+                    ui.colored_label(ui.visuals().error_fg_color, message);
+                    dismissed = ui.button("Dismiss").clicked();
+                });
+                if dismissed {
+                    self.message = None;
+                }
+            }
+            for job in &self.exports {
+                job.show(ui);
+            }
+            if let Some(notice) = &self.notice {
+                ui.label(notice);
+            }
+            if self.layout.show_performance {
+                if let Some(views) = &self.views {
+                    let mut shown: Vec<(&str, &GpuView)> = Vec::new();
+                    match self.layout.tab {
+                        Tab::Compare => {
+                            for (name, v) in ["A", "B", "reference"].iter().zip(views.compare.views()) {
+                                shown.push((name, v));
+                            }
+                        }
+                        Tab::Reference => shown.push(("real time", views.reference.realtime())),
+                        _ => shown.push(("view", &views.main)),
+                    }
+                    performance_panel::show(ui, &shown, self.ui_frame_ms, &views.gpu.adapter);
+                }
+            }
+        });
         egui::Panel::left("scene")
             .resizable(true)
             .default_size(330.0)
@@ -71,26 +504,29 @@ impl eframe::App for ExplorerApp {
                     commands.extend(scene_panel::show(ui, &self.scene));
                 });
             });
-        if let Some(message) = &self.message {
-            let mut dismissed = false;
-            egui::Panel::bottom("message").show(ui, |ui| {
-                ui.horizontal(|ui| {
-                    ui.colored_label(ui.visuals().error_fg_color, message);
-                    dismissed = ui.button("Dismiss").clicked();
+        if self.layout.show_inspector {
+            egui::Panel::right("inspector")
+                .resizable(true)
+                .default_size(360.0)
+                .show(ui, |ui| {
+                    egui::ScrollArea::vertical().show(ui, |ui| self.inspector.show(ui, &self.scene));
                 });
-            });
-            if dismissed {
-                self.message = None;
-            }
         }
-        egui::CentralPanel::default().show(ui, |ui| self.summary.show(ui, &self.scene));
+        egui::CentralPanel::default().show(ui, |ui| commands.extend(self.centre(ui)));
         for c in commands {
-            self.apply(c);
+            self.apply(&ctx, c);
+        }
+        if self.frame_log {
+            self.log_frame();
+        }
+        if self.busy() {
+            ctx.request_repaint_after(std::time::Duration::from_millis(250));
         }
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         eframe::set_value(storage, SCENE_KEY, &self.scene);
+        eframe::set_value(storage, LAYOUT_KEY, &self.layout);
     }
 }
 
@@ -102,7 +538,9 @@ pub fn run(args: SceneArgs) -> anyhow::Result<ExitCode> {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_inner_size([1280.0, 800.0])
-            .with_title("Atmoscope"),
+            .with_title("Atmoscope")
+            .with_drag_and_drop(true),
+        wgpu_options: wgpu_options(),
         ..Default::default()
     };
     eframe::run_native(
@@ -113,13 +551,35 @@ pub fn run(args: SceneArgs) -> anyhow::Result<ExitCode> {
                 .storage
                 .and_then(|s| eframe::get_value::<Scene>(s, SCENE_KEY))
                 .filter(|s| s.validate().is_ok());
+            let layout = cc
+                .storage
+                .and_then(|s| eframe::get_value::<Layout>(s, LAYOUT_KEY))
+                .unwrap_or_default();
             Ok(Box::new(ExplorerApp::new(
                 scene.or(restored).unwrap_or_default(),
+                layout,
+                cc.wgpu_render_state.as_ref(),
             )))
         }),
     )
     .map_err(|e| anyhow::anyhow!("cannot open the explorer window: {e}"))?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// Asks the device for timestamp queries where the adapter has them, so the Performance
+/// panel shows GPU time per pass (it falls back to fenced wall time otherwise).
+fn wgpu_options() -> eframe::egui_wgpu::WgpuConfiguration {
+    use eframe::egui_wgpu::{WgpuConfiguration, WgpuSetup, wgpu};
+    let mut config = WgpuConfiguration::default();
+    if let WgpuSetup::CreateNew(create) = &mut config.wgpu_setup {
+        let base = create.device_descriptor.clone();
+        create.device_descriptor = std::sync::Arc::new(move |adapter: &wgpu::Adapter| {
+            let mut d = base(adapter);
+            d.required_features |= adapter.features() & atmoscope_render::gpu::optional_features();
+            d
+        });
+    }
+    config
 }
 
 #[cfg(test)]

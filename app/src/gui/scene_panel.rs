@@ -217,7 +217,7 @@ fn ground_and_air(ui: &mut egui::Ui, s: &mut Scene) {
         })
         .response
         .on_hover_text(
-            "Density of air with height. Air molecules scatter blue light about five times more than red (Rayleigh, ∝ λ⁻⁴), \
+            "Density of air with height. Air molecules scatter blue light about five times more than red (Rayleigh, ∝ λ^-4), \
              which makes the sky blue.",
         );
     ui.checkbox(&mut atm.rayleigh_depolarisation, "Rayleigh depolarisation")

@@ -1,48 +1,94 @@
-//! The explorer driven through its controls, as a user would, with egui_kittest.
+//! The explorer driven through its controls, as a user would, with egui_kittest and the wgpu
+//! renderer (lavapipe on machines without a GPU): every change must reach both the scene and
+//! the rendered view.
 
-use super::ExplorerApp;
+use super::files::ExportKind;
+use super::{Command, ExplorerApp, Layout, Tab};
 use atmoscope_model::Scene;
 use atmoscope_model::aerosol::AerosolType;
 use eframe::egui;
 use eframe::egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+fn harness_with(layout: Layout, size: egui::Vec2) -> Harness<'static, ExplorerApp> {
+    let mut h = Harness::builder()
+        .with_size(size)
+        // Grids settle their column widths over a few frames.
+        .with_max_steps(12)
+        .wgpu()
+        .build_eframe(move |cc| {
+            assert!(
+                cc.wgpu_render_state.is_some(),
+                "the explorer's tests need the wgpu renderer (install mesa-vulkan-drivers)"
+            );
+            ExplorerApp::new(Scene::default(), layout.clone(), cc.wgpu_render_state.as_ref())
+        });
+    h.run();
+    h
+}
 
 fn harness() -> Harness<'static, ExplorerApp> {
-    Harness::builder()
-        .with_size(egui::vec2(1280.0, 1000.0))
-        .build_eframe(|_cc| ExplorerApp::new(Scene::default()))
+    harness_with(Layout::default(), egui::vec2(1280.0, 1000.0))
+}
+
+/// The main view's linear radiance as drawn now.
+fn radiance(h: &mut Harness<'static, ExplorerApp>) -> Vec<[f32; 4]> {
+    let views = h.state_mut().views.as_mut().expect("GPU views");
+    views.main.radiance().expect("drawn").rgba.clone()
+}
+
+/// Sets a slider through accesskit, lets the app redraw, and checks the view changed.
+fn slide_and_see_the_view_change(h: &mut Harness<'static, ExplorerApp>, label: &str, value: f64) {
+    let generation = |h: &Harness<'static, ExplorerApp>| {
+        h.state().views.as_ref().expect("GPU views").main.generation()
+    };
+    let (before, drawn) = (radiance(h), generation(h));
+    h.get_by_role_and_label(Role::Slider, label)
+        .set_value_accesskit(value);
+    h.run();
+    assert!(generation(h) > drawn, "{label}: no pass ran");
+    assert_ne!(radiance(h), before, "{label}: the view did not change");
 }
 
 #[test]
-fn sliders_change_albedo_sun_and_altitude() {
+fn sliders_change_albedo_sun_and_altitude_and_the_view_follows() {
     let mut h = harness();
-    h.get_by_role_and_label(Role::Slider, "ground albedo")
-        .set_value_accesskit(0.8);
-    h.run();
+    slide_and_see_the_view_change(&mut h, "ground albedo", 0.8);
     assert_eq!(h.state().scene.atmosphere.ground_albedo, 0.8);
 
-    h.get_by_role_and_label(Role::Slider, "elevation")
-        .set_value_accesskit(-10.0);
-    h.run();
+    slide_and_see_the_view_change(&mut h, "elevation", -10.0);
     assert_eq!(h.state().scene.sun.angles().elevation_deg, -10.0);
+    h.get_by_label("Summary per wavelength").click();
+    h.run();
     // The summary follows: no direct sunlight once the sun has set.
     let summary = h
         .state()
+        .inspector
         .summary
         .shown()
         .map(|info| info.wavelengths[0].direct_transmittance);
     assert_eq!(summary, Some(0.0));
 
-    h.get_by_role_and_label(Role::Slider, "altitude")
-        .set_value_accesskit(10_000.0);
-    h.run();
+    slide_and_see_the_view_change(&mut h, "altitude", 10_000.0);
     assert_eq!(h.state().scene.camera.altitude_m, 10_000.0);
 }
 
 #[test]
-fn choosing_an_aerosol_type_sets_its_typical_amount() {
+fn an_unchanged_frame_runs_no_gpu_pass() {
     let mut h = harness();
+    h.step();
+    let stats = h.state().views.as_ref().expect("GPU views").main.stats().clone();
+    assert!(stats.run.is_empty(), "ran {:?}", stats.run);
+    assert_eq!(stats.skipped.len(), atmoscope_render::Pass::ALL.len());
+}
+
+#[test]
+fn choosing_an_aerosol_type_sets_its_typical_amount_and_redraws() {
+    let mut h = harness();
+    let before = radiance(&mut h);
     h.get_by_role_and_label(Role::ComboBox, "Type").click();
     h.run();
     h.get_by_label("Urban").click_accesskit();
@@ -50,15 +96,16 @@ fn choosing_an_aerosol_type_sets_its_typical_amount() {
     let a = &h.state().scene.atmosphere.aerosol;
     assert_eq!(a.kind, AerosolType::Urban);
     assert_eq!(a.aod550, AerosolType::Urban.default_aod550());
+    assert_ne!(radiance(&mut h), before);
 }
 
 #[test]
-fn month_slider_sets_the_ozone_column() {
+fn month_slider_sets_the_ozone_column_and_redraws() {
     let mut h = harness();
-    h.get_by_role_and_label(Role::Slider, "month")
-        .set_value_accesskit(1.0);
+    slide_and_see_the_view_change(&mut h, "month", 1.0);
+    h.get_by_label("Summary per wavelength").click();
     h.run();
-    let info = h.state().summary.shown().map(|info| info.ozone_column_du);
+    let info = h.state().inspector.summary.shown().map(|info| info.ozone_column_du);
     assert_eq!(info, Some(347.0), "January at Arosa");
 }
 
@@ -74,11 +121,198 @@ fn loading_a_preset_replaces_the_scene() {
     assert!(h.state().message.is_none());
 }
 
-#[test]
-fn the_camera_can_be_moved_back_over_the_planet() {
-    let mut h = harness();
-    h.get_by_role_and_label(Role::Slider, "moved back")
-        .set_value_accesskit(1000.0);
+#[derive(Debug)]
+struct Dropped(PathBuf);
+
+impl egui::DroppedFile for Dropped {
+    fn path(&self) -> &Path {
+        &self.0
+    }
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
+}
+
+fn drop_file(h: &mut Harness<'static, ExplorerApp>, path: &Path) {
+    h.input_mut()
+        .dropped_files
+        .push(Arc::new(Dropped(path.to_path_buf())));
     h.run();
-    assert_eq!(h.state().scene.camera.back_km, 1000.0);
+}
+
+#[test]
+fn a_bad_preset_dropped_on_the_window_names_file_and_field_and_changes_nothing() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness();
+    let before = h.state().scene.clone();
+    let cases = [
+        ("broken.ron", "(camera: (altitude_m: ", "broken.ron"),
+        ("too-high.ron", "(camera: (altitude_m: 2e9))", "camera.altitude_m"),
+        ("newer.ron", "(version: 99)", "newer"),
+    ];
+    for (name, text, expected) in cases {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).expect("write");
+        drop_file(&mut h, &path);
+        let message = h.state().message.clone().unwrap_or_default();
+        assert!(
+            message.contains(name) && message.contains(expected),
+            "{name}: {message}"
+        );
+        assert_eq!(h.state().scene, before, "{name} changed the scene");
+        h.get_by_label("Dismiss").click();
+        h.run();
+        assert!(h.state().message.is_none());
+    }
+    // A good one loads.
+    let mut good = Scene::default();
+    good.camera.altitude_m = 1234.0;
+    let path = dir.path().join("good.ron");
+    std::fs::write(&path, good.to_ron()).expect("write");
+    drop_file(&mut h, &path);
+    assert_eq!(h.state().scene.camera.altitude_m, 1234.0);
+}
+
+fn wait_for_exports(h: &mut Harness<'static, ExplorerApp>) {
+    for job in &h.state().exports {
+        super::jobs::wait(job);
+    }
+    h.run_steps(2);
+    assert!(h.state().exports.is_empty());
+}
+
+#[test]
+fn exports_png_and_exr_that_read_back_as_drawn() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness();
+    let ctx = h.ctx.clone();
+    let png = dir.path().join("view.png");
+    let exr = dir.path().join("view.exr");
+    h.state_mut()
+        .apply(&ctx, Command::Export(ExportKind::Png, png.clone()));
+    h.state_mut()
+        .apply(&ctx, Command::Export(ExportKind::Exr, exr.clone()));
+    // What was on screen when the exports were asked for.
+    let views = h.state().views.as_ref().expect("GPU views");
+    let view = views.main.view().expect("drawn");
+    let shown = views.main.display_rgba8().expect("display");
+    let radiance = radiance(&mut h);
+    wait_for_exports(&mut h);
+    assert!(h.state().message.is_none(), "{:?}", h.state().message);
+
+    let png = image::open(&png).expect("PNG reads back").to_rgb8();
+    assert_eq!(png.dimensions(), (view.width, view.height));
+    let shown_rgb: Vec<u8> = shown.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
+    assert_eq!(png.into_raw(), shown_rgb, "the PNG is the view as displayed");
+
+    let (rgb, w, hh) = crate::images::read_exr(&exr).expect("EXR reads back");
+    assert_eq!((w, hh), (view.width, view.height));
+    let worst = rgb
+        .iter()
+        .zip(&radiance)
+        .map(|(a, b)| (0..3).map(|c| (a[c] - f64::from(b[c])).abs() / f64::from(b[c]).abs().max(1e-6)).fold(0.0, f64::max))
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-3, "EXR differs from the radiance by {worst}");
+}
+
+#[test]
+fn the_compare_tab_shows_a_delta_e_figure() {
+    let mut layout = Layout::default();
+    layout.compare.reference = atmoscope_model::scene::WavelengthSet::SpectralN(8);
+    let mut h = harness_with(layout, egui::vec2(900.0, 700.0));
+    h.get_by_label("Compare").click();
+    h.run();
+    assert_eq!(h.state().layout.tab, Tab::Compare);
+    let figures = h
+        .state()
+        .views
+        .as_ref()
+        .and_then(|v| v.compare.figures)
+        .expect("figures");
+    assert!(figures.a_vs_b_mean > 0.0 && figures.a_vs_b_mean.is_finite());
+    assert!(figures.a_vs_reference_mean.is_finite() && figures.b_vs_reference_mean.is_finite());
+    h.get_by_label_contains(&format!(
+        "ΔE2000 Spectral4 vs RGB3: mean {:.2}",
+        figures.a_vs_b_mean
+    ));
+}
+
+fn inspect(h: &mut Harness<'static, ExplorerApp>, x: u32, y: u32) -> super::inspector::Analysis {
+    let ctx = h.ctx.clone();
+    h.state_mut()
+        .apply(&ctx, Command::Inspect { tab: Tab::Sky, x, y });
+    if let Some(job) = h.state().inspector.job() {
+        super::jobs::wait(job);
+    }
+    h.run_steps(2);
+    h.state().inspector.result.clone().expect("an analysis")
+}
+
+#[test]
+fn the_inspector_splits_a_pixel_into_its_parts() {
+    let mut h = harness();
+    let view = h.state().views.as_ref().and_then(|v| v.main.view()).expect("drawn");
+    // The top row looks at the sky, the bottom row at the lit ground.
+    for (y, sky) in [(0, true), (view.height - 1, false)] {
+        let a = inspect(&mut h, view.width / 2, y);
+        assert!(a.probe.displayed.is_some_and(|rgb| rgb.iter().all(|&c| c > 0.0)));
+        assert!(a.radiance.iter().all(|&l| l > 0.0));
+        let total: f64 = a.shares.iter().sum();
+        assert!((total - 1.0).abs() < 1e-9, "shares sum to {total}");
+        assert!(a.shares.iter().all(|&s| s >= 0.0));
+        if sky {
+            assert!(a.shares[0] > 0.05 && a.shares[1] > 0.05, "{:?}", a.shares);
+            assert_eq!(a.shares[2], 0.0, "the sky has no ground share");
+        } else {
+            assert!(a.shares[2] > 0.3, "the ground view is mostly ground: {:?}", a.shares);
+        }
+    }
+    h.get_by_label_contains("ground (single):");
+}
+
+#[test]
+fn the_lut_tab_reads_every_table() {
+    let mut h = harness();
+    h.key_press(egui::Key::Num5);
+    h.run();
+    assert_eq!(h.state().layout.tab, Tab::Luts);
+    for t in atmoscope_render::Table::ALL {
+        h.state_mut().layout.luts.table =
+            atmoscope_render::Table::ALL.iter().position(|&x| x == t).unwrap_or(0);
+        h.run();
+        h.get_by_label_contains("texels ×");
+    }
+}
+
+#[test]
+fn the_reference_tab_path_traces_progressively() {
+    let mut layout = Layout::default();
+    layout.tab = Tab::Reference;
+    layout.reference.size = 0;
+    layout.reference.target_spp = 16;
+    let mut h = harness_with(layout, egui::vec2(900.0, 700.0));
+    for _ in 0..600 {
+        if h.state().views.as_ref().and_then(|v| v.reference.delta_e_mean).is_some()
+            && h.state().views.as_ref().and_then(|v| v.reference.job()).is_none()
+        {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+        h.step();
+    }
+    let reference = &h.state().views.as_ref().expect("GPU views").reference;
+    let snapshot = reference.snapshot.as_ref().expect("a pass");
+    assert!(snapshot.spp >= 16 && snapshot.noise > 0.0);
+    let de = reference.delta_e_mean.expect("ΔE");
+    assert!(de.is_finite() && de < 20.0, "ΔE {de}");
+}
+
+#[test]
+fn main_window_snapshot() {
+    let layout = Layout {
+        show_performance: false,
+        ..Layout::default()
+    };
+    let mut h = harness_with(layout, egui::vec2(960.0, 600.0));
+    h.snapshot("explorer");
 }

@@ -17,14 +17,36 @@ use std::f64::consts::PI;
 /// Relative tolerance of the outer integral.
 pub const REL_TOL: f64 = 1e-6;
 
+/// Single-scattered radiance by what scattered it, W·m⁻²·sr⁻¹·nm⁻¹.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Parts {
+    /// Sunlight scattered once by air molecules.
+    pub rayleigh: f64,
+    /// Sunlight scattered once by aerosols.
+    pub aerosol: f64,
+    /// Sunlight reflected once by the ground (seen where the ray ends on it).
+    pub ground: f64,
+}
+
+impl Parts {
+    pub fn total(&self) -> f64 {
+        self.rayleigh + self.aerosol + self.ground
+    }
+}
+
 /// Single-scattered radiance reaching `ray.origin` from `-ray.direction` at `wavelength_nm`,
 /// W·m⁻²·sr⁻¹·nm⁻¹, with the sun in unit direction `sun`.
 pub fn radiance(atm: &Atmosphere, ray: &Ray, sun: DVec3, wavelength_nm: f64) -> f64 {
+    radiance_parts(atm, ray, sun, wavelength_nm).total()
+}
+
+/// [`radiance`] split into its Rayleigh, aerosol and ground parts.
+pub fn radiance_parts(atm: &Atmosphere, ray: &Ray, sun: DVec3, wavelength_nm: f64) -> Parts {
     let optics = atm.optics(wavelength_nm);
     let e_sun = atm.solar_spectrum.spectrum().sample(wavelength_nm);
     let (r, mu) = ray.r_mu();
     let Some((t0, t1)) = segment(atm, r, mu) else {
-        return 0.0;
+        return Parts::default();
     };
     let nu = ray.direction.dot(sun);
     let p_r = phase::rayleigh(nu, optics.rayleigh_depolarisation);
@@ -42,14 +64,21 @@ pub fn radiance(atm: &Atmosphere, ray: &Ray, sun: DVec3, wavelength_nm: f64) -> 
         };
         (-optical_depth_to(atm, &optics, &partial, t - t0)).exp()
     };
-    let integrand = |t: f64| {
-        let x = ray.origin + ray.direction * t;
-        let c = atm.coefficients(&optics, x.length() - atm.bottom_radius_m);
-        let source = c.rayleigh_scattering * p_r + c.aerosol_scattering * p_a;
-        if source <= 0.0 {
-            return 0.0;
+    // One integrand per constituent: the Rayleigh and aerosol parts each converge on their own.
+    let integrand = |rayleigh: bool| {
+        move |t: f64| {
+            let x = ray.origin + ray.direction * t;
+            let c = atm.coefficients(&optics, x.length() - atm.bottom_radius_m);
+            let source = if rayleigh {
+                c.rayleigh_scattering * p_r
+            } else {
+                c.aerosol_scattering * p_a
+            };
+            if source <= 0.0 {
+                return 0.0;
+            }
+            source * e_sun * atm.transmittance_to_sun(&optics, x, sun) * view_transmittance(t)
         }
-        source * e_sun * atm.transmittance_to_sun(&optics, x, sun) * view_transmittance(t)
     };
     // Split where the sun sets for points along the ray (the shadow's edge) and at the ray's
     // lowest point, where the density peaks.
@@ -64,23 +93,29 @@ pub fn radiance(atm: &Atmosphere, ray: &Ray, sun: DVec3, wavelength_nm: f64) -> 
             .filter(|&t| t > t0 && t < t1),
     );
     cuts.sort_by(f64::total_cmp);
-    let mut l: f64 = cuts
-        .windows(2)
-        .map(|w| integrate_adaptive(integrand, w[0], w[1], REL_TOL, 0.0).value)
-        .sum();
+    let along = |rayleigh: bool| -> f64 {
+        cuts.windows(2)
+            .map(|w| integrate_adaptive(integrand(rayleigh), w[0], w[1], REL_TOL, 0.0).value)
+            .sum()
+    };
+    let mut parts = Parts {
+        rayleigh: along(true),
+        aerosol: along(false),
+        ground: 0.0,
+    };
     if geometry::ray_intersects_ground(r, mu, atm.bottom_radius_m) {
         let x = ray.origin + ray.direction * t1;
         let n = x.normalize();
         let cos_s = n.dot(sun);
         if cos_s > 0.0 {
             let x = n * atm.bottom_radius_m;
-            l += view_transmittance(t1) * atm.ground_albedo / PI
+            parts.ground = view_transmittance(t1) * atm.ground_albedo / PI
                 * cos_s
                 * e_sun
                 * atm.transmittance_to_sun(&optics, x, sun);
         }
     }
-    l
+    parts
 }
 
 /// The atmosphere segment of the ray, ending on the ground when it meets it.
@@ -121,4 +156,42 @@ fn shadow_crossings(atm: &Atmosphere, ray: &Ray, sun: DVec3) -> Vec<f64> {
     }
     let s = disc.sqrt();
     vec![(-b - s) / (2.0 * a), (-b + s) / (2.0 * a)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::direction_from_angles;
+    use crate::scene::AtmosphereSettings;
+
+    fn ray_from_ground(elevation_deg: f64, atm: &Atmosphere) -> Ray {
+        Ray::new(
+            DVec3::new(0.0, 0.0, atm.bottom_radius_m + 2.0),
+            direction_from_angles(elevation_deg, 0.0),
+        )
+    }
+
+    #[test]
+    fn parts_follow_what_the_ray_meets() {
+        let sun = direction_from_angles(30.0, 180.0);
+        let mut settings = AtmosphereSettings::default();
+        settings.ground_albedo = 0.3;
+        let atm = Atmosphere::new(&settings);
+        let up = radiance_parts(&atm, &ray_from_ground(45.0, &atm), sun, 550.0);
+        assert!(up.rayleigh > 0.0 && up.aerosol > 0.0, "{up:?}");
+        assert_eq!(up.ground, 0.0, "an upward ray never sees the ground");
+        assert_eq!(
+            radiance(&atm, &ray_from_ground(45.0, &atm), sun, 550.0),
+            up.total()
+        );
+        let down = radiance_parts(&atm, &ray_from_ground(-30.0, &atm), sun, 550.0);
+        assert!(down.ground > 0.0, "{down:?}");
+
+        settings.aerosol.aod550 = 0.0;
+        settings.ground_albedo = 0.0;
+        let clean = Atmosphere::new(&settings);
+        let down = radiance_parts(&clean, &ray_from_ground(-30.0, &clean), sun, 550.0);
+        assert_eq!((down.aerosol, down.ground), (0.0, 0.0), "{down:?}");
+        assert!(down.rayleigh > 0.0);
+    }
 }

@@ -1,0 +1,235 @@
+//! The Compare tab: the current view rendered with two wavelength sets of the real-time method
+//! (default Spectral4 | RGB3), side by side or split, with the per-pixel CIEDE2000 map between
+//! them and the mean ΔE of each against a dense spectral reference (default Spectral32).
+//! The path tracer is compared in the Reference tab.
+
+use super::gpu_view::{Gpu, GpuView, pixels};
+use super::{Layout, Tab};
+use atmoscope_model::Scene;
+use atmoscope_model::metrics::{DisplaySetup, delta_e2000_map};
+use atmoscope_model::scene::WavelengthSet;
+use atmoscope_render::View;
+use atmoscope_render::views::false_colour;
+use eframe::egui::{self, Sense, Vec2};
+use serde::{Deserialize, Serialize};
+
+/// ΔE2000 at the top of the heat map's colour scale.
+pub const DELTA_E_SCALE_MAX: f64 = 10.0;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+pub enum CompareMode {
+    #[default]
+    SideBySide,
+    Split,
+    DeltaE,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct CompareSettings {
+    pub a: WavelengthSet,
+    pub b: WavelengthSet,
+    pub reference: WavelengthSet,
+    pub mode: CompareMode,
+    /// Where the split falls, 0–1 from the left.
+    pub split: f32,
+}
+
+impl Default for CompareSettings {
+    fn default() -> Self {
+        CompareSettings {
+            a: WavelengthSet::Spectral4,
+            b: WavelengthSet::Rgb3,
+            reference: WavelengthSet::SpectralN(32),
+            mode: CompareMode::SideBySide,
+            split: 0.5,
+        }
+    }
+}
+
+/// ΔE2000 figures of one comparison.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Figures {
+    pub a_vs_b_mean: f64,
+    pub a_vs_b_p95: f64,
+    pub a_vs_reference_mean: f64,
+    pub b_vs_reference_mean: f64,
+}
+
+pub struct CompareTab {
+    views: [GpuView; 3],
+    /// Generations of the three views the figures were computed from.
+    computed: Option<[u64; 3]>,
+    pub figures: Option<Figures>,
+    heat_map: Option<egui::TextureHandle>,
+}
+
+fn set_label(set: WavelengthSet) -> String {
+    match set {
+        WavelengthSet::Rgb3 => "RGB3".into(),
+        WavelengthSet::Spectral4 => "Spectral4".into(),
+        WavelengthSet::SpectralN(n) => format!("Spectral{n}"),
+    }
+}
+
+fn set_choice(ui: &mut egui::Ui, label: &str, set: &mut WavelengthSet, tip: &str) {
+    egui::ComboBox::from_label(label)
+        .selected_text(set_label(*set))
+        .show_ui(ui, |ui| {
+            for s in [
+                WavelengthSet::Rgb3,
+                WavelengthSet::Spectral4,
+                WavelengthSet::SpectralN(8),
+                WavelengthSet::SpectralN(16),
+                WavelengthSet::SpectralN(32),
+            ] {
+                ui.selectable_value(set, s, set_label(s));
+            }
+        })
+        .response
+        .on_hover_text(tip);
+}
+
+fn mean(v: &[f64]) -> f64 {
+    v.iter().sum::<f64>() / v.len().max(1) as f64
+}
+
+impl CompareTab {
+    pub fn new(gpu: &Gpu) -> CompareTab {
+        CompareTab {
+            views: std::array::from_fn(|_| GpuView::new(gpu)),
+            computed: None,
+            figures: None,
+            heat_map: None,
+        }
+    }
+
+    /// The views, for the Performance panel.
+    pub fn views(&self) -> &[GpuView; 3] {
+        &self.views
+    }
+
+    pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene, layout: &mut Layout) {
+        let c = &mut layout.compare;
+        ui.horizontal(|ui| {
+            set_choice(ui, "A", &mut c.a, "Wavelengths of the left image (Hillaire 2020 on the GPU).");
+            set_choice(ui, "B", &mut c.b, "Wavelengths of the right image.");
+            set_choice(
+                ui,
+                "reference",
+                &mut c.reference,
+                "A dense spectral render both are measured against (colour from many bands integrated against the CIE 1931 observer).",
+            );
+            ui.separator();
+            ui.selectable_value(&mut c.mode, CompareMode::SideBySide, "side by side");
+            ui.selectable_value(&mut c.mode, CompareMode::Split, "split");
+            ui.selectable_value(&mut c.mode, CompareMode::DeltaE, "ΔE map");
+        });
+        let c = *c;
+        let avail = ui.available_size() - Vec2::new(0.0, 40.0);
+        let each = match c.mode {
+            CompareMode::SideBySide => Vec2::new(avail.x * 0.5 - 4.0, avail.y),
+            _ => avail,
+        }
+        .max(Vec2::splat(16.0));
+        let size = pixels(ui.ctx(), each, layout.render_scale);
+        let view = View::new(super::sky_tab::projection(Tab::Sky), size[0], size[1]);
+        for (v, set) in self.views.iter_mut().zip([c.a, c.b, c.reference]) {
+            let mut s = scene.clone();
+            s.render.wavelengths = set;
+            v.render(&s, &view);
+        }
+        self.update_figures(ui.ctx(), scene);
+
+        if let Some(f) = &self.figures {
+            ui.label(format!(
+                "ΔE2000 {} vs {}: mean {:.2}, 95th percentile {:.2}   ·   vs {}: {} {:.2}, {} {:.2}",
+                set_label(c.a),
+                set_label(c.b),
+                f.a_vs_b_mean,
+                f.a_vs_b_p95,
+                set_label(c.reference),
+                set_label(c.a),
+                f.a_vs_reference_mean,
+                set_label(c.b),
+                f.b_vs_reference_mean,
+            ))
+            .on_hover_text("CIEDE2000 between the displayed images (scene exposure and tone map): about 1 is a just-noticeable difference, above 5 is plainly visible.");
+        }
+        let textures = [self.views[0].texture(), self.views[1].texture()];
+        let [Some(ta), Some(tb)] = textures else {
+            return;
+        };
+        match c.mode {
+            CompareMode::SideBySide => {
+                ui.horizontal(|ui| {
+                    ui.add(egui::Image::new((ta, each)));
+                    ui.add(egui::Image::new((tb, each)));
+                });
+            }
+            CompareMode::Split => {
+                let response = ui.add(egui::Image::new((tb, each)).sense(Sense::drag()));
+                let rect = response.rect;
+                let x = rect.left() + layout.compare.split * rect.width();
+                let left = egui::Rect::from_min_max(rect.min, egui::pos2(x, rect.bottom()));
+                ui.painter().image(
+                    ta,
+                    left,
+                    egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(layout.compare.split, 1.0)),
+                    egui::Color32::WHITE,
+                );
+                ui.painter().vline(x, rect.y_range(), egui::Stroke::new(2.0, egui::Color32::WHITE));
+                if let Some(pos) = response.interact_pointer_pos() {
+                    if response.dragged() {
+                        layout.compare.split = ((pos.x - rect.left()) / rect.width()).clamp(0.0, 1.0);
+                    }
+                }
+                response.on_hover_text("A on the left, B on the right; drag to move the split.");
+            }
+            CompareMode::DeltaE => {
+                if let Some(map) = &self.heat_map {
+                    ui.add(egui::Image::new((map.id(), each)))
+                        .on_hover_text(format!("ΔE2000 of A vs B per pixel, false colour from 0 to {DELTA_E_SCALE_MAX}."));
+                }
+            }
+        }
+    }
+
+    fn update_figures(&mut self, ctx: &egui::Context, scene: &Scene) {
+        let generations = [0, 1, 2].map(|i| self.views[i].generation());
+        if self.computed == Some(generations) {
+            return;
+        }
+        let images: Result<Vec<_>, _> = self.views.iter_mut().map(|v| v.radiance()).collect();
+        let Ok(images) = images else { return };
+        let rgb: Vec<Vec<[f64; 3]>> = images.iter().map(|r| r.rgb()).collect();
+        let setup = DisplaySetup {
+            exposure_ev: scene.display.exposure_ev,
+            tone_map: scene.display.tone_map,
+            ..DisplaySetup::default()
+        };
+        let ab = delta_e2000_map(&rgb[0], &rgb[1], setup);
+        let mut sorted = ab.clone();
+        sorted.sort_by(f64::total_cmp);
+        self.figures = Some(Figures {
+            a_vs_b_mean: mean(&ab),
+            a_vs_b_p95: sorted
+                .get(((sorted.len().max(1) - 1) as f64 * 0.95) as usize)
+                .copied()
+                .unwrap_or(0.0),
+            a_vs_reference_mean: mean(&delta_e2000_map(&rgb[0], &rgb[2], setup)),
+            b_vs_reference_mean: mean(&delta_e2000_map(&rgb[1], &rgb[2], setup)),
+        });
+        let (w, h) = (images[0].width as usize, images[0].height as usize);
+        let pixels: Vec<egui::Color32> = ab
+            .iter()
+            .map(|&d| {
+                let c = false_colour(d / DELTA_E_SCALE_MAX).map(|v| (v * 255.0) as u8);
+                egui::Color32::from_rgb(c[0], c[1], c[2])
+            })
+            .collect();
+        let image = egui::ColorImage::new([w, h], pixels);
+        self.heat_map = Some(ctx.load_texture("ΔE map", image, egui::TextureOptions::LINEAR));
+        self.computed = Some(generations);
+    }
+}

@@ -1,0 +1,108 @@
+//! Presets and exports from the window: native dialogs (rfd), and the writes themselves, which
+//! run off the UI thread. Exports: the active view as displayed (PNG), its linear radiance (EXR),
+//! and an equirectangular panorama (EXR) rendered by an engine of its own on the window's device.
+
+use super::gpu_view::Gpu;
+use super::jobs::Progress;
+use crate::images::{save_rgb8, write_exr};
+use atmoscope_model::Scene;
+use atmoscope_model::camera::Projection;
+use atmoscope_render::{Engine, View};
+use std::path::{Path, PathBuf};
+
+/// Pixels of an exported panorama (2:1, equirectangular).
+pub const PANORAMA_SIZE: (u32, u32) = (2048, 1024);
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ExportKind {
+    /// The active view as displayed, 8-bit sRGB.
+    Png,
+    /// The active view's linear radiance (linear sRGB, W·m⁻²·sr⁻¹).
+    Exr,
+    /// A 360° × 180° panorama of linear radiance from the camera.
+    PanoramaExr,
+}
+
+impl ExportKind {
+    pub fn extension(self) -> &'static str {
+        match self {
+            ExportKind::Png => "png",
+            ExportKind::Exr | ExportKind::PanoramaExr => "exr",
+        }
+    }
+
+    pub fn title(self) -> &'static str {
+        match self {
+            ExportKind::Png => "Export the view as PNG",
+            ExportKind::Exr => "Export the view's radiance as EXR",
+            ExportKind::PanoramaExr => "Export a panorama EXR",
+        }
+    }
+}
+
+pub fn pick_preset_to_open() -> Option<PathBuf> {
+    rfd::FileDialog::new()
+        .set_title("Open a preset")
+        .add_filter("Atmoscope preset", &["ron"])
+        .pick_file()
+}
+
+pub fn pick_preset_to_save(scene: &Scene) -> Option<PathBuf> {
+    let name: String = scene
+        .name
+        .chars()
+        .map(|c| if c.is_alphanumeric() { c.to_ascii_lowercase() } else { '-' })
+        .collect();
+    rfd::FileDialog::new()
+        .set_title("Save the scene as a preset")
+        .add_filter("Atmoscope preset", &["ron"])
+        .set_file_name(format!("{name}.ron"))
+        .save_file()
+}
+
+pub fn pick_export(kind: ExportKind) -> Option<PathBuf> {
+    rfd::FileDialog::new()
+        .set_title(kind.title())
+        .add_filter(kind.extension(), &[kind.extension()])
+        .set_file_name(format!("atmoscope.{}", kind.extension()))
+        .save_file()
+}
+
+/// Writes RGBA8 rows as a PNG, dropping alpha.
+pub fn write_display_png(path: &Path, rgba: &[u8], width: u32, height: u32) -> anyhow::Result<()> {
+    let rgb = rgba
+        .chunks_exact(4)
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .collect();
+    save_rgb8(path, rgb, width, height)
+}
+
+/// Writes linear radiance (RGBA f32 rows) as an EXR.
+pub fn write_radiance_exr(path: &Path, rgba: &[[f32; 4]], width: u32, height: u32) -> anyhow::Result<()> {
+    let rgb: Vec<[f64; 3]> = rgba
+        .iter()
+        .map(|p| [p[0], p[1], p[2]].map(f64::from))
+        .collect();
+    write_exr(path, &rgb, width, height)
+}
+
+/// Renders and writes a panorama; None when cancelled.
+pub fn export_panorama(gpu: &Gpu, scene: &Scene, path: &Path, progress: &Progress) -> anyhow::Result<Option<String>> {
+    let (w, h) = PANORAMA_SIZE;
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    progress.set(0.1);
+    if progress.cancelled() {
+        return Ok(None);
+    }
+    engine.render(scene, &View::new(Projection::Panorama, w, h));
+    engine.wait();
+    progress.set(0.6);
+    if progress.cancelled() {
+        return Ok(None);
+    }
+    let radiance = engine.read_radiance()?;
+    progress.set(0.8);
+    write_radiance_exr(path, &radiance, w, h)?;
+    progress.set(1.0);
+    Ok(Some(format!("wrote {} ({w}×{h} panorama)", path.display())))
+}

@@ -1,0 +1,174 @@
+//! One engine drawing into an egui texture: the Sky, Fisheye, Luminance, Compare and Reference
+//! tabs each own one. The engine's dirty tracking means an unchanged view runs no GPU pass; the
+//! egui texture is rebound only when a frame actually drew something.
+
+use atmoscope_model::Scene;
+use atmoscope_render::{Engine, EngineError, FrameStats, View};
+use eframe::egui;
+use eframe::egui_wgpu::{self, wgpu};
+use std::sync::Arc;
+use std::time::Instant;
+
+/// The device egui renders with, shared by every engine of the window.
+#[derive(Clone)]
+pub struct Gpu {
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub renderer: Arc<egui::mutex::RwLock<egui_wgpu::Renderer>>,
+    pub adapter: String,
+}
+
+impl Gpu {
+    pub fn from_render_state(rs: &egui_wgpu::RenderState) -> Gpu {
+        let info = rs.adapter.get_info();
+        Gpu {
+            device: rs.device.clone(),
+            queue: rs.queue.clone(),
+            renderer: rs.renderer.clone(),
+            adapter: format!("{} ({:?}, {:?})", info.name, info.backend, info.device_type),
+        }
+    }
+}
+
+/// Linear radiance of a rendered frame, read back once and kept while the frame stands.
+pub struct Radiance {
+    pub width: u32,
+    pub height: u32,
+    pub rgba: Vec<[f32; 4]>,
+}
+
+impl Radiance {
+    pub fn at(&self, x: u32, y: u32) -> Option<[f64; 3]> {
+        (x < self.width && y < self.height).then(|| {
+            let p = self.rgba[(y * self.width + x) as usize];
+            [p[0], p[1], p[2]].map(f64::from)
+        })
+    }
+
+    pub fn rgb(&self) -> Vec<[f64; 3]> {
+        self.rgba
+            .iter()
+            .map(|p| [p[0], p[1], p[2]].map(f64::from))
+            .collect()
+    }
+}
+
+pub struct GpuView {
+    engine: Engine,
+    gpu: Gpu,
+    texture: Option<egui::TextureId>,
+    view: Option<View>,
+    /// Counts frames that drew something; keys the caches of read-backs.
+    generation: u64,
+    radiance: Option<(u64, Arc<Radiance>)>,
+    /// Wall time of the last frame that ran a pass, from `render` until the GPU was idle, ms.
+    pub last_frame_ms: f64,
+}
+
+impl GpuView {
+    pub fn new(gpu: &Gpu) -> GpuView {
+        let mut engine = Engine::new(&gpu.device, &gpu.queue);
+        engine.set_timing(true);
+        GpuView {
+            engine,
+            gpu: gpu.clone(),
+            texture: None,
+            view: None,
+            generation: 0,
+            radiance: None,
+            last_frame_ms: 0.0,
+        }
+    }
+
+    /// Renders `view` of `scene` if anything changed; returns what the frame ran.
+    pub fn render(&mut self, scene: &Scene, view: &View) -> &FrameStats {
+        let start = Instant::now();
+        let drew = !self.engine.render(scene, view).run.is_empty();
+        if drew {
+            self.last_frame_ms = start.elapsed().as_secs_f64() * 1e3;
+            self.generation += 1;
+            self.view = Some(*view);
+            self.bind_texture();
+        }
+        self.engine.stats()
+    }
+
+    fn bind_texture(&mut self) {
+        let Some(srgb) = self.engine.display_view_srgb() else {
+            return;
+        };
+        let mut renderer = self.gpu.renderer.write();
+        match self.texture {
+            Some(id) => renderer.update_egui_texture_from_wgpu_texture(
+                &self.gpu.device,
+                &srgb,
+                wgpu::FilterMode::Linear,
+                id,
+            ),
+            None => {
+                self.texture = Some(renderer.register_native_texture(
+                    &self.gpu.device,
+                    &srgb,
+                    wgpu::FilterMode::Linear,
+                ))
+            }
+        }
+    }
+
+    pub fn texture(&self) -> Option<egui::TextureId> {
+        self.texture
+    }
+
+    /// The view last drawn.
+    pub fn view(&self) -> Option<View> {
+        self.view
+    }
+
+    pub fn stats(&self) -> &FrameStats {
+        self.engine.stats()
+    }
+
+    pub fn engine(&self) -> &Engine {
+        &self.engine
+    }
+
+    pub fn generation(&self) -> u64 {
+        self.generation
+    }
+
+    /// The linear radiance of the frame on screen (read back at most once per frame drawn).
+    pub fn radiance(&mut self) -> Result<Arc<Radiance>, EngineError> {
+        if let Some((g, r)) = &self.radiance {
+            if *g == self.generation {
+                return Ok(r.clone());
+            }
+        }
+        let view = self.view.ok_or(EngineError::NotRendered)?;
+        let r = Arc::new(Radiance {
+            width: view.width,
+            height: view.height,
+            rgba: self.engine.read_radiance()?,
+        });
+        self.radiance = Some((self.generation, r.clone()));
+        Ok(r)
+    }
+
+    /// The frame as displayed, RGBA8.
+    pub fn display_rgba8(&self) -> Result<Vec<u8>, EngineError> {
+        self.engine.read_display()
+    }
+}
+
+impl Drop for GpuView {
+    fn drop(&mut self) {
+        if let Some(id) = self.texture {
+            self.gpu.renderer.write().free_texture(&id);
+        }
+    }
+}
+
+/// Pixel size of a view filling `points` of screen at `scale` (1 = one texel per pixel).
+pub fn pixels(ctx: &egui::Context, points: egui::Vec2, scale: f32) -> [u32; 2] {
+    let px = points * ctx.pixels_per_point() * scale;
+    [px.x, px.y].map(|v| (v.round() as u32).clamp(16, 4096))
+}

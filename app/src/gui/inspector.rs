@@ -1,0 +1,376 @@
+//! The Inspector: what one pixel is made of, and plots of the atmosphere itself.
+//!
+//! A click on a view traces the pixel's ray off the UI thread: its spectral radiance by the path
+//! tracer (all orders, with the standard error), the exact single-scattering integral split into
+//! Rayleigh, aerosol and ground (Bruneton's and Hillaire's decomposition of the sky, computed here
+//! by quadrature), multiple scattering as the rest, and the transmittance to the sun. The pixel's
+//! XYZ, sRGB and luminance are those of the real-time render on screen.
+
+use super::jobs::{Job, Progress};
+use super::summary_panel::SummaryPanel;
+use atmoscope_model::atmosphere::Atmosphere;
+use atmoscope_model::colour::{cie1931, linear_srgb_to_xyz};
+use atmoscope_model::display::{display, to_u8};
+use atmoscope_model::constants::MAX_LUMINOUS_EFFICACY_LM_PER_W;
+use atmoscope_model::geometry::{Ray, direction_from_angles};
+use atmoscope_model::methods::path_tracer::{LANES, LaneOptics, PathTracer, PathTracerSettings};
+use atmoscope_model::methods::rng::Rng;
+use atmoscope_model::methods::single_scattering::{self, Parts};
+use atmoscope_model::scene::{AerosolPhase, AtmosphereSettings};
+use atmoscope_model::{Scene, phase};
+use eframe::egui;
+use egui_plot::{Legend, Line, Plot, PlotPoints};
+use glam::DVec3;
+
+/// Wavelengths of the pixel's spectrum, nm.
+pub const INSPECT_NM: std::ops::RangeInclusive<u32> = 380..=780;
+const INSPECT_STEP_NM: usize = 20;
+/// Paths per wavelength batch for the pixel's spectrum.
+pub const INSPECT_PATHS: u64 = 2048;
+
+/// A pixel to analyse.
+#[derive(Debug, Clone)]
+pub struct Probe {
+    pub label: String,
+    pub scene: Scene,
+    pub ray: Ray,
+    /// Linear sRGB radiance of the pixel as rendered, W·m⁻²·sr⁻¹ (Y = ∫ȳL dλ).
+    pub displayed: Option<[f64; 3]>,
+}
+
+/// What a pixel is made of.
+#[derive(Debug, Clone)]
+pub struct Analysis {
+    pub probe: Probe,
+    pub wavelengths_nm: Vec<f64>,
+    /// Path-traced radiance, all orders, W·m⁻²·sr⁻¹·nm⁻¹, and its standard error.
+    pub radiance: Vec<f64>,
+    pub std_error: Vec<f64>,
+    pub single: Vec<Parts>,
+    /// Direct transmittance from the camera to the sun.
+    pub sun_transmittance: Vec<f64>,
+    /// Shares of the luminance: Rayleigh, aerosol and ground single scattering, and multiple
+    /// scattering (the path-traced total less the single-scattered part).
+    pub shares: [f64; 4],
+}
+
+pub const SHARE_NAMES: [&str; 4] = [
+    "Rayleigh (single)",
+    "aerosol (single)",
+    "ground (single)",
+    "multiple scattering",
+];
+
+/// Traces the probe's ray. Returns None when cancelled.
+pub fn analyse(probe: Probe, progress: &Progress) -> Option<Analysis> {
+    let atm = Atmosphere::new(&probe.scene.atmosphere);
+    let angles = probe.scene.sun.angles();
+    let sun = direction_from_angles(angles.elevation_deg, angles.azimuth_deg);
+    let wavelengths_nm: Vec<f64> = INSPECT_NM
+        .step_by(INSPECT_STEP_NM)
+        .map(f64::from)
+        .collect();
+    let tracer = PathTracer::new(&atm, sun, PathTracerSettings::default());
+    let (mut radiance, mut std_error, mut single) = (Vec::new(), Vec::new(), Vec::new());
+    let batches: Vec<&[f64]> = wavelengths_nm.chunks(LANES).collect();
+    for (b, batch) in batches.iter().enumerate() {
+        if progress.cancelled() {
+            return None;
+        }
+        let lanes_nm: [f64; LANES] = std::array::from_fn(|i| batch[i.min(batch.len() - 1)]);
+        let lanes = LaneOptics::new(&atm, lanes_nm);
+        let (mut sum, mut sum2) = ([0.0; LANES], [0.0; LANES]);
+        for k in 0..INSPECT_PATHS {
+            let l = tracer.radiance(&probe.ray, &lanes, &mut Rng::new(1, b as u64, k));
+            for i in 0..LANES {
+                sum[i] += l[i];
+                sum2[i] += l[i] * l[i];
+            }
+        }
+        let n = INSPECT_PATHS as f64;
+        for i in 0..batch.len() {
+            let mean = sum[i] / n;
+            radiance.push(mean);
+            std_error.push(((sum2[i] / n - mean * mean).max(0.0) / (n - 1.0)).sqrt());
+            single.push(single_scattering::radiance_parts(
+                &atm,
+                &probe.ray,
+                sun,
+                batch[i],
+            ));
+        }
+        progress.set((b + 1) as f32 / batches.len() as f32);
+    }
+    let sun_transmittance = wavelengths_nm
+        .iter()
+        .map(|&w| atm.transmittance_to_sun(&atm.optics(w), probe.ray.origin, sun))
+        .collect();
+    let y_bar = &cie1931().y;
+    let weigh = |f: &dyn Fn(usize) -> f64| -> f64 {
+        (0..wavelengths_nm.len())
+            .map(|i| y_bar.sample(wavelengths_nm[i]) * f(i))
+            .sum()
+    };
+    let total = weigh(&|i| radiance[i]);
+    let parts = [
+        weigh(&|i| single[i].rayleigh),
+        weigh(&|i| single[i].aerosol),
+        weigh(&|i| single[i].ground),
+    ];
+    let multiple = (total - parts.iter().sum::<f64>()).max(0.0);
+    let sum = parts.iter().sum::<f64>() + multiple;
+    let shares = if sum > 0.0 {
+        [parts[0], parts[1], parts[2], multiple].map(|p| p / sum)
+    } else {
+        [0.0; 4]
+    };
+    Some(Analysis {
+        probe,
+        wavelengths_nm,
+        radiance,
+        std_error,
+        single,
+        sun_transmittance,
+        shares,
+    })
+}
+
+/// Curves of the atmosphere, recomputed when its settings change.
+struct AtmospherePlots {
+    settings: AtmosphereSettings,
+    /// (scattering angle °, log10 phase) for Rayleigh and aerosol at 550 nm.
+    phase: [Vec<[f64; 2]>; 2],
+    /// (km, log10 m⁻¹) of Rayleigh, ozone and aerosol extinction at 550 nm.
+    extinction: [Vec<[f64; 2]>; 3],
+    /// (nm, vertical optical depth from the ground) of Rayleigh, ozone, aerosol.
+    optical_depth: [Vec<[f64; 2]>; 3],
+}
+
+impl AtmospherePlots {
+    fn new(settings: &AtmosphereSettings) -> AtmospherePlots {
+        let atm = Atmosphere::new(settings);
+        let o = atm.optics(550.0);
+        let angles = (0..=180).map(f64::from);
+        let phase = [
+            angles
+                .clone()
+                .map(|a| [a, phase::rayleigh(a.to_radians().cos(), o.rayleigh_depolarisation).log10()])
+                .collect(),
+            angles
+                .map(|a| {
+                    let nu = a.to_radians().cos();
+                    let p = match atm.aerosol_phase {
+                        AerosolPhase::HenyeyGreenstein => phase::henyey_greenstein(nu, o.aerosol_g),
+                        AerosolPhase::CornetteShanks => phase::cornette_shanks(nu, o.aerosol_g),
+                    };
+                    [a, p.log10()]
+                })
+                .collect(),
+        ];
+        let top_km = settings.top_km;
+        let heights: Vec<f64> = (0..=200).map(|i| top_km * f64::from(i) / 200.0).collect();
+        let coefficient = |f: &dyn Fn(&atmoscope_model::atmosphere::Coefficients) -> f64| {
+            heights
+                .iter()
+                .filter_map(|&km| {
+                    let v = f(&atm.coefficients(&o, km * 1000.0));
+                    (v > 0.0).then(|| [km, v.log10()])
+                })
+                .collect()
+        };
+        let extinction = [
+            coefficient(&|c| c.rayleigh_scattering),
+            coefficient(&|c| c.ozone_absorption),
+            coefficient(&|c| c.aerosol_scattering + c.aerosol_absorption),
+        ];
+        let depths: Vec<(f64, _)> = (360..=830)
+            .step_by(10)
+            .map(|w| {
+                let w = f64::from(w);
+                (w, atm.vertical_optical_depth(&atm.optics(w), 0.0))
+            })
+            .collect();
+        let optical_depth = [
+            depths.iter().map(|(w, d)| [*w, d.rayleigh]).collect(),
+            depths.iter().map(|(w, d)| [*w, d.ozone]).collect(),
+            depths.iter().map(|(w, d)| [*w, d.aerosol]).collect(),
+        ];
+        AtmospherePlots {
+            settings: settings.clone(),
+            phase,
+            extinction,
+            optical_depth,
+        }
+    }
+}
+
+#[derive(Default)]
+pub struct Inspector {
+    job: Option<Job<Option<Analysis>>>,
+    pub result: Option<Analysis>,
+    plots: Option<AtmospherePlots>,
+    pub summary: SummaryPanel,
+}
+
+impl Inspector {
+    /// Starts analysing `probe`, cancelling any analysis still running.
+    pub fn inspect(&mut self, ctx: &egui::Context, probe: Probe) {
+        if let Some(job) = &self.job {
+            job.cancel();
+        }
+        let label = format!("tracing {}", probe.label);
+        self.job = Some(Job::spawn(label, ctx, move |p| analyse(probe, p)));
+    }
+
+    pub fn job(&self) -> Option<&Job<Option<Analysis>>> {
+        self.job.as_ref().filter(|j| j.is_running())
+    }
+
+    /// Collects a finished analysis; an error message if the worker failed.
+    pub fn poll(&mut self) -> Option<String> {
+        let job = self.job.as_mut()?;
+        match job.take()? {
+            Ok(Some(a)) => self.result = Some(a),
+            Ok(None) => {}
+            Err(e) => return Some(e),
+        }
+        self.job = None;
+        None
+    }
+
+    pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene) {
+        ui.heading("Inspector");
+        egui::CollapsingHeader::new("Pixel")
+            .default_open(true)
+            .show(ui, |ui| self.pixel(ui));
+        egui::CollapsingHeader::new("Atmosphere")
+            .default_open(true)
+            .show(ui, |ui| self.atmosphere(ui, scene));
+        egui::CollapsingHeader::new("Summary per wavelength")
+            .default_open(false)
+            .show(ui, |ui| self.summary.show(ui, scene));
+    }
+
+    fn pixel(&self, ui: &mut egui::Ui) {
+        if let Some(job) = self.job() {
+            job.show(ui);
+        }
+        let Some(a) = &self.result else {
+            ui.label("Click a pixel of the Sky, Fisheye or Luminance view to see what it is made of.");
+            return;
+        };
+        ui.label(&a.probe.label);
+        if let Some(rgb) = a.probe.displayed {
+            let xyz = linear_srgb_to_xyz(rgb);
+            let d = &a.probe.scene.display;
+            let shown = display(rgb, d.exposure_ev, d.tone_map).map(to_u8);
+            ui.label(format!(
+                "as rendered: XYZ ({:.4}, {:.4}, {:.4}) W/(m² sr) · luminance {:.4e} cd/m²",
+                xyz.x,
+                xyz.y,
+                xyz.z,
+                MAX_LUMINOUS_EFFICACY_LM_PER_W * xyz.y
+            ))
+            .on_hover_text("CIE 1931 tristimulus values of the real-time render's pixel; luminance = 683 lm/W · Y.");
+            ui.label(format!(
+                "linear sRGB ({:.4}, {:.4}, {:.4}) · on screen sRGB ({}, {}, {})",
+                rgb[0], rgb[1], rgb[2], shown[0], shown[1], shown[2]
+            ))
+            .on_hover_text("Linear sRGB radiance, then the 8-bit sRGB value after the scene's exposure and tone map.");
+        }
+        let n = a.wavelengths_nm.len();
+        let series = |f: &dyn Fn(usize) -> f64| -> Vec<[f64; 2]> {
+            (0..n).map(|i| [a.wavelengths_nm[i], f(i)]).collect()
+        };
+        Plot::new("pixel spectrum")
+            .height(150.0)
+            .legend(Legend::default())
+            .x_axis_label("wavelength (nm)")
+            .y_axis_label("W/(m² sr nm)")
+            .show(ui, |p| {
+                p.line(Line::new("all orders (path traced)", PlotPoints::from(series(&|i| a.radiance[i]))));
+                p.line(Line::new("± standard error", PlotPoints::from(series(&|i| a.radiance[i] + a.std_error[i]))));
+                p.line(Line::new("single: Rayleigh", PlotPoints::from(series(&|i| a.single[i].rayleigh))));
+                p.line(Line::new("single: aerosol", PlotPoints::from(series(&|i| a.single[i].aerosol))));
+                p.line(Line::new("single: ground", PlotPoints::from(series(&|i| a.single[i].ground))));
+            })
+            .response
+            .on_hover_text(format!(
+                "Spectral radiance of the pixel's ray: {INSPECT_PATHS} paths per batch of four wavelengths, plus the exact single-scattering parts."
+            ));
+        ui.label("Share of the luminance:")
+            .on_hover_text("Each constituent's single scattering, integrated against the eye's response ȳ(λ); multiple scattering is the path-traced total less all single scattering.");
+        for (name, share) in SHARE_NAMES.iter().zip(a.shares) {
+            ui.add(egui::ProgressBar::new(share as f32).text(format!("{name}: {:.1} %", 100.0 * share)));
+        }
+        let at = |nm: f64| {
+            a.wavelengths_nm
+                .iter()
+                .position(|&w| w >= nm)
+                .map_or(0.0, |i| a.sun_transmittance[i])
+        };
+        ui.label(format!(
+            "transmittance to the sun: {:.3} at 440 nm, {:.3} at 560 nm, {:.3} at 680 nm",
+            at(440.0),
+            at(560.0),
+            at(680.0)
+        ))
+        .on_hover_text("Fraction of sunlight reaching the camera directly (Beer–Lambert along the sun's ray); 0 when the sun is below the horizon.");
+    }
+
+    fn atmosphere(&mut self, ui: &mut egui::Ui, scene: &Scene) {
+        if self
+            .plots
+            .as_ref()
+            .is_none_or(|p| p.settings != scene.atmosphere)
+        {
+            self.plots = Some(AtmospherePlots::new(&scene.atmosphere));
+        }
+        let Some(plots) = &self.plots else { return };
+        let names3 = ["Rayleigh", "ozone", "aerosol"];
+        Plot::new("phase functions")
+            .height(120.0)
+            .legend(Legend::default())
+            .x_axis_label("scattering angle (°)")
+            .y_axis_label("log10 phase (1/sr)")
+            .show(ui, |p| {
+                for (name, pts) in ["Rayleigh", "aerosol"].iter().zip(&plots.phase) {
+                    p.line(Line::new(*name, PlotPoints::from(pts.clone())));
+                }
+            })
+            .response
+            .on_hover_text("How much light each scatterer sends into each angle at 550 nm: air almost evenly forward and back, aerosols strongly forward (the glow around the sun).");
+        Plot::new("extinction")
+            .height(120.0)
+            .legend(Legend::default())
+            .x_axis_label("altitude (km)")
+            .y_axis_label("log10 extinction (1/m)")
+            .show(ui, |p| {
+                for (name, pts) in names3.iter().zip(&plots.extinction) {
+                    p.line(Line::new(*name, PlotPoints::from(pts.clone())));
+                }
+            })
+            .response
+            .on_hover_text("Extinction at 550 nm against altitude: air thins exponentially (≈ 8 km scale height), ozone peaks near 25 km, aerosols stay in the lowest few kilometres.");
+        Plot::new("optical depth")
+            .height(120.0)
+            .legend(Legend::default())
+            .x_axis_label("wavelength (nm)")
+            .y_axis_label("vertical optical depth")
+            .show(ui, |p| {
+                for (name, pts) in names3.iter().zip(&plots.optical_depth) {
+                    p.line(Line::new(*name, PlotPoints::from(pts.clone())));
+                }
+            })
+            .response
+            .on_hover_text("Optical depth from the ground to space: Rayleigh falls as λ^-4 (why the sky is blue), ozone absorbs in the Chappuis band around 600 nm (why twilight stays blue).");
+    }
+}
+
+/// Direction of a ray as (elevation, azimuth) in degrees, for labels.
+pub fn angles_of(d: DVec3) -> (f64, f64) {
+    (
+        d.z.clamp(-1.0, 1.0).asin().to_degrees(),
+        d.x.atan2(d.y).to_degrees().rem_euclid(360.0),
+    )
+}

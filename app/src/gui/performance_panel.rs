@@ -1,0 +1,41 @@
+//! The Performance panel: for each engine drawn this frame, which passes ran and which were
+//! skipped (dirty tracking), the time of each pass (GPU timestamps where the device has them,
+//! else fenced CPU wall time) and the frame's wall time; plus the UI's own frame interval.
+
+use super::gpu_view::GpuView;
+use atmoscope_render::Pass;
+use eframe::egui;
+
+pub fn show(ui: &mut egui::Ui, views: &[(&str, &GpuView)], ui_frame_ms: f64, adapter: &str) {
+    ui.horizontal(|ui| {
+        ui.strong("Performance");
+        ui.label(format!("UI frame interval {ui_frame_ms:.1} ms · {adapter}"))
+            .on_hover_text("Time between the last two frames the window drew; the window draws only when something changed or work is in progress.");
+    });
+    egui::Grid::new("passes").striped(true).show(ui, |ui| {
+        ui.label("view");
+        for pass in Pass::ALL {
+            ui.label(pass.name());
+        }
+        ui.label("frame (wall)");
+        ui.label("this frame");
+        ui.end_row();
+        for (name, v) in views {
+            let stats = v.stats();
+            ui.label(*name);
+            for pass in Pass::ALL {
+                let ms = stats.timings_ms.iter().find(|(p, _)| *p == pass).map(|(_, ms)| *ms);
+                match ms {
+                    Some(ms) => ui.label(format!("{ms:.2} ms")),
+                    None if stats.ran(pass) => ui.label("ran"),
+                    None => ui.weak("skipped"),
+                };
+            }
+            ui.label(format!("{:.1} ms", v.last_frame_ms))
+                .on_hover_text("Wall time of the last frame that ran any pass, from submission until the GPU was idle.");
+            ui.label(format!("{} run, {} skipped", stats.run.len(), stats.skipped.len()))
+                .on_hover_text(stats.timing_source.map_or("", |s| s.label()));
+            ui.end_row();
+        }
+    });
+}

@@ -1,0 +1,247 @@
+//! The Reference tab: the spectral path tracer (`model::reference`) rendering the current
+//! perspective view progressively off the UI thread, with its samples per pixel and noise, next
+//! to the real-time render at the same size and the CIEDE2000 map between them.
+
+use super::gpu_view::{Gpu, GpuView};
+use super::jobs::Job;
+use atmoscope_model::Scene;
+use atmoscope_model::camera::Projection;
+use atmoscope_model::display::{display, to_u8};
+use atmoscope_model::methods::path_tracer::PathTracerSettings;
+use atmoscope_model::metrics::{DisplaySetup, delta_e2000_map};
+use atmoscope_model::reference::ReferenceRender;
+use atmoscope_render::View;
+use atmoscope_render::views::false_colour;
+use eframe::egui::{self, Vec2};
+use serde::{Deserialize, Serialize};
+use std::sync::{Arc, Mutex};
+
+use super::compare_tab::DELTA_E_SCALE_MAX;
+
+const SIZES: [(u32, u32); 3] = [(80, 45), (160, 90), (320, 180)];
+/// Paths per pixel added by each progressive pass.
+const SPP_PER_PASS: u32 = 4;
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct ReferenceSettings {
+    /// Index into the sizes offered.
+    pub size: usize,
+    /// Stop after this many paths per pixel (16–4096).
+    pub target_spp: u64,
+}
+
+impl Default for ReferenceSettings {
+    fn default() -> Self {
+        ReferenceSettings {
+            size: 1,
+            target_spp: 256,
+        }
+    }
+}
+
+/// The path tracer's state after a pass.
+#[derive(Clone)]
+pub struct Snapshot {
+    pub rgb: Vec<[f64; 3]>,
+    pub spp: u64,
+    /// Mean relative standard error of pixel luminance.
+    pub noise: f64,
+}
+
+struct Run {
+    scene: Scene,
+    settings: ReferenceSettings,
+    job: Job<()>,
+    latest: Arc<Mutex<Option<Snapshot>>>,
+}
+
+pub struct ReferenceTab {
+    run: Option<Run>,
+    realtime: GpuView,
+    /// spp of the snapshot shown, and its images.
+    shown: Option<u64>,
+    textures: Option<[egui::TextureHandle; 2]>,
+    pub delta_e_mean: Option<f64>,
+    pub snapshot: Option<Snapshot>,
+}
+
+impl ReferenceTab {
+    pub fn new(gpu: &Gpu) -> ReferenceTab {
+        ReferenceTab {
+            run: None,
+            realtime: GpuView::new(gpu),
+            shown: None,
+            textures: None,
+            delta_e_mean: None,
+            snapshot: None,
+        }
+    }
+
+    pub fn job(&self) -> Option<&Job<()>> {
+        self.run.as_ref().map(|r| &r.job).filter(|j| j.is_running())
+    }
+
+    pub fn realtime(&self) -> &GpuView {
+        &self.realtime
+    }
+
+    fn start(&mut self, ctx: &egui::Context, scene: &Scene, settings: ReferenceSettings) {
+        if let Some(run) = &self.run {
+            run.job.cancel();
+        }
+        let (w, h) = SIZES[settings.size.min(SIZES.len() - 1)];
+        let latest = Arc::new(Mutex::new(None));
+        let out = latest.clone();
+        let s = scene.clone();
+        let target = settings.target_spp.clamp(16, 4096);
+        let job = Job::spawn(format!("path tracing {w}×{h}"), ctx, move |progress| {
+            let mut render = ReferenceRender::new(&s, Projection::Perspective, w, h, 1, PathTracerSettings::default());
+            while render.samples_per_pixel() < target {
+                if !render.run_pass(SPP_PER_PASS, progress.cancel_flag()) {
+                    return;
+                }
+                let snapshot = Snapshot {
+                    rgb: render.linear_srgb(),
+                    spp: render.samples_per_pixel(),
+                    noise: render.mean_relative_error(),
+                };
+                if let Ok(mut l) = out.lock() {
+                    *l = Some(snapshot);
+                }
+                progress.set(render.samples_per_pixel() as f32 / target as f32);
+            }
+        });
+        self.run = Some(Run {
+            scene: scene.clone(),
+            settings,
+            job,
+            latest,
+        });
+        self.shown = None;
+        self.snapshot = None;
+        self.delta_e_mean = None;
+    }
+
+    pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene, settings: &mut ReferenceSettings) {
+        ui.horizontal(|ui| {
+            egui::ComboBox::from_label("size")
+                .selected_text(format!("{}×{}", SIZES[settings.size].0, SIZES[settings.size].1))
+                .show_ui(ui, |ui| {
+                    for (i, (w, h)) in SIZES.iter().enumerate() {
+                        ui.selectable_value(&mut settings.size, i, format!("{w}×{h}"));
+                    }
+                })
+                .response
+                .on_hover_text("Pixels of the reference: the path tracer's time grows with their number.");
+            ui.add(egui::Slider::new(&mut settings.target_spp, 16..=4096).logarithmic(true).text("paths per pixel"))
+                .on_hover_text("The render stops at this many paths per pixel; noise falls as 1/√paths.");
+            if ui.button("Restart").clicked() {
+                self.run = None;
+            }
+        });
+        let stale = self
+            .run
+            .as_ref()
+            .is_none_or(|r| r.scene != *scene || r.settings != *settings);
+        if stale {
+            self.start(ui.ctx(), scene, *settings);
+        }
+        let (w, h) = SIZES[settings.size];
+        self.realtime
+            .render(scene, &View::new(Projection::Perspective, w, h));
+
+        let latest = self
+            .run
+            .as_ref()
+            .and_then(|r| r.latest.lock().ok().and_then(|l| l.clone()));
+        if let Some(snapshot) = latest {
+            if self.shown != Some(snapshot.spp) || self.textures.is_none() {
+                self.update(ui.ctx(), scene, &snapshot, (w, h));
+                self.snapshot = Some(snapshot);
+            }
+        }
+        if let Some(job) = self.job() {
+            job.show(ui);
+        }
+        match (&self.snapshot, self.delta_e_mean) {
+            (Some(s), Some(de)) => ui.label(format!(
+                "{} paths per pixel · noise {:.2} % (mean relative standard error of luminance) · ΔE2000 real-time vs reference: mean {:.2}",
+                s.spp,
+                100.0 * s.noise,
+                de
+            )),
+            _ => ui.label("Waiting for the first pass…"),
+        };
+        let avail = ui.available_size();
+        let each = Vec2::new(avail.x / 3.0 - 6.0, (avail.x / 3.0 - 6.0) * h as f32 / w as f32)
+            .min(Vec2::new(avail.x, avail.y - 20.0).max(Vec2::splat(16.0)));
+        ui.horizontal(|ui| {
+            let captions = ["path traced", "real time", "ΔE2000 (0–10)"];
+            let ids = [
+                self.textures.as_ref().map(|t| t[0].id()),
+                self.realtime.texture(),
+                self.textures.as_ref().map(|t| t[1].id()),
+            ];
+            for (caption, id) in captions.iter().zip(ids) {
+                ui.vertical(|ui| {
+                    ui.label(*caption);
+                    if let Some(id) = id {
+                        ui.add(egui::Image::new((id, each)));
+                    }
+                });
+            }
+        });
+    }
+
+    fn update(&mut self, ctx: &egui::Context, scene: &Scene, snapshot: &Snapshot, (w, h): (u32, u32)) {
+        let d = &scene.display;
+        let image = |pixels: Vec<egui::Color32>| egui::ColorImage::new([w as usize, h as usize], pixels);
+        let reference = image(
+            snapshot
+                .rgb
+                .iter()
+                .map(|&c| {
+                    let e = display(c, d.exposure_ev, d.tone_map).map(to_u8);
+                    egui::Color32::from_rgb(e[0], e[1], e[2])
+                })
+                .collect(),
+        );
+        let Ok(realtime) = self.realtime.radiance() else { return };
+        if realtime.rgba.len() != snapshot.rgb.len() {
+            return;
+        }
+        let map = delta_e2000_map(
+            &realtime.rgb(),
+            &snapshot.rgb,
+            DisplaySetup {
+                exposure_ev: d.exposure_ev,
+                tone_map: d.tone_map,
+                ..DisplaySetup::default()
+            },
+        );
+        self.delta_e_mean = Some(map.iter().sum::<f64>() / map.len().max(1) as f64);
+        let heat = image(
+            map.iter()
+                .map(|&de| {
+                    let c = false_colour(de / DELTA_E_SCALE_MAX).map(|v| (v * 255.0) as u8);
+                    egui::Color32::from_rgb(c[0], c[1], c[2])
+                })
+                .collect(),
+        );
+        let options = egui::TextureOptions::NEAREST;
+        self.textures = Some([
+            ctx.load_texture("reference", reference, options),
+            ctx.load_texture("reference ΔE", heat, options),
+        ]);
+        self.shown = Some(snapshot.spp);
+    }
+}
+
+impl Drop for ReferenceTab {
+    fn drop(&mut self) {
+        if let Some(run) = &self.run {
+            run.job.cancel();
+        }
+    }
+}

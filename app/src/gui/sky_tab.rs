@@ -1,0 +1,216 @@
+//! The Sky, Fisheye and Luminance tabs: the real-time view with its controls. Drag to look
+//! around, the wheel changes altitude, Shift-drag (any drag on the fisheye) puts the sun under the
+//! pointer, a click inspects the pixel. The luminance map adds a legend and a hover read-out.
+
+use super::gpu_view::{GpuView, pixels};
+use super::{Command, Layout, Tab};
+use atmoscope_model::Scene;
+use atmoscope_model::camera::{Camera, Projection};
+use atmoscope_model::constants::MAX_LUMINOUS_EFFICACY_LM_PER_W;
+use atmoscope_model::geometry::Ray;
+use atmoscope_model::scene::SunSettings;
+use atmoscope_render::{DisplayMode, View};
+use eframe::egui::{self, Color32, Pos2, Sense, Stroke, Vec2};
+
+const LEGEND_HEIGHT: f32 = 46.0;
+/// Relative altitude change per point of wheel scroll.
+const ALTITUDE_PER_SCROLL: f64 = 0.01;
+/// Lowest altitude the wheel goes to, m (the slider reaches 0).
+const MIN_WHEEL_ALTITUDE_M: f64 = 1.0;
+
+pub fn projection(tab: Tab) -> Projection {
+    match tab {
+        Tab::Fisheye => Projection::Fisheye,
+        _ => Projection::Perspective,
+    }
+}
+
+/// The view a tab shows in `points` of screen.
+pub fn view_for(tab: Tab, layout: &Layout, size: [u32; 2]) -> View {
+    let mut view = View::new(projection(tab), size[0], size[1]);
+    if tab == Tab::Luminance {
+        view.mode = DisplayMode::Luminance {
+            log10_min: layout.luminance_log10_range[0],
+            log10_max: layout.luminance_log10_range[1],
+        };
+    }
+    view
+}
+
+/// The camera a view of `scene` uses.
+pub fn camera(scene: &Scene, projection: Projection) -> Camera {
+    Camera::new(
+        &scene.camera,
+        scene.atmosphere.planet_radius_km * 1000.0,
+        projection,
+    )
+}
+
+/// The ray through the centre of pixel (x, y) of `view`.
+pub fn ray_at(scene: &Scene, view: &View, x: u32, y: u32) -> Option<Ray> {
+    camera(scene, view.projection).ray(
+        f64::from(x) + 0.5,
+        f64::from(y) + 0.5,
+        view.width,
+        view.height,
+    )
+}
+
+pub fn show(ui: &mut egui::Ui, scene: &Scene, gpu: &mut GpuView, tab: Tab, layout: &mut Layout) -> Vec<Command> {
+    let mut commands = Vec::new();
+    let mut avail = ui.available_size();
+    if tab == Tab::Luminance {
+        avail.y -= LEGEND_HEIGHT;
+    }
+    let points = if tab == Tab::Fisheye {
+        Vec2::splat(avail.x.min(avail.y))
+    } else {
+        avail
+    }
+    .max(Vec2::splat(16.0));
+    let view = view_for(tab, layout, pixels(ui.ctx(), points, layout.render_scale));
+    gpu.render(scene, &view);
+    let Some(texture) = gpu.texture() else {
+        ui.label("The view has not been drawn yet.");
+        return commands;
+    };
+    let response = ui
+        .add(egui::Image::new((texture, points)).sense(Sense::click_and_drag()))
+        .on_hover_text(match tab {
+            Tab::Fisheye => "Drag to move the sun over the dome · click a pixel to inspect it",
+            _ => "Drag to look around · wheel: altitude · Shift-drag: move the sun · click: inspect",
+        });
+    let rect = response.rect;
+    let pixel_at = |pos: Pos2| -> Option<(u32, u32)> {
+        let f = (pos - rect.min) / rect.size();
+        ((0.0..1.0).contains(&f.x) && (0.0..1.0).contains(&f.y)).then(|| {
+            (
+                (f.x * view.width as f32) as u32,
+                (f.y * view.height as f32) as u32,
+            )
+        })
+    };
+
+    let mut s = scene.clone();
+    let move_sun = tab == Tab::Fisheye || ui.input(|i| i.modifiers.shift);
+    if response.dragged() {
+        if move_sun {
+            let ray = response
+                .interact_pointer_pos()
+                .and_then(pixel_at)
+                .and_then(|(x, y)| ray_at(scene, &view, x, y));
+            if let Some(ray) = ray {
+                let d = ray.direction;
+                s.sun = SunSettings::Angles {
+                    elevation_deg: d.z.clamp(-1.0, 1.0).asin().to_degrees(),
+                    azimuth_deg: d.x.atan2(d.y).to_degrees().rem_euclid(360.0),
+                };
+            }
+        } else {
+            // Grab the sky: it follows the pointer.
+            let deg_per_point = f64::from(scene.camera.fov_deg) / f64::from(points.y);
+            let delta = response.drag_delta();
+            let c = &mut s.camera;
+            c.heading_deg = (c.heading_deg - f64::from(delta.x) * deg_per_point).rem_euclid(360.0);
+            c.pitch_deg = (c.pitch_deg + f64::from(delta.y) * deg_per_point).clamp(-90.0, 90.0);
+        }
+    }
+    if response.hovered() {
+        let scroll = f64::from(ui.input(|i| i.smooth_scroll_delta.y));
+        if scroll != 0.0 {
+            let c = &mut s.camera;
+            c.altitude_m = (c.altitude_m.max(MIN_WHEEL_ALTITUDE_M) * (-scroll * ALTITUDE_PER_SCROLL).exp())
+                .clamp(MIN_WHEEL_ALTITUDE_M, 1e8);
+        }
+    }
+    if response.clicked() {
+        if let Some((x, y)) = response.interact_pointer_pos().and_then(pixel_at) {
+            commands.push(Command::Inspect { tab, x, y });
+        }
+    }
+    if s != *scene {
+        commands.push(Command::SetScene(Box::new(s)));
+    }
+
+    if tab == Tab::Fisheye {
+        compass(ui.painter(), rect, scene.camera.heading_deg);
+    }
+    if tab == Tab::Luminance {
+        let hovered = response.hover_pos().and_then(pixel_at);
+        let read_out = hovered.and_then(|(x, y)| {
+            let r = gpu.radiance().ok()?;
+            let rgb = r.at(x, y)?;
+            Some(MAX_LUMINOUS_EFFICACY_LM_PER_W * atmoscope_model::colour::linear_srgb_to_xyz(rgb).y)
+        });
+        legend(ui, layout, read_out);
+    }
+    commands
+}
+
+/// N, E, S, W on the fisheye's horizon circle (the heading is at the top).
+fn compass(painter: &egui::Painter, rect: egui::Rect, heading_deg: f64) {
+    let centre = rect.center();
+    let radius = rect.width().min(rect.height()) * 0.5;
+    painter.circle_stroke(centre, radius, Stroke::new(1.0, Color32::from_white_alpha(90)));
+    for (label, azimuth) in [("N", 0.0), ("E", 90.0), ("S", 180.0), ("W", 270.0)] {
+        let a = ((azimuth - heading_deg) as f32).to_radians();
+        let pos = centre + Vec2::new(a.sin(), -a.cos()) * (radius - 12.0);
+        painter.text(
+            pos,
+            egui::Align2::CENTER_CENTER,
+            label,
+            egui::FontId::proportional(14.0),
+            Color32::WHITE,
+        );
+    }
+}
+
+/// The false-colour scale with a tick per decade, the range controls and the hover read-out.
+fn legend(ui: &mut egui::Ui, layout: &mut Layout, read_out: Option<f64>) {
+    let [lo, hi] = layout.luminance_log10_range;
+    let (rect, _) = ui.allocate_exact_size(Vec2::new(ui.available_width(), 14.0), Sense::hover());
+    let n = 64;
+    for i in 0..n {
+        let t0 = i as f32 / n as f32;
+        let c = atmoscope_render::views::false_colour((f64::from(t0) + 0.5 / f64::from(n)).clamp(0.0, 1.0));
+        let x0 = rect.left() + t0 * rect.width();
+        let x1 = rect.left() + (i + 1) as f32 / n as f32 * rect.width();
+        ui.painter().rect_filled(
+            egui::Rect::from_min_max(Pos2::new(x0, rect.top()), Pos2::new(x1, rect.bottom())),
+            0.0,
+            Color32::from_rgb(
+                (c[0] * 255.0) as u8,
+                (c[1] * 255.0) as u8,
+                (c[2] * 255.0) as u8,
+            ),
+        );
+    }
+    ui.horizontal(|ui| {
+        for k in (lo.ceil() as i32)..=(hi.floor() as i32) {
+            let t = ((f64::from(k) - lo) / (hi - lo)) as f32;
+            ui.painter().text(
+                Pos2::new(rect.left() + t * rect.width(), rect.bottom() + 1.0),
+                egui::Align2::CENTER_TOP,
+                format!("10^{k}"),
+                egui::FontId::proportional(11.0),
+                ui.visuals().text_color(),
+            );
+        }
+    });
+    ui.add_space(14.0);
+    ui.horizontal(|ui| {
+        ui.label("cd/m², log scale from 10^");
+        let [mut lo, mut hi] = layout.luminance_log10_range;
+        ui.add(egui::DragValue::new(&mut lo).range(-6.0..=hi - 1.0).speed(0.1))
+            .on_hover_text("Lowest luminance shown, as a power of ten (deep twilight ≈ 10^-2, night < 10^-3).");
+        ui.label("to 10^");
+        ui.add(egui::DragValue::new(&mut hi).range(lo + 1.0..=10.0).speed(0.1))
+            .on_hover_text("Highest luminance shown, as a power of ten (a bright sky ≈ 10^4, the sun's disk ≈ 10^9).");
+        layout.luminance_log10_range = [lo, hi];
+        ui.separator();
+        match read_out {
+            Some(l) => ui.label(format!("under the pointer: {l:.4e} cd/m²")),
+            None => ui.label("hover the map to read the luminance"),
+        };
+    });
+}
