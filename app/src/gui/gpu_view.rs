@@ -16,6 +16,9 @@ pub struct Gpu {
     pub queue: wgpu::Queue,
     pub renderer: Arc<egui::mutex::RwLock<egui_wgpu::Renderer>>,
     pub adapter: String,
+    /// A CPU implementation (lavapipe): its timestamps are taken at recording, so per-pass
+    /// times come from fenced wall time instead.
+    pub software: bool,
 }
 
 impl Gpu {
@@ -26,6 +29,7 @@ impl Gpu {
             queue: rs.queue.clone(),
             renderer: rs.renderer.clone(),
             adapter: format!("{} ({:?}, {:?})", info.name, info.backend, info.device_type),
+            software: info.device_type == wgpu::DeviceType::Cpu,
         }
     }
 }
@@ -69,6 +73,9 @@ impl GpuView {
     pub fn new(gpu: &Gpu) -> GpuView {
         let mut engine = Engine::new(&gpu.device, &gpu.queue);
         engine.set_timing(true);
+        if gpu.software {
+            engine.force_cpu_timing();
+        }
         GpuView {
             engine,
             gpu: gpu.clone(),

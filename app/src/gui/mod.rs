@@ -439,7 +439,7 @@ impl ExplorerApp {
     fn log_frame(&self) {
         let Some(views) = &self.views else { return };
         let s = views.main.stats();
-        let ms: f64 = s.timings_ms.iter().map(|(_, ms)| ms).sum();
+        let ms: f64 = s.timings_ms.iter().map(|(_, ms)| ms).sum::<f64>().max(0.0);
         eprintln!(
             "frame: tab {:?}, view {:?}, passes run {:?}, skipped {}, pass time {ms:.1} ms, frame wall {:.1} ms, UI interval {:.1} ms",
             self.layout.tab,
