@@ -175,13 +175,21 @@ impl CompareTab {
                 ui.painter().image(
                     ta,
                     left,
-                    egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(layout.compare.split, 1.0)),
+                    egui::Rect::from_min_max(
+                        egui::pos2(0.0, 0.0),
+                        egui::pos2(layout.compare.split, 1.0),
+                    ),
                     egui::Color32::WHITE,
                 );
-                ui.painter().vline(x, rect.y_range(), egui::Stroke::new(2.0, egui::Color32::WHITE));
+                ui.painter().vline(
+                    x,
+                    rect.y_range(),
+                    egui::Stroke::new(2.0, egui::Color32::WHITE),
+                );
                 if let Some(pos) = response.interact_pointer_pos() {
                     if response.dragged() {
-                        layout.compare.split = ((pos.x - rect.left()) / rect.width()).clamp(0.0, 1.0);
+                        layout.compare.split =
+                            ((pos.x - rect.left()) / rect.width()).clamp(0.0, 1.0);
                     }
                 }
                 response.on_hover_text("A on the left, B on the right; drag to move the split.");

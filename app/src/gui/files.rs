@@ -51,7 +51,13 @@ pub fn pick_preset_to_save(scene: &Scene) -> Option<PathBuf> {
     let name: String = scene
         .name
         .chars()
-        .map(|c| if c.is_alphanumeric() { c.to_ascii_lowercase() } else { '-' })
+        .map(|c| {
+            if c.is_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '-'
+            }
+        })
         .collect();
     rfd::FileDialog::new()
         .set_title("Save the scene as a preset")
@@ -78,7 +84,12 @@ pub fn write_display_png(path: &Path, rgba: &[u8], width: u32, height: u32) -> a
 }
 
 /// Writes linear radiance (RGBA f32 rows) as an EXR.
-pub fn write_radiance_exr(path: &Path, rgba: &[[f32; 4]], width: u32, height: u32) -> anyhow::Result<()> {
+pub fn write_radiance_exr(
+    path: &Path,
+    rgba: &[[f32; 4]],
+    width: u32,
+    height: u32,
+) -> anyhow::Result<()> {
     let rgb: Vec<[f64; 3]> = rgba
         .iter()
         .map(|p| [p[0], p[1], p[2]].map(f64::from))
@@ -87,7 +98,12 @@ pub fn write_radiance_exr(path: &Path, rgba: &[[f32; 4]], width: u32, height: u3
 }
 
 /// Renders and writes a panorama; None when cancelled.
-pub fn export_panorama(gpu: &Gpu, scene: &Scene, path: &Path, progress: &Progress) -> anyhow::Result<Option<String>> {
+pub fn export_panorama(
+    gpu: &Gpu,
+    scene: &Scene,
+    path: &Path,
+    progress: &Progress,
+) -> anyhow::Result<Option<String>> {
     let (w, h) = PANORAMA_SIZE;
     let mut engine = Engine::new(&gpu.device, &gpu.queue);
     progress.set(0.1);

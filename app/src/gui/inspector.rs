@@ -10,8 +10,8 @@ use super::jobs::{Job, Progress};
 use super::summary_panel::SummaryPanel;
 use atmoscope_model::atmosphere::Atmosphere;
 use atmoscope_model::colour::{cie1931, linear_srgb_to_xyz};
-use atmoscope_model::display::{display, to_u8};
 use atmoscope_model::constants::MAX_LUMINOUS_EFFICACY_LM_PER_W;
+use atmoscope_model::display::{display, to_u8};
 use atmoscope_model::geometry::{Ray, direction_from_angles};
 use atmoscope_model::methods::path_tracer::{LANES, LaneOptics, PathTracer, PathTracerSettings};
 use atmoscope_model::methods::rng::Rng;
@@ -66,10 +66,7 @@ pub fn analyse(probe: Probe, progress: &Progress) -> Option<Analysis> {
     let atm = Atmosphere::new(&probe.scene.atmosphere);
     let angles = probe.scene.sun.angles();
     let sun = direction_from_angles(angles.elevation_deg, angles.azimuth_deg);
-    let wavelengths_nm: Vec<f64> = INSPECT_NM
-        .step_by(INSPECT_STEP_NM)
-        .map(f64::from)
-        .collect();
+    let wavelengths_nm: Vec<f64> = INSPECT_NM.step_by(INSPECT_STEP_NM).map(f64::from).collect();
     let tracer = PathTracer::new(&atm, sun, PathTracerSettings::default());
     let (mut radiance, mut std_error, mut single) = (Vec::new(), Vec::new(), Vec::new());
     let batches: Vec<&[f64]> = wavelengths_nm.chunks(LANES).collect();
@@ -93,10 +90,7 @@ pub fn analyse(probe: Probe, progress: &Progress) -> Option<Analysis> {
             radiance.push(mean);
             std_error.push(((sum2[i] / n - mean * mean).max(0.0) / (n - 1.0)).sqrt());
             single.push(single_scattering::radiance_parts(
-                &atm,
-                &probe.ray,
-                sun,
-                batch[i],
+                &atm, &probe.ray, sun, batch[i],
             ));
         }
         progress.set((b + 1) as f32 / batches.len() as f32);
@@ -154,7 +148,12 @@ impl AtmospherePlots {
         let phase = [
             angles
                 .clone()
-                .map(|a| [a, phase::rayleigh(a.to_radians().cos(), o.rayleigh_depolarisation).log10()])
+                .map(|a| {
+                    [
+                        a,
+                        phase::rayleigh(a.to_radians().cos(), o.rayleigh_depolarisation).log10(),
+                    ]
+                })
                 .collect(),
             angles
                 .map(|a| {
@@ -256,7 +255,9 @@ impl Inspector {
             job.show(ui);
         }
         let Some(a) = &self.result else {
-            ui.label("Click a pixel of the Sky, Fisheye or Luminance view to see what it is made of.");
+            ui.label(
+                "Click a pixel of the Sky, Fisheye or Luminance view to see what it is made of.",
+            );
             return;
         };
         ui.label(&a.probe.label);
@@ -301,7 +302,10 @@ impl Inspector {
         ui.label("Share of the luminance:")
             .on_hover_text("Each constituent's single scattering, integrated against the eye's response ȳ(λ); multiple scattering is the path-traced total less all single scattering.");
         for (name, share) in SHARE_NAMES.iter().zip(a.shares) {
-            ui.add(egui::ProgressBar::new(share as f32).text(format!("{name}: {:.1} %", 100.0 * share)));
+            ui.add(
+                egui::ProgressBar::new(share as f32)
+                    .text(format!("{name}: {:.1} %", 100.0 * share)),
+            );
         }
         let at = |nm: f64| {
             a.wavelengths_nm

@@ -4,12 +4,12 @@
 //! through the same mappings the shaders use (`model::methods::hillaire`).
 
 use super::gpu_view::GpuView;
+use atmoscope_model::Scene;
+use atmoscope_model::colour::srgb_encode;
 use atmoscope_model::methods::hillaire::{
     self as h, AERIAL_PERSPECTIVE_SIZE, Params, aerial_perspective_slice_distance,
 };
 use atmoscope_model::wavelengths::{LANES, to_linear_srgb};
-use atmoscope_model::Scene;
-use atmoscope_model::colour::srgb_encode;
 use atmoscope_render::Table;
 use eframe::egui::{self, Sense, Vec2};
 use serde::{Deserialize, Serialize};
@@ -52,7 +52,10 @@ fn axes(table: Table) -> (&'static str, &'static str) {
             "x: sun zenith cosine μ_s, −1 (left) to 1 (right)",
             "y: altitude h, ground (top row) to the top (bottom row)",
         ),
-        Table::GroundIrradiance => ("x: sun zenith cosine μ_s, −1 (left) to 1 (right)", "one row"),
+        Table::GroundIrradiance => (
+            "x: sun zenith cosine μ_s, −1 (left) to 1 (right)",
+            "one row",
+        ),
         Table::SkyView => (
             "x: azimuth from the sun φ, 0 (left) to 180° (right), √ spacing",
             "y: view zenith θ, zenith (top) to the horizon (middle) to nadir (bottom), quadratic towards the horizon",
@@ -105,7 +108,13 @@ fn is_transmittance(table: Table) -> bool {
 #[derive(Default)]
 pub struct LutTab {
     /// (engine generation, settings) → image.
-    cached: Option<(u64, LutSettings, egui::TextureHandle, Vec<[f64; 3]>, [usize; 2])>,
+    cached: Option<(
+        u64,
+        LutSettings,
+        egui::TextureHandle,
+        Vec<[f64; 3]>,
+        [usize; 2],
+    )>,
     error: Option<String>,
 }
 
@@ -187,7 +196,10 @@ impl LutTab {
                                     let rgb = to_linear_srgb(&batches, &per_layer);
                                     if is_transmittance(table) {
                                         // Unitless: the colour of transmitted white light.
-                                        let white = to_linear_srgb(&batches, &vec![[1.0; LANES]; batches.len()]);
+                                        let white = to_linear_srgb(
+                                            &batches,
+                                            &vec![[1.0; LANES]; batches.len()],
+                                        );
                                         std::array::from_fn(|c| rgb[c] / white[c])
                                     } else {
                                         rgb
@@ -200,12 +212,17 @@ impl LutTab {
                         .iter()
                         .flat_map(|c| c.iter().copied())
                         .fold(0.0f64, f64::max);
-                    let scale = if s.normalise && peak > 0.0 { 1.0 / peak } else { 1.0 }
-                        * 2f64.powf(s.exposure_ev);
+                    let scale = if s.normalise && peak > 0.0 {
+                        1.0 / peak
+                    } else {
+                        1.0
+                    } * 2f64.powf(s.exposure_ev);
                     let pixels = colours
                         .iter()
                         .map(|c| {
-                            let e = c.map(|v| (srgb_encode((v * scale).clamp(0.0, 1.0)) * 255.0).round() as u8);
+                            let e = c.map(|v| {
+                                (srgb_encode((v * scale).clamp(0.0, 1.0)) * 255.0).round() as u8
+                            });
                             egui::Color32::from_rgb(e[0], e[1], e[2])
                         })
                         .collect();
@@ -246,13 +263,23 @@ impl LutTab {
                 let c = colours[y * w + x];
                 format!(
                     "texel ({x}, {y}): {} · value ({:.4e}, {:.4e}, {:.4e})",
-                    coordinates(table, p, scene.camera.altitude_m, x as f64, y as f64, s.slice),
+                    coordinates(
+                        table,
+                        p,
+                        scene.camera.altitude_m,
+                        x as f64,
+                        y as f64,
+                        s.slice
+                    ),
                     c[0],
                     c[1],
                     c[2]
                 )
             }
-            None => format!("{w} × {hh} texels × {} wavelengths; hover for coordinates", lanes),
+            None => format!(
+                "{w} × {hh} texels × {} wavelengths; hover for coordinates",
+                lanes
+            ),
         };
         ui.label(text);
     }

@@ -124,7 +124,11 @@ pub enum Command {
     CopyRon,
     Export(ExportKind, PathBuf),
     /// Analyse pixel (x, y) of the active view.
-    Inspect { tab: Tab, x: u32, y: u32 },
+    Inspect {
+        tab: Tab,
+        x: u32,
+        y: u32,
+    },
 }
 
 /// GPU state, present when eframe runs on wgpu.
@@ -153,7 +157,11 @@ pub struct ExplorerApp {
 }
 
 impl ExplorerApp {
-    pub fn new(scene: Scene, layout: Layout, render_state: Option<&eframe::egui_wgpu::RenderState>) -> ExplorerApp {
+    pub fn new(
+        scene: Scene,
+        layout: Layout,
+        render_state: Option<&eframe::egui_wgpu::RenderState>,
+    ) -> ExplorerApp {
         let views = render_state.map(|rs| {
             let gpu = Gpu::from_render_state(rs);
             Views {
@@ -243,14 +251,20 @@ impl ExplorerApp {
             },
             ExportKind::Exr => match views.main.radiance() {
                 Ok(r) => Job::spawn(label, ctx, move |_| {
-                    files::write_radiance_exr(&path, &r.rgba, w, h)
-                        .map(|()| Some(format!("wrote {} ({w}×{h}, linear radiance)", path.display())))
+                    files::write_radiance_exr(&path, &r.rgba, w, h).map(|()| {
+                        Some(format!(
+                            "wrote {} ({w}×{h}, linear radiance)",
+                            path.display()
+                        ))
+                    })
                 }),
                 Err(e) => return self.message = Some(e.to_string()),
             },
             ExportKind::PanoramaExr => {
                 let (gpu, scene) = (views.gpu.clone(), self.scene.clone());
-                Job::spawn(label, ctx, move |p| files::export_panorama(&gpu, &scene, &path, p))
+                Job::spawn(label, ctx, move |p| {
+                    files::export_panorama(&gpu, &scene, &path, p)
+                })
             }
         };
         self.exports.push(job);
@@ -258,7 +272,9 @@ impl ExplorerApp {
 
     fn inspect(&mut self, ctx: &egui::Context, tab: Tab, x: u32, y: u32) {
         let Some(views) = &mut self.views else { return };
-        let Some(view) = views.main.view() else { return };
+        let Some(view) = views.main.view() else {
+            return;
+        };
         let Some(ray) = sky_tab::ray_at(&self.scene, &view, x, y) else {
             return;
         };
@@ -392,11 +408,17 @@ impl ExplorerApp {
                 ui.horizontal(|ui| {
                     ui.label("render scale");
                     for s in [0.25, 0.5, 1.0] {
-                        ui.selectable_value(&mut self.layout.render_scale, s, format!("{:.0} %", s * 100.0));
+                        ui.selectable_value(
+                            &mut self.layout.render_scale,
+                            s,
+                            format!("{:.0} %", s * 100.0),
+                        );
                     }
                 })
                 .response
-                .on_hover_text("Texels per screen pixel: a lower scale draws faster on a software renderer.");
+                .on_hover_text(
+                    "Texels per screen pixel: a lower scale draws faster on a software renderer.",
+                );
             });
             ui.separator();
             for tab in Tab::ALL {
@@ -422,15 +444,19 @@ impl ExplorerApp {
             }
             Tab::Luts => {
                 // The tables of the current scene: redraw the main view if the scene changed.
-                let view = views.main.view().unwrap_or_else(|| {
-                    sky_tab::view_for(Tab::Sky, &self.layout, [320, 180])
-                });
+                let view = views
+                    .main
+                    .view()
+                    .unwrap_or_else(|| sky_tab::view_for(Tab::Sky, &self.layout, [320, 180]));
                 views.main.render(&self.scene, &view);
-                self.luts.show(ui, &self.scene, &views.main, &mut self.layout.luts);
+                self.luts
+                    .show(ui, &self.scene, &views.main, &mut self.layout.luts);
                 Vec::new()
             }
             Tab::Reference => {
-                views.reference.show(ui, &self.scene, &mut self.layout.reference);
+                views
+                    .reference
+                    .show(ui, &self.scene, &mut self.layout.reference);
                 Vec::new()
             }
         }
@@ -446,7 +472,11 @@ impl ExplorerApp {
             views.main.view().map(|v| (v.width, v.height)),
             s.run.iter().map(|p| p.name()).collect::<Vec<_>>(),
             s.skipped.len(),
-            if s.run.is_empty() { 0.0 } else { views.main.last_frame_ms },
+            if s.run.is_empty() {
+                0.0
+            } else {
+                views.main.last_frame_ms
+            },
             self.ui_frame_ms
         );
     }
@@ -485,7 +515,9 @@ impl eframe::App for ExplorerApp {
                     let mut shown: Vec<(&str, &GpuView)> = Vec::new();
                     match self.layout.tab {
                         Tab::Compare => {
-                            for (name, v) in ["A", "B", "reference"].iter().zip(views.compare.views()) {
+                            for (name, v) in
+                                ["A", "B", "reference"].iter().zip(views.compare.views())
+                            {
                                 shown.push((name, v));
                             }
                         }
@@ -509,7 +541,8 @@ impl eframe::App for ExplorerApp {
                 .resizable(true)
                 .default_size(360.0)
                 .show(ui, |ui| {
-                    egui::ScrollArea::vertical().show(ui, |ui| self.inspector.show(ui, &self.scene));
+                    egui::ScrollArea::vertical()
+                        .show(ui, |ui| self.inspector.show(ui, &self.scene));
                 });
         }
         egui::CentralPanel::default().show(ui, |ui| commands.extend(self.centre(ui)));

@@ -96,7 +96,14 @@ impl ReferenceTab {
         let s = scene.clone();
         let target = settings.target_spp.clamp(16, 4096);
         let job = Job::spawn(format!("path tracing {w}×{h}"), ctx, move |progress| {
-            let mut render = ReferenceRender::new(&s, Projection::Perspective, w, h, 1, PathTracerSettings::default());
+            let mut render = ReferenceRender::new(
+                &s,
+                Projection::Perspective,
+                w,
+                h,
+                1,
+                PathTracerSettings::default(),
+            );
             while render.samples_per_pixel() < target {
                 if !render.run_pass(SPP_PER_PASS, progress.cancel_flag()) {
                     return;
@@ -126,16 +133,27 @@ impl ReferenceTab {
     pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene, settings: &mut ReferenceSettings) {
         ui.horizontal(|ui| {
             egui::ComboBox::from_label("size")
-                .selected_text(format!("{}×{}", SIZES[settings.size].0, SIZES[settings.size].1))
+                .selected_text(format!(
+                    "{}×{}",
+                    SIZES[settings.size].0, SIZES[settings.size].1
+                ))
                 .show_ui(ui, |ui| {
                     for (i, (w, h)) in SIZES.iter().enumerate() {
                         ui.selectable_value(&mut settings.size, i, format!("{w}×{h}"));
                     }
                 })
                 .response
-                .on_hover_text("Pixels of the reference: the path tracer's time grows with their number.");
-            ui.add(egui::Slider::new(&mut settings.target_spp, 16..=4096).logarithmic(true).text("paths per pixel"))
-                .on_hover_text("The render stops at this many paths per pixel; noise falls as 1/√paths.");
+                .on_hover_text(
+                    "Pixels of the reference: the path tracer's time grows with their number.",
+                );
+            ui.add(
+                egui::Slider::new(&mut settings.target_spp, 16..=4096)
+                    .logarithmic(true)
+                    .text("paths per pixel"),
+            )
+            .on_hover_text(
+                "The render stops at this many paths per pixel; noise falls as 1/√paths.",
+            );
             if ui.button("Restart").clicked() {
                 self.run = None;
             }
@@ -174,8 +192,11 @@ impl ReferenceTab {
             _ => ui.label("Waiting for the first pass…"),
         };
         let avail = ui.available_size();
-        let each = Vec2::new(avail.x / 3.0 - 6.0, (avail.x / 3.0 - 6.0) * h as f32 / w as f32)
-            .min(Vec2::new(avail.x, avail.y - 20.0).max(Vec2::splat(16.0)));
+        let each = Vec2::new(
+            avail.x / 3.0 - 6.0,
+            (avail.x / 3.0 - 6.0) * h as f32 / w as f32,
+        )
+        .min(Vec2::new(avail.x, avail.y - 20.0).max(Vec2::splat(16.0)));
         ui.horizontal(|ui| {
             let captions = ["path traced", "real time", "ΔE2000 (0–10)"];
             let ids = [
@@ -194,9 +215,16 @@ impl ReferenceTab {
         });
     }
 
-    fn update(&mut self, ctx: &egui::Context, scene: &Scene, snapshot: &Snapshot, (w, h): (u32, u32)) {
+    fn update(
+        &mut self,
+        ctx: &egui::Context,
+        scene: &Scene,
+        snapshot: &Snapshot,
+        (w, h): (u32, u32),
+    ) {
         let d = &scene.display;
-        let image = |pixels: Vec<egui::Color32>| egui::ColorImage::new([w as usize, h as usize], pixels);
+        let image =
+            |pixels: Vec<egui::Color32>| egui::ColorImage::new([w as usize, h as usize], pixels);
         let reference = image(
             snapshot
                 .rgb
@@ -207,7 +235,9 @@ impl ReferenceTab {
                 })
                 .collect(),
         );
-        let Ok(realtime) = self.realtime.radiance() else { return };
+        let Ok(realtime) = self.realtime.radiance() else {
+            return;
+        };
         if realtime.rgba.len() != snapshot.rgb.len() {
             return;
         }

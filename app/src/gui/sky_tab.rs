@@ -56,7 +56,13 @@ pub fn ray_at(scene: &Scene, view: &View, x: u32, y: u32) -> Option<Ray> {
     )
 }
 
-pub fn show(ui: &mut egui::Ui, scene: &Scene, gpu: &mut GpuView, tab: Tab, layout: &mut Layout) -> Vec<Command> {
+pub fn show(
+    ui: &mut egui::Ui,
+    scene: &Scene,
+    gpu: &mut GpuView,
+    tab: Tab,
+    layout: &mut Layout,
+) -> Vec<Command> {
     let mut commands = Vec::new();
     let mut avail = ui.available_size();
     if tab == Tab::Luminance {
@@ -78,7 +84,9 @@ pub fn show(ui: &mut egui::Ui, scene: &Scene, gpu: &mut GpuView, tab: Tab, layou
         .add(egui::Image::new((texture, points)).sense(Sense::click_and_drag()))
         .on_hover_text(match tab {
             Tab::Fisheye => "Drag to move the sun over the dome · click a pixel to inspect it",
-            _ => "Drag to look around · wheel: altitude · Shift-drag: move the sun · click: inspect",
+            _ => {
+                "Drag to look around · wheel: altitude · Shift-drag: move the sun · click: inspect"
+            }
         });
     let rect = response.rect;
     let pixel_at = |pos: Pos2| -> Option<(u32, u32)> {
@@ -119,8 +127,9 @@ pub fn show(ui: &mut egui::Ui, scene: &Scene, gpu: &mut GpuView, tab: Tab, layou
         let scroll = f64::from(ui.input(|i| i.smooth_scroll_delta.y));
         if scroll != 0.0 {
             let c = &mut s.camera;
-            c.altitude_m = (c.altitude_m.max(MIN_WHEEL_ALTITUDE_M) * (-scroll * ALTITUDE_PER_SCROLL).exp())
-                .clamp(MIN_WHEEL_ALTITUDE_M, 1e8);
+            c.altitude_m = (c.altitude_m.max(MIN_WHEEL_ALTITUDE_M)
+                * (-scroll * ALTITUDE_PER_SCROLL).exp())
+            .clamp(MIN_WHEEL_ALTITUDE_M, 1e8);
         }
     }
     if response.clicked() {
@@ -140,7 +149,9 @@ pub fn show(ui: &mut egui::Ui, scene: &Scene, gpu: &mut GpuView, tab: Tab, layou
         let read_out = hovered.and_then(|(x, y)| {
             let r = gpu.radiance().ok()?;
             let rgb = r.at(x, y)?;
-            Some(MAX_LUMINOUS_EFFICACY_LM_PER_W * atmoscope_model::colour::linear_srgb_to_xyz(rgb).y)
+            Some(
+                MAX_LUMINOUS_EFFICACY_LM_PER_W * atmoscope_model::colour::linear_srgb_to_xyz(rgb).y,
+            )
         });
         legend(ui, layout, read_out);
     }
@@ -151,7 +162,11 @@ pub fn show(ui: &mut egui::Ui, scene: &Scene, gpu: &mut GpuView, tab: Tab, layou
 fn compass(painter: &egui::Painter, rect: egui::Rect, heading_deg: f64) {
     let centre = rect.center();
     let radius = rect.width().min(rect.height()) * 0.5;
-    painter.circle_stroke(centre, radius, Stroke::new(1.0, Color32::from_white_alpha(90)));
+    painter.circle_stroke(
+        centre,
+        radius,
+        Stroke::new(1.0, Color32::from_white_alpha(90)),
+    );
     for (label, azimuth) in [("N", 0.0), ("E", 90.0), ("S", 180.0), ("W", 270.0)] {
         let a = ((azimuth - heading_deg) as f32).to_radians();
         let pos = centre + Vec2::new(a.sin(), -a.cos()) * (radius - 12.0);
@@ -172,7 +187,9 @@ fn legend(ui: &mut egui::Ui, layout: &mut Layout, read_out: Option<f64>) {
     let n = 64;
     for i in 0..n {
         let t0 = i as f32 / n as f32;
-        let c = atmoscope_render::views::false_colour((f64::from(t0) + 0.5 / f64::from(n)).clamp(0.0, 1.0));
+        let c = atmoscope_render::views::false_colour(
+            (f64::from(t0) + 0.5 / f64::from(n)).clamp(0.0, 1.0),
+        );
         let x0 = rect.left() + t0 * rect.width();
         let x1 = rect.left() + (i + 1) as f32 / n as f32 * rect.width();
         ui.painter().rect_filled(

@@ -24,7 +24,11 @@ fn harness_with(layout: Layout, size: egui::Vec2) -> Harness<'static, ExplorerAp
                 cc.wgpu_render_state.is_some(),
                 "the explorer's tests need the wgpu renderer (install mesa-vulkan-drivers)"
             );
-            ExplorerApp::new(Scene::default(), layout.clone(), cc.wgpu_render_state.as_ref())
+            ExplorerApp::new(
+                Scene::default(),
+                layout.clone(),
+                cc.wgpu_render_state.as_ref(),
+            )
         });
     h.run();
     h
@@ -43,7 +47,12 @@ fn radiance(h: &mut Harness<'static, ExplorerApp>) -> Vec<[f32; 4]> {
 /// Sets a slider through accesskit, lets the app redraw, and checks the view changed.
 fn slide_and_see_the_view_change(h: &mut Harness<'static, ExplorerApp>, label: &str, value: f64) {
     let generation = |h: &Harness<'static, ExplorerApp>| {
-        h.state().views.as_ref().expect("GPU views").main.generation()
+        h.state()
+            .views
+            .as_ref()
+            .expect("GPU views")
+            .main
+            .generation()
     };
     let (before, drawn) = (radiance(h), generation(h));
     h.get_by_role_and_label(Role::Slider, label)
@@ -80,7 +89,14 @@ fn sliders_change_albedo_sun_and_altitude_and_the_view_follows() {
 fn an_unchanged_frame_runs_no_gpu_pass() {
     let mut h = harness();
     h.step();
-    let stats = h.state().views.as_ref().expect("GPU views").main.stats().clone();
+    let stats = h
+        .state()
+        .views
+        .as_ref()
+        .expect("GPU views")
+        .main
+        .stats()
+        .clone();
     assert!(stats.run.is_empty(), "ran {:?}", stats.run);
     assert_eq!(stats.skipped.len(), atmoscope_render::Pass::ALL.len());
 }
@@ -105,7 +121,12 @@ fn month_slider_sets_the_ozone_column_and_redraws() {
     slide_and_see_the_view_change(&mut h, "month", 1.0);
     h.get_by_label("Summary per wavelength").click();
     h.run();
-    let info = h.state().inspector.summary.shown().map(|info| info.ozone_column_du);
+    let info = h
+        .state()
+        .inspector
+        .summary
+        .shown()
+        .map(|info| info.ozone_column_du);
     assert_eq!(info, Some(347.0), "January at Arosa");
 }
 
@@ -147,7 +168,11 @@ fn a_bad_preset_dropped_on_the_window_names_file_and_field_and_changes_nothing()
     let before = h.state().scene.clone();
     let cases = [
         ("broken.ron", "(camera: (altitude_m: ", "broken.ron"),
-        ("too-high.ron", "(camera: (altitude_m: 2e9))", "camera.altitude_m"),
+        (
+            "too-high.ron",
+            "(camera: (altitude_m: 2e9))",
+            "camera.altitude_m",
+        ),
         ("newer.ron", "(version: 99)", "newer"),
     ];
     for (name, text, expected) in cases {
@@ -202,15 +227,26 @@ fn exports_png_and_exr_that_read_back_as_drawn() {
 
     let png = image::open(&png).expect("PNG reads back").to_rgb8();
     assert_eq!(png.dimensions(), (view.width, view.height));
-    let shown_rgb: Vec<u8> = shown.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
-    assert_eq!(png.into_raw(), shown_rgb, "the PNG is the view as displayed");
+    let shown_rgb: Vec<u8> = shown
+        .chunks_exact(4)
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .collect();
+    assert_eq!(
+        png.into_raw(),
+        shown_rgb,
+        "the PNG is the view as displayed"
+    );
 
     let (rgb, w, hh) = crate::images::read_exr(&exr).expect("EXR reads back");
     assert_eq!((w, hh), (view.width, view.height));
     let worst = rgb
         .iter()
         .zip(&radiance)
-        .map(|(a, b)| (0..3).map(|c| (a[c] - f64::from(b[c])).abs() / f64::from(b[c]).abs().max(1e-6)).fold(0.0, f64::max))
+        .map(|(a, b)| {
+            (0..3)
+                .map(|c| (a[c] - f64::from(b[c])).abs() / f64::from(b[c]).abs().max(1e-6))
+                .fold(0.0, f64::max)
+        })
         .fold(0.0, f64::max);
     assert!(worst < 1e-3, "EXR differs from the radiance by {worst}");
 }
@@ -239,8 +275,14 @@ fn the_compare_tab_shows_a_delta_e_figure() {
 
 fn inspect(h: &mut Harness<'static, ExplorerApp>, x: u32, y: u32) -> super::inspector::Analysis {
     let ctx = h.ctx.clone();
-    h.state_mut()
-        .apply(&ctx, Command::Inspect { tab: Tab::Sky, x, y });
+    h.state_mut().apply(
+        &ctx,
+        Command::Inspect {
+            tab: Tab::Sky,
+            x,
+            y,
+        },
+    );
     if let Some(job) = h.state().inspector.job() {
         super::jobs::wait(job);
     }
@@ -251,11 +293,20 @@ fn inspect(h: &mut Harness<'static, ExplorerApp>, x: u32, y: u32) -> super::insp
 #[test]
 fn the_inspector_splits_a_pixel_into_its_parts() {
     let mut h = harness();
-    let view = h.state().views.as_ref().and_then(|v| v.main.view()).expect("drawn");
+    let view = h
+        .state()
+        .views
+        .as_ref()
+        .and_then(|v| v.main.view())
+        .expect("drawn");
     // The top row looks at the sky, the bottom row at the lit ground.
     for (y, sky) in [(0, true), (view.height - 1, false)] {
         let a = inspect(&mut h, view.width / 2, y);
-        assert!(a.probe.displayed.is_some_and(|rgb| rgb.iter().all(|&c| c > 0.0)));
+        assert!(
+            a.probe
+                .displayed
+                .is_some_and(|rgb| rgb.iter().all(|&c| c > 0.0))
+        );
         assert!(a.radiance.iter().all(|&l| l > 0.0));
         let total: f64 = a.shares.iter().sum();
         assert!((total - 1.0).abs() < 1e-9, "shares sum to {total}");
@@ -264,7 +315,11 @@ fn the_inspector_splits_a_pixel_into_its_parts() {
             assert!(a.shares[0] > 0.05 && a.shares[1] > 0.05, "{:?}", a.shares);
             assert_eq!(a.shares[2], 0.0, "the sky has no ground share");
         } else {
-            assert!(a.shares[2] > 0.3, "the ground view is mostly ground: {:?}", a.shares);
+            assert!(
+                a.shares[2] > 0.3,
+                "the ground view is mostly ground: {:?}",
+                a.shares
+            );
         }
     }
     h.get_by_label_contains("ground (single):");
@@ -277,8 +332,10 @@ fn the_lut_tab_reads_every_table() {
     h.run();
     assert_eq!(h.state().layout.tab, Tab::Luts);
     for t in atmoscope_render::Table::ALL {
-        h.state_mut().layout.luts.table =
-            atmoscope_render::Table::ALL.iter().position(|&x| x == t).unwrap_or(0);
+        h.state_mut().layout.luts.table = atmoscope_render::Table::ALL
+            .iter()
+            .position(|&x| x == t)
+            .unwrap_or(0);
         h.run();
         h.get_by_label_contains("texels ×");
     }
@@ -292,8 +349,16 @@ fn the_reference_tab_path_traces_progressively() {
     layout.reference.target_spp = 16;
     let mut h = harness_with(layout, egui::vec2(900.0, 700.0));
     for _ in 0..600 {
-        if h.state().views.as_ref().and_then(|v| v.reference.delta_e_mean).is_some()
-            && h.state().views.as_ref().and_then(|v| v.reference.job()).is_none()
+        if h.state()
+            .views
+            .as_ref()
+            .and_then(|v| v.reference.delta_e_mean)
+            .is_some()
+            && h.state()
+                .views
+                .as_ref()
+                .and_then(|v| v.reference.job())
+                .is_none()
         {
             break;
         }
