@@ -12,7 +12,7 @@ use atmoscope_model::scene::SunSettings;
 use atmoscope_render::{DisplayMode, View};
 use eframe::egui::{self, Color32, Pos2, Sense, Stroke, Vec2};
 
-const LEGEND_HEIGHT: f32 = 46.0;
+const LEGEND_HEIGHT: f32 = 72.0;
 /// Relative altitude change per point of wheel scroll.
 const ALTITUDE_PER_SCROLL: f64 = 0.01;
 /// Lowest altitude the wheel goes to, m (the slider reaches 0).
@@ -184,6 +184,8 @@ fn compass(painter: &egui::Painter, rect: egui::Rect, heading_deg: f64) {
 fn legend(ui: &mut egui::Ui, layout: &mut Layout, read_out: Option<f64>) {
     let [lo, hi] = layout.luminance_log10_range;
     let (rect, _) = ui.allocate_exact_size(Vec2::new(ui.available_width(), 14.0), Sense::hover());
+    // Room at both ends for the first and last tick labels.
+    let rect = rect.shrink2(Vec2::new(20.0, 0.0));
     let n = 64;
     for i in 0..n {
         let t0 = i as f32 / n as f32;
