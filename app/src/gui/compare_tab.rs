@@ -132,7 +132,7 @@ impl CompareTab {
             _ => avail,
         }
         .max(Vec2::splat(16.0));
-        let size = pixels(ui.ctx(), each, layout.render_scale);
+        let size = pixels(ui.ctx(), each, layout.scale(ui.ctx()));
         let view = View::new(super::sky_tab::projection(Tab::Sky), size[0], size[1]);
         for (v, set) in self.views.iter_mut().zip([c.a, c.b, c.reference]) {
             let mut s = scene.clone();

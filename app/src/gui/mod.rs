@@ -81,6 +81,17 @@ impl Tab {
     }
 }
 
+impl Layout {
+    /// Texels per screen pixel for a view drawn now.
+    pub fn scale(&self, ctx: &egui::Context) -> f32 {
+        if ctx.input(|i| i.pointer.is_decidedly_dragging()) {
+            self.render_scale.min(self.drag_scale)
+        } else {
+            self.render_scale
+        }
+    }
+}
+
 /// Everything about the window that is not the scene; restored on start.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
@@ -88,6 +99,9 @@ pub struct Layout {
     pub tab: Tab,
     /// Texels per screen pixel of the views (0.25–1): lower is faster on a software renderer.
     pub render_scale: f32,
+    /// Scale while the pointer drags (turning, moving the sun, dragging a slider), 0.25–1: the
+    /// view follows the pointer at this resolution and is redrawn sharp when the drag ends.
+    pub drag_scale: f32,
     /// Luminance map range, log10 cd/m².
     pub luminance_log10_range: [f64; 2],
     pub compare: CompareSettings,
@@ -102,6 +116,7 @@ impl Default for Layout {
         Layout {
             tab: Tab::Sky,
             render_scale: 1.0,
+            drag_scale: 0.5,
             luminance_log10_range: [-2.0, 5.0],
             compare: CompareSettings::default(),
             luts: LutSettings::default(),
@@ -405,20 +420,27 @@ impl ExplorerApp {
             ui.menu_button("View", |ui| {
                 ui.checkbox(&mut self.layout.show_inspector, "Inspector  (I)");
                 ui.checkbox(&mut self.layout.show_performance, "Performance  (P)");
-                ui.horizontal(|ui| {
-                    ui.label("render scale");
-                    for s in [0.25, 0.5, 1.0] {
-                        ui.selectable_value(
-                            &mut self.layout.render_scale,
-                            s,
-                            format!("{:.0} %", s * 100.0),
-                        );
-                    }
-                })
-                .response
-                .on_hover_text(
-                    "Texels per screen pixel: a lower scale draws faster on a software renderer.",
-                );
+                for (label, scale, tip) in [
+                    (
+                        "render scale",
+                        &mut self.layout.render_scale,
+                        "Texels per screen pixel: a lower scale draws faster on a software renderer.",
+                    ),
+                    (
+                        "while dragging",
+                        &mut self.layout.drag_scale,
+                        "Texels per screen pixel while the pointer drags; the view is redrawn at the render scale when the drag ends.",
+                    ),
+                ] {
+                    ui.horizontal(|ui| {
+                        ui.label(label);
+                        for s in [0.25, 0.5, 1.0] {
+                            ui.selectable_value(scale, s, format!("{:.0} %", s * 100.0));
+                        }
+                    })
+                    .response
+                    .on_hover_text(tip);
+                }
             });
             ui.separator();
             for tab in Tab::ALL {

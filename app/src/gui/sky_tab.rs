@@ -74,7 +74,11 @@ pub fn show(
         avail
     }
     .max(Vec2::splat(16.0));
-    let view = view_for(tab, layout, pixels(ui.ctx(), points, layout.render_scale));
+    let view = view_for(
+        tab,
+        layout,
+        pixels(ui.ctx(), points, layout.scale(ui.ctx())),
+    );
     gpu.render(scene, &view);
     let Some(texture) = gpu.texture() else {
         ui.label("The view has not been drawn yet.");

@@ -381,3 +381,89 @@ fn main_window_snapshot() {
     let mut h = harness_with(layout, egui::vec2(960.0, 600.0));
     h.snapshot("explorer");
 }
+
+fn pointer(
+    h: &Harness<'static, ExplorerApp>,
+    pos: egui::Pos2,
+    pressed: Option<bool>,
+    modifiers: egui::Modifiers,
+) {
+    h.event_modifiers(egui::Event::PointerMoved(pos), modifiers);
+    if let Some(pressed) = pressed {
+        h.event_modifiers(
+            egui::Event::PointerButton {
+                pos,
+                button: egui::PointerButton::Primary,
+                pressed,
+                modifiers,
+            },
+            modifiers,
+        );
+    }
+}
+
+/// Drags from the middle of the Sky view; returns the view's width during the drag.
+fn drag_view(h: &mut Harness<'static, ExplorerApp>, modifiers: egui::Modifiers) -> u32 {
+    let start = egui::pos2(620.0, 300.0);
+    pointer(h, start, Some(true), modifiers);
+    h.step();
+    for i in 1..=5 {
+        pointer(
+            h,
+            start + egui::vec2(12.0 * i as f32, 6.0 * i as f32),
+            None,
+            modifiers,
+        );
+        h.step();
+    }
+    let width = h
+        .state()
+        .views
+        .as_ref()
+        .and_then(|v| v.main.view())
+        .map(|v| v.width);
+    pointer(h, start + egui::vec2(60.0, 30.0), Some(false), modifiers);
+    h.run();
+    width.expect("drawn")
+}
+
+#[test]
+fn dragging_turns_the_camera_at_the_drag_scale_and_shift_drag_moves_the_sun() {
+    let mut h = harness();
+    let full = h
+        .state()
+        .views
+        .as_ref()
+        .and_then(|v| v.main.view())
+        .expect("drawn")
+        .width;
+    let before = h.state().scene.clone();
+
+    let width = drag_view(&mut h, egui::Modifiers::NONE);
+    assert_eq!(
+        width,
+        (full as f32 * 0.5).round() as u32,
+        "half resolution while dragging"
+    );
+    let after = h
+        .state()
+        .views
+        .as_ref()
+        .and_then(|v| v.main.view())
+        .expect("drawn")
+        .width;
+    assert_eq!(after, full, "sharp again when the drag ends");
+    let c = &h.state().scene.camera;
+    assert!(
+        c.heading_deg < before.camera.heading_deg,
+        "the sky follows the pointer: {}",
+        c.heading_deg
+    );
+    assert!(c.pitch_deg > before.camera.pitch_deg);
+    assert_eq!(h.state().scene.sun, before.sun);
+
+    let turned = h.state().scene.camera.clone();
+    drag_view(&mut h, egui::Modifiers::SHIFT);
+    assert_ne!(h.state().scene.sun, before.sun, "Shift-drag moves the sun");
+    assert_eq!(h.state().scene.camera, turned, "and leaves the camera");
+}
