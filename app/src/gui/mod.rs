@@ -109,6 +109,8 @@ pub struct Layout {
     pub reference: ReferenceSettings,
     pub show_inspector: bool,
     pub show_performance: bool,
+    /// Only the view (and the menu): for presenting, and for measuring a frame of a given size.
+    pub full_view: bool,
 }
 
 impl Default for Layout {
@@ -123,6 +125,7 @@ impl Default for Layout {
             reference: ReferenceSettings::default(),
             show_inspector: true,
             show_performance: true,
+            full_view: false,
         }
     }
 }
@@ -385,6 +388,9 @@ impl ExplorerApp {
                 if i.key_pressed(Key::P) && i.modifiers.is_none() {
                     self.layout.show_performance ^= true;
                 }
+                if i.key_pressed(Key::F) && i.modifiers.is_none() {
+                    self.layout.full_view ^= true;
+                }
             });
         }
         for file in ctx.input(|i| i.raw.dropped_files.clone()) {
@@ -420,6 +426,7 @@ impl ExplorerApp {
             ui.menu_button("View", |ui| {
                 ui.checkbox(&mut self.layout.show_inspector, "Inspector  (I)");
                 ui.checkbox(&mut self.layout.show_performance, "Performance  (P)");
+                ui.checkbox(&mut self.layout.full_view, "Full view: hide the panels  (F)");
                 for (label, scale, tip) in [
                     (
                         "render scale",
@@ -456,6 +463,7 @@ impl ExplorerApp {
             return Vec::new();
         };
         let tab = self.layout.tab;
+        views.reference.set_visible(tab == Tab::Reference);
         match tab {
             Tab::Sky | Tab::Fisheye | Tab::Luminance => {
                 sky_tab::show(ui, &self.scene, &mut views.main, tab, &mut self.layout)
@@ -515,50 +523,56 @@ impl eframe::App for ExplorerApp {
         self.poll_jobs();
         let mut commands = self.shortcuts(&ctx);
         egui::Panel::top("menu").show(ui, |ui| commands.extend(self.menu(ui)));
-        egui::Panel::bottom("status").show(ui, |ui| {
-            if let Some(message) = &self.message {
-                let mut dismissed = false;
-                ui.horizontal(|ui| {
-                    ui.colored_label(ui.visuals().error_fg_color, message);
-                    dismissed = ui.button("Dismiss").clicked();
-                });
-                if dismissed {
-                    self.message = None;
-                }
-            }
-            for job in &self.exports {
-                job.show(ui);
-            }
-            if let Some(notice) = &self.notice {
-                ui.label(notice);
-            }
-            if self.layout.show_performance {
-                if let Some(views) = &self.views {
-                    let mut shown: Vec<(&str, &GpuView)> = Vec::new();
-                    match self.layout.tab {
-                        Tab::Compare => {
-                            for (name, v) in
-                                ["A", "B", "reference"].iter().zip(views.compare.views())
-                            {
-                                shown.push((name, v));
-                            }
-                        }
-                        Tab::Reference => shown.push(("real time", views.reference.realtime())),
-                        _ => shown.push(("view", &views.main)),
+        let full = self.layout.full_view;
+        let status = !full || self.message.is_some() || !self.exports.is_empty();
+        if status {
+            egui::Panel::bottom("status").show(ui, |ui| {
+                if let Some(message) = &self.message {
+                    let mut dismissed = false;
+                    ui.horizontal(|ui| {
+                        ui.colored_label(ui.visuals().error_fg_color, message);
+                        dismissed = ui.button("Dismiss").clicked();
+                    });
+                    if dismissed {
+                        self.message = None;
                     }
-                    performance_panel::show(ui, &shown, self.ui_frame_ms, &views.gpu.adapter);
                 }
-            }
-        });
-        egui::Panel::left("scene")
-            .resizable(true)
-            .default_size(330.0)
-            .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| {
-                    commands.extend(scene_panel::show(ui, &self.scene));
-                });
+                for job in &self.exports {
+                    job.show(ui);
+                }
+                if let Some(notice) = &self.notice {
+                    ui.label(notice);
+                }
+                if self.layout.show_performance && !full {
+                    if let Some(views) = &self.views {
+                        let mut shown: Vec<(&str, &GpuView)> = Vec::new();
+                        match self.layout.tab {
+                            Tab::Compare => {
+                                for (name, v) in
+                                    ["A", "B", "reference"].iter().zip(views.compare.views())
+                                {
+                                    shown.push((name, v));
+                                }
+                            }
+                            Tab::Reference => shown.push(("real time", views.reference.realtime())),
+                            _ => shown.push(("view", &views.main)),
+                        }
+                        performance_panel::show(ui, &shown, self.ui_frame_ms, &views.gpu.adapter);
+                    }
+                }
             });
-        if self.layout.show_inspector {
+        }
+        if !full {
+            egui::Panel::left("scene")
+                .resizable(true)
+                .default_size(330.0)
+                .show(ui, |ui| {
+                    egui::ScrollArea::vertical().show(ui, |ui| {
+                        commands.extend(scene_panel::show(ui, &self.scene));
+                    });
+                });
+        }
+        if self.layout.show_inspector && !full {
             egui::Panel::right("inspector")
                 .resizable(true)
                 .default_size(360.0)
@@ -567,7 +581,12 @@ impl eframe::App for ExplorerApp {
                         .show(ui, |ui| self.inspector.show(ui, &self.scene));
                 });
         }
-        egui::CentralPanel::default().show(ui, |ui| commands.extend(self.centre(ui)));
+        let centre = if full {
+            egui::CentralPanel::default().frame(egui::Frame::NONE)
+        } else {
+            egui::CentralPanel::default()
+        };
+        centre.show(ui, |ui| commands.extend(self.centre(ui)));
         for c in commands {
             self.apply(&ctx, c);
         }

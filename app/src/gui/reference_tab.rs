@@ -14,7 +14,9 @@ use atmoscope_render::View;
 use atmoscope_render::views::false_colour;
 use eframe::egui::{self, Vec2};
 use serde::{Deserialize, Serialize};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
+use std::time::Duration;
 
 use super::compare_tab::DELTA_E_SCALE_MAX;
 
@@ -51,6 +53,8 @@ pub struct Snapshot {
 
 struct Run {
     scene: Scene,
+    /// Cleared while the tab is hidden: the worker waits instead of tracing.
+    visible: Arc<AtomicBool>,
     settings: ReferenceSettings,
     job: Job<()>,
     latest: Arc<Mutex<Option<Snapshot>>>,
@@ -82,6 +86,20 @@ impl ReferenceTab {
         self.run.as_ref().map(|r| &r.job).filter(|j| j.is_running())
     }
 
+    /// Paths per pixel the worker has reached (whether or not shown yet).
+    #[cfg(test)]
+    pub fn latest_spp(&self) -> Option<u64> {
+        let run = self.run.as_ref()?;
+        run.latest.lock().ok()?.as_ref().map(|s| s.spp)
+    }
+
+    /// Pauses the path tracer while the tab is hidden and resumes it when shown.
+    pub fn set_visible(&self, visible: bool) {
+        if let Some(run) = &self.run {
+            run.visible.store(visible, Ordering::Relaxed);
+        }
+    }
+
     pub fn realtime(&self) -> &GpuView {
         &self.realtime
     }
@@ -95,6 +113,8 @@ impl ReferenceTab {
         let out = latest.clone();
         let s = scene.clone();
         let target = settings.target_spp.clamp(16, 4096);
+        let visible = Arc::new(AtomicBool::new(true));
+        let shown = visible.clone();
         let job = Job::spawn(format!("path tracing {w}×{h}"), ctx, move |progress| {
             let mut render = ReferenceRender::new(
                 &s,
@@ -105,6 +125,13 @@ impl ReferenceTab {
                 PathTracerSettings::default(),
             );
             while render.samples_per_pixel() < target {
+                // A hidden tab costs nothing: wait until it is shown again.
+                while !shown.load(Ordering::Relaxed) {
+                    if progress.cancelled() {
+                        return;
+                    }
+                    std::thread::sleep(Duration::from_millis(50));
+                }
                 if !render.run_pass(SPP_PER_PASS, progress.cancel_flag()) {
                     return;
                 }
@@ -121,6 +148,7 @@ impl ReferenceTab {
         });
         self.run = Some(Run {
             scene: scene.clone(),
+            visible,
             settings,
             job,
             latest,

@@ -373,6 +373,44 @@ fn the_reference_tab_path_traces_progressively() {
 }
 
 #[test]
+fn the_reference_pauses_while_its_tab_is_hidden() {
+    let mut layout = Layout::default();
+    layout.tab = Tab::Reference;
+    layout.reference.size = 0;
+    layout.reference.target_spp = 4096;
+    let mut h = harness_with(layout, egui::vec2(900.0, 700.0));
+    let spp = |h: &Harness<'static, ExplorerApp>| {
+        h.state()
+            .views
+            .as_ref()
+            .and_then(|v| v.reference.latest_spp())
+    };
+    for _ in 0..600 {
+        if spp(&h).is_some() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    assert!(spp(&h).is_some(), "no pass finished");
+    h.key_press(egui::Key::Num1);
+    h.run();
+    // The pass under way when the tab was hidden may still finish.
+    std::thread::sleep(std::time::Duration::from_millis(500));
+    let paused = spp(&h);
+    std::thread::sleep(std::time::Duration::from_millis(500));
+    assert_eq!(spp(&h), paused, "traced while hidden");
+    h.key_press(egui::Key::Num6);
+    h.run();
+    for _ in 0..600 {
+        if spp(&h) > paused {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    assert!(spp(&h) > paused, "did not resume");
+}
+
+#[test]
 fn main_window_snapshot() {
     let layout = Layout {
         show_performance: false,
