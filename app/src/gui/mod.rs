@@ -153,8 +153,9 @@ pub enum Command {
 struct Views {
     gpu: Gpu,
     main: GpuView,
-    compare: CompareTab,
-    reference: ReferenceTab,
+    /// Created when their tab is first shown: each holds engines of its own.
+    compare: Option<CompareTab>,
+    reference: Option<ReferenceTab>,
 }
 
 pub struct ExplorerApp {
@@ -184,8 +185,8 @@ impl ExplorerApp {
             let gpu = Gpu::from_render_state(rs);
             Views {
                 main: GpuView::new(&gpu),
-                compare: CompareTab::new(&gpu),
-                reference: ReferenceTab::new(&gpu),
+                compare: None,
+                reference: None,
                 gpu,
             }
         });
@@ -336,12 +337,13 @@ impl ExplorerApp {
     }
 
     fn busy(&self) -> bool {
-        !self.exports.is_empty()
-            || self.inspector.job().is_some()
-            || self
+        let tracing = self.layout.tab == Tab::Reference
+            && self
                 .views
                 .as_ref()
-                .is_some_and(|v| v.reference.job().is_some() && self.layout.tab == Tab::Reference)
+                .and_then(|v| v.reference.as_ref())
+                .is_some_and(|r| r.job().is_some());
+        !self.exports.is_empty() || self.inspector.job().is_some() || tracing
     }
 
     fn shortcuts(&mut self, ctx: &egui::Context) -> Vec<Command> {
@@ -463,13 +465,17 @@ impl ExplorerApp {
             return Vec::new();
         };
         let tab = self.layout.tab;
-        views.reference.set_visible(tab == Tab::Reference);
+        if let Some(r) = &views.reference {
+            r.set_visible(tab == Tab::Reference);
+        }
         match tab {
             Tab::Sky | Tab::Fisheye | Tab::Luminance => {
                 sky_tab::show(ui, &self.scene, &mut views.main, tab, &mut self.layout)
             }
             Tab::Compare => {
-                views.compare.show(ui, &self.scene, &mut self.layout);
+                let gpu = &views.gpu;
+                let compare = views.compare.get_or_insert_with(|| CompareTab::new(gpu));
+                compare.show(ui, &self.scene, &mut self.layout);
                 Vec::new()
             }
             Tab::Luts => {
@@ -484,9 +490,11 @@ impl ExplorerApp {
                 Vec::new()
             }
             Tab::Reference => {
-                views
+                let gpu = &views.gpu;
+                let reference = views
                     .reference
-                    .show(ui, &self.scene, &mut self.layout.reference);
+                    .get_or_insert_with(|| ReferenceTab::new(gpu));
+                reference.show(ui, &self.scene, &mut self.layout.reference);
                 Vec::new()
             }
         }
@@ -548,13 +556,17 @@ impl eframe::App for ExplorerApp {
                         let mut shown: Vec<(&str, &GpuView)> = Vec::new();
                         match self.layout.tab {
                             Tab::Compare => {
-                                for (name, v) in
-                                    ["A", "B", "reference"].iter().zip(views.compare.views())
-                                {
-                                    shown.push((name, v));
+                                if let Some(c) = &views.compare {
+                                    for (name, v) in ["A", "B", "reference"].iter().zip(c.views()) {
+                                        shown.push((name, v));
+                                    }
                                 }
                             }
-                            Tab::Reference => shown.push(("real time", views.reference.realtime())),
+                            Tab::Reference => {
+                                if let Some(r) = &views.reference {
+                                    shown.push(("real time", r.realtime()));
+                                }
+                            }
                             _ => shown.push(("view", &views.main)),
                         }
                         performance_panel::show(ui, &shown, self.ui_frame_ms, &views.gpu.adapter);

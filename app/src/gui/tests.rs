@@ -263,7 +263,7 @@ fn the_compare_tab_shows_a_delta_e_figure() {
         .state()
         .views
         .as_ref()
-        .and_then(|v| v.compare.figures)
+        .and_then(|v| v.compare.as_ref()?.figures)
         .expect("figures");
     assert!(figures.a_vs_b_mean > 0.0 && figures.a_vs_b_mean.is_finite());
     assert!(figures.a_vs_reference_mean.is_finite() && figures.b_vs_reference_mean.is_finite());
@@ -352,12 +352,12 @@ fn the_reference_tab_path_traces_progressively() {
         if h.state()
             .views
             .as_ref()
-            .and_then(|v| v.reference.delta_e_mean)
+            .and_then(|v| v.reference.as_ref()?.delta_e_mean)
             .is_some()
             && h.state()
                 .views
                 .as_ref()
-                .and_then(|v| v.reference.job())
+                .and_then(|v| v.reference.as_ref()?.job())
                 .is_none()
         {
             break;
@@ -365,7 +365,12 @@ fn the_reference_tab_path_traces_progressively() {
         std::thread::sleep(std::time::Duration::from_millis(50));
         h.step();
     }
-    let reference = &h.state().views.as_ref().expect("GPU views").reference;
+    let reference = h
+        .state()
+        .views
+        .as_ref()
+        .and_then(|v| v.reference.as_ref())
+        .expect("the Reference tab");
     let snapshot = reference.snapshot.as_ref().expect("a pass");
     assert!(snapshot.spp >= 16 && snapshot.noise > 0.0);
     let de = reference.delta_e_mean.expect("ΔE");
@@ -383,7 +388,7 @@ fn the_reference_pauses_while_its_tab_is_hidden() {
         h.state()
             .views
             .as_ref()
-            .and_then(|v| v.reference.latest_spp())
+            .and_then(|v| v.reference.as_ref()?.latest_spp())
     };
     for _ in 0..600 {
         if spp(&h).is_some() {
