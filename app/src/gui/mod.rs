@@ -633,16 +633,9 @@ pub fn run(args: SceneArgs) -> anyhow::Result<ExitCode> {
         "Atmoscope",
         options,
         Box::new(move |cc| {
-            let restored = cc
-                .storage
-                .and_then(|s| eframe::get_value::<Scene>(s, SCENE_KEY))
-                .filter(|s| s.validate().is_ok());
-            let layout = cc
-                .storage
-                .and_then(|s| eframe::get_value::<Layout>(s, LAYOUT_KEY))
-                .unwrap_or_default();
+            let (scene, layout) = restore(cc.storage, scene);
             Ok(Box::new(ExplorerApp::new(
-                scene.or(restored).unwrap_or_default(),
+                scene,
                 layout,
                 cc.wgpu_render_state.as_ref(),
             )))
@@ -650,6 +643,18 @@ pub fn run(args: SceneArgs) -> anyhow::Result<ExitCode> {
     )
     .map_err(|e| anyhow::anyhow!("cannot open the explorer window: {e}"))?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// The scene and layout to open with: `from_args` if given, else the last session's (a stored
+/// scene that no longer validates is dropped), else the defaults.
+fn restore(storage: Option<&dyn eframe::Storage>, from_args: Option<Scene>) -> (Scene, Layout) {
+    let stored = storage
+        .and_then(|s| eframe::get_value::<Scene>(s, SCENE_KEY))
+        .filter(|s| s.validate().is_ok());
+    let layout = storage
+        .and_then(|s| eframe::get_value::<Layout>(s, LAYOUT_KEY))
+        .unwrap_or_default();
+    (from_args.or(stored).unwrap_or_default(), layout)
 }
 
 /// Asks the device for timestamp queries where the adapter has them, so the Performance

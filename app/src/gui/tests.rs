@@ -510,3 +510,99 @@ fn dragging_turns_the_camera_at_the_drag_scale_and_shift_drag_moves_the_sun() {
     assert_ne!(h.state().scene.sun, before.sun, "Shift-drag moves the sun");
     assert_eq!(h.state().scene.camera, turned, "and leaves the camera");
 }
+
+#[derive(Default)]
+struct MemoryStorage(std::collections::HashMap<String, String>);
+
+impl eframe::Storage for MemoryStorage {
+    fn get_string(&self, key: &str) -> Option<String> {
+        self.0.get(key).cloned()
+    }
+    fn set_string(&mut self, key: &str, value: String) {
+        self.0.insert(key.into(), value);
+    }
+    fn remove_string(&mut self, key: &str) {
+        self.0.remove(key);
+    }
+    fn flush(&mut self) {}
+}
+
+#[test]
+fn the_last_scene_and_layout_are_restored_and_options_win() {
+    let mut h = harness();
+    h.get_by_role_and_label(Role::Slider, "ground albedo")
+        .set_value_accesskit(0.55);
+    h.key_press(egui::Key::Num2);
+    h.run();
+    let mut storage = MemoryStorage::default();
+    eframe::App::save(h.state_mut(), &mut storage);
+
+    let (scene, layout) = super::restore(Some(&storage), None);
+    assert_eq!(scene.atmosphere.ground_albedo, 0.55);
+    assert_eq!(layout.tab, Tab::Fisheye);
+    assert_eq!(layout, h.state().layout);
+
+    let mut asked = Scene::default();
+    asked.camera.altitude_m = 42.0;
+    let (scene, _) = super::restore(Some(&storage), Some(asked.clone()));
+    assert_eq!(scene, asked, "a scene from the command line wins");
+    assert_eq!(
+        super::restore(None, None),
+        (Scene::default(), Layout::default())
+    );
+}
+
+#[test]
+fn copy_scene_as_ron_from_the_file_menu() {
+    let mut h = harness();
+    h.get_by_label("File").click();
+    h.run();
+    h.get_by_label_contains("Copy scene as RON").click();
+    h.step();
+    let copied = h
+        .output()
+        .platform_output
+        .commands
+        .iter()
+        .find_map(|c| match c {
+            egui::OutputCommand::CopyText(text) => Some(text.clone()),
+            _ => None,
+        })
+        .expect("the scene went to the clipboard");
+    let scene = Scene::from_ron(&copied, Path::new("clipboard")).expect("valid RON");
+    assert_eq!(scene, h.state().scene);
+}
+
+#[test]
+fn a_panorama_exports_in_the_background_and_can_be_cancelled() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness();
+    let ctx = h.ctx.clone();
+    let cancelled = dir.path().join("cancelled.exr");
+    h.state_mut().apply(
+        &ctx,
+        Command::Export(ExportKind::PanoramaExr, cancelled.clone()),
+    );
+    h.state().exports[0].cancel();
+    wait_for_exports(&mut h);
+    assert_eq!(h.state().notice.as_deref(), Some("export cancelled"));
+    assert!(!cancelled.exists());
+
+    let panorama = dir.path().join("panorama.exr");
+    h.state_mut().apply(
+        &ctx,
+        Command::Export(ExportKind::PanoramaExr, panorama.clone()),
+    );
+    wait_for_exports(&mut h);
+    assert!(h.state().message.is_none(), "{:?}", h.state().message);
+    let (rgb, w, hh) = crate::images::read_exr(&panorama).expect("reads back");
+    assert_eq!((w, hh), super::files::PANORAMA_SIZE);
+    assert!(rgb.iter().flatten().all(|v| v.is_finite() && *v >= 0.0));
+    // Sky above the horizon row and lit ground below it.
+    let rgb = &rgb;
+    let row = |y: u32| (0..w).map(move |x| rgb[(y * w + x) as usize][1]);
+    assert!(row(hh / 4).all(|l| l > 0.0) && row(3 * hh / 4).all(|l| l > 0.0));
+    // The top row looks straight up at every azimuth: one radiance.
+    let (lo, hi) = row(0).fold((f64::MAX, 0.0f64), |(lo, hi), l| (lo.min(l), hi.max(l)));
+    assert!(hi - lo <= 0.01 * hi, "zenith row spreads {lo}..{hi}");
+}
