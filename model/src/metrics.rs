@@ -65,7 +65,8 @@ fn rmse(pairs: impl Iterator<Item = (f64, f64)>) -> (f64, f64) {
     (rmse, if mean > 0.0 { rmse / mean } else { 0.0 })
 }
 
-fn percentile(values: &[f64], p: f64) -> f64 {
+/// The `p`-quantile (0–1) of `values`, nearest rank; 0 for none.
+pub fn percentile(values: &[f64], p: f64) -> f64 {
     let mut v = values.to_vec();
     v.sort_by(f64::total_cmp);
     if v.is_empty() {

@@ -15,6 +15,10 @@ use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+/// Highest camera altitude, m (100 000 km: the Moon's distance is 3.8e8 m, geostationary orbit
+/// 3.6e7 m).
+pub const MAX_CAMERA_ALTITUDE_M: f64 = 1e8;
+
 /// The preset format version this build reads and writes.
 pub const SCENE_VERSION: u32 = 1;
 
@@ -505,7 +509,13 @@ impl Scene {
             }
         }
         let cam = &self.camera;
-        c.range("camera.altitude_m", cam.altitude_m, 0.0, 1e8, " m");
+        c.range(
+            "camera.altitude_m",
+            cam.altitude_m,
+            0.0,
+            MAX_CAMERA_ALTITUDE_M,
+            " m",
+        );
         c.range("camera.heading_deg", cam.heading_deg, 0.0, 360.0, "°");
         c.range("camera.pitch_deg", cam.pitch_deg, -90.0, 90.0, "°");
         c.range("camera.fov_deg", cam.fov_deg, 1.0, 170.0, "°");

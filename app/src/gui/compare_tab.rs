@@ -6,7 +6,7 @@
 use super::gpu_view::{Gpu, GpuView, pixels};
 use super::{Layout, Tab};
 use atmoscope_model::Scene;
-use atmoscope_model::metrics::{DisplaySetup, delta_e2000_map};
+use atmoscope_model::metrics::{DisplaySetup, delta_e2000_map, percentile};
 use atmoscope_model::scene::WavelengthSet;
 use atmoscope_render::View;
 use atmoscope_render::views::false_colour;
@@ -121,9 +121,12 @@ impl CompareTab {
                 "A dense spectral render both are measured against (colour from many bands integrated against the CIE 1931 observer).",
             );
             ui.separator();
-            ui.selectable_value(&mut c.mode, CompareMode::SideBySide, "side by side");
-            ui.selectable_value(&mut c.mode, CompareMode::Split, "split");
-            ui.selectable_value(&mut c.mode, CompareMode::DeltaE, "ΔE map");
+            ui.selectable_value(&mut c.mode, CompareMode::SideBySide, "side by side")
+                .on_hover_text("A on the left, B on the right, each at half the width.");
+            ui.selectable_value(&mut c.mode, CompareMode::Split, "split")
+                .on_hover_text("One image, A left of a divider you drag and B right of it: differences show at the seam.");
+            ui.selectable_value(&mut c.mode, CompareMode::DeltaE, "ΔE map")
+                .on_hover_text("Where A and B differ, per pixel, in CIEDE2000 units.");
         });
         let c = *c;
         let avail = ui.available_size() - Vec2::new(0.0, 40.0);
@@ -217,14 +220,9 @@ impl CompareTab {
             ..DisplaySetup::default()
         };
         let ab = delta_e2000_map(&rgb[0], &rgb[1], setup);
-        let mut sorted = ab.clone();
-        sorted.sort_by(f64::total_cmp);
         self.figures = Some(Figures {
             a_vs_b_mean: mean(&ab),
-            a_vs_b_p95: sorted
-                .get(((sorted.len().max(1) - 1) as f64 * 0.95) as usize)
-                .copied()
-                .unwrap_or(0.0),
+            a_vs_b_p95: percentile(&ab, 0.95),
             a_vs_reference_mean: mean(&delta_e2000_map(&rgb[0], &rgb[2], setup)),
             b_vs_reference_mean: mean(&delta_e2000_map(&rgb[1], &rgb[2], setup)),
         });

@@ -8,7 +8,8 @@ use atmoscope_model::aerosol::AerosolType;
 use atmoscope_model::ozone::OzoneCrossSection;
 use atmoscope_model::profiles::{AirProfile, OzoneProfile};
 use atmoscope_model::scene::{
-    AerosolPhase, Method, OzoneColumn, Quality, SunSettings, ToneMap, WavelengthSet,
+    AerosolPhase, MAX_CAMERA_ALTITUDE_M, Method, OzoneColumn, Quality, SunSettings, ToneMap,
+    WavelengthSet,
 };
 use atmoscope_model::solar::SolarSpectrum;
 use atmoscope_model::sun::DateTime;
@@ -338,7 +339,7 @@ fn sun(ui: &mut egui::Ui, s: &mut Scene) {
 
 fn camera(ui: &mut egui::Ui, s: &mut Scene) {
     let c = &mut s.camera;
-    ui.add(Slider::new(&mut c.altitude_m, 0.0..=1e8).logarithmic(true).smallest_positive(1.0).suffix(" m").text("altitude"))
+    ui.add(Slider::new(&mut c.altitude_m, 0.0..=MAX_CAMERA_ALTITUDE_M).logarithmic(true).smallest_positive(1.0).suffix(" m").text("altitude"))
         .on_hover_text(
             "Camera height above the ground, from 1 m to 100 000 km. Half the air lies below 5.5 km; above 100 km the \
              atmosphere is a thin glowing shell.",

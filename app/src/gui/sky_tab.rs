@@ -3,12 +3,13 @@
 //! pointer, a click inspects the pixel. The luminance map adds a legend and a hover read-out.
 
 use super::gpu_view::{GpuView, pixels};
+use super::inspector::angles_of;
 use super::{Command, Layout, Tab};
 use atmoscope_model::Scene;
 use atmoscope_model::camera::{Camera, Projection};
 use atmoscope_model::constants::MAX_LUMINOUS_EFFICACY_LM_PER_W;
 use atmoscope_model::geometry::Ray;
-use atmoscope_model::scene::SunSettings;
+use atmoscope_model::scene::{MAX_CAMERA_ALTITUDE_M, SunSettings};
 use atmoscope_render::{DisplayMode, View};
 use eframe::egui::{self, Color32, Pos2, Sense, Stroke, Vec2};
 
@@ -112,10 +113,10 @@ pub fn show(
                 .and_then(pixel_at)
                 .and_then(|(x, y)| ray_at(scene, &view, x, y));
             if let Some(ray) = ray {
-                let d = ray.direction;
+                let (elevation_deg, azimuth_deg) = angles_of(ray.direction);
                 s.sun = SunSettings::Angles {
-                    elevation_deg: d.z.clamp(-1.0, 1.0).asin().to_degrees(),
-                    azimuth_deg: d.x.atan2(d.y).to_degrees().rem_euclid(360.0),
+                    elevation_deg,
+                    azimuth_deg,
                 };
             }
         } else {
@@ -133,7 +134,7 @@ pub fn show(
             let c = &mut s.camera;
             c.altitude_m = (c.altitude_m.max(MIN_WHEEL_ALTITUDE_M)
                 * (-scroll * ALTITUDE_PER_SCROLL).exp())
-            .clamp(MIN_WHEEL_ALTITUDE_M, 1e8);
+            .clamp(MIN_WHEEL_ALTITUDE_M, MAX_CAMERA_ALTITUDE_M);
         }
     }
     if response.clicked() {
