@@ -9,7 +9,7 @@ use atmoscope_model::aerosol::AerosolType;
 use eframe::egui;
 use eframe::egui::accesskit::Role;
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable;
+use egui_kittest::kittest::{NodeT, Queryable};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -605,4 +605,37 @@ fn a_panorama_exports_in_the_background_and_can_be_cancelled() {
     // The top row looks straight up at every azimuth: one radiance.
     let (lo, hi) = row(0).fold((f64::MAX, 0.0f64), |(lo, hi), l| (lo.min(l), hi.max(l)));
     assert!(hi - lo <= 0.01 * hi, "zenith row spreads {lo}..{hi}");
+}
+
+#[test]
+fn the_luminance_tab_reads_out_the_pixel_under_the_pointer() {
+    let mut h = harness();
+    h.key_press(egui::Key::Num3);
+    h.run();
+    let view = h
+        .state()
+        .views
+        .as_ref()
+        .and_then(|v| v.main.view())
+        .expect("drawn");
+    assert!(matches!(
+        view.mode,
+        atmoscope_render::DisplayMode::Luminance { .. }
+    ));
+    h.get_by_label("hover the map to read the luminance");
+    h.hover_at(egui::pos2(620.0, 300.0));
+    h.run();
+    let text = h
+        .get_by_label_contains("under the pointer:")
+        .accesskit_node()
+        .value()
+        .unwrap_or_default();
+    let value: f64 = text
+        .split("under the pointer: ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no value in {text}"));
+    // Daylight sky: between a dim 10³ and the sun's aureole 10⁵ cd/m².
+    assert!((1e3..1e5).contains(&value), "{value} cd/m²");
 }
