@@ -503,18 +503,25 @@ impl ExplorerApp {
     fn log_frame(&self) {
         let Some(views) = &self.views else { return };
         let s = views.main.stats();
-        let ms: f64 = s.timings_ms.iter().map(|(_, ms)| ms).sum::<f64>().max(0.0);
+        let passes: Vec<String> = s
+            .run
+            .iter()
+            .map(|p| match s.timings_ms.iter().find(|(q, _)| q == p) {
+                Some((_, ms)) => format!("{} {ms:.1} ms", p.name()),
+                None => p.name().to_string(),
+            })
+            .collect();
+        let wall = if s.run.is_empty() {
+            0.0
+        } else {
+            views.main.last_frame_ms
+        };
         eprintln!(
-            "frame: tab {:?}, view {:?}, passes run {:?}, skipped {}, pass time {ms:.1} ms, frame wall {:.1} ms, UI interval {:.1} ms",
+            "frame: tab {:?}, view {:?}, passes run [{}], skipped {}, frame wall {wall:.1} ms, UI interval {:.1} ms",
             self.layout.tab,
             views.main.view().map(|v| (v.width, v.height)),
-            s.run.iter().map(|p| p.name()).collect::<Vec<_>>(),
+            passes.join(", "),
             s.skipped.len(),
-            if s.run.is_empty() {
-                0.0
-            } else {
-                views.main.last_frame_ms
-            },
             self.ui_frame_ms
         );
     }
