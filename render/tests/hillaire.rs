@@ -296,7 +296,7 @@ fn each_frame_runs_only_the_passes_whose_inputs_changed() {
     let SunSettings::Angles {
         elevation_deg,
         azimuth_deg,
-    } = scene.sun.clone()
+    } = scene.sun
     else {
         panic!("the default scene gives the sun by angles");
     };

@@ -111,10 +111,10 @@ pub fn run(args: &ReferenceArgs) -> anyhow::Result<ExitCode> {
         }
         return Ok(ExitCode::SUCCESS);
     }
-    if let Some(n) = args.noise {
-        if !(n > 0.0 && n < 1.0) {
-            bail!("--noise: {n} is outside (0, 1); e.g. 0.01 for 1 %");
-        }
+    if let Some(n) = args.noise
+        && !(n > 0.0 && n < 1.0)
+    {
+        bail!("--noise: {n} is outside (0, 1); e.g. 0.01 for 1 %");
     }
     let base = args.scene.scene()?;
     let view_size = |v: &View| {
@@ -267,11 +267,11 @@ fn render_job(job: &Job, args: &ReferenceArgs) -> anyhow::Result<()> {
         job.scene.display.exposure_ev,
         job.scene.display.tone_map,
     )?;
-    if let Some(dir) = cached.parent() {
-        if std::fs::create_dir_all(dir).is_ok() {
-            // The cache is an optimisation: failing to fill it loses nothing.
-            let _ = std::fs::copy(&job.out, &cached);
-        }
+    if let Some(dir) = cached.parent()
+        && std::fs::create_dir_all(dir).is_ok()
+    {
+        // The cache is an optimisation: failing to fill it loses nothing.
+        let _ = std::fs::copy(&job.out, &cached);
     }
     eprintln!(
         "{}: {} spp, noise {:.2} % (mean per-pixel relative standard error of luminance), {:.1} s; preview {}",

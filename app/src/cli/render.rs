@@ -65,7 +65,7 @@ pub fn parse_wavelengths(s: &str) -> Result<WavelengthSet, String> {
                 .strip_prefix("spectral")
                 .and_then(|n| n.parse().ok())
                 .ok_or_else(|| format!("{s:?}: expected rgb3, spectral4 or spectralN"))?;
-            if n % 4 != 0 || !(4..=128).contains(&n) {
+            if !n.is_multiple_of(4) || !(4..=128).contains(&n) {
                 return Err(format!(
                     "spectral{n}: N must be a multiple of 4 from 4 to 128"
                 ));

@@ -189,11 +189,10 @@ impl CompareTab {
                     rect.y_range(),
                     egui::Stroke::new(2.0, egui::Color32::WHITE),
                 );
-                if let Some(pos) = response.interact_pointer_pos() {
-                    if response.dragged() {
-                        layout.compare.split =
-                            ((pos.x - rect.left()) / rect.width()).clamp(0.0, 1.0);
-                    }
+                if let Some(pos) = response.interact_pointer_pos()
+                    && response.dragged()
+                {
+                    layout.compare.split = ((pos.x - rect.left()) / rect.width()).clamp(0.0, 1.0);
                 }
                 response.on_hover_text("A on the left, B on the right; drag to move the split.");
             }

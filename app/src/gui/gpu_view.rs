@@ -145,10 +145,10 @@ impl GpuView {
 
     /// The linear radiance of the frame on screen (read back at most once per frame drawn).
     pub fn radiance(&mut self) -> Result<Arc<Radiance>, EngineError> {
-        if let Some((g, r)) = &self.radiance {
-            if *g == self.generation {
-                return Ok(r.clone());
-            }
+        if let Some((g, r)) = &self.radiance
+            && *g == self.generation
+        {
+            return Ok(r.clone());
         }
         let view = self.view.ok_or(EngineError::NotRendered)?;
         let r = Arc::new(Radiance {

@@ -105,16 +105,18 @@ fn is_transmittance(table: Table) -> bool {
     )
 }
 
+/// A table as shown: its image and linear colours, for one engine frame and settings.
+struct Shown {
+    generation: u64,
+    settings: LutSettings,
+    texture: egui::TextureHandle,
+    colours: Vec<[f64; 3]>,
+    size: [usize; 2],
+}
+
 #[derive(Default)]
 pub struct LutTab {
-    /// (engine generation, settings) → image.
-    cached: Option<(
-        u64,
-        LutSettings,
-        egui::TextureHandle,
-        Vec<[f64; 3]>,
-        [usize; 2],
-    )>,
+    cached: Option<Shown>,
     error: Option<String>,
 }
 
@@ -176,7 +178,7 @@ impl LutTab {
         let stale = self
             .cached
             .as_ref()
-            .is_none_or(|(g, cs, ..)| *g != gpu.generation() || cs != s);
+            .is_none_or(|c| c.generation != gpu.generation() || c.settings != *s);
         if stale {
             match gpu.engine().read_table(table) {
                 Ok(data) => {
@@ -231,7 +233,13 @@ impl LutTab {
                         egui::ColorImage::new([w, hh], pixels),
                         egui::TextureOptions::NEAREST,
                     );
-                    self.cached = Some((gpu.generation(), *s, texture, colours, [w, hh]));
+                    self.cached = Some(Shown {
+                        generation: gpu.generation(),
+                        settings: *s,
+                        texture,
+                        colours,
+                        size: [w, hh],
+                    });
                     self.error = None;
                 }
                 Err(e) => self.error = Some(e.to_string()),
@@ -240,7 +248,13 @@ impl LutTab {
         if let Some(e) = &self.error {
             ui.colored_label(ui.visuals().error_fg_color, e);
         }
-        let Some((_, _, texture, colours, [w, hh])) = &self.cached else {
+        let Some(Shown {
+            texture,
+            colours,
+            size: [w, hh],
+            ..
+        }) = &self.cached
+        else {
             return;
         };
         let avail = ui.available_size() - Vec2::new(0.0, 24.0);

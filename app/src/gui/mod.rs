@@ -355,25 +355,25 @@ impl ExplorerApp {
             if i.consume_shortcut(&ctrl_shift(Key::C)) {
                 commands.push(Command::CopyRon);
             }
-            if i.consume_shortcut(&ctrl_shift(Key::E)) {
-                if let Some(p) = files::pick_export(ExportKind::Exr) {
-                    commands.push(Command::Export(ExportKind::Exr, p));
-                }
+            if i.consume_shortcut(&ctrl_shift(Key::E))
+                && let Some(p) = files::pick_export(ExportKind::Exr)
+            {
+                commands.push(Command::Export(ExportKind::Exr, p));
             }
-            if i.consume_shortcut(&ctrl(Key::E)) {
-                if let Some(p) = files::pick_export(ExportKind::Png) {
-                    commands.push(Command::Export(ExportKind::Png, p));
-                }
+            if i.consume_shortcut(&ctrl(Key::E))
+                && let Some(p) = files::pick_export(ExportKind::Png)
+            {
+                commands.push(Command::Export(ExportKind::Png, p));
             }
-            if i.consume_shortcut(&ctrl(Key::O)) {
-                if let Some(p) = files::pick_preset_to_open() {
-                    commands.push(Command::LoadFile(p));
-                }
+            if i.consume_shortcut(&ctrl(Key::O))
+                && let Some(p) = files::pick_preset_to_open()
+            {
+                commands.push(Command::LoadFile(p));
             }
-            if i.consume_shortcut(&ctrl(Key::S)) {
-                if let Some(p) = files::pick_preset_to_save(&self.scene) {
-                    commands.push(Command::SaveFile(p));
-                }
+            if i.consume_shortcut(&ctrl(Key::S))
+                && let Some(p) = files::pick_preset_to_save(&self.scene)
+            {
+                commands.push(Command::SaveFile(p));
             }
         });
         // Plain keys only when no text field has the keyboard.
@@ -558,26 +558,27 @@ impl eframe::App for ExplorerApp {
                 if let Some(notice) = &self.notice {
                     ui.label(notice);
                 }
-                if self.layout.show_performance && !full {
-                    if let Some(views) = &self.views {
-                        let mut shown: Vec<(&str, &GpuView)> = Vec::new();
-                        match self.layout.tab {
-                            Tab::Compare => {
-                                if let Some(c) = &views.compare {
-                                    for (name, v) in ["A", "B", "reference"].iter().zip(c.views()) {
-                                        shown.push((name, v));
-                                    }
+                if self.layout.show_performance
+                    && !full
+                    && let Some(views) = &self.views
+                {
+                    let mut shown: Vec<(&str, &GpuView)> = Vec::new();
+                    match self.layout.tab {
+                        Tab::Compare => {
+                            if let Some(c) = &views.compare {
+                                for (name, v) in ["A", "B", "reference"].iter().zip(c.views()) {
+                                    shown.push((name, v));
                                 }
                             }
-                            Tab::Reference => {
-                                if let Some(r) = &views.reference {
-                                    shown.push(("real time", r.realtime()));
-                                }
-                            }
-                            _ => shown.push(("view", &views.main)),
                         }
-                        performance_panel::show(ui, &shown, self.ui_frame_ms, &views.gpu.adapter);
+                        Tab::Reference => {
+                            if let Some(r) = &views.reference {
+                                shown.push(("real time", r.realtime()));
+                            }
+                        }
+                        _ => shown.push(("view", &views.main)),
                     }
+                    performance_panel::show(ui, &shown, self.ui_frame_ms, &views.gpu.adapter);
                 }
             });
         }

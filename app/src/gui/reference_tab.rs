@@ -201,11 +201,11 @@ impl ReferenceTab {
             .run
             .as_ref()
             .and_then(|r| r.latest.lock().ok().and_then(|l| l.clone()));
-        if let Some(snapshot) = latest {
-            if self.shown != Some(snapshot.spp) || self.textures.is_none() {
-                self.update(ui.ctx(), scene, &snapshot, (w, h));
-                self.snapshot = Some(snapshot);
-            }
+        if let Some(snapshot) = latest
+            && (self.shown != Some(snapshot.spp) || self.textures.is_none())
+        {
+            self.update(ui.ctx(), scene, &snapshot, (w, h));
+            self.snapshot = Some(snapshot);
         }
         if let Some(job) = self.job() {
             job.show(ui);

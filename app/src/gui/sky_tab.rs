@@ -96,7 +96,7 @@ pub fn show(
     let rect = response.rect;
     let pixel_at = |pos: Pos2| -> Option<(u32, u32)> {
         let f = (pos - rect.min) / rect.size();
-        ((0.0..1.0).contains(&f.x) && (0.0..1.0).contains(&f.y)).then(|| {
+        ((0.0..1.0).contains(&f.x) && (0.0..1.0).contains(&f.y)).then_some({
             (
                 (f.x * view.width as f32) as u32,
                 (f.y * view.height as f32) as u32,
@@ -121,7 +121,7 @@ pub fn show(
             }
         } else {
             // Grab the sky: it follows the pointer.
-            let deg_per_point = f64::from(scene.camera.fov_deg) / f64::from(points.y);
+            let deg_per_point = scene.camera.fov_deg / f64::from(points.y);
             let delta = response.drag_delta();
             let c = &mut s.camera;
             c.heading_deg = (c.heading_deg - f64::from(delta.x) * deg_per_point).rem_euclid(360.0);
@@ -137,10 +137,10 @@ pub fn show(
             .clamp(MIN_WHEEL_ALTITUDE_M, MAX_CAMERA_ALTITUDE_M);
         }
     }
-    if response.clicked() {
-        if let Some((x, y)) = response.interact_pointer_pos().and_then(pixel_at) {
-            commands.push(Command::Inspect { tab, x, y });
-        }
+    if response.clicked()
+        && let Some((x, y)) = response.interact_pointer_pos().and_then(pixel_at)
+    {
+        commands.push(Command::Inspect { tab, x, y });
     }
     if s != *scene {
         commands.push(Command::SetScene(Box::new(s)));

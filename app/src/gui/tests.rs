@@ -343,10 +343,14 @@ fn the_lut_tab_reads_every_table() {
 
 #[test]
 fn the_reference_tab_path_traces_progressively() {
-    let mut layout = Layout::default();
-    layout.tab = Tab::Reference;
-    layout.reference.size = 0;
-    layout.reference.target_spp = 16;
+    let layout = Layout {
+        tab: Tab::Reference,
+        reference: super::reference_tab::ReferenceSettings {
+            size: 0,
+            target_spp: 16,
+        },
+        ..Layout::default()
+    };
     let mut h = harness_with(layout, egui::vec2(900.0, 700.0));
     for _ in 0..600 {
         if h.state()
@@ -379,10 +383,14 @@ fn the_reference_tab_path_traces_progressively() {
 
 #[test]
 fn the_reference_pauses_while_its_tab_is_hidden() {
-    let mut layout = Layout::default();
-    layout.tab = Tab::Reference;
-    layout.reference.size = 0;
-    layout.reference.target_spp = 4096;
+    let layout = Layout {
+        tab: Tab::Reference,
+        reference: super::reference_tab::ReferenceSettings {
+            size: 0,
+            target_spp: 4096,
+        },
+        ..Layout::default()
+    };
     let mut h = harness_with(layout, egui::vec2(900.0, 700.0));
     let spp = |h: &Harness<'static, ExplorerApp>| {
         h.state()
