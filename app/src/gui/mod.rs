@@ -68,6 +68,27 @@ impl Tab {
         }
     }
 
+    fn description(self) -> &'static str {
+        match self {
+            Tab::Sky => "The view from the camera, drawn live by Hillaire's (2020) method.",
+            Tab::Fisheye => {
+                "The whole sky dome from the camera, zenith in the centre, horizon on the circle."
+            }
+            Tab::Luminance => {
+                "Brightness as the eye weighs it (cd/m²), in false colour on a log scale."
+            }
+            Tab::Compare => {
+                "The same view with two wavelength sets, and how much their colours differ (ΔE2000)."
+            }
+            Tab::Luts => {
+                "The lookup tables the real-time method precomputes, and what their axes mean."
+            }
+            Tab::Reference => {
+                "A spectral path tracer's ground truth of the view, next to the real-time render."
+            }
+        }
+    }
+
     fn key(self) -> egui::Key {
         const KEYS: [egui::Key; 6] = [
             egui::Key::Num1,
@@ -254,10 +275,13 @@ impl ExplorerApp {
             self.message = Some("exports need the GPU renderer".into());
             return;
         };
-        let Some(view) = views.main.view() else {
-            self.message = Some("nothing has been drawn yet".into());
-            return;
-        };
+        // The Sky, Fisheye or Luminance view last shown, brought up to date with the scene (it
+        // may have changed while another tab was open).
+        let view = views
+            .main
+            .view()
+            .unwrap_or_else(|| sky_tab::view_for(Tab::Sky, &self.layout, [1280, 720]));
+        views.main.render(&self.scene, &view);
         let (w, h) = (view.width, view.height);
         let label = format!("exporting {}", path.display());
         let job = match kind {
@@ -453,7 +477,8 @@ impl ExplorerApp {
             });
             ui.separator();
             for tab in Tab::ALL {
-                ui.selectable_value(&mut self.layout.tab, tab, tab.label());
+                ui.selectable_value(&mut self.layout.tab, tab, tab.label())
+                    .on_hover_text(tab.description());
             }
         });
         commands
