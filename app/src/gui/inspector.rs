@@ -283,22 +283,24 @@ impl Inspector {
         let series = |f: &dyn Fn(usize) -> f64| -> Vec<[f64; 2]> {
             (0..n).map(|i| [a.wavelengths_nm[i], f(i)]).collect()
         };
-        Plot::new("pixel spectrum")
-            .height(150.0)
-            .legend(Legend::default())
-            .x_axis_label("wavelength (nm)")
-            .y_axis_label("W/(m² sr nm)")
-            .show(ui, |p| {
-                p.line(Line::new("all orders (path traced)", PlotPoints::from(series(&|i| a.radiance[i]))));
-                p.line(Line::new("± standard error", PlotPoints::from(series(&|i| a.radiance[i] + a.std_error[i]))));
-                p.line(Line::new("single: Rayleigh", PlotPoints::from(series(&|i| a.single[i].rayleigh))));
-                p.line(Line::new("single: aerosol", PlotPoints::from(series(&|i| a.single[i].aerosol))));
-                p.line(Line::new("single: ground", PlotPoints::from(series(&|i| a.single[i].ground))));
-            })
-            .response
-            .on_hover_text(format!(
+        curves(
+            ui,
+            "pixel spectrum",
+            ["wavelength (nm)", "W/(m² sr nm)"],
+            &[
+                ("all orders (path traced)", series(&|i| a.radiance[i])),
+                (
+                    "+ 1 standard error",
+                    series(&|i| a.radiance[i] + a.std_error[i]),
+                ),
+                ("single: Rayleigh", series(&|i| a.single[i].rayleigh)),
+                ("single: aerosol", series(&|i| a.single[i].aerosol)),
+                ("single: ground", series(&|i| a.single[i].ground)),
+            ],
+            &format!(
                 "Spectral radiance of the pixel's ray: {INSPECT_PATHS} paths per batch of four wavelengths, plus the exact single-scattering parts."
-            ));
+            ),
+        );
         ui.label("Share of the luminance:")
             .on_hover_text("Each constituent's single scattering, integrated against the eye's response ȳ(λ); multiple scattering is the path-traced total less all single scattering.");
         for (name, share) in SHARE_NAMES.iter().zip(a.shares) {
@@ -331,44 +333,56 @@ impl Inspector {
             self.plots = Some(AtmospherePlots::new(&scene.atmosphere));
         }
         let Some(plots) = &self.plots else { return };
-        let names3 = ["Rayleigh", "ozone", "aerosol"];
-        Plot::new("phase functions")
-            .height(120.0)
-            .legend(Legend::default())
-            .x_axis_label("scattering angle (°)")
-            .y_axis_label("log10 phase (1/sr)")
-            .show(ui, |p| {
-                for (name, pts) in ["Rayleigh", "aerosol"].iter().zip(&plots.phase) {
-                    p.line(Line::new(*name, PlotPoints::from(pts.clone())));
-                }
-            })
-            .response
-            .on_hover_text("How much light each scatterer sends into each angle at 550 nm: air almost evenly forward and back, aerosols strongly forward (the glow around the sun).");
-        Plot::new("extinction")
-            .height(120.0)
-            .legend(Legend::default())
-            .x_axis_label("altitude (km)")
-            .y_axis_label("log10 extinction (1/m)")
-            .show(ui, |p| {
-                for (name, pts) in names3.iter().zip(&plots.extinction) {
-                    p.line(Line::new(*name, PlotPoints::from(pts.clone())));
-                }
-            })
-            .response
-            .on_hover_text("Extinction at 550 nm against altitude: air thins exponentially (≈ 8 km scale height), ozone peaks near 25 km, aerosols stay in the lowest few kilometres.");
-        Plot::new("optical depth")
-            .height(120.0)
-            .legend(Legend::default())
-            .x_axis_label("wavelength (nm)")
-            .y_axis_label("vertical optical depth")
-            .show(ui, |p| {
-                for (name, pts) in names3.iter().zip(&plots.optical_depth) {
-                    p.line(Line::new(*name, PlotPoints::from(pts.clone())));
-                }
-            })
-            .response
-            .on_hover_text("Optical depth from the ground to space: Rayleigh falls as λ^-4 (why the sky is blue), ozone absorbs in the Chappuis band around 600 nm (why twilight stays blue).");
+        let named = |curves: &[Vec<[f64; 2]>],
+                     names: &[&'static str]|
+         -> Vec<(&'static str, Vec<[f64; 2]>)> {
+            names.iter().copied().zip(curves.iter().cloned()).collect()
+        };
+        let constituents = ["Rayleigh", "ozone", "aerosol"];
+        curves(
+            ui,
+            "phase functions",
+            ["scattering angle (°)", "log10 phase (1/sr)"],
+            &named(&plots.phase, &["Rayleigh", "aerosol"]),
+            "How much light each scatterer sends into each angle at 550 nm: air almost evenly forward and back, aerosols strongly forward (the glow around the sun).",
+        );
+        curves(
+            ui,
+            "extinction",
+            ["altitude (km)", "log10 extinction (1/m)"],
+            &named(&plots.extinction, &constituents),
+            "Extinction at 550 nm against altitude: air thins exponentially (≈ 8 km scale height), ozone peaks near 25 km, aerosols stay in the lowest few kilometres.",
+        );
+        curves(
+            ui,
+            "optical depth",
+            ["wavelength (nm)", "vertical optical depth"],
+            &named(&plots.optical_depth, &constituents),
+            "Optical depth from the ground to space: Rayleigh falls as λ^-4 (why the sky is blue), ozone absorbs in the Chappuis band around 600 nm (why twilight stays blue).",
+        );
     }
+}
+
+/// A small plot of named curves with labelled axes (x, y) and a tooltip.
+fn curves(
+    ui: &mut egui::Ui,
+    id: &str,
+    axes: [&str; 2],
+    lines: &[(&str, Vec<[f64; 2]>)],
+    tip: &str,
+) {
+    Plot::new(id)
+        .height(120.0)
+        .legend(Legend::default())
+        .x_axis_label(axes[0])
+        .y_axis_label(axes[1])
+        .show(ui, |p| {
+            for (name, points) in lines {
+                p.line(Line::new(*name, PlotPoints::from(points.clone())));
+            }
+        })
+        .response
+        .on_hover_text(tip);
 }
 
 /// Direction of a ray as (elevation, azimuth) in degrees, for labels.

@@ -341,17 +341,22 @@ fn the_lut_tab_reads_every_table() {
     }
 }
 
-#[test]
-fn the_reference_tab_path_traces_progressively() {
+/// The explorer opened on the Reference tab at its smallest size.
+fn reference_harness(target_spp: u64) -> Harness<'static, ExplorerApp> {
     let layout = Layout {
         tab: Tab::Reference,
         reference: super::reference_tab::ReferenceSettings {
             size: 0,
-            target_spp: 16,
+            target_spp,
         },
         ..Layout::default()
     };
-    let mut h = harness_with(layout, egui::vec2(900.0, 700.0));
+    harness_with(layout, egui::vec2(900.0, 700.0))
+}
+
+#[test]
+fn the_reference_tab_path_traces_progressively() {
+    let mut h = reference_harness(16);
     for _ in 0..600 {
         if h.state()
             .views
@@ -383,15 +388,7 @@ fn the_reference_tab_path_traces_progressively() {
 
 #[test]
 fn the_reference_pauses_while_its_tab_is_hidden() {
-    let layout = Layout {
-        tab: Tab::Reference,
-        reference: super::reference_tab::ReferenceSettings {
-            size: 0,
-            target_spp: 4096,
-        },
-        ..Layout::default()
-    };
-    let mut h = harness_with(layout, egui::vec2(900.0, 700.0));
+    let mut h = reference_harness(4096);
     let spp = |h: &Harness<'static, ExplorerApp>| {
         h.state()
             .views
