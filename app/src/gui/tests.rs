@@ -38,6 +38,15 @@ fn harness() -> Harness<'static, ExplorerApp> {
     harness_with(Layout::default(), egui::vec2(1280.0, 1000.0))
 }
 
+fn views<'a>(h: &'a Harness<'static, ExplorerApp>) -> &'a super::Views {
+    h.state().views.as_ref().expect("GPU views")
+}
+
+/// The Sky/Fisheye/Luminance view last drawn.
+fn main_view(h: &Harness<'static, ExplorerApp>) -> Option<atmoscope_render::View> {
+    views(h).main.view()
+}
+
 /// The main view's linear radiance as drawn now.
 fn radiance(h: &mut Harness<'static, ExplorerApp>) -> Vec<[f32; 4]> {
     let views = h.state_mut().views.as_mut().expect("GPU views");
@@ -46,14 +55,7 @@ fn radiance(h: &mut Harness<'static, ExplorerApp>) -> Vec<[f32; 4]> {
 
 /// Sets a slider through accesskit, lets the app redraw, and checks the view changed.
 fn slide_and_see_the_view_change(h: &mut Harness<'static, ExplorerApp>, label: &str, value: f64) {
-    let generation = |h: &Harness<'static, ExplorerApp>| {
-        h.state()
-            .views
-            .as_ref()
-            .expect("GPU views")
-            .main
-            .generation()
-    };
+    let generation = |h: &Harness<'static, ExplorerApp>| views(h).main.generation();
     let (before, drawn) = (radiance(h), generation(h));
     h.get_by_role_and_label(Role::Slider, label)
         .set_value_accesskit(value);
@@ -89,14 +91,7 @@ fn sliders_change_albedo_sun_and_altitude_and_the_view_follows() {
 fn an_unchanged_frame_runs_no_gpu_pass() {
     let mut h = harness();
     h.step();
-    let stats = h
-        .state()
-        .views
-        .as_ref()
-        .expect("GPU views")
-        .main
-        .stats()
-        .clone();
+    let stats = views(&h).main.stats().clone();
     assert!(stats.run.is_empty(), "ran {:?}", stats.run);
     assert_eq!(stats.skipped.len(), atmoscope_render::Pass::ALL.len());
 }
@@ -218,7 +213,7 @@ fn exports_png_and_exr_that_read_back_as_drawn() {
     h.state_mut()
         .apply(&ctx, Command::Export(ExportKind::Exr, exr.clone()));
     // What was on screen when the exports were asked for.
-    let views = h.state().views.as_ref().expect("GPU views");
+    let views = views(&h);
     let view = views.main.view().expect("drawn");
     let shown = views.main.display_rgba8().expect("display");
     let radiance = radiance(&mut h);
@@ -259,11 +254,10 @@ fn the_compare_tab_shows_a_delta_e_figure() {
     h.get_by_label("Compare").click();
     h.run();
     assert_eq!(h.state().layout.tab, Tab::Compare);
-    let figures = h
-        .state()
-        .views
+    let figures = views(&h)
+        .compare
         .as_ref()
-        .and_then(|v| v.compare.as_ref()?.figures)
+        .and_then(|c| c.figures)
         .expect("figures");
     assert!(figures.a_vs_b_mean > 0.0 && figures.a_vs_b_mean.is_finite());
     assert!(figures.a_vs_reference_mean.is_finite() && figures.b_vs_reference_mean.is_finite());
@@ -293,12 +287,7 @@ fn inspect(h: &mut Harness<'static, ExplorerApp>, x: u32, y: u32) -> super::insp
 #[test]
 fn the_inspector_splits_a_pixel_into_its_parts() {
     let mut h = harness();
-    let view = h
-        .state()
-        .views
-        .as_ref()
-        .and_then(|v| v.main.view())
-        .expect("drawn");
+    let view = main_view(&h).expect("drawn");
     // The top row looks at the sky, the bottom row at the lit ground.
     for (y, sky) in [(0, true), (view.height - 1, false)] {
         let a = inspect(&mut h, view.width / 2, y);
@@ -357,29 +346,20 @@ fn reference_harness(target_spp: u64) -> Harness<'static, ExplorerApp> {
 #[test]
 fn the_reference_tab_path_traces_progressively() {
     let mut h = reference_harness(16);
-    for _ in 0..600 {
-        if h.state()
-            .views
+    let reference = |h: &Harness<'static, ExplorerApp>| {
+        views(h)
+            .reference
             .as_ref()
-            .and_then(|v| v.reference.as_ref()?.delta_e_mean)
-            .is_some()
-            && h.state()
-                .views
-                .as_ref()
-                .and_then(|v| v.reference.as_ref()?.job())
-                .is_none()
-        {
+            .map(|r| (r.delta_e_mean, r.job().is_some()))
+    };
+    for _ in 0..600 {
+        if let Some((Some(_), false)) = reference(&h) {
             break;
         }
         std::thread::sleep(std::time::Duration::from_millis(50));
         h.step();
     }
-    let reference = h
-        .state()
-        .views
-        .as_ref()
-        .and_then(|v| v.reference.as_ref())
-        .expect("the Reference tab");
+    let reference = views(&h).reference.as_ref().expect("the Reference tab");
     let snapshot = reference.snapshot.as_ref().expect("a pass");
     assert!(snapshot.spp >= 16 && snapshot.noise > 0.0);
     let de = reference.delta_e_mean.expect("ΔE");
@@ -389,12 +369,7 @@ fn the_reference_tab_path_traces_progressively() {
 #[test]
 fn the_reference_pauses_while_its_tab_is_hidden() {
     let mut h = reference_harness(4096);
-    let spp = |h: &Harness<'static, ExplorerApp>| {
-        h.state()
-            .views
-            .as_ref()
-            .and_then(|v| v.reference.as_ref()?.latest_spp())
-    };
+    let spp = |h: &Harness<'static, ExplorerApp>| views(h).reference.as_ref()?.latest_spp();
     for _ in 0..600 {
         if spp(&h).is_some() {
             break;
@@ -464,12 +439,7 @@ fn drag_view(h: &mut Harness<'static, ExplorerApp>, modifiers: egui::Modifiers) 
         );
         h.step();
     }
-    let width = h
-        .state()
-        .views
-        .as_ref()
-        .and_then(|v| v.main.view())
-        .map(|v| v.width);
+    let width = main_view(h).map(|v| v.width);
     pointer(h, start + egui::vec2(60.0, 30.0), Some(false), modifiers);
     h.run();
     width.expect("drawn")
@@ -478,13 +448,7 @@ fn drag_view(h: &mut Harness<'static, ExplorerApp>, modifiers: egui::Modifiers) 
 #[test]
 fn dragging_turns_the_camera_at_the_drag_scale_and_shift_drag_moves_the_sun() {
     let mut h = harness();
-    let full = h
-        .state()
-        .views
-        .as_ref()
-        .and_then(|v| v.main.view())
-        .expect("drawn")
-        .width;
+    let full = main_view(&h).expect("drawn").width;
     let before = h.state().scene.clone();
 
     let width = drag_view(&mut h, egui::Modifiers::NONE);
@@ -493,13 +457,7 @@ fn dragging_turns_the_camera_at_the_drag_scale_and_shift_drag_moves_the_sun() {
         (full as f32 * 0.5).round() as u32,
         "half resolution while dragging"
     );
-    let after = h
-        .state()
-        .views
-        .as_ref()
-        .and_then(|v| v.main.view())
-        .expect("drawn")
-        .width;
+    let after = main_view(&h).expect("drawn").width;
     assert_eq!(after, full, "sharp again when the drag ends");
     let c = &h.state().scene.camera;
     assert!(
@@ -617,12 +575,7 @@ fn the_luminance_tab_reads_out_the_pixel_under_the_pointer() {
     let mut h = harness();
     h.key_press(egui::Key::Num3);
     h.run();
-    let view = h
-        .state()
-        .views
-        .as_ref()
-        .and_then(|v| v.main.view())
-        .expect("drawn");
+    let view = main_view(&h).expect("drawn");
     assert!(matches!(
         view.mode,
         atmoscope_render::DisplayMode::Luminance { .. }
