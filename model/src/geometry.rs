@@ -1,9 +1,14 @@
-//! Ray geometry around a spherical planet, in f64 and metres.
+//! Ray geometry around a spherical planet, in f64 and metres: the one geometry vocabulary of
+//! the model crate, the path tracer and every sky model alike (WGSL twins of the altitude form
+//! in `shaders/common/geometry.wgsl`).
 //!
 //! Distances to spheres use the cancellation-free form of the quadratic's roots (one root from
 //! the sum of like-signed terms, the other from the product c/q), so a ray grazing the top of the
 //! atmosphere from 40 000 km away keeps its precision. Names follow Bruneton (2017): r is the
-//! distance to the planet's centre, mu the cosine of the view zenith angle.
+//! distance to the planet's centre, mu the cosine of the view zenith angle, h = r − R the
+//! altitude. Points inside the atmosphere are given by altitude h, with r² − R² formed as
+//! h(2R + h), which stays accurate in f32 at 1 m above the ground; points anywhere (the path
+//! tracer's, a camera in space) by radius r through [`sphere_distances`].
 
 use glam::DVec3;
 
@@ -26,28 +31,65 @@ pub fn sphere_distances(r: f64, mu: f64, radius: f64) -> Option<(f64, f64)> {
     Some(if t0 <= t1 { (t0, t1) } else { (t1, t0) })
 }
 
-/// Whether a ray from radius `r` with zenith cosine `mu` hits the ground of radius `bottom`
-/// in front of it.
-pub fn ray_intersects_ground(r: f64, mu: f64, bottom: f64) -> bool {
-    mu < 0.0 && (bottom - r) * (bottom + r) + r * r * mu * mu >= 0.0
+/// r² − R² for altitude `h` (m) above a planet of radius `big_r` (m), cancellation-free.
+pub fn rho_squared(h: f64, big_r: f64) -> f64 {
+    h * (2.0 * big_r + h)
 }
 
-/// Distance from radius `r` along zenith cosine `mu` to where the ray leaves the sphere of
-/// radius `top` (the far intersection), or None if it never reaches it.
-pub fn distance_to_top(r: f64, mu: f64, top: f64) -> Option<f64> {
-    sphere_distances(r, mu, top)
-        .map(|(_, t1)| t1)
-        .filter(|&t| t >= 0.0)
+/// Whether the ray from altitude `h` (m, ≥ 0) with zenith cosine `mu` hits the ground.
+pub fn hits_ground(h: f64, mu: f64, big_r: f64) -> bool {
+    let r = big_r + h;
+    mu < 0.0 && r * r * mu * mu - rho_squared(h, big_r) >= 0.0
 }
 
-/// Distance to the ground along the ray, if it hits the ground in front.
-pub fn distance_to_ground(r: f64, mu: f64, bottom: f64) -> Option<f64> {
-    if !ray_intersects_ground(r, mu, bottom) {
-        return None;
+/// Distance (m) to the top of the atmosphere (radius `top`) from altitude `h` inside it. Each
+/// root is formed without cancellation (the product of the roots is −(top² − r²)), which f32
+/// needs.
+pub fn distance_to_top(h: f64, mu: f64, big_r: f64, top: f64) -> f64 {
+    let r = big_r + h;
+    let rm = r * mu;
+    let c = (top - big_r - h) * (top + r);
+    let q = (rm * rm + c).max(0.0).sqrt();
+    if rm > 0.0 {
+        (c / (rm + q)).max(0.0)
+    } else {
+        -rm + q
     }
-    sphere_distances(r, mu, bottom)
-        .map(|(t0, _)| t0)
-        .filter(|&t| t >= 0.0)
+}
+
+/// Distance (m) to the ground along a ray that hits it, as (r² − R²)/(−r·mu + √disc) so that
+/// short distances near the ground keep their precision in f32.
+pub fn distance_to_ground(h: f64, mu: f64, big_r: f64) -> f64 {
+    let rm = (big_r + h) * mu;
+    let disc = (rm * rm - rho_squared(h, big_r)).max(0.0);
+    let denom = -rm + disc.sqrt();
+    if denom > 0.0 {
+        rho_squared(h, big_r) / denom
+    } else {
+        0.0
+    }
+}
+
+/// Distance (m) to where the ray leaves the atmosphere: the ground if it hits it, else the top.
+pub fn distance_to_boundary(h: f64, mu: f64, big_r: f64, top: f64) -> f64 {
+    if hits_ground(h, mu, big_r) {
+        distance_to_ground(h, mu, big_r)
+    } else {
+        distance_to_top(h, mu, big_r, top)
+    }
+}
+
+/// Altitude and radius (m) at distance `t` along the ray (h, mu).
+pub fn altitude_along(h: f64, mu: f64, t: f64, big_r: f64) -> (f64, f64) {
+    let r = big_r + h;
+    let r_t = (r * r + t * t + 2.0 * r * mu * t).max(0.0).sqrt();
+    let h_t = (rho_squared(h, big_r) + t * (t + 2.0 * r * mu)) / (r_t + big_r);
+    (h_t, r_t)
+}
+
+/// Angle (rad) between the nadir and the horizon seen from altitude `h` (β in Hillaire 2020).
+pub fn horizon_beta(h: f64, big_r: f64) -> f64 {
+    big_r.atan2(rho_squared(h.max(0.0), big_r).sqrt())
 }
 
 /// Radius reached after travelling `t` from radius `r` along zenith cosine `mu`.
@@ -103,7 +145,7 @@ impl Ray {
 pub fn in_planet_shadow(point: DVec3, sun: DVec3, planet_radius: f64) -> bool {
     let r = point.length();
     let mu = point.dot(sun) / r;
-    ray_intersects_ground(r, mu, planet_radius)
+    hits_ground(r - planet_radius, mu, planet_radius)
 }
 
 /// Unit vector for an elevation above the horizon and an azimuth clockwise from north, in a
@@ -122,17 +164,30 @@ mod tests {
 
     #[test]
     fn vertical_distances_are_exact() {
-        assert_eq!(distance_to_top(R, 1.0, TOP), Some(100_000.0));
-        assert_eq!(distance_to_ground(R + 1000.0, -1.0, R), Some(1000.0));
-        assert!(distance_to_ground(R + 1000.0, 1.0, R).is_none());
+        assert_eq!(distance_to_top(0.0, 1.0, R, TOP), 100_000.0);
+        assert!(hits_ground(1000.0, -1.0, R));
+        assert!((distance_to_ground(1000.0, -1.0, R) - 1000.0).abs() < 1e-9);
+        assert!(!hits_ground(1000.0, 1.0, R));
+        assert!((distance_to_boundary(1000.0, 1.0, R, TOP) - 99_000.0).abs() < 1e-9);
     }
 
     #[test]
     fn horizontal_ray_from_the_ground_reaches_the_top_at_the_pythagorean_distance() {
-        let d = distance_to_top(R, 0.0, TOP).unwrap();
+        let d = distance_to_top(0.0, 0.0, R, TOP);
         let exact = (TOP * TOP - R * R).sqrt();
         assert!((d - exact).abs() < 1e-6);
-        assert!(!ray_intersects_ground(R, 0.0, R) || distance_to_ground(R, 0.0, R) == Some(0.0));
+        assert!(!hits_ground(0.0, 0.0, R) || distance_to_ground(0.0, 0.0, R) == 0.0);
+    }
+
+    #[test]
+    fn altitude_along_the_ray_agrees_with_the_radius() {
+        for mu in [-0.9, -0.1, 0.0, 0.3, 1.0] {
+            let h = 5000.0;
+            let t = distance_to_boundary(h, mu, R, TOP);
+            let (h_t, r_t) = altitude_along(h, mu, t, R);
+            assert!((r_t - radius_at(R + h, mu, t)).abs() < 1e-6);
+            assert!((h_t - (r_t - R)).abs() < 1e-6);
+        }
     }
 
     #[test]
@@ -157,7 +212,7 @@ mod tests {
     fn radius_along_the_ray_matches_the_intersection() {
         for mu in [-0.9, -0.1, 0.0, 0.3, 1.0] {
             let r = R + 5000.0;
-            let t = distance_to_top(r, mu, TOP).unwrap();
+            let (_, t) = sphere_distances(r, mu, TOP).unwrap();
             assert!((radius_at(r, mu, t) - TOP).abs() < 1e-6);
         }
     }

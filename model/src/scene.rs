@@ -256,13 +256,12 @@ impl Default for CameraSettings {
     }
 }
 
-/// Rendering method.
+/// Rendering method: a row of the model registry (`methods::MODELS`), which says what each is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
 pub enum Method {
-    /// Hillaire (2020): transmittance, multiple-scattering and sky-view LUTs.
     #[default]
     Hillaire,
-    /// The spectral path tracer (ground truth).
+    GarciaLinan,
     PathTracer,
 }
 

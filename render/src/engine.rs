@@ -1,119 +1,32 @@
-//! The engine: GPU resources for one scene and one view, a pass graph with dirty tracking, and
-//! per-pass timing. It takes a `wgpu::Device` and `Queue` from its caller (a window, the command
-//! line or a test) and renders into textures.
+//! The engine: GPU resources for one scene and one view, the passes of the scene's model with
+//! dirty tracking, and per-pass timing. It takes a `wgpu::Device` and `Queue` from its caller (a
+//! window, the command line or a test) and renders into textures. It knows no model: the passes
+//! come as data from `crate::methods` and the tables from the model registry.
 //!
-//! Each pass declares the inputs it reads; a frame compares the inputs with the previous
-//! frame's and runs exactly the passes that read something that changed (DESIGN.md §7): physics
-//! rebuilds the whole chain, the sun or the camera's altitude rebuilds the view tables, turning
-//! the camera redraws the view, exposure re-runs only the display pass, an unchanged frame runs
-//! nothing.
+//! A frame compares the scene's inputs with the previous frame's and runs exactly the passes
+//! that read an input that changed or a table rewritten earlier in the same frame (see
+//! docs/ARCHITECTURE.md): physics rebuilds the whole chain, the sun or the camera's altitude
+//! rebuilds the view tables, turning the camera redraws the view, exposure re-runs only the
+//! display pass, an unchanged frame runs nothing.
 
-use crate::hillaire::{LutBuffers, Pipelines, Table, Variant};
+use crate::methods::{Constant, Dispatch, GpuMethod, gpu_method};
+use crate::passes::{Pipelines, TableBuffers};
 use crate::readback::{ReadbackError, read_buffer_f32x4, read_texture, read_texture_f32x4};
-use crate::uniforms::{self, DisplayMode, FrameInputs, Globals};
+use crate::uniforms::{self, FrameInputs, Globals};
 use crate::views::View;
+use crate::DisplayMode;
 use atmoscope_model::Atmosphere;
 use atmoscope_model::camera::{Camera, Projection};
 use atmoscope_model::geometry::direction_from_angles;
-use atmoscope_model::methods::hillaire::{self, Params};
+use atmoscope_model::methods::shared::{Params, viewpoint};
+use atmoscope_model::methods::{self, NotRealtime};
 use atmoscope_model::scene::{
-    AtmosphereSettings, CameraSettings, Quality, Scene, ToneMap, WavelengthSet,
+    AtmosphereSettings, CameraSettings, Method, Quality, Scene, ToneMap, WavelengthSet,
 };
 use std::time::Instant;
 
-/// What a pass can read; a set of these is a bit mask.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct Inputs(u8);
-
-impl Inputs {
-    pub const NONE: Inputs = Inputs(0);
-    /// Atmosphere settings, wavelength set and quality.
-    pub const ATMOSPHERE: Inputs = Inputs(1);
-    /// The camera's altitude and the sun's zenith angle there (what the view tables depend on).
-    pub const VIEWPOINT: Inputs = Inputs(2);
-    /// The sun's direction in the world.
-    pub const SUN: Inputs = Inputs(4);
-    /// The camera's position, orientation, field of view and projection.
-    pub const CAMERA: Inputs = Inputs(8);
-    pub const VIEW_SIZE: Inputs = Inputs(16);
-    /// Exposure, tone map and display mode.
-    pub const DISPLAY: Inputs = Inputs(32);
-    pub const ALL: Inputs = Inputs(63);
-
-    pub const fn union(self, other: Inputs) -> Inputs {
-        Inputs(self.0 | other.0)
-    }
-
-    pub fn intersects(self, other: Inputs) -> bool {
-        self.0 & other.0 != 0
-    }
-
-    pub fn is_empty(self) -> bool {
-        self.0 == 0
-    }
-}
-
-/// The passes, in execution order.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Pass {
-    Transmittance,
-    MultipleScattering,
-    GroundIrradiance,
-    SkyView,
-    AerialPerspective,
-    Sky,
-    Display,
-}
-
-impl Pass {
-    pub const ALL: [Pass; 7] = [
-        Pass::Transmittance,
-        Pass::MultipleScattering,
-        Pass::GroundIrradiance,
-        Pass::SkyView,
-        Pass::AerialPerspective,
-        Pass::Sky,
-        Pass::Display,
-    ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Pass::Transmittance => "transmittance",
-            Pass::MultipleScattering => "multiple-scattering",
-            Pass::GroundIrradiance => "ground-irradiance",
-            Pass::SkyView => "sky-view",
-            Pass::AerialPerspective => "aerial-perspective",
-            Pass::Sky => "sky",
-            Pass::Display => "display",
-        }
-    }
-
-    /// Whether the pass builds a lookup table (as opposed to drawing the view).
-    pub fn is_lut(self) -> bool {
-        !matches!(self, Pass::Sky | Pass::Display)
-    }
-
-    /// The inputs the pass reads, including those of the passes whose output it reads.
-    pub fn reads(self) -> Inputs {
-        let view_tables = Inputs::ATMOSPHERE.union(Inputs::VIEWPOINT);
-        let sky = view_tables
-            .union(Inputs::SUN)
-            .union(Inputs::CAMERA)
-            .union(Inputs::VIEW_SIZE);
-        match self {
-            Pass::Transmittance | Pass::MultipleScattering | Pass::GroundIrradiance => {
-                Inputs::ATMOSPHERE
-            }
-            Pass::SkyView | Pass::AerialPerspective => view_tables,
-            Pass::Sky => sky,
-            Pass::Display => sky.union(Inputs::DISPLAY),
-        }
-    }
-
-    fn index(self) -> usize {
-        Pass::ALL.iter().position(|&p| p == self).unwrap_or(0)
-    }
-}
+/// Most passes a model may have (the size of the timestamp query set is twice this).
+pub const MAX_PASSES: usize = 64;
 
 /// How a pass's time was measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -133,23 +46,36 @@ impl TimingSource {
     }
 }
 
-/// What the last frame did.
+/// What the last frame did; passes by name, in the order of the model's passes.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct FrameStats {
-    pub run: Vec<Pass>,
-    pub skipped: Vec<Pass>,
+    pub method: Method,
+    /// Every pass of the model on screen, the display pass last.
+    pub passes: Vec<&'static str>,
+    pub run: Vec<&'static str>,
+    pub skipped: Vec<&'static str>,
+    /// Table passes among those run.
+    pub tables_run: Vec<&'static str>,
     /// Milliseconds per pass run, when timing is on.
-    pub timings_ms: Vec<(Pass, f64)>,
+    pub timings_ms: Vec<(&'static str, f64)>,
     pub timing_source: Option<TimingSource>,
 }
 
 impl FrameStats {
-    pub fn ran(&self, pass: Pass) -> bool {
+    pub fn ran(&self, pass: &str) -> bool {
         self.run.contains(&pass)
     }
 
     pub fn ran_any_lut(&self) -> bool {
-        self.run.iter().any(|p| p.is_lut())
+        !self.tables_run.is_empty()
+    }
+
+    /// Milliseconds of a pass run this frame, when timed.
+    pub fn ms(&self, pass: &str) -> Option<f64> {
+        self.timings_ms
+            .iter()
+            .find(|(p, _)| *p == pass)
+            .map(|(_, ms)| *ms)
     }
 }
 
@@ -158,6 +84,10 @@ impl FrameStats {
 pub enum EngineError {
     #[error("nothing has been rendered yet")]
     NotRendered,
+    #[error("the model has no table `{0}`")]
+    NoSuchTable(String),
+    #[error(transparent)]
+    NotRealtime(#[from] NotRealtime),
     #[error(transparent)]
     Readback(#[from] ReadbackError),
 }
@@ -165,6 +95,7 @@ pub enum EngineError {
 #[derive(Debug, Clone, PartialEq)]
 struct AtmosphereKey {
     settings: AtmosphereSettings,
+    method: Method,
     wavelengths: WavelengthSet,
     quality: Quality,
 }
@@ -203,15 +134,15 @@ impl Snapshot {
 struct AtmosphereState {
     key: AtmosphereKey,
     params: Params,
-    luts: LutBuffers,
+    tables: TableBuffers,
 }
 
 struct Target {
     size: [u32; 2],
     radiance: wgpu::Texture,
     display: wgpu::Texture,
-    sky_group: wgpu::BindGroup,
-    display_group: wgpu::BindGroup,
+    /// Group 1 of each view pass, by pass index (None for table passes).
+    groups: Vec<Option<wgpu::BindGroup>>,
 }
 
 enum Timer {
@@ -224,11 +155,12 @@ enum Timer {
     Cpu,
 }
 
-/// Renders views of scenes with the Hillaire (2020) method.
+/// Renders views of scenes with any real-time model of the registry.
 pub struct Engine {
     device: wgpu::Device,
     queue: wgpu::Queue,
-    pipelines: Pipelines,
+    /// Compiled passes of every model used so far; the last one used is first.
+    pipelines: Vec<Pipelines>,
     globals: wgpu::Buffer,
     atmosphere: Option<AtmosphereState>,
     target: Option<Target>,
@@ -242,7 +174,6 @@ impl Engine {
     /// Compiles the passes on `device`. Timestamp queries are used when the device has the
     /// `TIMESTAMP_QUERY` feature; otherwise timing falls back to fenced CPU wall time.
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Engine {
-        let pipelines = Pipelines::new(device);
         let globals = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("globals"),
             size: std::mem::size_of::<Globals>() as u64,
@@ -250,7 +181,7 @@ impl Engine {
             mapped_at_creation: false,
         });
         let timer = if device.features().contains(wgpu::Features::TIMESTAMP_QUERY) {
-            let count = 2 * Pass::ALL.len() as u32;
+            let count = 2 * MAX_PASSES as u32;
             let bytes = u64::from(count) * 8;
             Timer::Gpu {
                 queries: device.create_query_set(&wgpu::QuerySetDescriptor {
@@ -278,7 +209,7 @@ impl Engine {
         Engine {
             device: device.clone(),
             queue: queue.clone(),
-            pipelines,
+            pipelines: Vec::new(),
             globals,
             atmosphere: None,
             target: None,
@@ -318,16 +249,51 @@ impl Engine {
         &self.stats
     }
 
-    /// The method's parameters for the current atmosphere.
+    /// The optics of the current atmosphere.
     pub fn params(&self) -> Option<&Params> {
         self.atmosphere.as_ref().map(|a| &a.params)
     }
 
-    /// Renders `view` of `scene`, running only the passes whose inputs changed since the last
-    /// frame. Returns the frame's statistics. The work is submitted; it finishes on the GPU.
-    pub fn render(&mut self, scene: &Scene, view: &View) -> &FrameStats {
+    /// The passes of the model last rendered.
+    pub fn method(&self) -> Option<&GpuMethod> {
+        self.pipelines.first().map(|p| &p.method)
+    }
+
+    /// Bytes of the current model's tables on the GPU.
+    pub fn table_bytes(&self) -> u64 {
+        self.atmosphere.as_ref().map_or(0, |a| a.tables.bytes())
+    }
+
+    /// Makes the pipelines of `method` the first, compiling them on first use.
+    fn select(&mut self, method: &GpuMethod) {
+        match self
+            .pipelines
+            .iter()
+            .position(|p| p.method.method == method.method)
+        {
+            Some(0) => {}
+            Some(i) => {
+                let p = self.pipelines.remove(i);
+                self.pipelines.insert(0, p);
+            }
+            None => self
+                .pipelines
+                .insert(0, Pipelines::new(&self.device, method)),
+        }
+    }
+
+    /// Renders `view` of `scene` with the scene's model, running only the passes whose inputs
+    /// changed since the last frame. Returns the frame's statistics. The work is submitted; it
+    /// finishes on the GPU. A model with no real-time passes (the path tracer) is refused.
+    pub fn try_render(&mut self, scene: &Scene, view: &View) -> Result<&FrameStats, EngineError> {
+        let method = scene.render.method;
+        let gpu = gpu_method(method).ok_or_else(|| {
+            NotRealtime(methods::info(method).id, methods::realtime_ids())
+        })?;
+        self.select(gpu);
         let key = AtmosphereKey {
             settings: scene.atmosphere.clone(),
+            method,
             wavelengths: scene.render.wavelengths,
             quality: scene.render.quality,
         };
@@ -338,9 +304,15 @@ impl Engine {
                 key.wavelengths,
                 key.quality,
             );
-            let luts = LutBuffers::new(&self.device, &self.pipelines, &self.globals, &params);
+            let tables = TableBuffers::new(
+                &self.device,
+                &self.pipelines[0],
+                gpu.info(),
+                &self.globals,
+                &params,
+            );
             self.queue.write_buffer(
-                &luts.batches,
+                &tables.batches,
                 0,
                 bytemuck::cast_slice(
                     &params
@@ -351,11 +323,15 @@ impl Engine {
                 ),
             );
             self.queue.write_buffer(
-                &luts.profile,
+                &tables.profile,
                 0,
                 bytemuck::cast_slice(&uniforms::profile(&params)),
             );
-            self.atmosphere = Some(AtmosphereState { key, params, luts });
+            self.atmosphere = Some(AtmosphereState {
+                key,
+                params,
+                tables,
+            });
         }
         let Some(state) = self.atmosphere.as_ref() else {
             unreachable!("the atmosphere was just built");
@@ -364,7 +340,7 @@ impl Engine {
         let camera = Camera::new(&scene.camera, params.bottom_radius_m, view.projection);
         let a = scene.sun.angles();
         let sun = direction_from_angles(a.elevation_deg, a.azimuth_deg);
-        let viewpoint = hillaire::viewpoint(scene, &camera);
+        let viewpoint = viewpoint(scene, &camera);
         let size = [view.width.max(1), view.height.max(1)];
         let snapshot = Snapshot {
             atmosphere: state.key.clone(),
@@ -378,8 +354,8 @@ impl Engine {
         if rebuilt || self.target.as_ref().is_none_or(|t| t.size != size) {
             self.target = Some(Target::new(
                 &self.device,
-                &self.pipelines,
-                &state.luts,
+                &self.pipelines[0],
+                &state.tables,
                 size,
             ));
         }
@@ -396,93 +372,132 @@ impl Engine {
             self.queue
                 .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
         }
-        let (run, skipped): (Vec<Pass>, Vec<Pass>) = Pass::ALL
-            .iter()
-            .partition(|p| p.reads().intersects(changed));
-        let above = viewpoint.h > params.thickness_m();
-        let variants = [
-            (
-                Pass::Sky,
-                [uniforms::projection_code(view.projection), u32::from(above)],
-            ),
-            (
-                Pass::Display,
-                [
-                    uniforms::display_code(view.mode),
-                    uniforms::tone_map_code(scene.display.tone_map),
-                ],
-            ),
-        ];
-        let layers = params.batches.len() as u32;
-        for (pass, variant) in variants {
-            self.pipelines.ensure(&self.device, pass, variant);
+        // A pass runs when an input it reads changed or a table it reads was just rewritten.
+        let pipelines = &self.pipelines[0];
+        let info = gpu.info();
+        let mut written: Vec<&str> = Vec::new();
+        let mut run = Vec::new();
+        for (i, spec) in pipelines.specs().enumerate() {
+            let stale = spec.direct_inputs(info).intersects(changed)
+                || spec.reads.iter().any(|r| written.contains(r));
+            if stale {
+                written.extend(spec.writes);
+                run.push(i);
+            }
         }
+        let above = viewpoint.h > params.thickness_m();
+        let value = |c: Constant| match c {
+            Constant::Projection => uniforms::projection_code(view.projection),
+            Constant::AboveAtmosphere => u32::from(above),
+            Constant::DisplayMode => uniforms::display_code(view.mode),
+            Constant::ToneMap => uniforms::tone_map_code(scene.display.tone_map),
+        };
+        let variants: Vec<_> = (0..pipelines.len())
+            .map(|i| pipelines.variant(i, value))
+            .collect();
+        for &i in &run {
+            self.pipelines[0].ensure(&self.device, i, variants[i]);
+        }
+        let layers = params.batches.len() as u32;
         let timings_ms = if run.is_empty() {
             Vec::new()
         } else {
             self.encode_and_submit(&run, &variants, layers, size)
         };
+        let names: Vec<&'static str> = self.pipelines[0].specs().map(|s| s.name).collect();
+        let is_table: Vec<bool> = self.pipelines[0].specs().map(|s| s.is_table()).collect();
         self.last = Some(snapshot);
         self.stats = FrameStats {
+            method,
             timing_source: (self.measure && !run.is_empty()).then(|| self.timing_source()),
-            run,
-            skipped,
-            timings_ms,
+            skipped: (0..names.len())
+                .filter(|i| !run.contains(i))
+                .map(|i| names[i])
+                .collect(),
+            tables_run: run
+                .iter()
+                .filter(|&&i| is_table[i])
+                .map(|&i| names[i])
+                .collect(),
+            run: run.iter().map(|&i| names[i]).collect(),
+            passes: names,
+            timings_ms: timings_ms
+                .into_iter()
+                .map(|(i, ms)| (self.pipelines[0].specs().nth(i).map_or("", |s| s.name), ms))
+                .collect(),
         };
+        Ok(&self.stats)
+    }
+
+    /// [`Engine::try_render`] for callers that have already checked the scene's model is a
+    /// real-time one; a path-tracer scene renders nothing and reports no pass.
+    pub fn render(&mut self, scene: &Scene, view: &View) -> &FrameStats {
+        if self.try_render(scene, view).is_err() {
+            self.stats = FrameStats {
+                method: scene.render.method,
+                ..FrameStats::default()
+            };
+        }
         &self.stats
     }
 
     fn encode_and_submit(
         &self,
-        run: &[Pass],
-        variants: &[(Pass, Variant)],
+        run: &[usize],
+        variants: &[[u32; 2]],
         layers: u32,
         size: [u32; 2],
-    ) -> Vec<(Pass, f64)> {
+    ) -> Vec<(usize, f64)> {
         let (Some(state), Some(target)) = (&self.atmosphere, &self.target) else {
             return Vec::new();
         };
+        let pipelines = &self.pipelines[0];
+        let info = pipelines.method.info();
         let gpu_timer = match &self.timer {
             Timer::Gpu { queries, .. } if self.measure => Some(queries),
             _ => None,
         };
         let fenced = self.measure && gpu_timer.is_none();
+        let specs: Vec<_> = pipelines.specs().copied().collect();
         let mut timings = Vec::new();
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        for &pass in run {
+        for (slot, &i) in run.iter().enumerate().take(MAX_PASSES) {
+            let spec = &specs[i];
             let start = Instant::now();
             {
-                let i = pass.index() as u32;
+                let s = slot as u32;
                 let timestamp_writes = gpu_timer.map(|q| wgpu::ComputePassTimestampWrites {
                     query_set: q,
-                    beginning_of_pass_write_index: Some(2 * i),
-                    end_of_pass_write_index: Some(2 * i + 1),
+                    beginning_of_pass_write_index: Some(2 * s),
+                    end_of_pass_write_index: Some(2 * s + 1),
                 });
                 let mut cpass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some(pass.name()),
+                    label: Some(spec.name),
                     timestamp_writes,
                 });
-                let (group, dispatch) = match pass {
-                    Pass::Sky => (&target.sky_group, view_dispatch(size)),
-                    Pass::Display => (&target.display_group, view_dispatch(size)),
-                    lut => (state.luts.group(lut), lut_dispatch(lut, layers)),
+                let (group, dispatch) = match spec.dispatch {
+                    Dispatch::View => (target.groups[i].as_ref(), view_dispatch(size)),
+                    Dispatch::Table(id) => {
+                        let [w, h, _] = info.table(id).map_or([1, 1, 1], |t| t.size);
+                        (
+                            state.tables.group(i),
+                            [groups(w), groups(h), layers],
+                        )
+                    }
                 };
-                let variant = variants
-                    .iter()
-                    .find(|(p, _)| *p == pass)
-                    .map_or([0, 0], |(_, v)| *v);
-                let Some(pipeline) = self.pipelines.pipeline(pass, variant) else {
+                let (Some(group), Some(pipeline)) = (group, pipelines.pipeline(i, variants[i]))
+                else {
                     continue;
                 };
                 cpass.set_pipeline(pipeline);
-                cpass.set_bind_group(0, &state.luts.group0, &[]);
+                cpass.set_bind_group(0, &state.tables.group0, &[]);
                 cpass.set_bind_group(1, group, &[]);
                 cpass.dispatch_workgroups(dispatch[0], dispatch[1], dispatch[2]);
             }
             if fenced {
                 self.queue.submit([encoder.finish()]);
                 let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
-                timings.push((pass, start.elapsed().as_secs_f64() * 1e3));
+                timings.push((i, start.elapsed().as_secs_f64() * 1e3));
                 encoder = self.device.create_command_encoder(&Default::default());
             }
         }
@@ -494,15 +509,14 @@ impl Engine {
         } = &self.timer
             && self.measure
         {
-            let count = 2 * Pass::ALL.len() as u32;
+            let count = 2 * MAX_PASSES as u32;
             encoder.resolve_query_set(queries, 0..count, resolve, 0);
             encoder.copy_buffer_to_buffer(resolve, 0, readback, 0, resolve.size());
             self.queue.submit([encoder.finish()]);
             if let Some(ticks) = map_u64(&self.device, readback) {
-                for &pass in run {
-                    let i = pass.index();
-                    let ns = ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * period_ns;
-                    timings.push((pass, ns * 1e-6));
+                for (slot, &i) in run.iter().enumerate().take(MAX_PASSES) {
+                    let ns = ticks[2 * slot + 1].saturating_sub(ticks[2 * slot]) as f64 * period_ns;
+                    timings.push((i, ns * 1e-6));
                 }
             }
         } else {
@@ -554,17 +568,15 @@ impl Engine {
 
     /// Reads one lookup table back: every texel of every layer (batch), in the order of
     /// `model::methods::hillaire::Lut`.
-    pub fn read_table(&self, table: Table) -> Result<Vec<[f32; 4]>, EngineError> {
-        let luts = &self
+    pub fn read_table(&self, id: &str) -> Result<Vec<[f32; 4]>, EngineError> {
+        let buffer = self
             .atmosphere
             .as_ref()
             .ok_or(EngineError::NotRendered)?
-            .luts;
-        Ok(read_buffer_f32x4(
-            &self.device,
-            &self.queue,
-            luts.buffer(table),
-        )?)
+            .tables
+            .buffer(id)
+            .ok_or_else(|| EngineError::NoSuchTable(id.to_string()))?;
+        Ok(read_buffer_f32x4(&self.device, &self.queue, buffer)?)
     }
 }
 
@@ -591,24 +603,11 @@ fn view_dispatch(size: [u32; 2]) -> [u32; 3] {
     [groups(size[0]), groups(size[1]), 1]
 }
 
-fn lut_dispatch(pass: Pass, layers: u32) -> [u32; 3] {
-    use atmoscope_model::methods::hillaire as h;
-    let [w, hh] = match pass {
-        Pass::Transmittance => h::TRANSMITTANCE_SIZE,
-        Pass::MultipleScattering => h::MULTIPLE_SCATTERING_SIZE,
-        Pass::GroundIrradiance => [h::GROUND_IRRADIANCE_SIZE, 1],
-        Pass::SkyView => h::SKY_VIEW_SIZE,
-        Pass::AerialPerspective => [h::AERIAL_PERSPECTIVE_SIZE[0], h::AERIAL_PERSPECTIVE_SIZE[1]],
-        Pass::Sky | Pass::Display => [1, 1],
-    };
-    [groups(w), groups(hh), layers]
-}
-
 impl Target {
     fn new(
         device: &wgpu::Device,
         pipelines: &Pipelines,
-        luts: &LutBuffers,
+        tables: &TableBuffers,
         size: [u32; 2],
     ) -> Target {
         let texture = |label, format, view_formats: &[wgpu::TextureFormat]| {
@@ -636,14 +635,31 @@ impl Target {
             wgpu::TextureFormat::Rgba8Unorm,
             &[wgpu::TextureFormat::Rgba8UnormSrgb],
         );
-        let sky_group = luts.sky_group(device, pipelines, &radiance);
-        let display_group = pipelines.display_group(device, &radiance, &display);
+        let radiance_view = radiance.create_view(&Default::default());
+        let display_view = display.create_view(&Default::default());
+        let groups = pipelines
+            .specs()
+            .enumerate()
+            .map(|(i, spec)| {
+                if spec.is_table() {
+                    return None;
+                }
+                pipelines.bind(device, i, |id| match id {
+                    crate::methods::RADIANCE => {
+                        Some(wgpu::BindingResource::TextureView(&radiance_view))
+                    }
+                    crate::methods::DISPLAY => {
+                        Some(wgpu::BindingResource::TextureView(&display_view))
+                    }
+                    table => tables.buffer(table).map(|b| b.as_entire_binding()),
+                })
+            })
+            .collect();
         Target {
             size,
             radiance,
             display,
-            sky_group,
-            display_group,
+            groups,
         }
     }
 }

@@ -2,20 +2,22 @@
 //! from its caller, so the same code renders into the explorer's window, into files from the
 //! command line, and in tests. This crate never depends on egui.
 //!
-//! Data flow: `Scene` → `model::methods::hillaire::Params` (f64) → [`uniforms`] (f32 GPU
-//! structs and a generated WGSL [`prelude`]) → the passes of [`hillaire`] → [`views`] textures.
+//! Data flow: `Scene` → `model::methods::shared::Params` (f64) → [`uniforms`] (f32 GPU structs
+//! and a generated WGSL [`prelude`]) → the passes of the scene's model ([`methods`], compiled
+//! by [`passes`], run by the [`engine`]) → [`views`] textures.
 
 pub mod engine;
 pub mod gpu;
-pub mod hillaire;
+pub mod methods;
+pub mod passes;
 pub mod prelude;
 pub mod readback;
 pub mod uniforms;
 pub mod views;
 
-pub use engine::{Engine, EngineError, FrameStats, Inputs, Pass, TimingSource};
+pub use atmoscope_model::methods::Inputs;
+pub use engine::{Engine, EngineError, FrameStats, TimingSource};
 pub use gpu::{GpuContext, GpuError};
-pub use hillaire::Table;
 pub use uniforms::DisplayMode;
 pub use views::View;
 

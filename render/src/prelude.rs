@@ -1,8 +1,8 @@
 //! The generated WGSL prelude: every constant the shaders share with Rust (table sizes, step
 //! placement codes, the sun's size, colour conversion rows, enum codes) written from its one
-//! home in the model crate, followed by the common WGSL files and one pass's entry file.
+//! home in the model crate. `passes::shader_source` follows it with the common WGSL files, the
+//! model's own and one pass's entry file.
 
-use crate::engine::Pass;
 use crate::uniforms::{
     DisplayMode, display_code, phase_code, projection_code, spacing_code, tone_map_code,
 };
@@ -13,55 +13,12 @@ use atmoscope_model::constants::{
     MAX_LUMINOUS_EFFICACY_LM_PER_W, SUN_ANGULAR_RADIUS_RAD, SUN_LIMB_DARKENING_U,
 };
 use atmoscope_model::methods::hillaire as h;
+use atmoscope_model::methods::shared::{self, Spacing};
 use atmoscope_model::scene::{AerosolPhase, ToneMap};
 use std::fmt::Write;
 
 /// Workgroup edge of every compute pass (WORKGROUP_SIZE × WORKGROUP_SIZE × 1).
 pub const WORKGROUP_SIZE: u32 = 8;
-
-impl Pass {
-    /// Path under `shaders/` and text of the pass's WGSL entry file.
-    pub fn shader_file(self) -> (&'static str, &'static str) {
-        match self {
-            Pass::Transmittance => (
-                "hillaire/transmittance.wgsl",
-                include_str!("../../shaders/hillaire/transmittance.wgsl"),
-            ),
-            Pass::MultipleScattering => (
-                "hillaire/multiple_scattering.wgsl",
-                include_str!("../../shaders/hillaire/multiple_scattering.wgsl"),
-            ),
-            Pass::GroundIrradiance => (
-                "hillaire/ground_irradiance.wgsl",
-                include_str!("../../shaders/hillaire/ground_irradiance.wgsl"),
-            ),
-            Pass::SkyView => (
-                "hillaire/sky_view.wgsl",
-                include_str!("../../shaders/hillaire/sky_view.wgsl"),
-            ),
-            Pass::AerialPerspective => (
-                "hillaire/aerial_perspective.wgsl",
-                include_str!("../../shaders/hillaire/aerial_perspective.wgsl"),
-            ),
-            Pass::Sky => (
-                "hillaire/sky.wgsl",
-                include_str!("../../shaders/hillaire/sky.wgsl"),
-            ),
-            Pass::Display => (
-                "views/display.wgsl",
-                include_str!("../../shaders/views/display.wgsl"),
-            ),
-        }
-    }
-}
-
-const COMMON: [&str; 4] = [
-    include_str!("../../shaders/common/bindings.wgsl"),
-    include_str!("../../shaders/common/geometry.wgsl"),
-    include_str!("../../shaders/common/lut.wgsl"),
-    include_str!("../../shaders/common/phase.wgsl"),
-];
-const HILLAIRE_COMMON: &str = include_str!("../../shaders/hillaire/common.wgsl");
 
 /// A WGSL float literal for `v`.
 fn f(v: f64) -> String {
@@ -116,7 +73,7 @@ pub fn wgsl_prelude() -> String {
         "f32",
         f(h::AERIAL_PERSPECTIVE_MAX_DISTANCE_M),
     );
-    c("PROFILE_SAMPLES", "u32", format!("{}u", h::PROFILE_SAMPLES));
+    c("PROFILE_SAMPLES", "u32", format!("{}u", shared::PROFILE_SAMPLES));
     c(
         "MULTIPLE_SCATTERING_DIRECTIONS_SQRT",
         "u32",
@@ -131,7 +88,7 @@ pub fn wgsl_prelude() -> String {
     c(
         "SMALL_OPTICAL_THICKNESS",
         "f32",
-        f(h::SMALL_OPTICAL_THICKNESS),
+        f(shared::SMALL_OPTICAL_THICKNESS),
     );
     c("SUN_ANGULAR_RADIUS_RAD", "f32", f(SUN_ANGULAR_RADIUS_RAD));
     c("SUN_LIMB_DARKENING_U", "f32", f(SUN_LIMB_DARKENING_U));
@@ -152,7 +109,6 @@ pub fn wgsl_prelude() -> String {
             f(y_row[2])
         ),
     );
-    use atmoscope_model::methods::hillaire::Spacing;
     for (name, v) in [
         ("SPACING_UNIFORM", spacing_code(Spacing::Uniform)),
         ("SPACING_QUADRATIC", spacing_code(Spacing::Quadratic)),
@@ -197,16 +153,3 @@ pub fn wgsl_prelude() -> String {
     s
 }
 
-/// The complete WGSL module of one pass.
-pub fn shader_source(pass: Pass) -> String {
-    let mut s = wgsl_prelude();
-    for part in COMMON {
-        s.push_str(part);
-    }
-    // Every pass but the display belongs to the Hillaire method.
-    if pass != Pass::Display {
-        s.push_str(HILLAIRE_COMMON);
-    }
-    s.push_str(pass.shader_file().1);
-    s
-}

@@ -4,7 +4,8 @@
 
 use atmoscope_model::camera::{Camera, Projection};
 use atmoscope_model::display::EXPOSURE_SCALE;
-use atmoscope_model::methods::hillaire::{self, BatchOptics, Params, Spacing, Viewpoint};
+use atmoscope_model::geometry::horizon_beta;
+use atmoscope_model::methods::shared::{BatchOptics, Params, Spacing, Viewpoint};
 use atmoscope_model::scene::{AerosolPhase, Scene, ToneMap};
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
@@ -123,7 +124,7 @@ impl From<&FrameInputs<'_>> for Globals {
                 c.heading_deg.to_radians() as f32,
                 c.pitch_deg.to_radians() as f32,
                 (c.fov_deg.to_radians() * 0.5).tan() as f32,
-                hillaire::horizon_beta(f.viewpoint.h, p.bottom_radius_m) as f32,
+                horizon_beta(f.viewpoint.h, p.bottom_radius_m) as f32,
             ],
             sun: v4(f.sun, f.viewpoint.mu_s),
             view: [

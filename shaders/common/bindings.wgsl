@@ -51,11 +51,15 @@ fn top_radius() -> f32 { return globals.planet.y; }
 fn thickness() -> f32 { return globals.planet.z; }
 fn batch_count() -> u32 { return globals.options.z; }
 
-// Group 1: the tables, declared once for every pass; a pass's bind group layout holds only the
-// bindings its entry point uses (see render/src/hillaire.rs).
+// Group 1: every table of every model and the view's images, declared once for every pass. The
+// engine finds a table's binding here by its name (the registry id with `_` for `-`, then
+// `_lut`); a pass's bind group layout holds only the bindings it reads or writes.
 @group(1) @binding(0) var<storage, read_write> transmittance_lut: array<vec4<f32>>;
 @group(1) @binding(1) var<storage, read_write> multiple_scattering_lut: array<vec4<f32>>;
 @group(1) @binding(2) var<storage, read_write> ground_irradiance_lut: array<vec4<f32>>;
 @group(1) @binding(3) var<storage, read_write> sky_view_lut: array<vec4<f32>>;
-@group(1) @binding(4) var<storage, read_write> aerial_perspective_inscattering: array<vec4<f32>>;
-@group(1) @binding(5) var<storage, read_write> aerial_perspective_transmittance: array<vec4<f32>>;
+@group(1) @binding(4) var<storage, read_write> aerial_perspective_inscattering_lut: array<vec4<f32>>;
+@group(1) @binding(5) var<storage, read_write> aerial_perspective_transmittance_lut: array<vec4<f32>>;
+@group(1) @binding(6) var radiance_out: texture_storage_2d<rgba32float, write>;
+@group(1) @binding(7) var radiance_in: texture_2d<f32>;
+@group(1) @binding(8) var display_out: texture_storage_2d<rgba8unorm, write>;

@@ -30,7 +30,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         let size = AERIAL_PERSPECTIVE_SIZE;
         let i = ((layer * depth + k) * size.y + id.y) * size.x + id.x;
-        aerial_perspective_inscattering[i] = inscattered;
-        aerial_perspective_transmittance[i] = throughput;
+        aerial_perspective_inscattering_lut[i] = inscattered;
+        aerial_perspective_transmittance_lut[i] = throughput;
     }
 }

@@ -1,79 +1,6 @@
 // Hillaire (2020): the functions every pass of the method shares. Twins of
 // model::methods::hillaire (same mappings, same step placement, same arithmetic in f32).
 
-struct Medium {
-    rayleigh_scattering: vec4<f32>,
-    aerosol_scattering: vec4<f32>,
-    extinction: vec4<f32>,
-}
-
-// Profile values at altitude h, linear in x = sqrt(h / H); zero above the top.
-fn densities(h: f32) -> vec3<f32> {
-    if h > thickness() {
-        return vec3<f32>(0.0);
-    }
-    let x = sqrt(max(h, 0.0) / thickness()) * f32(PROFILE_SAMPLES - 1u);
-    let i = min(u32(floor(x)), PROFILE_SAMPLES - 2u);
-    let f = x - f32(i);
-    return mix(profile[i].xyz, profile[i + 1u].xyz, f);
-}
-
-// The batch is passed by value: load it once per invocation, not once per step.
-fn medium(b: Batch, h: f32) -> Medium {
-    let d = densities(h);
-    var m: Medium;
-    m.rayleigh_scattering = b.rayleigh_scattering * d.x;
-    m.aerosol_scattering = b.aerosol_scattering * d.z;
-    m.extinction = m.rayleigh_scattering + m.aerosol_scattering + b.ozone_absorption * d.y
-        + b.aerosol_absorption * d.z;
-    return m;
-}
-
-// ---- transmittance (Bruneton 2017 mapping) ----
-
-fn transmittance_texel_from_h_mu(h: f32, mu: f32) -> vec2<f32> {
-    let big_h = sqrt(rho_squared(thickness()));
-    let rho = sqrt(rho_squared(max(h, 0.0)));
-    let d = distance_to_top(h, mu);
-    let d_min = thickness() - h;
-    let d_max = rho + big_h;
-    let x_mu = (d - d_min) / max(d_max - d_min, 1e-9);
-    let x_r = rho / big_h;
-    return vec2<f32>(x_mu, x_r) * vec2<f32>(TRANSMITTANCE_SIZE - 1u);
-}
-
-fn transmittance_h_mu_from_texel(f: vec2<f32>) -> vec2<f32> {
-    let x = f / vec2<f32>(TRANSMITTANCE_SIZE - 1u);
-    let big_r = bottom_radius();
-    let big_h = sqrt(rho_squared(thickness()));
-    let rho = big_h * x.y;
-    let h = rho * rho / (sqrt(rho * rho + big_r * big_r) + big_r);
-    let r = big_r + h;
-    let d_min = thickness() - h;
-    let d_max = rho + big_h;
-    let d = d_min + x.x * (d_max - d_min);
-    var mu = 1.0;
-    if d > 0.0 {
-        mu = clamp((big_h * big_h - rho * rho - d * d) / (2.0 * r * d), -1.0, 1.0);
-    }
-    return vec2<f32>(h, mu);
-}
-
-fn transmittance(layer: u32, h: f32, mu: f32) -> vec4<f32> {
-    let t = taps(TRANSMITTANCE_SIZE, layer, transmittance_texel_from_h_mu(h, mu));
-    return blend(transmittance_lut[t.i.x], transmittance_lut[t.i.y], transmittance_lut[t.i.z],
-        transmittance_lut[t.i.w], t.w);
-}
-
-// Transmittance to the sun times the visible fraction of its disk above the horizon.
-fn sun_transmittance(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
-    let sin_h = bottom_radius() / (bottom_radius() + h);
-    let cos_h = -sqrt(max(1.0 - sin_h * sin_h, 0.0));
-    let edge = sin_h * SUN_ANGULAR_RADIUS_RAD;
-    let visible = smoothstep(-edge, edge, mu_s - cos_h);
-    return transmittance(layer, h, mu_s) * visible;
-}
-
 // ---- multiple scattering ----
 
 fn multiple_scattering_texel_from_h_mu_s(h: f32, mu_s: f32) -> vec2<f32> {
@@ -180,14 +107,6 @@ fn aerial_perspective_slice_from_distance(d: f32) -> f32 {
     return sqrt(max(d / AERIAL_PERSPECTIVE_MAX_DISTANCE_M, 0.0)) * f32(AERIAL_PERSPECTIVE_SIZE.z) - 1.0;
 }
 
-fn direction_from_phi_theta(phi: f32, theta: f32) -> vec3<f32> {
-    return vec3<f32>(sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta));
-}
-
-fn local_sun(mu_s: f32) -> vec3<f32> {
-    return vec3<f32>(sqrt(max(1.0 - mu_s * mu_s, 0.0)), 0.0, mu_s);
-}
-
 // ---- in-scattering along a ray ----
 
 struct Inscattering {
@@ -233,3 +152,4 @@ fn integrate_inscattering(
     }
     return result;
 }
+

@@ -3,8 +3,6 @@
 // the atmosphere it is ray-marched (Hillaire 2020 §6). Writes linear sRGB (Y = ∫ȳL dλ,
 // W·m⁻²·sr⁻¹) and coverage in alpha.
 
-@group(1) @binding(6) var radiance_out: texture_storage_2d<rgba32float, write>;
-
 // Pipeline constants: the engine compiles one variant per projection and per camera inside or
 // above the atmosphere, so that no pixel pays for branches the frame cannot take (software
 // drivers run both sides of a branch).
@@ -82,16 +80,16 @@ fn aerial_perspective(layer: u32, h: f32, phi: f32, theta: f32, d: f32) -> Insca
     let b = taps(AERIAL_PERSPECTIVE_SIZE.xy, layer * depth + u32(z.y), f);
     var result: Inscattering;
     result.radiance = mix(
-        blend(aerial_perspective_inscattering[a.i.x], aerial_perspective_inscattering[a.i.y],
-            aerial_perspective_inscattering[a.i.z], aerial_perspective_inscattering[a.i.w], a.w),
-        blend(aerial_perspective_inscattering[b.i.x], aerial_perspective_inscattering[b.i.y],
-            aerial_perspective_inscattering[b.i.z], aerial_perspective_inscattering[b.i.w], b.w),
+        blend(aerial_perspective_inscattering_lut[a.i.x], aerial_perspective_inscattering_lut[a.i.y],
+            aerial_perspective_inscattering_lut[a.i.z], aerial_perspective_inscattering_lut[a.i.w], a.w),
+        blend(aerial_perspective_inscattering_lut[b.i.x], aerial_perspective_inscattering_lut[b.i.y],
+            aerial_perspective_inscattering_lut[b.i.z], aerial_perspective_inscattering_lut[b.i.w], b.w),
         z.z);
     result.transmittance = mix(
-        blend(aerial_perspective_transmittance[a.i.x], aerial_perspective_transmittance[a.i.y],
-            aerial_perspective_transmittance[a.i.z], aerial_perspective_transmittance[a.i.w], a.w),
-        blend(aerial_perspective_transmittance[b.i.x], aerial_perspective_transmittance[b.i.y],
-            aerial_perspective_transmittance[b.i.z], aerial_perspective_transmittance[b.i.w], b.w),
+        blend(aerial_perspective_transmittance_lut[a.i.x], aerial_perspective_transmittance_lut[a.i.y],
+            aerial_perspective_transmittance_lut[a.i.z], aerial_perspective_transmittance_lut[a.i.w], a.w),
+        blend(aerial_perspective_transmittance_lut[b.i.x], aerial_perspective_transmittance_lut[b.i.y],
+            aerial_perspective_transmittance_lut[b.i.z], aerial_perspective_transmittance_lut[b.i.w], b.w),
         z.z);
     if fz < 0.0 {
         let k = fz + 1.0;

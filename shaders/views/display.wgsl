@@ -1,9 +1,6 @@
 // Pass: display. Linear radiance → exposure → tone map → sRGB (twin of model::display), or
 // luminance in cd/m² on a log scale in false colour (twin of render::views::false_colour).
 
-@group(1) @binding(7) var radiance_in: texture_2d<f32>;
-@group(1) @binding(8) var display_out: texture_storage_2d<rgba8unorm, write>;
-
 // Pipeline constants, one variant per display mode and tone map (see sky.wgsl).
 override DISPLAY_MODE: u32 = DISPLAY_COLOUR;
 override TONE_MAP: u32 = TONE_MAP_EXPONENTIAL;

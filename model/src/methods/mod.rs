@@ -1,8 +1,354 @@
-//! Rendering methods, one module each (the GPU side mirrors these names in `render` and
-//! `shaders/`). In f64 on the CPU; the path tracer is the ground truth every other method is
-//! measured against.
+//! Sky models and the registry that lists them, one row each. Everything that offers a choice of
+//! model — the Scene panel, the command line, Compare, the LUT tab, the benchmarks and the tests
+//! — iterates [`MODELS`]; nothing else lists models.
+//!
+//! A model is its registry row, its CPU twin here (`methods/<model>/`, one file per GPU pass,
+//! implementing [`SkyModel`]), its shaders (`shaders/<model>/`) and its passes as data
+//! (`render/src/methods/<model>.rs`). What table-based models share is in [`shared`]. The path
+//! tracer is the ground truth every model is measured against; it has a row (the scene can name
+//! it) but no real-time passes.
 
 pub mod hillaire;
 pub mod path_tracer;
 pub mod rng;
+pub mod shared;
 pub mod single_scattering;
+
+use crate::atmosphere::Atmosphere;
+use crate::camera::{Camera, Projection};
+use crate::geometry::direction_from_angles;
+use crate::scene::{Method, Scene};
+use crate::wavelengths::{WavelengthBatch, to_linear_srgb};
+use glam::DVec3;
+use rayon::prelude::*;
+use shared::{Lanes, Lut, Params, TableSpec, Viewpoint};
+
+/// What a pass or a table can depend on in a scene; a set of these is a bit mask. The engine
+/// compares them between frames and reruns exactly the passes that read something that changed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub struct Inputs(u8);
+
+impl Inputs {
+    pub const NONE: Inputs = Inputs(0);
+    /// Atmosphere settings, model, wavelength set and quality.
+    pub const ATMOSPHERE: Inputs = Inputs(1);
+    /// The camera's altitude and the sun's zenith angle there (what the view tables depend on).
+    pub const VIEWPOINT: Inputs = Inputs(2);
+    /// The sun's direction in the world.
+    pub const SUN: Inputs = Inputs(4);
+    /// The camera's position, orientation, field of view and projection.
+    pub const CAMERA: Inputs = Inputs(8);
+    pub const VIEW_SIZE: Inputs = Inputs(16);
+    /// Exposure, tone map and display mode.
+    pub const DISPLAY: Inputs = Inputs(32);
+    pub const ALL: Inputs = Inputs(63);
+
+    pub const fn union(self, other: Inputs) -> Inputs {
+        Inputs(self.0 | other.0)
+    }
+
+    pub fn intersects(self, other: Inputs) -> bool {
+        self.0 & other.0 != 0
+    }
+
+    pub fn is_empty(self) -> bool {
+        self.0 == 0
+    }
+
+    /// Names of the inputs in the set, for documentation and the UI.
+    pub fn names(self) -> Vec<&'static str> {
+        [
+            (Inputs::ATMOSPHERE, "atmosphere"),
+            (Inputs::VIEWPOINT, "camera altitude and sun elevation"),
+            (Inputs::SUN, "sun direction"),
+            (Inputs::CAMERA, "camera"),
+            (Inputs::VIEW_SIZE, "view size"),
+            (Inputs::DISPLAY, "display"),
+        ]
+        .into_iter()
+        .filter(|(i, _)| self.intersects(*i))
+        .map(|(_, n)| n)
+        .collect()
+    }
+}
+
+/// Where a model is meant to work. Views outside it still render (and are marked as such), so a
+/// user can see how a model fails.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Domain {
+    /// Highest camera altitude, m (`f64::INFINITY`: anywhere).
+    pub max_altitude_m: f64,
+    /// Lowest sun elevation, degrees (−90: twilight and night included).
+    pub min_sun_elevation_deg: f64,
+    /// One sentence on the domain and why.
+    pub note: &'static str,
+}
+
+/// Camera altitude below which a view is a ground view, m.
+pub const GROUND_VIEW_MAX_ALTITUDE_M: f64 = 2_000.0;
+/// Camera altitude below which a view is a plane view, m (above: space).
+pub const PLANE_VIEW_MAX_ALTITUDE_M: f64 = 20_000.0;
+
+impl Domain {
+    /// Everywhere: the ground, planes, space and twilight.
+    pub const EVERYWHERE: Domain = Domain {
+        max_altitude_m: f64::INFINITY,
+        min_sun_elevation_deg: -90.0,
+        note: "ground, plane, space and twilight views",
+    };
+
+    /// The kinds of view the domain covers: ground, plane, space, twilight.
+    pub fn kinds(&self) -> Vec<&'static str> {
+        let mut k = vec!["ground"];
+        if self.max_altitude_m > GROUND_VIEW_MAX_ALTITUDE_M {
+            k.push("plane");
+        }
+        if self.max_altitude_m > PLANE_VIEW_MAX_ALTITUDE_M {
+            k.push("space");
+        }
+        if self.min_sun_elevation_deg < 0.0 {
+            k.push("twilight");
+        }
+        k
+    }
+
+    /// Why a view from `altitude_m` with the sun at `sun_elevation_deg` lies outside the
+    /// domain, or None when it is inside.
+    pub fn excludes(&self, altitude_m: f64, sun_elevation_deg: f64) -> Option<String> {
+        if altitude_m > self.max_altitude_m {
+            Some(format!(
+                "camera at {:.0} m is above this model's domain (up to {:.0} m): {}",
+                altitude_m, self.max_altitude_m, self.note
+            ))
+        } else if sun_elevation_deg < self.min_sun_elevation_deg {
+            Some(format!(
+                "sun at {sun_elevation_deg:.1}° is below this model's domain (from {:.1}°): {}",
+                self.min_sun_elevation_deg, self.note
+            ))
+        } else {
+            None
+        }
+    }
+}
+
+/// A model's CPU twin for one scene's optics and viewpoint: its tables and the radiance of any
+/// direction, in f64. `probe`, the Inspector and the tests use it.
+pub trait SkyModel: Send + Sync {
+    /// The optics the model was built for.
+    fn params(&self) -> &Params;
+
+    /// Radiance of batch `layer` (W·m⁻²·sr⁻¹·nm⁻¹ per lane) seen from `position` (m from the
+    /// planet's centre, at altitude `h`, m) along the unit direction `dir`, with the sun in the
+    /// unit direction `sun`; the sun's disk included.
+    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes;
+
+    /// One of the model's tables by its registry id.
+    fn table(&self, id: &str) -> Option<&Lut>;
+}
+
+/// One row of the registry.
+#[derive(Debug, Clone, Copy)]
+pub struct ModelInfo {
+    pub method: Method,
+    /// Stable id, as the command line spells it.
+    pub id: &'static str,
+    pub label: &'static str,
+    pub citation: &'static str,
+    /// One or two sentences: what the model does and what it costs.
+    pub summary: &'static str,
+    pub domain: Domain,
+    /// Every table, in the order the passes compute them.
+    pub tables: &'static [TableSpec],
+    /// The CPU twin's constructor; None for the path tracer, which is not a real-time model.
+    pub build: Option<fn(&Params, Viewpoint) -> Box<dyn SkyModel>>,
+}
+
+impl ModelInfo {
+    /// Whether the model renders in real time on the GPU.
+    pub fn is_realtime(&self) -> bool {
+        self.build.is_some()
+    }
+
+    /// A table of the model by id.
+    pub fn table(&self, id: &str) -> Option<&'static TableSpec> {
+        self.tables.iter().find(|t| t.id == id)
+    }
+}
+
+/// The registry: every model, one row each.
+pub const MODELS: &[ModelInfo] = &[
+    ModelInfo {
+        method: Method::Hillaire,
+        id: "hillaire",
+        label: "Hillaire 2020",
+        citation: "S. Hillaire (2020), A Scalable and Production Ready Sky and Atmosphere Rendering Technique, Computer Graphics Forum 39(4)",
+        summary: "Transmittance and multiple-scattering tables, a sky-view table at the camera's altitude and an aerial-perspective volume; ray-marched from space.",
+        domain: Domain::EVERYWHERE,
+        tables: &hillaire::TABLES,
+        build: Some(hillaire::build),
+    },
+    ModelInfo {
+        method: Method::PathTracer,
+        id: "path-tracer",
+        label: "Path tracer",
+        citation: "Spectral Monte Carlo path tracer with delta tracking and next-event estimation (this project)",
+        summary: "The offline ground truth: all scattering orders, no tables. `atmoscope reference` and the Reference tab render with it.",
+        domain: Domain::EVERYWHERE,
+        tables: &[],
+        build: None,
+    },
+];
+
+/// The registry row of `method`.
+pub fn info(method: Method) -> &'static ModelInfo {
+    MODELS
+        .iter()
+        .find(|m| m.method == method)
+        .unwrap_or(&MODELS[0])
+}
+
+/// The registry row with the command-line id `id`.
+pub fn by_id(id: &str) -> Option<&'static ModelInfo> {
+    MODELS.iter().find(|m| m.id == id)
+}
+
+/// The real-time models, in registry order.
+pub fn realtime() -> impl Iterator<Item = &'static ModelInfo> {
+    MODELS.iter().filter(|m| m.is_realtime())
+}
+
+/// Ids of the real-time models, comma separated (for messages and `--help`).
+pub fn realtime_ids() -> String {
+    realtime().map(|m| m.id).collect::<Vec<_>>().join(", ")
+}
+
+/// Why a model cannot draw: the path tracer is offline.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{0} is not a real-time model (real-time models: {1})")]
+pub struct NotRealtime(pub &'static str, pub String);
+
+/// The CPU twin of the scene's model for `scene` seen through `camera`.
+pub fn build(scene: &Scene, camera: &Camera) -> Result<Box<dyn SkyModel>, NotRealtime> {
+    let row = info(scene.render.method);
+    let build = row
+        .build
+        .ok_or_else(|| NotRealtime(row.id, realtime_ids()))?;
+    let atm = Atmosphere::new(&scene.atmosphere);
+    let p = Params::new(&atm, scene.render.wavelengths, scene.render.quality);
+    Ok(build(&p, shared::viewpoint(scene, camera)))
+}
+
+/// CPU render of a whole view with the scene's model: linear sRGB per pixel (row-major, top row
+/// first; zero where the projection shows nothing), sampled at pixel centres.
+pub fn render(
+    scene: &Scene,
+    projection: Projection,
+    width: u32,
+    height: u32,
+) -> Result<Vec<[f64; 3]>, NotRealtime> {
+    let camera = Camera::new(
+        &scene.camera,
+        scene.atmosphere.planet_radius_km * 1000.0,
+        projection,
+    );
+    let model = build(scene, &camera)?;
+    Ok(render_with(model.as_ref(), scene, &camera, width, height))
+}
+
+/// CPU render with a model already built.
+pub fn render_with(
+    model: &dyn SkyModel,
+    scene: &Scene,
+    camera: &Camera,
+    width: u32,
+    height: u32,
+) -> Vec<[f64; 3]> {
+    let a = scene.sun.angles();
+    let sun = direction_from_angles(a.elevation_deg, a.azimuth_deg);
+    let p = model.params();
+    let colours: Vec<WavelengthBatch> = p.batches.iter().map(|b| b.colour.clone()).collect();
+    (0..width * height)
+        .into_par_iter()
+        .map(|i| {
+            let (x, y) = (i % width, i / width);
+            match camera.ray(x as f64 + 0.5, y as f64 + 0.5, width, height) {
+                None => [0.0; 3],
+                Some(ray) => {
+                    let at = (ray.origin, scene.camera.altitude_m);
+                    let lanes: Vec<Lanes> = (0..p.batches.len())
+                        .map(|layer| model.radiance(layer, at, ray.direction, sun))
+                        .collect();
+                    to_linear_srgb(&colours, &lanes)
+                }
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_registry_has_unique_ids_and_tables() {
+        for (i, a) in MODELS.iter().enumerate() {
+            assert_eq!(info(a.method).id, a.id);
+            assert_eq!(by_id(a.id).map(|m| m.method), Some(a.method));
+            for b in &MODELS[i + 1..] {
+                assert_ne!(a.id, b.id);
+                assert_ne!(a.method, b.method);
+            }
+            for (j, t) in a.tables.iter().enumerate() {
+                assert!(a.tables[j + 1..].iter().all(|u| u.id != t.id), "{}", t.id);
+                assert!(!t.invalidated_by.is_empty(), "{} {}", a.id, t.id);
+                assert!(t.size.iter().all(|&n| n > 0));
+            }
+        }
+        assert!(!info(Method::PathTracer).is_realtime());
+    }
+
+    #[test]
+    fn every_model_of_the_registry_builds_its_declared_tables() {
+        let mut scene = Scene::default();
+        scene.render.quality = crate::scene::Quality::Low;
+        scene.render.wavelengths = crate::scene::WavelengthSet::Rgb3;
+        for row in realtime() {
+            scene.render.method = row.method;
+            let camera = Camera::new(&scene.camera, 6_360_000.0, Projection::Perspective);
+            let model = build(&scene, &camera).expect("real-time model");
+            for spec in row.tables {
+                let lut = model
+                    .table(spec.id)
+                    .unwrap_or_else(|| panic!("{} has no table {}", row.id, spec.id));
+                assert_eq!(
+                    [lut.width, lut.height, lut.depth].map(|n| n as u32),
+                    spec.size,
+                    "{} {}",
+                    row.id,
+                    spec.id
+                );
+                assert!(lut.data.iter().flatten().all(|v| v.is_finite() && *v >= 0.0));
+            }
+        }
+        scene.render.method = Method::PathTracer;
+        let camera = Camera::new(&scene.camera, 6_360_000.0, Projection::Perspective);
+        assert!(build(&scene, &camera).is_err());
+    }
+
+    #[test]
+    fn domains_explain_what_they_exclude() {
+        let d = Domain {
+            max_altitude_m: 1000.0,
+            min_sun_elevation_deg: 0.0,
+            note: "ground views in daylight",
+        };
+        assert!(d.excludes(10.0, 30.0).is_none());
+        assert!(d.excludes(5000.0, 30.0).unwrap().contains("above"));
+        assert!(d.excludes(10.0, -6.0).unwrap().contains("below"));
+        assert_eq!(d.kinds(), vec!["ground"]);
+        assert_eq!(
+            Domain::EVERYWHERE.kinds(),
+            vec!["ground", "plane", "space", "twilight"]
+        );
+    }
+}

@@ -103,7 +103,7 @@ pub fn radiance_parts(atm: &Atmosphere, ray: &Ray, sun: DVec3, wavelength_nm: f6
         aerosol: along(false),
         ground: 0.0,
     };
-    if geometry::ray_intersects_ground(r, mu, atm.bottom_radius_m) {
+    if geometry::hits_ground(r - atm.bottom_radius_m, mu, atm.bottom_radius_m) {
         let x = ray.origin + ray.direction * t1;
         let n = x.normalize();
         let cos_s = n.dot(sun);
@@ -125,8 +125,8 @@ fn segment(atm: &Atmosphere, r: f64, mu: f64) -> Option<(f64, f64)> {
         return None;
     }
     let start = t0.max(0.0);
-    let end = match geometry::distance_to_ground(r, mu, atm.bottom_radius_m) {
-        Some(g) if g >= start => g,
+    let end = match geometry::sphere_distances(r, mu, atm.bottom_radius_m) {
+        Some((g, _)) if mu < 0.0 && g >= start => g.min(t1),
         _ => t1,
     };
     (end > start).then_some((start, end))

@@ -1,0 +1,135 @@
+//! Hillaire (2020) §5.5: the multiple-scattering table Ψ_ms(h, mu_s), second order with an
+//! isotropic phase summed as the geometric series 1/(1 − f_ms), ground bounce included. Twin of
+//! `shaders/hillaire/multiple_scattering.wgsl`.
+
+use super::{Lanes, Lut, Params, Spacing, TableSpec, sun_transmittance};
+use crate::geometry::{altitude_along, distance_to_ground, distance_to_top, hits_ground};
+use crate::methods::Inputs;
+use crate::methods::shared::{local_sun, segment_weight, add, mul};
+use crate::wavelengths::LANES;
+use glam::DVec3;
+use std::f64::consts::PI;
+
+/// Multiple-scattering table size (mu_s, h): 32 × 32 as in the paper.
+pub const MULTIPLE_SCATTERING_SIZE: [u32; 2] = [32, 32];
+/// Directions of the multiple-scattering integral: an 8 × 8 stratified sphere (paper: 64).
+pub const MULTIPLE_SCATTERING_DIRECTIONS_SQRT: u32 = 8;
+
+pub const TABLE: TableSpec = TableSpec {
+    id: "multiple-scattering",
+    label: "multiple scattering",
+    size: [MULTIPLE_SCATTERING_SIZE[0], MULTIPLE_SCATTERING_SIZE[1], 1],
+    axes: [
+        "x: sun zenith cosine μ_s, −1 (left) to 1 (right)",
+        "y: altitude h, ground (top row) to the top (bottom row)",
+        "",
+    ],
+    invalidated_by: Inputs::ATMOSPHERE,
+    transmittance: false,
+};
+
+/// Fractional texel coordinates of (h, mu_s) in the multiple-scattering table.
+pub fn multiple_scattering_texel_from_h_mu_s(p: &Params, h: f64, mu_s: f64) -> (f64, f64) {
+    let [w, hh] = MULTIPLE_SCATTERING_SIZE;
+    (
+        (mu_s * 0.5 + 0.5) * (w - 1) as f64,
+        (h / p.thickness_m()) * (hh - 1) as f64,
+    )
+}
+
+/// (h, mu_s) of the multiple-scattering texel at fractional coordinates (fx, fy).
+pub fn multiple_scattering_h_mu_s_from_texel(p: &Params, fx: f64, fy: f64) -> (f64, f64) {
+    let [w, hh] = MULTIPLE_SCATTERING_SIZE;
+    (
+        fy / (hh - 1) as f64 * p.thickness_m(),
+        (fx / (w - 1) as f64 * 2.0 - 1.0).clamp(-1.0, 1.0),
+    )
+}
+
+/// Direction `i` of an n × n stratified grid over the sphere (uniform in mu and azimuth).
+fn sphere_direction(i: u32, n: u32) -> DVec3 {
+    let mu = 1.0 - 2.0 * ((i / n) as f64 + 0.5) / n as f64;
+    let phi = 2.0 * PI * ((i % n) as f64 + 0.5) / n as f64;
+    let s = (1.0 - mu * mu).max(0.0).sqrt();
+    DVec3::new(s * phi.cos(), s * phi.sin(), mu)
+}
+
+/// Ψ_ms per unit solar irradiance (sr⁻¹): L_2nd/(1 − f_ms), paper eq. 5–10.
+pub fn compute_multiple_scattering_lut(p: &Params, t: &Lut) -> Lut {
+    Lut::from_spec(&TABLE, p.batches.len(), |layer, _, y, x| {
+        let (h, mu_s) = multiple_scattering_h_mu_s_from_texel(p, x as f64, y as f64);
+        compute_multiple_scattering(p, t, layer, h, mu_s)
+    })
+}
+
+fn compute_multiple_scattering(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -> Lanes {
+    let big_r = p.bottom_radius_m;
+    let r = big_r + h;
+    let sun = local_sun(mu_s);
+    let n_dir = MULTIPLE_SCATTERING_DIRECTIONS_SQRT;
+    let isotropic = 1.0 / (4.0 * PI);
+    let albedo = p.batches[layer].ground_albedo;
+    let mut l_2nd = [0.0; LANES];
+    let mut f_ms = [0.0; LANES];
+    for d in 0..n_dir * n_dir {
+        let omega = sphere_direction(d, n_dir);
+        let (mu, nu) = (omega.z, omega.dot(sun));
+        let ground = hits_ground(h, mu, big_r);
+        let t_max = if ground {
+            distance_to_ground(h, mu, big_r)
+        } else {
+            distance_to_top(h, mu, big_r, p.top_radius_m)
+        };
+        let n = p.steps.multiple_scattering;
+        let mut throughput = [1.0; LANES];
+        for s in 0..n {
+            let (t0, t1) = Spacing::Quadratic.segment(0.0, t_max, s, n);
+            let (ts, dt) = (0.5 * (t0 + t1), t1 - t0);
+            let (h_t, r_t) = altitude_along(h, mu, ts, big_r);
+            let mu_s_t = (r * mu_s + ts * nu) / r_t;
+            let m = p.medium(layer, h_t);
+            let weight = mul(throughput, segment_weight(m.extinction, dt));
+            let sca = add(m.rayleigh_scattering, m.aerosol_scattering);
+            let sun_t = sun_transmittance(p, t, layer, h_t, mu_s_t);
+            for i in 0..LANES {
+                l_2nd[i] += weight[i] * sca[i] * isotropic * sun_t[i];
+                f_ms[i] += weight[i] * sca[i];
+                throughput[i] *= (-m.extinction[i] * dt).exp();
+            }
+        }
+        if ground {
+            let mu_s_g = (r * mu_s + t_max * nu) / big_r;
+            let sun_t = sun_transmittance(p, t, layer, 0.0, mu_s_g);
+            for i in 0..LANES {
+                l_2nd[i] += throughput[i] * sun_t[i] * mu_s_g.max(0.0) * albedo[i] / PI;
+            }
+        }
+    }
+    let count = (n_dir * n_dir) as f64;
+    std::array::from_fn(|i| (l_2nd[i] / count) / (1.0 - f_ms[i] / count))
+}
+
+/// Looks up Ψ_ms at (h, mu_s).
+pub fn multiple_scattering(p: &Params, ms: &Lut, layer: usize, h: f64, mu_s: f64) -> Lanes {
+    let (fx, fy) = multiple_scattering_texel_from_h_mu_s(p, h, mu_s);
+    ms.bilinear(layer, fx, fy, 0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::methods::hillaire::ground_irradiance::*;
+    use crate::methods::shared::optics::tests::params;
+
+    #[test]
+    fn multiple_scattering_and_ground_mappings_round_trip() {
+        let p = params();
+        for &(h, mu_s) in &[(0.0, -1.0), (1234.0, 0.2), (100_000.0, 1.0)] {
+            let (fx, fy) = multiple_scattering_texel_from_h_mu_s(&p, h, mu_s);
+            let (h2, mu_s2) = multiple_scattering_h_mu_s_from_texel(&p, fx, fy);
+            assert!((h2 - h).abs() < 1e-6 && (mu_s2 - mu_s).abs() < 1e-12);
+            let mu_s3 = ground_irradiance_mu_s_from_texel(ground_irradiance_texel_from_mu_s(mu_s));
+            assert!((mu_s3 - mu_s).abs() < 1e-12);
+        }
+    }
+}

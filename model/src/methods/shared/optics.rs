@@ -1,0 +1,224 @@
+//! The optics of a scene for one wavelength set, as every table-based model reads them: per batch
+//! of four wavelengths the scattering and absorption coefficients per unit of a density profile,
+//! and the profile itself sampled once. The f64 original of the GPU's uniforms and storage
+//! buffers (`render::uniforms`).
+
+use super::Lanes;
+use crate::atmosphere::Atmosphere;
+use crate::camera::Camera;
+use crate::geometry::direction_from_angles;
+use crate::phase;
+use crate::scene::{AerosolPhase, Quality, Scene, WavelengthSet};
+use crate::wavelengths::{LANES, WavelengthBatch, batches};
+
+/// Samples of the density profile table, spaced as h = H·x² (dense near the ground).
+pub const PROFILE_SAMPLES: u32 = 256;
+
+/// Ray-marching sample counts, set by the scene's quality.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Steps {
+    pub transmittance: u32,
+    pub multiple_scattering: u32,
+    pub ground_irradiance: u32,
+    pub sky_view: u32,
+    pub aerial_perspective_per_slice: u32,
+    /// Per-pixel march when the camera is above the atmosphere.
+    pub ray_march: u32,
+}
+
+impl Steps {
+    pub fn for_quality(q: Quality) -> Steps {
+        let k = match q {
+            Quality::Low => 1,
+            Quality::Medium => 2,
+            Quality::High => 4,
+        };
+        Steps {
+            transmittance: 32 * k,
+            multiple_scattering: 10 * k,
+            ground_irradiance: 12 * k,
+            sky_view: 16 * k,
+            aerial_perspective_per_slice: k,
+            ray_march: 48 * k,
+        }
+    }
+}
+
+/// The optics of one batch of four wavelengths; coefficients are per unit of the profile.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BatchOptics {
+    pub colour: WavelengthBatch,
+    /// Rayleigh scattering at the reference air density, m⁻¹.
+    pub rayleigh_scattering: Lanes,
+    pub rayleigh_depolarisation: Lanes,
+    /// Ozone absorption at the reference ozone density, m⁻¹.
+    pub ozone_absorption: Lanes,
+    /// Aerosol scattering per unit of the aerosol profile (m⁻¹ per m⁻¹), i.e. AOD·SSA.
+    pub aerosol_scattering: Lanes,
+    /// Aerosol absorption per unit of the aerosol profile, AOD·(1 − SSA).
+    pub aerosol_absorption: Lanes,
+    pub aerosol_g: Lanes,
+    /// Extraterrestrial solar irradiance, W·m⁻²·nm⁻¹.
+    pub solar_irradiance: Lanes,
+    pub ground_albedo: Lanes,
+}
+
+/// Everything the passes read that depends only on the atmosphere and the wavelength set: the
+/// f64 original of the GPU's uniforms and storage buffers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Params {
+    pub bottom_radius_m: f64,
+    pub top_radius_m: f64,
+    pub aerosol_phase: AerosolPhase,
+    /// Relative air, relative ozone and aerosol (m⁻¹) densities at h = H·(i/(n−1))², and 0.
+    pub profile: Vec<[f64; 4]>,
+    pub batches: Vec<BatchOptics>,
+    pub steps: Steps,
+}
+
+impl Params {
+    pub fn new(atm: &Atmosphere, set: WavelengthSet, quality: Quality) -> Params {
+        let thickness = atm.thickness_m();
+        let air_ref = atm.air_density_m3(0.0).max(f64::MIN_POSITIVE);
+        let n = PROFILE_SAMPLES as usize;
+        let heights: Vec<f64> = (0..n)
+            .map(|i| thickness * (i as f64 / (n - 1) as f64).powi(2))
+            .collect();
+        let ozone_ref = heights
+            .iter()
+            .map(|&h| atm.ozone_density_m3(h))
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE);
+        let profile = heights
+            .iter()
+            .map(|&h| {
+                let d = atm.densities(h);
+                [
+                    d.air_m3 / air_ref,
+                    d.ozone_m3 / ozone_ref,
+                    d.aerosol_per_m,
+                    0.0,
+                ]
+            })
+            .collect();
+        let solar = atm.solar_spectrum;
+        let batches = batches(set)
+            .into_iter()
+            .map(|colour| {
+                let optics = colour.wavelengths_nm.map(|w| atm.optics(w));
+                let lanes = |f: &dyn Fn(usize) -> f64| -> Lanes { std::array::from_fn(f) };
+                let solar_irradiance = lanes(&|i| match colour.bandwidth_nm {
+                    Some(width) => solar.irradiance(colour.wavelengths_nm[i], width),
+                    None => solar.spectrum().sample(colour.wavelengths_nm[i]),
+                });
+                BatchOptics {
+                    rayleigh_scattering: lanes(&|i| optics[i].rayleigh_cross_section_m2 * air_ref),
+                    rayleigh_depolarisation: lanes(&|i| optics[i].rayleigh_depolarisation),
+                    ozone_absorption: lanes(&|i| optics[i].ozone_cross_section_m2 * ozone_ref),
+                    aerosol_scattering: lanes(&|i| {
+                        optics[i].aerosol_optical_depth * optics[i].aerosol_ssa
+                    }),
+                    aerosol_absorption: lanes(&|i| {
+                        optics[i].aerosol_optical_depth * (1.0 - optics[i].aerosol_ssa)
+                    }),
+                    aerosol_g: lanes(&|i| optics[i].aerosol_g),
+                    solar_irradiance,
+                    ground_albedo: [atm.ground_albedo; LANES],
+                    colour,
+                }
+            })
+            .collect();
+        Params {
+            bottom_radius_m: atm.bottom_radius_m,
+            top_radius_m: atm.top_radius_m,
+            aerosol_phase: atm.aerosol_phase,
+            profile,
+            batches,
+            steps: Steps::for_quality(quality),
+        }
+    }
+
+    pub fn thickness_m(&self) -> f64 {
+        self.top_radius_m - self.bottom_radius_m
+    }
+
+    /// Profile values at altitude `h` (linear in the table's x = √(h/H)); zero above the top.
+    pub fn densities(&self, h: f64) -> [f64; 3] {
+        let thickness = self.thickness_m();
+        if h > thickness {
+            return [0.0; 3];
+        }
+        let n = self.profile.len();
+        let x = (h.max(0.0) / thickness).sqrt() * (n - 1) as f64;
+        let i = (x.floor() as usize).min(n - 2);
+        let f = x - i as f64;
+        let (a, b) = (self.profile[i], self.profile[i + 1]);
+        std::array::from_fn(|k| a[k] + (b[k] - a[k]) * f)
+    }
+
+    /// Scattering (Rayleigh, aerosol) and extinction coefficients at altitude `h`, m⁻¹.
+    pub fn medium(&self, batch: usize, h: f64) -> Medium {
+        let [air, ozone, aerosol] = self.densities(h);
+        let b = &self.batches[batch];
+        let mut m = Medium::default();
+        for i in 0..LANES {
+            m.rayleigh_scattering[i] = b.rayleigh_scattering[i] * air;
+            m.aerosol_scattering[i] = b.aerosol_scattering[i] * aerosol;
+            m.extinction[i] = m.rayleigh_scattering[i]
+                + m.aerosol_scattering[i]
+                + b.ozone_absorption[i] * ozone
+                + b.aerosol_absorption[i] * aerosol;
+        }
+        m
+    }
+
+    /// The aerosol phase function of the scene at scattering cosine `nu`, asymmetry `g`.
+    pub fn aerosol_phase(&self, nu: f64, g: f64) -> f64 {
+        match self.aerosol_phase {
+            AerosolPhase::HenyeyGreenstein => phase::henyey_greenstein(nu, g),
+            AerosolPhase::CornetteShanks => phase::cornette_shanks(nu, g),
+        }
+    }
+}
+
+/// Local coefficients of one batch, m⁻¹.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Medium {
+    pub rayleigh_scattering: Lanes,
+    pub aerosol_scattering: Lanes,
+    pub extinction: Lanes,
+}
+
+/// Where the camera is, for the tables that depend on it: altitude (m) and the sun's zenith
+/// cosine there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Viewpoint {
+    pub h: f64,
+    pub mu_s: f64,
+}
+
+/// The scene's viewpoint for the sky-view and aerial-perspective tables.
+pub fn viewpoint(scene: &Scene, camera: &Camera) -> Viewpoint {
+    let a = scene.sun.angles();
+    let sun = direction_from_angles(a.elevation_deg, a.azimuth_deg);
+    Viewpoint {
+        h: scene.camera.altitude_m,
+        mu_s: sun.dot(camera.position.normalize()),
+    }
+}
+
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    /// The default scene's optics at Spectral4, medium quality.
+    pub(crate) fn params() -> Params {
+        let scene = Scene::default();
+        Params::new(
+            &Atmosphere::new(&scene.atmosphere),
+            WavelengthSet::Spectral4,
+            Quality::Medium,
+        )
+    }
+}

@@ -1,0 +1,178 @@
+//! The transmittance table every table-based model shares: exp(−∫ extinction) from (h, mu) to
+//! the top of the atmosphere, in Bruneton's (2017) mapping (§4.1 of his notes) at Hillaire's
+//! (2020) 256 × 64. The pass is `shaders/shared/transmittance.wgsl`.
+
+use super::{Lanes, Lut, Params, Spacing, TableSpec, add, scale};
+use crate::geometry::{altitude_along, distance_to_top, rho_squared};
+use crate::methods::Inputs;
+use crate::wavelengths::LANES;
+
+/// Transmittance table size (mu, h): Hillaire's 256 × 64.
+pub const TRANSMITTANCE_SIZE: [u32; 2] = [256, 64];
+
+pub const TABLE: TableSpec = TableSpec {
+    id: "transmittance",
+    label: "transmittance",
+    size: [TRANSMITTANCE_SIZE[0], TRANSMITTANCE_SIZE[1], 1],
+    axes: [
+        "x: view zenith cosine μ, from the horizon of each altitude (left) to straight up (right), Bruneton's mapping",
+        "y: altitude h, ground (top row) to the top of the atmosphere (bottom row), √ spacing",
+        "",
+    ],
+    invalidated_by: Inputs::ATMOSPHERE,
+    transmittance: true,
+};
+
+/// Fractional texel coordinates of (h, mu) in the transmittance table (Bruneton 2017 §4.1).
+pub fn transmittance_texel_from_h_mu(p: &Params, h: f64, mu: f64) -> (f64, f64) {
+    let (big_r, top) = (p.bottom_radius_m, p.top_radius_m);
+    let big_h = rho_squared(p.thickness_m(), big_r).sqrt();
+    let rho = rho_squared(h.max(0.0), big_r).sqrt();
+    let d = distance_to_top(h, mu, big_r, top);
+    let d_min = p.thickness_m() - h;
+    let d_max = rho + big_h;
+    let x_mu = (d - d_min) / (d_max - d_min).max(1e-9);
+    let x_r = rho / big_h;
+    let [w, hh] = TRANSMITTANCE_SIZE;
+    (x_mu * (w - 1) as f64, x_r * (hh - 1) as f64)
+}
+
+/// (h, mu) of the transmittance texel at fractional coordinates (fx, fy).
+pub fn transmittance_h_mu_from_texel(p: &Params, fx: f64, fy: f64) -> (f64, f64) {
+    let big_r = p.bottom_radius_m;
+    let [w, hh] = TRANSMITTANCE_SIZE;
+    let (x_mu, x_r) = (fx / (w - 1) as f64, fy / (hh - 1) as f64);
+    let big_h = rho_squared(p.thickness_m(), big_r).sqrt();
+    let rho = big_h * x_r;
+    let h = rho * rho / ((rho * rho + big_r * big_r).sqrt() + big_r);
+    let r = big_r + h;
+    let d_min = p.thickness_m() - h;
+    let d_max = rho + big_h;
+    let d = d_min + x_mu * (d_max - d_min);
+    let mu = if d <= 0.0 {
+        1.0
+    } else {
+        ((big_h * big_h - rho * rho - d * d) / (2.0 * r * d)).clamp(-1.0, 1.0)
+    };
+    (h, mu)
+}
+
+/// The transmittance table: exp(−∫ extinction) from (h, mu) to the top, midpoint rule on
+/// quadratically spaced segments (dense where the air is dense).
+pub fn compute_transmittance_lut(p: &Params) -> Lut {
+    Lut::from_spec(&TABLE, p.batches.len(), |layer, _, y, x| {
+        let (h, mu) = transmittance_h_mu_from_texel(p, x as f64, y as f64);
+        compute_transmittance(p, layer, h, mu)
+    })
+}
+
+fn compute_transmittance(p: &Params, layer: usize, h: f64, mu: f64) -> Lanes {
+    let big_r = p.bottom_radius_m;
+    let t_max = distance_to_top(h, mu, big_r, p.top_radius_m);
+    let n = p.steps.transmittance;
+    let mut depth = [0.0; LANES];
+    for i in 0..n {
+        let (t0, t1) = Spacing::Quadratic.segment(0.0, t_max, i, n);
+        let (h_t, _) = altitude_along(h, mu, 0.5 * (t0 + t1), big_r);
+        let m = p.medium(layer, h_t);
+        depth = add(depth, scale(m.extinction, t1 - t0));
+    }
+    depth.map(|d| (-d).exp())
+}
+
+/// Looks up the transmittance from (h, mu) to the top.
+pub fn transmittance(p: &Params, t: &Lut, layer: usize, h: f64, mu: f64) -> Lanes {
+    let (fx, fy) = transmittance_texel_from_h_mu(p, h, mu);
+    t.bilinear(layer, fx, fy, 0)
+}
+
+/// Transmittance to the sun from (h, mu_s), times the visible fraction of the sun's disk above
+/// the horizon (Earth's shadow with its penumbra, as in Bruneton 2017).
+pub fn sun_transmittance(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -> Lanes {
+    let visible = super::sun::visible_fraction(h, mu_s, p.bottom_radius_m);
+    scale(transmittance(p, t, layer, h, mu_s), visible)
+}
+
+/// The transmittance between two points of the ray (h, mu) at distance `d` apart, from the
+/// table: T(h, mu)/T(h_d, mu_d), or for a ray that hits the ground, the same along the reversed
+/// ray (Bruneton 2017's GetTransmittance), clamped to 1.
+pub fn transmittance_between(
+    p: &Params,
+    t: &Lut,
+    layer: usize,
+    (h, mu): (f64, f64),
+    d: f64,
+    ground: bool,
+) -> Lanes {
+    let big_r = p.bottom_radius_m;
+    let (h_d, r_d) = altitude_along(h, mu, d, big_r);
+    let mu_d = (((big_r + h) * mu + d) / r_d).clamp(-1.0, 1.0);
+    let (a, b) = if ground {
+        (
+            transmittance(p, t, layer, h_d, -mu_d),
+            transmittance(p, t, layer, h, -mu),
+        )
+    } else {
+        (
+            transmittance(p, t, layer, h, mu),
+            transmittance(p, t, layer, h_d, mu_d),
+        )
+    };
+    std::array::from_fn(|i| (a[i] / b[i].max(1e-30)).min(1.0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::atmosphere::Atmosphere;
+    use crate::scene::{Quality, Scene, WavelengthSet};
+    use glam::DVec3;
+
+    fn params() -> Params {
+        let scene = Scene::default();
+        Params::new(
+            &Atmosphere::new(&scene.atmosphere),
+            WavelengthSet::Spectral4,
+            Quality::Medium,
+        )
+    }
+
+    #[test]
+    fn transmittance_mapping_round_trips() {
+        let p = params();
+        for &(h, mu) in &[
+            (0.0, 1.0),
+            (0.0, 0.001),
+            (10_000.0, 0.3),
+            (50_000.0, -0.05),
+            (99_000.0, 0.9),
+        ] {
+            let (fx, fy) = transmittance_texel_from_h_mu(&p, h, mu);
+            let (h2, mu2) = transmittance_h_mu_from_texel(&p, fx, fy);
+            assert!((h2 - h).abs() < 1e-6 * (1.0 + h), "h {h} -> {h2}");
+            assert!((mu2 - mu).abs() < 1e-9, "mu {mu} -> {mu2} at h {h}");
+        }
+    }
+
+    #[test]
+    fn zenith_transmittance_matches_the_exact_optical_depth() {
+        let scene = Scene::default();
+        let atm = Atmosphere::new(&scene.atmosphere);
+        let p = Params::new(&atm, WavelengthSet::Spectral4, Quality::High);
+        let t = compute_transmittance_lut(&p);
+        for (lane, &w) in p.batches[0].colour.wavelengths_nm.iter().enumerate() {
+            for &(h, mu) in &[(0.0, 1.0), (0.0, 0.2), (5000.0, 0.5)] {
+                let ray = crate::geometry::Ray::new(
+                    DVec3::new(0.0, 0.0, atm.bottom_radius_m + h),
+                    DVec3::new((1.0_f64 - mu * mu).sqrt(), 0.0, mu),
+                );
+                let exact = (-atm.optical_depth(&atm.optics(w), &ray).total()).exp();
+                let lut = transmittance(&p, &t, 0, h, mu)[lane];
+                assert!(
+                    (lut - exact).abs() < 2e-3,
+                    "{w} nm, h {h}, mu {mu}: LUT {lut} vs exact {exact}"
+                );
+            }
+        }
+    }
+}

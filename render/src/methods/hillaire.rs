@@ -1,0 +1,71 @@
+//! Hillaire (2020) on the GPU: the passes of `shaders/hillaire/` as data. The f64 twin of every
+//! pass is `atmoscope_model::methods::hillaire::<pass>`.
+
+use super::{
+    Constant, Dispatch, GpuMethod, PassSpec, RADIANCE, SKY_INPUTS, TRANSMITTANCE_PASS, shader,
+};
+use atmoscope_model::methods::Inputs;
+use atmoscope_model::scene::Method;
+
+const AP_INSCATTERING: &str = "aerial-perspective-inscattering";
+const AP_TRANSMITTANCE: &str = "aerial-perspective-transmittance";
+
+pub const METHOD: GpuMethod = GpuMethod {
+    method: Method::Hillaire,
+    common: &[shader!("hillaire/common.wgsl")],
+    passes: &[
+        TRANSMITTANCE_PASS,
+        PassSpec {
+            name: "multiple-scattering",
+            shader: shader!("hillaire/multiple_scattering.wgsl"),
+            reads: &["transmittance"],
+            writes: &["multiple-scattering"],
+            inputs: Inputs::NONE,
+            dispatch: Dispatch::Table("multiple-scattering"),
+            constants: &[],
+        },
+        PassSpec {
+            name: "ground-irradiance",
+            shader: shader!("hillaire/ground_irradiance.wgsl"),
+            reads: &["transmittance", "multiple-scattering"],
+            writes: &["ground-irradiance"],
+            inputs: Inputs::NONE,
+            dispatch: Dispatch::Table("ground-irradiance"),
+            constants: &[],
+        },
+        PassSpec {
+            name: "sky-view",
+            shader: shader!("hillaire/sky_view.wgsl"),
+            reads: &["transmittance", "multiple-scattering"],
+            writes: &["sky-view"],
+            inputs: Inputs::NONE,
+            dispatch: Dispatch::Table("sky-view"),
+            constants: &[],
+        },
+        PassSpec {
+            name: "aerial-perspective",
+            shader: shader!("hillaire/aerial_perspective.wgsl"),
+            reads: &["transmittance", "multiple-scattering"],
+            writes: &[AP_INSCATTERING, AP_TRANSMITTANCE],
+            inputs: Inputs::NONE,
+            dispatch: Dispatch::Table(AP_INSCATTERING),
+            constants: &[],
+        },
+        PassSpec {
+            name: "sky",
+            shader: shader!("hillaire/sky.wgsl"),
+            reads: &[
+                "transmittance",
+                "multiple-scattering",
+                "ground-irradiance",
+                "sky-view",
+                AP_INSCATTERING,
+                AP_TRANSMITTANCE,
+            ],
+            writes: &[RADIANCE],
+            inputs: SKY_INPUTS,
+            dispatch: Dispatch::View,
+            constants: &[Constant::Projection, Constant::AboveAtmosphere],
+        },
+    ],
+};

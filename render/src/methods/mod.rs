@@ -1,0 +1,255 @@
+//! Each model's GPU passes as data: which shader, which tables it reads and writes, which scene
+//! inputs it reads directly, how it is dispatched and which pipeline constants it takes. The
+//! engine runs any model from this description alone (`crate::engine`): a pass reruns when a
+//! scene input it reads changed or a table it reads was rewritten this frame.
+//!
+//! One module per model, named as in `model::methods`; the tables are declared once in the
+//! model's registry row (`model::methods::MODELS`) and their bindings once in
+//! `shaders/common/bindings.wgsl`.
+
+pub mod garcia_linan;
+pub mod hillaire;
+
+use atmoscope_model::methods::{self, Inputs, ModelInfo};
+use atmoscope_model::scene::Method;
+
+/// A WGSL file: its path under `shaders/` and its text.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shader {
+    pub path: &'static str,
+    pub source: &'static str,
+}
+
+/// Includes `shaders/<path>` as a [`Shader`].
+macro_rules! shader {
+    ($path:literal) => {
+        $crate::methods::Shader {
+            path: $path,
+            source: include_str!(concat!("../../../shaders/", $path)),
+        }
+    };
+}
+pub(crate) use shader;
+
+/// A pipeline-overridable constant a pass is compiled with; the engine picks its value per
+/// frame, compiling one variant per value so no pixel pays for a branch the frame cannot take.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Constant {
+    /// The view's projection (`PROJECTION_*` codes of the prelude).
+    Projection,
+    /// Whether the camera is above the top of the atmosphere.
+    AboveAtmosphere,
+    /// Colour or luminance map (`DISPLAY_*`).
+    DisplayMode,
+    /// The tone map (`TONE_MAP_*`).
+    ToneMap,
+}
+
+impl Constant {
+    /// The `override` name in WGSL.
+    pub fn name(self) -> &'static str {
+        match self {
+            Constant::Projection => "PROJECTION",
+            Constant::AboveAtmosphere => "ABOVE_ATMOSPHERE",
+            Constant::DisplayMode => "DISPLAY_MODE",
+            Constant::ToneMap => "TONE_MAP",
+        }
+    }
+}
+
+/// How many workgroups a pass runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Dispatch {
+    /// One invocation per texel (x, y) of the table with this id, one z per batch; a pass over a
+    /// 3D table marches its slices inside each invocation.
+    Table(&'static str),
+    /// One invocation per pixel of the view.
+    View,
+}
+
+/// Resources that are not tables: the view's images, written and read by the view passes.
+pub const RADIANCE: &str = "radiance";
+pub const DISPLAY: &str = "display";
+
+/// One pass.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PassSpec {
+    /// Stable name (kebab case), shown in the Performance panel and the benchmarks.
+    pub name: &'static str,
+    /// The entry file; `shaders/common/` and the model's common files come first.
+    pub shader: Shader,
+    /// Tables (registry ids) or images ([`RADIANCE`]) the pass reads.
+    pub reads: &'static [&'static str],
+    /// Tables or images the pass writes.
+    pub writes: &'static [&'static str],
+    /// Scene inputs the pass reads itself; those of the tables it writes are added from the
+    /// registry, and everything is rebuilt when the atmosphere changes.
+    pub inputs: Inputs,
+    pub dispatch: Dispatch,
+    pub constants: &'static [Constant],
+}
+
+impl PassSpec {
+    /// Whether the pass builds a table (as opposed to drawing the view).
+    pub fn is_table(&self) -> bool {
+        !matches!(self.dispatch, Dispatch::View)
+    }
+
+    /// Every resource the pass binds: what it reads, then what it writes, without repeats.
+    pub fn resources(&self) -> Vec<&'static str> {
+        let mut v: Vec<&'static str> = Vec::new();
+        for &r in self.reads.iter().chain(self.writes) {
+            if !v.contains(&r) {
+                v.push(r);
+            }
+        }
+        v
+    }
+
+    /// The scene inputs that make the pass stale directly: its own and those the registry
+    /// declares for the tables it writes.
+    pub fn direct_inputs(&self, model: &ModelInfo) -> Inputs {
+        self.writes
+            .iter()
+            .filter_map(|id| model.table(id))
+            .fold(self.inputs.union(Inputs::ATMOSPHERE), |a, t| {
+                a.union(t.invalidated_by)
+            })
+    }
+}
+
+/// The passes of one model.
+#[derive(Debug, Clone, Copy)]
+pub struct GpuMethod {
+    pub method: Method,
+    /// WGSL files every pass of the model includes after `shaders/common/`.
+    pub common: &'static [Shader],
+    /// Table passes in dependency order, then the sky pass (which writes [`RADIANCE`]).
+    pub passes: &'static [PassSpec],
+}
+
+impl GpuMethod {
+    /// The registry row of the model.
+    pub fn info(&self) -> &'static ModelInfo {
+        methods::info(self.method)
+    }
+}
+
+/// The display pass every model ends with: radiance → exposure, tone map, sRGB or false colour.
+pub const DISPLAY_PASS: PassSpec = PassSpec {
+    name: "display",
+    shader: shader!("views/display.wgsl"),
+    reads: &[RADIANCE],
+    writes: &[DISPLAY],
+    inputs: Inputs::DISPLAY.union(Inputs::VIEW_SIZE),
+    dispatch: Dispatch::View,
+    constants: &[Constant::DisplayMode, Constant::ToneMap],
+};
+
+/// The transmittance pass the table-based models share.
+pub const TRANSMITTANCE_PASS: PassSpec = PassSpec {
+    name: "transmittance",
+    shader: shader!("shared/transmittance.wgsl"),
+    reads: &[],
+    writes: &["transmittance"],
+    inputs: Inputs::NONE,
+    dispatch: Dispatch::Table("transmittance"),
+    constants: &[],
+};
+
+/// What every sky pass reads besides its tables.
+pub const SKY_INPUTS: Inputs = Inputs::VIEWPOINT
+    .union(Inputs::SUN)
+    .union(Inputs::CAMERA)
+    .union(Inputs::VIEW_SIZE);
+
+/// The WGSL files every pass includes, after the generated prelude.
+pub const COMMON: [Shader; 6] = [
+    shader!("common/bindings.wgsl"),
+    shader!("common/geometry.wgsl"),
+    shader!("common/lut.wgsl"),
+    shader!("common/phase.wgsl"),
+    shader!("common/medium.wgsl"),
+    shader!("common/transmittance.wgsl"),
+];
+
+/// Every real-time model's passes, in registry order.
+pub const GPU_METHODS: [GpuMethod; 2] = [hillaire::METHOD, garcia_linan::METHOD];
+
+/// The passes of `method`, or None for a model with no real-time passes (the path tracer).
+pub fn gpu_method(method: Method) -> Option<&'static GpuMethod> {
+    GPU_METHODS.iter().find(|m| m.method == method)
+}
+
+/// The group-1 binding of a table or image, from `shaders/common/bindings.wgsl`: the table
+/// with registry id `id` is declared there as `<id with _ for ->_lut`, the images by name.
+pub fn binding(id: &str) -> Option<u32> {
+    let name = match id {
+        RADIANCE => "radiance_out".to_string(),
+        DISPLAY => "display_out".to_string(),
+        table => format!("{}_lut", table.replace('-', "_")),
+    };
+    binding_of(&name)
+}
+
+/// The group-1 binding of the variable `name` in `shaders/common/bindings.wgsl`.
+pub fn binding_of(name: &str) -> Option<u32> {
+    COMMON[0].source.lines().find_map(|line| {
+        let rest = line.trim().strip_prefix("@group(1) @binding(")?;
+        let (n, decl) = rest.split_once(')')?;
+        let var = decl.split_once(" var")?.1;
+        let declared = var.split_once('>').map_or(var, |(_, v)| v).trim_start();
+        let declared = declared.split(':').next()?.trim();
+        (declared == name).then(|| n.parse().ok())?
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_real_time_model_of_the_registry_has_passes_and_every_table_a_writer() {
+        for row in methods::realtime() {
+            let gpu = gpu_method(row.method)
+                .unwrap_or_else(|| panic!("{} has no GPU passes", row.id));
+            for t in row.tables {
+                let writers = gpu.passes.iter().filter(|p| p.writes.contains(&t.id)).count();
+                assert_eq!(writers, 1, "{}: table {} written by {writers} passes", row.id, t.id);
+                assert!(binding(t.id).is_some(), "{} has no binding", t.id);
+            }
+            let last = gpu.passes.last().expect("passes");
+            assert_eq!(last.writes, &[RADIANCE], "{}: the sky pass comes last", row.id);
+            for (i, p) in gpu.passes.iter().enumerate() {
+                for r in p.reads {
+                    let earlier = gpu.passes[..i].iter().any(|q| q.writes.contains(r));
+                    assert!(earlier, "{}: {} reads {r} before it is written", row.id, p.name);
+                }
+                if let Dispatch::Table(id) = p.dispatch {
+                    assert!(row.table(id).is_some(), "{}: {} dispatches over {id}", row.id, p.name);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn bindings_are_found_in_the_one_wgsl_file_and_are_distinct() {
+        assert_eq!(binding("transmittance"), Some(0));
+        assert_eq!(binding(RADIANCE), binding_of("radiance_out"));
+        assert!(binding_of("radiance_in").is_some());
+        assert!(binding("no-such-table").is_none());
+        let mut all: Vec<u32> = GPU_METHODS
+            .iter()
+            .flat_map(|m| m.info().tables.iter().map(|t| t.id))
+            .collect::<std::collections::BTreeSet<_>>()
+            .into_iter()
+            .filter_map(binding)
+            .chain([RADIANCE, DISPLAY].into_iter().filter_map(binding))
+            .chain(binding_of("radiance_in"))
+            .collect();
+        let n = all.len();
+        all.sort();
+        all.dedup();
+        assert_eq!(all.len(), n, "two resources share a binding");
+    }
+}

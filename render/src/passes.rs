@@ -1,0 +1,343 @@
+//! GPU objects for any model's passes: bind group layouts built from what each pass reads and
+//! writes, shader modules, pipeline variants compiled on first use, and the storage buffers of
+//! the model's tables (vec4 texels in the order of `model::methods::shared::Lut`).
+
+use crate::methods::{COMMON, Constant, DISPLAY, DISPLAY_PASS, GpuMethod, PassSpec, RADIANCE};
+use crate::prelude::wgsl_prelude;
+use crate::uniforms::Batch;
+use atmoscope_model::methods::shared::{PROFILE_SAMPLES, Params};
+use atmoscope_model::methods::{ModelInfo, shared::TableSpec};
+
+/// Values of a pass's pipeline constants, in the order of its `constants`.
+pub type Variant = [u32; 2];
+
+fn entry(binding: u32, ty: wgpu::BindingType) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty,
+        count: None,
+    }
+}
+
+fn buffer_entry(binding: u32, ty: wgpu::BufferBindingType) -> wgpu::BindGroupLayoutEntry {
+    entry(
+        binding,
+        wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+    )
+}
+
+fn storage_texture(binding: u32, format: wgpu::TextureFormat) -> wgpu::BindGroupLayoutEntry {
+    entry(
+        binding,
+        wgpu::BindingType::StorageTexture {
+            access: wgpu::StorageTextureAccess::WriteOnly,
+            format,
+            view_dimension: wgpu::TextureViewDimension::D2,
+        },
+    )
+}
+
+/// Binding of a name in `shaders/common/bindings.wgsl`; the registry tests make sure it exists.
+fn bound(id: &str) -> u32 {
+    crate::methods::binding(id).unwrap_or(u32::MAX)
+}
+
+/// Binding of the display pass's radiance input.
+fn radiance_in() -> u32 {
+    crate::methods::binding_of("radiance_in").unwrap_or(u32::MAX)
+}
+
+/// The group-1 layout of a pass: its tables, then its image inputs and outputs.
+fn pass_layout(pass: &PassSpec) -> Vec<wgpu::BindGroupLayoutEntry> {
+    pass.resources()
+        .into_iter()
+        .map(|id| match id {
+            RADIANCE if pass.writes.contains(&RADIANCE) => {
+                storage_texture(bound(RADIANCE), wgpu::TextureFormat::Rgba32Float)
+            }
+            RADIANCE => entry(
+                radiance_in(),
+                wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+            ),
+            DISPLAY => storage_texture(bound(DISPLAY), wgpu::TextureFormat::Rgba8Unorm),
+            table => buffer_entry(
+                bound(table),
+                wgpu::BufferBindingType::Storage { read_only: false },
+            ),
+        })
+        .collect()
+}
+
+/// The complete WGSL module of a pass of `method` (the display pass takes no model files).
+pub fn shader_source(method: &GpuMethod, pass: &PassSpec) -> String {
+    let mut s = wgsl_prelude();
+    for part in COMMON {
+        s.push_str(part.source);
+    }
+    if *pass != DISPLAY_PASS {
+        for part in method.common {
+            s.push_str(part.source);
+        }
+    }
+    s.push_str(pass.shader.source);
+    s
+}
+
+struct PassObjects {
+    spec: PassSpec,
+    layout: wgpu::BindGroupLayout,
+    pipeline_layout: wgpu::PipelineLayout,
+    module: wgpu::ShaderModule,
+    variants: Vec<(Variant, wgpu::ComputePipeline)>,
+}
+
+/// Compiled passes of one model, the display pass last.
+pub struct Pipelines {
+    pub method: GpuMethod,
+    group0: wgpu::BindGroupLayout,
+    passes: Vec<PassObjects>,
+}
+
+impl Pipelines {
+    pub fn new(device: &wgpu::Device, method: &GpuMethod) -> Pipelines {
+        let group0 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("group 0: globals, batches, profile"),
+            entries: &[
+                buffer_entry(0, wgpu::BufferBindingType::Uniform),
+                buffer_entry(1, wgpu::BufferBindingType::Storage { read_only: true }),
+                buffer_entry(2, wgpu::BufferBindingType::Storage { read_only: true }),
+            ],
+        });
+        let passes = method
+            .passes
+            .iter()
+            .chain([&DISPLAY_PASS])
+            .map(|&spec| {
+                let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                    label: Some(spec.name),
+                    entries: &pass_layout(&spec),
+                });
+                let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some(spec.shader.path),
+                    source: wgpu::ShaderSource::Wgsl(shader_source(method, &spec).into()),
+                });
+                let pipeline_layout =
+                    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                        label: Some(spec.name),
+                        bind_group_layouts: &[Some(&group0), Some(&layout)],
+                        immediate_size: 0,
+                    });
+                PassObjects {
+                    spec,
+                    layout,
+                    pipeline_layout,
+                    module,
+                    variants: Vec::new(),
+                }
+            })
+            .collect();
+        let mut p = Pipelines {
+            method: *method,
+            group0,
+            passes,
+        };
+        for i in 0..p.passes.len() {
+            if p.passes[i].spec.constants.is_empty() {
+                p.ensure(device, i, [0, 0]);
+            }
+        }
+        p
+    }
+
+    /// Every pass, the display pass last.
+    pub fn specs(&self) -> impl Iterator<Item = &PassSpec> {
+        self.passes.iter().map(|p| &p.spec)
+    }
+
+    pub fn len(&self) -> usize {
+        self.passes.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.passes.is_empty()
+    }
+
+    /// Compiles pass `i` for `variant` unless it exists.
+    pub fn ensure(&mut self, device: &wgpu::Device, i: usize, variant: Variant) {
+        let p = &mut self.passes[i];
+        if p.variants.iter().any(|(v, _)| *v == variant) {
+            return;
+        }
+        let constants: Vec<(&str, f64)> = p
+            .spec
+            .constants
+            .iter()
+            .zip(variant)
+            .map(|(c, v)| (c.name(), f64::from(v)))
+            .collect();
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(p.spec.name),
+            layout: Some(&p.pipeline_layout),
+            module: &p.module,
+            entry_point: Some("main"),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: &constants,
+                ..Default::default()
+            },
+            cache: None,
+        });
+        p.variants.push((variant, pipeline));
+    }
+
+    /// The pipeline of pass `i` for `variant` (compiled by `ensure`).
+    pub fn pipeline(&self, i: usize, variant: Variant) -> Option<&wgpu::ComputePipeline> {
+        self.passes[i]
+            .variants
+            .iter()
+            .find(|(v, _)| *v == variant)
+            .map(|(_, p)| p)
+    }
+
+    /// The values of pass `i`'s constants for a frame, from every constant's value.
+    pub fn variant(&self, i: usize, value: impl Fn(Constant) -> u32) -> Variant {
+        let mut v = [0, 0];
+        for (slot, &c) in v.iter_mut().zip(self.passes[i].spec.constants) {
+            *slot = value(c);
+        }
+        v
+    }
+
+    /// A bind group for pass `i` over `resources` (each binding's resource, by id).
+    pub fn bind(
+        &self,
+        device: &wgpu::Device,
+        i: usize,
+        resource: impl Fn(&str) -> Option<wgpu::BindingResource<'_>>,
+    ) -> Option<wgpu::BindGroup> {
+        let spec = &self.passes[i].spec;
+        let mut entries = Vec::new();
+        for id in spec.resources() {
+            let binding = match id {
+                RADIANCE if !spec.writes.contains(&RADIANCE) => radiance_in(),
+                other => bound(other),
+            };
+            entries.push(wgpu::BindGroupEntry {
+                binding,
+                resource: resource(id)?,
+            });
+        }
+        Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(spec.name),
+            layout: &self.passes[i].layout,
+            entries: &entries,
+        }))
+    }
+}
+
+/// The tables of one atmosphere and wavelength set and the buffers they are computed from.
+pub struct TableBuffers {
+    pub batches: wgpu::Buffer,
+    pub profile: wgpu::Buffer,
+    pub group0: wgpu::BindGroup,
+    tables: Vec<(TableSpec, wgpu::Buffer)>,
+    /// Group 1 of each table pass, by pass index (None for the view passes).
+    groups: Vec<Option<wgpu::BindGroup>>,
+}
+
+impl TableBuffers {
+    pub fn new(
+        device: &wgpu::Device,
+        pipelines: &Pipelines,
+        model: &ModelInfo,
+        globals: &wgpu::Buffer,
+        params: &Params,
+    ) -> TableBuffers {
+        let layers = params.batches.len();
+        let buffer = |label, size: u64, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        let input = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
+        let batches = buffer(
+            "batches",
+            std::mem::size_of::<Batch>() as u64 * layers as u64,
+            input,
+        );
+        let profile = buffer("profile", 16 * u64::from(PROFILE_SAMPLES), input);
+        let group0 = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("group 0"),
+            layout: &pipelines.group0,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: globals.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: batches.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: profile.as_entire_binding(),
+                },
+            ],
+        });
+        let tables = model
+            .tables
+            .iter()
+            .map(|t| {
+                let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC;
+                (*t, buffer(t.label, t.bytes(layers), usage))
+            })
+            .collect();
+        let mut b = TableBuffers {
+            batches,
+            profile,
+            group0,
+            tables,
+            groups: Vec::new(),
+        };
+        let groups = (0..pipelines.len())
+            .map(|i| {
+                let spec = &pipelines.passes[i].spec;
+                if spec.is_table() {
+                    pipelines.bind(device, i, |id| {
+                        b.buffer(id).map(|buf| buf.as_entire_binding())
+                    })
+                } else {
+                    None
+                }
+            })
+            .collect();
+        b.groups = groups;
+        b
+    }
+
+    /// The storage buffer of a table.
+    pub fn buffer(&self, id: &str) -> Option<&wgpu::Buffer> {
+        self.tables.iter().find(|(t, _)| t.id == id).map(|(_, b)| b)
+    }
+
+    /// Group 1 of table pass `i`.
+    pub fn group(&self, i: usize) -> Option<&wgpu::BindGroup> {
+        self.groups.get(i).and_then(|g| g.as_ref())
+    }
+
+    /// Bytes of every table together.
+    pub fn bytes(&self) -> u64 {
+        self.tables.iter().map(|(_, b)| b.size()).sum()
+    }
+}

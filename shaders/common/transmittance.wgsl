@@ -1,0 +1,46 @@
+// The transmittance table every table-based model shares (Bruneton 2017 mapping); twins of
+// model::methods::shared::transmittance.
+
+fn transmittance_texel_from_h_mu(h: f32, mu: f32) -> vec2<f32> {
+    let big_h = sqrt(rho_squared(thickness()));
+    let rho = sqrt(rho_squared(max(h, 0.0)));
+    let d = distance_to_top(h, mu);
+    let d_min = thickness() - h;
+    let d_max = rho + big_h;
+    let x_mu = (d - d_min) / max(d_max - d_min, 1e-9);
+    let x_r = rho / big_h;
+    return vec2<f32>(x_mu, x_r) * vec2<f32>(TRANSMITTANCE_SIZE - 1u);
+}
+
+fn transmittance_h_mu_from_texel(f: vec2<f32>) -> vec2<f32> {
+    let x = f / vec2<f32>(TRANSMITTANCE_SIZE - 1u);
+    let big_r = bottom_radius();
+    let big_h = sqrt(rho_squared(thickness()));
+    let rho = big_h * x.y;
+    let h = rho * rho / (sqrt(rho * rho + big_r * big_r) + big_r);
+    let r = big_r + h;
+    let d_min = thickness() - h;
+    let d_max = rho + big_h;
+    let d = d_min + x.x * (d_max - d_min);
+    var mu = 1.0;
+    if d > 0.0 {
+        mu = clamp((big_h * big_h - rho * rho - d * d) / (2.0 * r * d), -1.0, 1.0);
+    }
+    return vec2<f32>(h, mu);
+}
+
+fn transmittance(layer: u32, h: f32, mu: f32) -> vec4<f32> {
+    let t = taps(TRANSMITTANCE_SIZE, layer, transmittance_texel_from_h_mu(h, mu));
+    return blend(transmittance_lut[t.i.x], transmittance_lut[t.i.y], transmittance_lut[t.i.z],
+        transmittance_lut[t.i.w], t.w);
+}
+
+// Transmittance to the sun times the visible fraction of its disk above the horizon.
+fn sun_transmittance(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
+    let sin_h = bottom_radius() / (bottom_radius() + h);
+    let cos_h = -sqrt(max(1.0 - sin_h * sin_h, 0.0));
+    let edge = sin_h * SUN_ANGULAR_RADIUS_RAD;
+    let visible = smoothstep(-edge, edge, mu_s - cos_h);
+    return transmittance(layer, h, mu_s) * visible;
+}
+
