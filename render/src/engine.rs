@@ -9,17 +9,17 @@
 //! rebuilds the view tables, turning the camera redraws the view, exposure re-runs only the
 //! display pass, an unchanged frame runs nothing.
 
+use crate::DisplayMode;
 use crate::methods::{Constant, Dispatch, GpuMethod, gpu_method};
 use crate::passes::{Pipelines, TableBuffers};
 use crate::readback::{ReadbackError, read_buffer_f32x4, read_texture, read_texture_f32x4};
 use crate::uniforms::{self, FrameInputs, Globals};
 use crate::views::View;
-use crate::DisplayMode;
 use atmoscope_model::Atmosphere;
 use atmoscope_model::camera::{Camera, Projection};
 use atmoscope_model::geometry::direction_from_angles;
 use atmoscope_model::methods::shared::{Params, viewpoint};
-use atmoscope_model::methods::{self, NotRealtime};
+use atmoscope_model::methods::{self, Inputs, NotRealtime};
 use atmoscope_model::scene::{
     AtmosphereSettings, CameraSettings, Method, Quality, Scene, ToneMap, WavelengthSet,
 };
@@ -287,9 +287,8 @@ impl Engine {
     /// finishes on the GPU. A model with no real-time passes (the path tracer) is refused.
     pub fn try_render(&mut self, scene: &Scene, view: &View) -> Result<&FrameStats, EngineError> {
         let method = scene.render.method;
-        let gpu = gpu_method(method).ok_or_else(|| {
-            NotRealtime(methods::info(method).id, methods::realtime_ids())
-        })?;
+        let gpu = gpu_method(method)
+            .ok_or_else(|| NotRealtime(methods::info(method).id, methods::realtime_ids()))?;
         self.select(gpu);
         let key = AtmosphereKey {
             settings: scene.atmosphere.clone(),
@@ -479,10 +478,7 @@ impl Engine {
                     Dispatch::View => (target.groups[i].as_ref(), view_dispatch(size)),
                     Dispatch::Table(id) => {
                         let [w, h, _] = info.table(id).map_or([1, 1, 1], |t| t.size);
-                        (
-                            state.tables.group(i),
-                            [groups(w), groups(h), layers],
-                        )
+                        (state.tables.group(i), [groups(w), groups(h), layers])
                     }
                 };
                 let (Some(group), Some(pipeline)) = (group, pipelines.pipeline(i, variants[i]))

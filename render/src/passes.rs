@@ -217,11 +217,11 @@ impl Pipelines {
     }
 
     /// A bind group for pass `i` over `resources` (each binding's resource, by id).
-    pub fn bind(
+    pub fn bind<'a>(
         &self,
         device: &wgpu::Device,
         i: usize,
-        resource: impl Fn(&str) -> Option<wgpu::BindingResource<'_>>,
+        resource: impl Fn(&str) -> Option<wgpu::BindingResource<'a>>,
     ) -> Option<wgpu::BindGroup> {
         let spec = &self.passes[i].spec;
         let mut entries = Vec::new();

@@ -73,7 +73,11 @@ pub fn wgsl_prelude() -> String {
         "f32",
         f(h::AERIAL_PERSPECTIVE_MAX_DISTANCE_M),
     );
-    c("PROFILE_SAMPLES", "u32", format!("{}u", shared::PROFILE_SAMPLES));
+    c(
+        "PROFILE_SAMPLES",
+        "u32",
+        format!("{}u", shared::PROFILE_SAMPLES),
+    );
     c(
         "MULTIPLE_SCATTERING_DIRECTIONS_SQRT",
         "u32",
@@ -152,4 +156,3 @@ pub fn wgsl_prelude() -> String {
     .expect("write to String");
     s
 }
-

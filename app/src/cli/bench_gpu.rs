@@ -9,9 +9,10 @@ use anyhow::Context;
 use atmoscope_model::Scene;
 use atmoscope_model::camera::Projection;
 use atmoscope_model::metrics::{DisplaySetup, compare};
+use atmoscope_model::scene::Method;
 use atmoscope_model::scene::WavelengthSet;
 use atmoscope_model::views;
-use atmoscope_render::{Engine, Pass, View};
+use atmoscope_render::{Engine, View};
 use clap::Args;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -28,6 +29,9 @@ pub struct GpuBench {
     /// Wavelength sets, comma-separated.
     #[arg(long, value_delimiter = ',', value_parser = parse_wavelengths, default_value = "rgb3,spectral4,spectral32")]
     pub sets: Vec<WavelengthSet>,
+    /// Sky models, comma-separated registry ids, or `all` (default: the scene's).
+    #[arg(long, value_name = "IDS", value_parser = super::parse_methods)]
+    pub methods: Option<super::MethodList>,
     /// Repetitions of each measurement (the median is reported).
     #[arg(long, default_value_t = 10)]
     pub repeats: usize,
@@ -40,6 +44,7 @@ pub struct GpuBench {
 
 #[derive(Serialize, Debug)]
 struct GpuRow {
+    method: String,
     wavelengths: String,
     timing: String,
     /// Median milliseconds of each table pass in a full rebuild.
@@ -74,22 +79,31 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
     let view = View::new(Projection::Perspective, w, h);
     let repeats = args.repeats.max(1);
     let mut rows = Vec::new();
-    for &set in &args.sets {
+    let methods = args
+        .methods
+        .clone()
+        .map_or(vec![base.render.method], |m| m.0);
+    for (method, &set) in methods
+        .iter()
+        .flat_map(|&m| args.sets.iter().map(move |s| (m, s)))
+    {
         let mut scene = base.clone();
+        scene.render.method = method;
         scene.render.wavelengths = set;
         let mut engine = Engine::new(&context.device, &context.queue);
         engine.set_timing(true);
         if args.cpu_timing {
             engine.force_cpu_timing();
         }
-        engine.render(&scene, &view);
+        let first = engine.try_render(&scene, &view)?.clone();
         engine.wait();
-        let mut lut: Vec<Vec<f64>> = vec![Vec::new(); Pass::ALL.len()];
+        let mut lut: Vec<(&str, Vec<f64>)> =
+            first.tables_run.iter().map(|&p| (p, Vec::new())).collect();
         for _ in 0..repeats {
             engine.invalidate();
             let stats = engine.render(&scene, &view).clone();
-            for (pass, ms) in stats.timings_ms {
-                lut[Pass::ALL.iter().position(|&p| p == pass).unwrap_or(0)].push(ms);
+            for (pass, times) in &mut lut {
+                times.extend(stats.ms(pass));
             }
         }
         let (mut sky, mut display, mut wall) = (Vec::new(), Vec::new(), Vec::new());
@@ -99,22 +113,16 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             let stats = engine.render(&scene, &view).clone();
             engine.wait();
             wall.push(start.elapsed().as_secs_f64() * 1e3);
-            for (pass, ms) in stats.timings_ms {
-                match pass {
-                    Pass::Sky => sky.push(ms),
-                    Pass::Display => display.push(ms),
-                    _ => {}
-                }
-            }
+            sky.extend(stats.ms("sky"));
+            display.extend(stats.ms("display"));
         }
-        let lut_ms: Vec<(String, f64)> = Pass::ALL
-            .iter()
-            .zip(lut)
-            .filter(|(p, _)| p.is_lut())
-            .map(|(p, v)| (p.name().to_string(), median(v)))
+        let lut_ms: Vec<(String, f64)> = lut
+            .into_iter()
+            .map(|(p, v)| (p.to_string(), median(v)))
             .collect();
         let (sky_ms, display_ms) = (median(sky), median(display));
         rows.push(GpuRow {
+            method: super::method_id(method).into(),
             wavelengths: set_name(set),
             timing: engine.timing_source().label().into(),
             lut_total_ms: lut_ms.iter().map(|(_, ms)| ms).sum(),
@@ -133,22 +141,26 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         "{w}x{h} perspective, median of {repeats}; times from {}",
         rows.first().map_or("", |r| r.timing.as_str())
     );
-    print!("{:12}", "set");
-    for (name, _) in rows.first().map_or(&[][..], |r| &r.lut_ms[..]) {
-        print!(" {name:>19}");
-    }
     println!(
-        " {:>10} {:>8} {:>8} {:>12} {:>12}",
-        "LUTs", "sky", "display", "frame (GPU)", "frame (wall)"
+        "{:14} {:12} {:>10} {:>8} {:>8} {:>12} {:>12}   table passes",
+        "method", "set", "tables", "sky", "display", "frame (GPU)", "frame (wall)"
     );
     for r in &rows {
-        print!("{:12}", r.wavelengths);
-        for (_, ms) in &r.lut_ms {
-            print!(" {:>16.2} ms", ms);
-        }
+        let passes: Vec<String> = r
+            .lut_ms
+            .iter()
+            .map(|(name, ms)| format!("{name} {ms:.2}"))
+            .collect();
         println!(
-            " {:>7.2} ms {:>5.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms",
-            r.lut_total_ms, r.sky_ms, r.display_ms, r.frame_gpu_ms, r.frame_wall_ms
+            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms   {}",
+            r.method,
+            r.wavelengths,
+            r.lut_total_ms,
+            r.sky_ms,
+            r.display_ms,
+            r.frame_gpu_ms,
+            r.frame_wall_ms,
+            passes.join(", ")
         );
     }
     Ok(ExitCode::SUCCESS)
@@ -166,6 +178,9 @@ pub struct AccuracyBench {
     /// The spectral set the others are compared with.
     #[arg(long, value_parser = parse_wavelengths, default_value = "spectral32")]
     pub spectral: WavelengthSet,
+    /// Sky models, comma-separated registry ids, or `all`.
+    #[arg(long, value_name = "IDS", value_parser = super::parse_methods, default_value = "hillaire")]
+    pub methods: super::MethodList,
     #[arg(long)]
     pub json: bool,
 }
@@ -175,15 +190,22 @@ struct AccuracyRow {
     view: String,
     sun_elevation_deg: f64,
     exposure_ev: f64,
-    /// (mean, p95) ΔE2000 against the path-traced reference, per set.
+    /// (model/set, mean, p95) ΔE2000 against the path-traced reference, per model and set.
     vs_reference: Vec<(String, f64, f64)>,
-    /// (mean, p95) ΔE2000 of Spectral4 and RGB3 against the spectral set.
+    /// (model/set, mean, p95) ΔE2000 of Spectral4 and RGB3 against the model's spectral set.
     vs_spectral: Vec<(String, f64, f64)>,
 }
 
 pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
     let context = gpu()?;
     let sets = [args.spectral, WavelengthSet::Spectral4, WavelengthSet::Rgb3];
+    let runs: Vec<(Method, WavelengthSet)> = args
+        .methods
+        .0
+        .iter()
+        .flat_map(|&m| sets.iter().map(move |&s| (m, s)))
+        .collect();
+    let name = |(m, s): (Method, WavelengthSet)| format!("{}/{}", super::method_id(m), set_name(s));
     let mut rows = Vec::new();
     for v in views::suite() {
         if !args.views.is_empty() && !args.views.iter().any(|n| n == v.name.as_str()) {
@@ -208,13 +230,14 @@ pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
             tone_map: scene.display.tone_map,
             ..DisplaySetup::default()
         };
-        let images: Vec<Vec<[f64; 3]>> = sets
+        let images: Vec<Vec<[f64; 3]>> = runs
             .iter()
-            .map(|&set| {
+            .map(|&(method, set)| {
                 let mut s = scene.clone();
+                s.render.method = method;
                 s.render.wavelengths = set;
                 let mut engine = Engine::new(&context.device, &context.queue);
-                engine.render(&s, &View::new(v.projection, w, h));
+                engine.try_render(&s, &View::new(v.projection, w, h))?;
                 Ok(engine
                     .read_radiance()?
                     .iter()
@@ -226,20 +249,22 @@ pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
             let (c, _) = compare(a, b, w, h, setup);
             (c.delta_e2000_mean, c.delta_e2000_p95)
         };
-        let vs_reference = sets
+        let vs_reference = runs
             .iter()
             .zip(&images)
-            .map(|(&set, img)| {
+            .map(|(&run, img)| {
                 let (m, p) = de(img, &reference);
-                (set_name(set), m, p)
+                (name(run), m, p)
             })
             .collect();
-        let vs_spectral = sets[1..]
+        // Each model's Spectral4 and RGB3 against its own spectral set (the first of its three).
+        let vs_spectral = runs
             .iter()
-            .zip(&images[1..])
-            .map(|(&set, img)| {
-                let (m, p) = de(img, &images[0]);
-                (set_name(set), m, p)
+            .enumerate()
+            .filter(|(i, _)| i % sets.len() != 0)
+            .map(|(i, &run)| {
+                let (m, p) = de(&images[i], &images[i - i % sets.len()]);
+                (name(run), m, p)
             })
             .collect();
         rows.push(AccuracyRow {
@@ -260,20 +285,19 @@ pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
     }
     let s = set_name(args.spectral);
     println!("ΔE2000 mean / p95, display-referred at each view's exposure");
-    println!(
-        "{:20} {:>6}  {:>15} {:>15} {:>15}   {:>17} {:>17}",
-        "view",
-        "sun°",
-        format!("{s} vs ref"),
-        "spectral4 vs ref",
-        "rgb3 vs ref",
-        format!("spectral4 vs {s}"),
-        format!("rgb3 vs {s}")
-    );
+    print!("{:20} {:>6} ", "view", "sun°");
+    let first = &rows[0];
+    for (n, _, _) in &first.vs_reference {
+        print!(" {:>17}", format!("{n} vs ref"));
+    }
+    for (n, _, _) in &first.vs_spectral {
+        print!(" {:>17}", format!("{n} vs {s}"));
+    }
+    println!();
     for r in &rows {
         print!("{:20} {:>6.1} ", r.view, r.sun_elevation_deg);
         for (_, m, p) in r.vs_reference.iter().chain(&r.vs_spectral) {
-            print!(" {:>7.2} / {:>5.2}", m, p);
+            print!(" {:>9.2} / {:>5.2}", m, p);
         }
         println!();
     }
@@ -291,14 +315,17 @@ pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
         let mean = |f: &dyn Fn(&AccuracyRow) -> f64| {
             group.iter().map(|r| f(r)).sum::<f64>() / group.len() as f64
         };
-        println!(
-            "{label}, {} views: mean ΔE {s} vs ref {:.2} (p95 {:.2}); spectral4 vs {s} {:.2}; rgb3 vs {s} {:.2}",
-            group.len(),
-            mean(&|r| r.vs_reference[0].1),
-            mean(&|r| r.vs_reference[0].2),
-            mean(&|r| r.vs_spectral[0].1),
-            mean(&|r| r.vs_spectral[1].1),
-        );
+        println!("{label}, {} views, mean ΔE2000 (mean / p95):", group.len());
+        for (i, (n, _, _)) in first.vs_reference.iter().enumerate() {
+            println!(
+                "  {n} vs ref {:.2} / {:.2}",
+                mean(&|r| r.vs_reference[i].1),
+                mean(&|r| r.vs_reference[i].2)
+            );
+        }
+        for (i, (n, _, _)) in first.vs_spectral.iter().enumerate() {
+            println!("  {n} vs {s} {:.2}", mean(&|r| r.vs_spectral[i].1));
+        }
     }
     Ok(ExitCode::SUCCESS)
 }

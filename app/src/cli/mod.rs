@@ -100,3 +100,44 @@ pub fn check_wavelengths(wavelengths_nm: &[f64]) -> anyhow::Result<()> {
         None => Ok(()),
     }
 }
+
+/// A real-time model by its registry id (`--method`).
+pub fn parse_method(id: &str) -> Result<atmoscope_model::scene::Method, String> {
+    use atmoscope_model::methods;
+    match methods::by_id(id) {
+        Some(m) if m.is_realtime() => Ok(m.method),
+        Some(m) => Err(format!(
+            "{} is the offline ground truth: use `atmoscope reference` for it (real-time models: {})",
+            m.id,
+            methods::realtime_ids()
+        )),
+        None => Err(format!(
+            "no model `{id}` (real-time models: {})",
+            methods::realtime_ids()
+        )),
+    }
+}
+
+/// Real-time models named on the command line (`--methods`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MethodList(pub Vec<atmoscope_model::scene::Method>);
+
+/// A comma-separated list of real-time models, or `all` (`--methods`).
+pub fn parse_methods(list: &str) -> Result<MethodList, String> {
+    if list == "all" {
+        return Ok(MethodList(
+            atmoscope_model::methods::realtime()
+                .map(|m| m.method)
+                .collect(),
+        ));
+    }
+    list.split(',')
+        .map(|id| parse_method(id.trim()))
+        .collect::<Result<_, _>>()
+        .map(MethodList)
+}
+
+/// The registry id of a method, for tables and file names.
+pub fn method_id(method: atmoscope_model::scene::Method) -> &'static str {
+    atmoscope_model::methods::info(method).id
+}

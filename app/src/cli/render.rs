@@ -21,12 +21,6 @@ pub enum ViewArg {
     Luminance,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum MethodArg {
-    Hillaire,
-    PathTracer,
-}
-
 #[derive(Args, Debug)]
 pub struct RenderArgs {
     #[command(flatten)]
@@ -34,9 +28,9 @@ pub struct RenderArgs {
     /// A named view of the suite (`atmoscope reference --list-views`), applied on the scene.
     #[arg(long, value_name = "NAME")]
     pub view: Option<String>,
-    /// Rendering method (default: the scene's).
-    #[arg(long, value_enum)]
-    pub method: Option<MethodArg>,
+    /// Sky model, a registry id: hillaire, garcia-linan (default: the scene's).
+    #[arg(long, value_name = "ID", value_parser = super::parse_method)]
+    pub method: Option<Method>,
     /// Wavelength set: rgb3, spectral4 or spectralN (N a multiple of 4, 4–128, e.g. spectral32).
     #[arg(long, value_name = "SET", value_parser = parse_wavelengths)]
     pub wavelengths: Option<WavelengthSet>,
@@ -127,15 +121,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     if let Some(set) = args.wavelengths {
         scene.render.wavelengths = set;
     }
-    match args.method.map(|m| match m {
-        MethodArg::Hillaire => Method::Hillaire,
-        MethodArg::PathTracer => Method::PathTracer,
-    }) {
-        Some(Method::PathTracer) => bail!(
-            "--method path-tracer is the offline ground truth: use `atmoscope reference` for it"
-        ),
-        Some(m) => scene.render.method = m,
-        None => {}
+    if let Some(m) = args.method {
+        scene.render.method = m;
+    }
+    if let Err(e) = super::parse_method(super::method_id(scene.render.method)) {
+        bail!("the scene's method: {e}");
     }
     let mut mode = DisplayMode::Colour;
     if let Some(p) = args.projection {

@@ -174,6 +174,41 @@ impl Drop for GpuView {
     }
 }
 
+/// Why the scene's model cannot draw this view, or why the view lies outside the model's
+/// domain; None when all is well.
+pub fn notice(scene: &Scene) -> Option<String> {
+    let model = atmoscope_model::methods::info(scene.render.method);
+    if !model.is_realtime() {
+        return Some(format!(
+            "{} is offline: the Reference tab renders it; choose a real-time model under Method to draw here.",
+            model.label
+        ));
+    }
+    model
+        .domain
+        .excludes(scene.camera.altitude_m, scene.sun.angles().elevation_deg)
+        .map(|why| format!("Outside {}'s domain — {why}", model.label))
+}
+
+/// Marks a view drawn in `rect` with its [`notice`], if any, in the view itself.
+pub fn mark(ui: &egui::Ui, rect: egui::Rect, scene: &Scene) {
+    let Some(text) = notice(scene) else { return };
+    let painter = ui.painter_at(rect);
+    let galley = painter.layout(
+        text,
+        egui::FontId::proportional(13.0),
+        egui::Color32::from_rgb(255, 220, 120),
+        (rect.width() - 16.0).max(40.0),
+    );
+    let at = rect.left_top() + egui::vec2(8.0, 8.0);
+    painter.rect_filled(
+        egui::Rect::from_min_size(at, galley.size()).expand(4.0),
+        4.0,
+        egui::Color32::from_black_alpha(180),
+    );
+    painter.galley(at, galley, egui::Color32::WHITE);
+}
+
 /// Pixel size of a view filling `points` of screen at `scale` (1 = one texel per pixel).
 pub fn pixels(ctx: &egui::Context, points: egui::Vec2, scale: f32) -> [u32; 2] {
     let px = points * ctx.pixels_per_point() * scale;

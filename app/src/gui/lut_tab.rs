@@ -1,114 +1,49 @@
-//! The LUTs tab: every table of Hillaire (2020) as the GPU computed it for the current scene,
-//! in colour (the batch lanes through the wavelength set's matrix) or one wavelength at a time,
-//! with an exposure, the axes' physical meaning and a hover read-out of each texel's coordinates
-//! through the same mappings the shaders use (`model::methods::hillaire`).
+//! The LUTs tab: every table of the model on screen as the GPU computed it for the current
+//! scene, in colour (the batch lanes through the wavelength set's matrix) or one wavelength at a
+//! time, with an exposure, the axes' physical meaning and a hover read-out of each texel's
+//! coordinates — all from the table's declaration in the model registry
+//! (`model::methods::MODELS`), so a new model's tables appear here with no change.
 
 use super::gpu_view::GpuView;
 use atmoscope_model::Scene;
 use atmoscope_model::colour::srgb_encode;
-use atmoscope_model::methods::hillaire::{
-    self as h, AERIAL_PERSPECTIVE_SIZE, Params, aerial_perspective_slice_distance,
-};
+use atmoscope_model::methods::{self, shared::TableSpec};
 use atmoscope_model::wavelengths::{LANES, to_linear_srgb};
-use atmoscope_render::Table;
 use eframe::egui::{self, Sense, Vec2};
 use serde::{Deserialize, Serialize};
 
 /// What the tab shows; persisted with the layout.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct LutSettings {
-    /// Index into `Table::ALL`.
-    pub table: usize,
+    /// Registry id of the table; the model's first table when the model has none of that id.
+    pub table: String,
     /// None: colour; Some(i): wavelength i of the set alone.
     pub lane: Option<usize>,
     pub exposure_ev: f64,
     /// Scale so the brightest texel is white before the exposure.
     pub normalise: bool,
-    /// Aerial-perspective slice, 0–31.
+    /// Slice of a 3D table (clamped to its depth).
     pub slice: u32,
 }
 
 impl Default for LutSettings {
     fn default() -> Self {
         LutSettings {
-            table: 0,
+            table: "transmittance".into(),
             lane: None,
             exposure_ev: 0.0,
             normalise: true,
-            slice: AERIAL_PERSPECTIVE_SIZE[2] / 2,
+            slice: 16,
         }
     }
-}
-
-/// Axis meanings of each table: (x, y).
-fn axes(table: Table) -> (&'static str, &'static str) {
-    match table {
-        Table::Transmittance => (
-            "x: view zenith cosine μ, from the horizon of each altitude (left) to straight up (right), Bruneton's mapping",
-            "y: altitude h, ground (top row) to the top of the atmosphere (bottom row), √ spacing",
-        ),
-        Table::MultipleScattering => (
-            "x: sun zenith cosine μ_s, −1 (left) to 1 (right)",
-            "y: altitude h, ground (top row) to the top (bottom row)",
-        ),
-        Table::GroundIrradiance => (
-            "x: sun zenith cosine μ_s, −1 (left) to 1 (right)",
-            "one row",
-        ),
-        Table::SkyView => (
-            "x: azimuth from the sun φ, 0 (left) to 180° (right), √ spacing",
-            "y: view zenith θ, zenith (top) to the horizon (middle) to nadir (bottom), quadratic towards the horizon",
-        ),
-        Table::AerialPerspectiveInscattering | Table::AerialPerspectiveTransmittance => (
-            "x: azimuth from the sun φ, 0 (left) to 180° (right)",
-            "y: view zenith θ from the horizon (top) down to the nadir (bottom); slices: distance",
-        ),
-    }
-}
-
-/// Physical coordinates of texel (x, y) as text.
-fn coordinates(table: Table, p: &Params, camera_h: f64, x: f64, y: f64, slice: u32) -> String {
-    let deg = f64::to_degrees;
-    match table {
-        Table::Transmittance => {
-            let (hh, mu) = h::transmittance_h_mu_from_texel(p, x, y);
-            format!("h = {:.2} km, μ = {mu:.4}", hh / 1000.0)
-        }
-        Table::MultipleScattering => {
-            let (hh, mu_s) = h::multiple_scattering_h_mu_s_from_texel(p, x, y);
-            format!("h = {:.2} km, μ_s = {mu_s:.4}", hh / 1000.0)
-        }
-        Table::GroundIrradiance => {
-            format!("μ_s = {:.4}", h::ground_irradiance_mu_s_from_texel(x))
-        }
-        Table::SkyView => {
-            let (phi, theta) = h::sky_view_angles_from_texel(p, camera_h, x, y);
-            format!("φ = {:.1}°, θ = {:.2}°", deg(phi), deg(theta))
-        }
-        Table::AerialPerspectiveInscattering | Table::AerialPerspectiveTransmittance => {
-            let (phi, theta) = h::aerial_perspective_angles_from_texel(p, camera_h, x, y);
-            format!(
-                "φ = {:.1}°, θ = {:.2}°, distance ≤ {:.2} km",
-                deg(phi),
-                deg(theta),
-                aerial_perspective_slice_distance(slice) / 1000.0
-            )
-        }
-    }
-}
-
-fn is_transmittance(table: Table) -> bool {
-    matches!(
-        table,
-        Table::Transmittance | Table::AerialPerspectiveTransmittance
-    )
 }
 
 /// A table as shown: its image and linear colours, for one engine frame and settings.
 struct Shown {
     generation: u64,
     settings: LutSettings,
+    table: TableSpec,
     texture: egui::TextureHandle,
     colours: Vec<[f64; 3]>,
     size: [usize; 2],
@@ -126,17 +61,25 @@ impl LutTab {
             ui.label("The tables appear once a view has been drawn.");
             return;
         };
+        let model = methods::info(gpu.stats().method);
+        let Some(&first) = model.tables.first() else {
+            ui.label(format!("{} has no tables.", model.label));
+            return;
+        };
+        let table = *model.table(&s.table).unwrap_or(&first);
+        s.table = table.id.to_string();
         let lanes = p.batches.len() * LANES;
         ui.horizontal(|ui| {
             egui::ComboBox::from_label("table")
-                .selected_text(Table::ALL[s.table].name())
+                .selected_text(table.label)
                 .show_ui(ui, |ui| {
-                    for (i, t) in Table::ALL.iter().enumerate() {
-                        ui.selectable_value(&mut s.table, i, t.name());
+                    for t in model.tables {
+                        ui.selectable_value(&mut s.table, t.id.to_string(), t.label)
+                            .on_hover_text(t.invalidated_by.names().join(", "));
                     }
                 })
                 .response
-                .on_hover_text("Hillaire (2020): transmittance to the top of the atmosphere, multiple-scattering transfer Ψ, light on the ground, the sky seen from the camera, and in-scattering and transmittance along view rays (aerial perspective).");
+                .on_hover_text(format!("The tables {} precomputes: {}", model.label, model.summary));
             let lane_text = |l: Option<usize>| match l {
                 None => "colour".to_string(),
                 Some(i) => format!(
@@ -162,25 +105,22 @@ impl LutTab {
             ui.checkbox(&mut s.normalise, "normalise")
                 .on_hover_text("Scale the brightest texel to white first, so tables of any unit are visible.");
         });
-        let table = Table::ALL[s.table];
-        let [w, hh, depth] = table.size();
+        let [w, hh, depth] = table.size;
+        s.slice = s.slice.min(depth - 1);
         if depth > 1 {
             ui.add(egui::Slider::new(&mut s.slice, 0..=depth - 1).text("slice"))
-                .on_hover_text(format!(
-                    "Distance along the view ray: slice k ends at {:.0} km · ((k + 1)/{depth})².",
-                    h::AERIAL_PERSPECTIVE_MAX_DISTANCE_M / 1000.0
-                ));
+                .on_hover_text(table.axes[2]);
         }
-        let (x_axis, y_axis) = axes(table);
-        ui.label(x_axis);
-        ui.label(y_axis);
+        for axis in table.axes.iter().filter(|a| !a.is_empty()) {
+            ui.label(*axis);
+        }
 
         let stale = self
             .cached
             .as_ref()
             .is_none_or(|c| c.generation != gpu.generation() || c.settings != *s);
         if stale {
-            match gpu.engine().read_table(table) {
+            match gpu.engine().read_table(table.id) {
                 Ok(data) => {
                     let (w, hh) = (w as usize, hh as usize);
                     let plane = w * hh * depth as usize;
@@ -196,7 +136,7 @@ impl LutTab {
                                     let batches: Vec<_> =
                                         p.batches.iter().map(|b| b.colour.clone()).collect();
                                     let rgb = to_linear_srgb(&batches, &per_layer);
-                                    if is_transmittance(table) {
+                                    if table.transmittance {
                                         // Unitless: the colour of transmitted white light.
                                         let white = to_linear_srgb(
                                             &batches,
@@ -235,7 +175,8 @@ impl LutTab {
                     );
                     self.cached = Some(Shown {
                         generation: gpu.generation(),
-                        settings: *s,
+                        settings: s.clone(),
+                        table,
                         texture,
                         colours,
                         size: [w, hh],
@@ -252,6 +193,7 @@ impl LutTab {
             texture,
             colours,
             size: [w, hh],
+            table,
             ..
         }) = &self.cached
         else {
@@ -277,13 +219,10 @@ impl LutTab {
                 let c = colours[y * w + x];
                 format!(
                     "texel ({x}, {y}): {} · value ({:.4e}, {:.4e}, {:.4e})",
-                    coordinates(
-                        table,
+                    (table.describe_texel)(
                         p,
                         scene.camera.altitude_m,
-                        x as f64,
-                        y as f64,
-                        s.slice
+                        [x as f64, y as f64, f64::from(s.slice)]
                     ),
                     c[0],
                     c[1],

@@ -532,8 +532,8 @@ impl ExplorerApp {
             .run
             .iter()
             .map(|p| match s.timings_ms.iter().find(|(q, _)| q == p) {
-                Some((_, ms)) => format!("{} {ms:.1} ms", p.name()),
-                None => p.name().to_string(),
+                Some((_, ms)) => format!("{p} {ms:.1} ms"),
+                None => p.to_string(),
             })
             .collect();
         let wall = if s.run.is_empty() {

@@ -3,7 +3,6 @@
 //! else fenced CPU wall time) and the frame's wall time; plus the UI's own frame interval.
 
 use super::gpu_view::GpuView;
-use atmoscope_render::Pass;
 use eframe::egui;
 
 pub fn show(ui: &mut egui::Ui, views: &[(&str, &GpuView)], ui_frame_ms: f64, adapter: &str) {
@@ -12,20 +11,22 @@ pub fn show(ui: &mut egui::Ui, views: &[(&str, &GpuView)], ui_frame_ms: f64, ada
         ui.label(format!("UI frame interval {ui_frame_ms:.1} ms · {adapter}"))
             .on_hover_text("Time between the last two frames the window drew; the window draws only when something changed or work is in progress.");
     });
-    egui::Grid::new("passes").striped(true).show(ui, |ui| {
-        ui.label("view");
-        for pass in Pass::ALL {
-            ui.label(pass.name());
-        }
-        ui.label("frame (wall)");
-        ui.label("this frame");
-        ui.end_row();
-        for (name, v) in views {
-            let stats = v.stats();
+    // One grid per view: each may show another model, with passes of its own.
+    for (i, (name, v)) in views.iter().enumerate() {
+        let stats = v.stats();
+        egui::Grid::new(("passes", i)).striped(true).show(ui, |ui| {
+            ui.label("view");
+            ui.label("model");
+            for pass in &stats.passes {
+                ui.label(*pass);
+            }
+            ui.label("frame (wall)");
+            ui.label("this frame");
+            ui.end_row();
             ui.label(*name);
-            for pass in Pass::ALL {
-                let ms = stats.timings_ms.iter().find(|(p, _)| *p == pass).map(|(_, ms)| *ms);
-                match ms {
+            ui.label(atmoscope_model::methods::info(stats.method).label);
+            for pass in &stats.passes {
+                match stats.ms(pass) {
                     Some(ms) => ui.label(format!("{ms:.2} ms")),
                     None if stats.ran(pass) => ui.label("ran"),
                     None => ui.weak("skipped"),
@@ -36,6 +37,6 @@ pub fn show(ui: &mut egui::Ui, views: &[(&str, &GpuView)], ui_frame_ms: f64, ada
             ui.label(format!("{} run, {} skipped", stats.run.len(), stats.skipped.len()))
                 .on_hover_text(stats.timing_source.map_or("", |s| s.label()));
             ui.end_row();
-        }
-    });
+        });
+    }
 }

@@ -5,11 +5,11 @@ use super::Command;
 use crate::presets::SHIPPED;
 use atmoscope_model::Scene;
 use atmoscope_model::aerosol::AerosolType;
+use atmoscope_model::methods;
 use atmoscope_model::ozone::OzoneCrossSection;
 use atmoscope_model::profiles::{AirProfile, OzoneProfile};
 use atmoscope_model::scene::{
-    AerosolPhase, MAX_CAMERA_ALTITUDE_M, Method, OzoneColumn, Quality, SunSettings, ToneMap,
-    WavelengthSet,
+    AerosolPhase, MAX_CAMERA_ALTITUDE_M, OzoneColumn, Quality, SunSettings, ToneMap, WavelengthSet,
 };
 use atmoscope_model::solar::SolarSpectrum;
 use atmoscope_model::sun::DateTime;
@@ -374,16 +374,34 @@ fn camera(ui: &mut egui::Ui, s: &mut Scene) {
     );
 }
 
+/// What a model does, where it is valid and where it comes from.
+fn model_tooltip(m: &methods::ModelInfo) -> String {
+    format!(
+        "{}: {}\nDomain: {} ({}).\n{}",
+        m.label,
+        m.summary,
+        m.domain.kinds().join(", "),
+        m.domain.note,
+        m.citation
+    )
+}
+
 fn render(ui: &mut egui::Ui, s: &mut Scene) {
     let r = &mut s.render;
+    let current = methods::info(r.method);
     ComboBox::from_label("Method")
-        .selected_text(format!("{:?}", r.method))
+        .selected_text(current.label)
         .show_ui(ui, |ui| {
-            ui.selectable_value(&mut r.method, Method::Hillaire, "Hillaire 2020");
-            ui.selectable_value(&mut r.method, Method::PathTracer, "Path tracer");
+            for m in methods::realtime() {
+                ui.selectable_value(&mut r.method, m.method, m.label)
+                    .on_hover_text(model_tooltip(m));
+            }
         })
         .response
-        .on_hover_text("Hillaire 2020 is a real-time method with lookup tables; the path tracer is the slow, exact reference.");
+        .on_hover_text(format!(
+            "The sky model that draws the views. {}\n\nThe path tracer, the ground truth every model is measured against, renders in the Reference tab.",
+            model_tooltip(current)
+        ));
     let label = match r.wavelengths {
         WavelengthSet::Rgb3 => "RGB3".to_string(),
         WavelengthSet::Spectral4 => "Spectral4".to_string(),

@@ -2,7 +2,7 @@
 //! around, the wheel changes altitude, Shift-drag (any drag on the fisheye) puts the sun under the
 //! pointer, a click inspects the pixel. The luminance map adds a legend and a hover read-out.
 
-use super::gpu_view::{GpuView, pixels};
+use super::gpu_view::{GpuView, mark, notice, pixels};
 use super::inspector::angles_of;
 use super::{Command, Layout, Tab};
 use atmoscope_model::Scene;
@@ -82,7 +82,7 @@ pub fn show(
     );
     gpu.render(scene, &view);
     let Some(texture) = gpu.texture() else {
-        ui.label("The view has not been drawn yet.");
+        ui.label(notice(scene).unwrap_or("The view has not been drawn yet.".into()));
         return commands;
     };
     let response = ui
@@ -94,6 +94,7 @@ pub fn show(
             }
         });
     let rect = response.rect;
+    mark(ui, rect, scene);
     let pixel_at = |pos: Pos2| -> Option<(u32, u32)> {
         let f = (pos - rect.min) / rect.size();
         ((0.0..1.0).contains(&f.x) && (0.0..1.0).contains(&f.y)).then_some({

@@ -327,7 +327,12 @@ mod tests {
                     row.id,
                     spec.id
                 );
-                assert!(lut.data.iter().flatten().all(|v| v.is_finite() && *v >= 0.0));
+                assert!(
+                    lut.data
+                        .iter()
+                        .flatten()
+                        .all(|v| v.is_finite() && *v >= 0.0)
+                );
             }
         }
         scene.render.method = Method::PathTracer;

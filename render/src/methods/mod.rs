@@ -7,7 +7,7 @@
 //! model's registry row (`model::methods::MODELS`) and their bindings once in
 //! `shaders/common/bindings.wgsl`.
 
-pub mod garcia_linan;
+// GLTMP pub mod garcia_linan;
 pub mod hillaire;
 
 use atmoscope_model::methods::{self, Inputs, ModelInfo};
@@ -174,7 +174,7 @@ pub const COMMON: [Shader; 6] = [
 ];
 
 /// Every real-time model's passes, in registry order.
-pub const GPU_METHODS: [GpuMethod; 2] = [hillaire::METHOD, garcia_linan::METHOD];
+pub const GPU_METHODS: [GpuMethod; 1] = [hillaire::METHOD];
 
 /// The passes of `method`, or None for a model with no real-time passes (the path tracer).
 pub fn gpu_method(method: Method) -> Option<&'static GpuMethod> {
@@ -197,9 +197,13 @@ pub fn binding_of(name: &str) -> Option<u32> {
     COMMON[0].source.lines().find_map(|line| {
         let rest = line.trim().strip_prefix("@group(1) @binding(")?;
         let (n, decl) = rest.split_once(')')?;
-        let var = decl.split_once(" var")?.1;
-        let declared = var.split_once('>').map_or(var, |(_, v)| v).trim_start();
-        let declared = declared.split(':').next()?.trim();
+        let var = decl.trim_start().strip_prefix("var")?;
+        // `var<storage, read_write> name: …` or `var name: …`
+        let var = match var.strip_prefix('<') {
+            Some(rest) => rest.split_once('>')?.1,
+            None => var,
+        };
+        let declared = var.split(':').next()?.trim();
         (declared == name).then(|| n.parse().ok())?
     })
 }
@@ -211,22 +215,44 @@ mod tests {
     #[test]
     fn every_real_time_model_of_the_registry_has_passes_and_every_table_a_writer() {
         for row in methods::realtime() {
-            let gpu = gpu_method(row.method)
-                .unwrap_or_else(|| panic!("{} has no GPU passes", row.id));
+            let gpu =
+                gpu_method(row.method).unwrap_or_else(|| panic!("{} has no GPU passes", row.id));
             for t in row.tables {
-                let writers = gpu.passes.iter().filter(|p| p.writes.contains(&t.id)).count();
-                assert_eq!(writers, 1, "{}: table {} written by {writers} passes", row.id, t.id);
+                let writers = gpu
+                    .passes
+                    .iter()
+                    .filter(|p| p.writes.contains(&t.id))
+                    .count();
+                assert_eq!(
+                    writers, 1,
+                    "{}: table {} written by {writers} passes",
+                    row.id, t.id
+                );
                 assert!(binding(t.id).is_some(), "{} has no binding", t.id);
             }
             let last = gpu.passes.last().expect("passes");
-            assert_eq!(last.writes, &[RADIANCE], "{}: the sky pass comes last", row.id);
+            assert_eq!(
+                last.writes,
+                &[RADIANCE],
+                "{}: the sky pass comes last",
+                row.id
+            );
             for (i, p) in gpu.passes.iter().enumerate() {
                 for r in p.reads {
                     let earlier = gpu.passes[..i].iter().any(|q| q.writes.contains(r));
-                    assert!(earlier, "{}: {} reads {r} before it is written", row.id, p.name);
+                    assert!(
+                        earlier,
+                        "{}: {} reads {r} before it is written",
+                        row.id, p.name
+                    );
                 }
                 if let Dispatch::Table(id) = p.dispatch {
-                    assert!(row.table(id).is_some(), "{}: {} dispatches over {id}", row.id, p.name);
+                    assert!(
+                        row.table(id).is_some(),
+                        "{}: {} dispatches over {id}",
+                        row.id,
+                        p.name
+                    );
                 }
             }
         }
@@ -235,7 +261,9 @@ mod tests {
     #[test]
     fn bindings_are_found_in_the_one_wgsl_file_and_are_distinct() {
         assert_eq!(binding("transmittance"), Some(0));
-        assert_eq!(binding(RADIANCE), binding_of("radiance_out"));
+        assert_eq!(binding("sky-view"), Some(3));
+        assert_eq!(binding(RADIANCE), Some(6));
+        assert_eq!(binding_of("radiance_in"), Some(7));
         assert!(binding_of("radiance_in").is_some());
         assert!(binding("no-such-table").is_none());
         let mut all: Vec<u32> = GPU_METHODS

@@ -30,6 +30,7 @@ pub const INSCATTERING: TableSpec = TableSpec {
     axes: AXES,
     invalidated_by: Inputs::ATMOSPHERE.union(Inputs::VIEWPOINT),
     transmittance: false,
+    describe_texel,
 };
 
 pub const TRANSMITTANCE: TableSpec = TableSpec {
@@ -39,7 +40,18 @@ pub const TRANSMITTANCE: TableSpec = TableSpec {
     axes: AXES,
     invalidated_by: Inputs::ATMOSPHERE.union(Inputs::VIEWPOINT),
     transmittance: true,
+    describe_texel,
 };
+
+fn describe_texel(p: &Params, h: f64, [x, y, z]: [f64; 3]) -> String {
+    let (phi, theta) = aerial_perspective_angles_from_texel(p, h, x, y);
+    format!(
+        "φ = {:.1}°, θ = {:.2}°, distance ≤ {:.2} km",
+        phi.to_degrees(),
+        theta.to_degrees(),
+        aerial_perspective_slice_distance(z.max(0.0) as u32) / 1000.0
+    )
+}
 
 /// Fractional texel coordinates (x, y) of a ground-bound direction in the aerial-perspective
 /// volume: φ as in the sky view, θ over [θ_horizon, π] with the same quadratic spacing.

@@ -18,9 +18,14 @@ pub const TABLE: TableSpec = TableSpec {
     id: "ground-irradiance",
     label: "ground irradiance",
     size: [GROUND_IRRADIANCE_SIZE, 1, 1],
-    axes: ["x: sun zenith cosine μ_s, −1 (left) to 1 (right)", "one row", ""],
+    axes: [
+        "x: sun zenith cosine μ_s, −1 (left) to 1 (right)",
+        "one row",
+        "",
+    ],
     invalidated_by: Inputs::ATMOSPHERE,
     transmittance: false,
+    describe_texel: |_, _, [x, _, _]| format!("μ_s = {:.4}", ground_irradiance_mu_s_from_texel(x)),
 };
 
 /// Fractional texel coordinate of mu_s in the ground irradiance table.

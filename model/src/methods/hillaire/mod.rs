@@ -45,8 +45,8 @@ pub use ground_irradiance::{
     ground_irradiance, ground_irradiance_mu_s_from_texel, ground_irradiance_texel_from_mu_s,
 };
 pub use multiple_scattering::{
-    MULTIPLE_SCATTERING_DIRECTIONS_SQRT, MULTIPLE_SCATTERING_SIZE,
-    compute_multiple_scattering_lut, multiple_scattering, multiple_scattering_h_mu_s_from_texel,
+    MULTIPLE_SCATTERING_DIRECTIONS_SQRT, MULTIPLE_SCATTERING_SIZE, compute_multiple_scattering_lut,
+    multiple_scattering, multiple_scattering_h_mu_s_from_texel,
     multiple_scattering_texel_from_h_mu_s,
 };
 pub use sky::radiance;

@@ -5,7 +5,7 @@
 use super::{Lanes, Lut, Params, Spacing, TableSpec, sun_transmittance};
 use crate::geometry::{altitude_along, distance_to_ground, distance_to_top, hits_ground};
 use crate::methods::Inputs;
-use crate::methods::shared::{local_sun, segment_weight, add, mul};
+use crate::methods::shared::{add, local_sun, mul, segment_weight};
 use crate::wavelengths::LANES;
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -26,6 +26,10 @@ pub const TABLE: TableSpec = TableSpec {
     ],
     invalidated_by: Inputs::ATMOSPHERE,
     transmittance: false,
+    describe_texel: |p, _, [x, y, _]| {
+        let (h, mu_s) = multiple_scattering_h_mu_s_from_texel(p, x, y);
+        format!("h = {:.2} km, μ_s = {mu_s:.4}", h / 1000.0)
+    },
 };
 
 /// Fractional texel coordinates of (h, mu_s) in the multiple-scattering table.

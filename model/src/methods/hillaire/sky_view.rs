@@ -23,6 +23,14 @@ pub const TABLE: TableSpec = TableSpec {
     ],
     invalidated_by: Inputs::ATMOSPHERE.union(Inputs::VIEWPOINT),
     transmittance: false,
+    describe_texel: |p, h, [x, y, _]| {
+        let (phi, theta) = sky_view_angles_from_texel(p, h, x, y);
+        format!(
+            "φ = {:.1}°, θ = {:.2}°",
+            phi.to_degrees(),
+            theta.to_degrees()
+        )
+    },
 };
 
 /// Fractional texel coordinates of (azimuth from the sun φ ∈ [0, π], view zenith θ ∈ [0, π])

@@ -43,4 +43,3 @@ impl Spacing {
         (at(i as f64), at(i as f64 + 1.0))
     }
 }
-

@@ -207,7 +207,6 @@ pub fn viewpoint(scene: &Scene, camera: &Camera) -> Viewpoint {
     }
 }
 
-
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;

@@ -55,5 +55,4 @@ mod tests {
         assert!((sum - 1.0).abs() < 1e-3, "{sum}");
         assert_eq!(sun_disk(DVec3::X, sun), 0.0);
     }
-
 }

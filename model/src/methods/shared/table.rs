@@ -2,12 +2,12 @@
 //! size, what its axes mean and which scene inputs invalidate it. The GPU stores the same
 //! texels in the same order (`shaders/common/lut.wgsl`).
 
-use super::{Lanes, lerp};
+use super::{Lanes, Params, lerp};
 use crate::methods::Inputs;
 use rayon::prelude::*;
 
 /// A table as the registry declares it, once, for the engine, the LUT tab and the tests.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy)]
 pub struct TableSpec {
     /// Stable id (kebab case), also the WGSL buffer's name with `-` as `_` and `_lut` appended.
     pub id: &'static str,
@@ -20,6 +20,9 @@ pub struct TableSpec {
     pub invalidated_by: Inputs,
     /// Whether the texels are transmittances (shown without exposure).
     pub transmittance: bool,
+    /// The physical coordinates of fractional texel (x, y, z) as text, for a camera at
+    /// altitude `h` (m): the inverse of the table's mapping.
+    pub describe_texel: fn(&Params, f64, [f64; 3]) -> String,
 }
 
 impl TableSpec {
@@ -116,4 +119,3 @@ fn split(f: f64, n: usize) -> (usize, usize, f64) {
     let i1 = (i0 + 1).min(n - 1);
     (i0, i1, f - i0 as f64)
 }
-

@@ -21,6 +21,10 @@ pub const TABLE: TableSpec = TableSpec {
     ],
     invalidated_by: Inputs::ATMOSPHERE,
     transmittance: true,
+    describe_texel: |p, _, [x, y, _]| {
+        let (h, mu) = transmittance_h_mu_from_texel(p, x, y);
+        format!("h = {:.2} km, μ = {mu:.4}", h / 1000.0)
+    },
 };
 
 /// Fractional texel coordinates of (h, mu) in the transmittance table (Bruneton 2017 §4.1).

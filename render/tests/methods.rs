@@ -1,26 +1,37 @@
-//! The Hillaire (2020) engine on a real device (lavapipe in CI): shaders parse and match the
-//! Rust layouts; every lookup table matches its f64 CPU twin texel by texel; rendered views
+//! Every real-time model of the registry on a real device (lavapipe in CI): shaders parse and
+//! match the Rust layouts; every table matches its f64 CPU twin texel by texel; rendered views
 //! match the CPU twin's render; every shipped preset renders finite, non-negative luminance;
-//! the pass graph runs exactly the passes whose inputs changed.
+//! the engine runs exactly the passes whose inputs changed.
 
 mod common;
 
-use atmoscope_model::Atmosphere;
 use atmoscope_model::camera::{Camera, Projection};
 use atmoscope_model::colour::linear_srgb_to_xyz;
-use atmoscope_model::methods::hillaire::{self, Lut, Params, Tables};
+use atmoscope_model::methods::shared::Lut;
+use atmoscope_model::methods::{self, ModelInfo};
 use atmoscope_model::metrics::{DisplaySetup, compare};
 use atmoscope_model::scene::{Quality, Scene, SunSettings, WavelengthSet};
-use atmoscope_render::prelude::shader_source;
+use atmoscope_render::methods::{DISPLAY_PASS, GPU_METHODS};
+use atmoscope_render::passes::shader_source;
 use atmoscope_render::uniforms::{Batch, Globals};
-use atmoscope_render::{Engine, Pass, Table, View};
+use atmoscope_render::{Engine, View};
 use common::context;
+
+/// The scene with `model`'s method.
+fn with(model: &ModelInfo, scene: &Scene) -> Scene {
+    let mut s = scene.clone();
+    s.render.method = model.method;
+    s
+}
 
 #[test]
 fn every_shader_parses_validates_and_matches_the_rust_layouts() {
-    for pass in Pass::ALL {
-        let (file, _) = pass.shader_file();
-        let src = shader_source(pass);
+    for (method, pass) in GPU_METHODS
+        .iter()
+        .flat_map(|m| m.passes.iter().chain([&DISPLAY_PASS]).map(move |p| (m, p)))
+    {
+        let file = pass.shader.path;
+        let src = shader_source(method, pass);
         let module = naga::front::wgsl::parse_str(&src)
             .unwrap_or_else(|e| panic!("{file}: {}", e.emit_to_string(&src)));
         naga::valid::Validator::new(
@@ -82,43 +93,30 @@ fn twilight_spectral8() -> Scene {
 #[test]
 fn every_lookup_table_matches_its_cpu_twin() {
     let Some(gpu) = context() else { return };
-    for scene in [Scene::default(), twilight_spectral8()] {
-        let mut engine = Engine::new(&gpu.device, &gpu.queue);
-        let view = View::new(Projection::Perspective, 16, 16);
-        engine.render(&scene, &view);
-        let params = Params::new(
-            &Atmosphere::new(&scene.atmosphere),
-            scene.render.wavelengths,
-            scene.render.quality,
-        );
-        let camera = Camera::new(&scene.camera, params.bottom_radius_m, view.projection);
-        let cpu = Tables::compute(&params, hillaire::viewpoint(&scene, &camera));
-        let tables = [
-            (Table::Transmittance, &cpu.transmittance),
-            (Table::MultipleScattering, &cpu.multiple_scattering),
-            (Table::GroundIrradiance, &cpu.ground_irradiance),
-            (Table::SkyView, &cpu.sky_view),
-            (
-                Table::AerialPerspectiveInscattering,
-                &cpu.aerial_perspective_inscattering,
-            ),
-            (
-                Table::AerialPerspectiveTransmittance,
-                &cpu.aerial_perspective_transmittance,
-            ),
-        ];
-        for (table, cpu_lut) in tables {
-            let gpu_lut = engine.read_table(table).expect("read-back");
-            let (e, texel) = worst_error(&gpu_lut, cpu_lut, 1e-3);
-            eprintln!(
-                "{}: worst relative error {e:.2e} at texel {texel}",
-                table.name()
-            );
-            assert!(
-                e < 1e-3,
-                "{} differs from its twin by {e:.2e} at texel {texel}",
-                table.name()
-            );
+    for model in methods::realtime() {
+        for scene in [Scene::default(), twilight_spectral8()] {
+            let scene = with(model, &scene);
+            let mut engine = Engine::new(&gpu.device, &gpu.queue);
+            let view = View::new(Projection::Perspective, 16, 16);
+            engine.try_render(&scene, &view).expect("a real-time model");
+            let radius = scene.atmosphere.planet_radius_km * 1000.0;
+            let camera = Camera::new(&scene.camera, radius, view.projection);
+            let cpu = methods::build(&scene, &camera).expect("a real-time model");
+            for table in model.tables {
+                let gpu_lut = engine.read_table(table.id).expect("read-back");
+                let cpu_lut = cpu.table(table.id).expect("the twin's table");
+                let (e, texel) = worst_error(&gpu_lut, cpu_lut, 1e-3);
+                eprintln!(
+                    "{} {}: worst relative error {e:.2e} at texel {texel}",
+                    model.id, table.id
+                );
+                assert!(
+                    e < 1e-3,
+                    "{} {} differs from its twin by {e:.2e} at texel {texel}",
+                    model.id,
+                    table.id
+                );
+            }
         }
     }
 }
@@ -166,7 +164,12 @@ fn rendered_views_match_the_cpu_twin() {
         ),
         ("from 400 km", space, Projection::Perspective, 48, 32),
     ];
-    for (name, scene, projection, w, h) in cases {
+    for ((name, scene, projection, w, h), model) in cases
+        .iter()
+        .flat_map(|c| methods::realtime().map(move |m| (c.clone(), m)))
+    {
+        let scene = with(model, &scene);
+        let name = format!("{} {name}", model.id);
         let mut engine = Engine::new(&gpu.device, &gpu.queue);
         engine.render(&scene, &View::new(projection, w, h));
         let gpu_image: Vec<[f64; 3]> = engine
@@ -175,7 +178,7 @@ fn rendered_views_match_the_cpu_twin() {
             .iter()
             .map(|p| [p[0], p[1], p[2]].map(f64::from))
             .collect();
-        let cpu_image = hillaire::render(&scene, projection, w, h);
+        let cpu_image = methods::render(&scene, projection, w, h).expect("a real-time model");
         let (c, _) = compare(&gpu_image, &cpu_image, w, h, DisplaySetup::default());
         let off = gpu_image
             .iter()
@@ -214,15 +217,19 @@ fn every_shipped_preset_renders_finite_non_negative_luminance() {
         if path.extension().is_none_or(|e| e != "ron") {
             continue;
         }
-        let scene = Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
-        for projection in [Projection::Perspective, Projection::Fisheye] {
+        let preset = Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        for (model, projection) in methods::realtime()
+            .flat_map(|m| [Projection::Perspective, Projection::Fisheye].map(|p| (m, p)))
+        {
+            let scene = with(model, &preset);
             engine.render(&scene, &View::new(projection, 24, 16));
             let image = engine.read_radiance().expect("read-back");
             for (i, p) in image.iter().enumerate() {
                 let rgb = [p[0], p[1], p[2]].map(f64::from);
                 assert!(
                     rgb.iter().all(|c| c.is_finite()) && luminance(rgb) >= 0.0,
-                    "{}: pixel {i} is {p:?}",
+                    "{} {}: pixel {i} is {p:?}",
+                    model.id,
                     path.display()
                 );
             }
@@ -230,7 +237,8 @@ fn every_shipped_preset_renders_finite_non_negative_luminance() {
             if projection == Projection::Perspective {
                 assert!(
                     image.iter().any(|p| p[1] > 0.0),
-                    "{}: a black image",
+                    "{} {}: a black image",
+                    model.id,
                     path.display()
                 );
             }
@@ -244,6 +252,7 @@ fn every_shipped_preset_renders_finite_non_negative_luminance() {
     );
 }
 
+/// Hillaire's passes, named: what each change reruns.
 #[test]
 fn each_frame_runs_only_the_passes_whose_inputs_changed() {
     let Some(gpu) = context() else { return };
@@ -252,44 +261,45 @@ fn each_frame_runs_only_the_passes_whose_inputs_changed() {
     let mut view = View::new(Projection::Perspective, 32, 18);
     let run =
         |engine: &mut Engine, scene: &Scene, view: &View| engine.render(scene, view).run.clone();
-    assert_eq!(
-        run(&mut engine, &scene, &view),
-        Pass::ALL.to_vec(),
-        "first frame"
-    );
+    let all = vec![
+        "transmittance",
+        "multiple-scattering",
+        "ground-irradiance",
+        "sky-view",
+        "aerial-perspective",
+        "sky",
+        "display",
+    ];
+    assert_eq!(run(&mut engine, &scene, &view), all.clone(), "first frame");
     let stats = engine.render(&scene, &view).clone();
     assert!(
         stats.run.is_empty(),
         "an unchanged frame ran {:?}",
         stats.run
     );
-    assert_eq!(stats.skipped.len(), Pass::ALL.len());
+    assert_eq!(stats.skipped.len(), all.len());
 
     scene.camera.heading_deg += 40.0;
     scene.camera.pitch_deg += 10.0;
     scene.camera.fov_deg = 90.0;
     assert_eq!(
         run(&mut engine, &scene, &view),
-        vec![Pass::Sky, Pass::Display],
+        vec!["sky", "display"],
         "turning"
     );
     view.projection = Projection::Fisheye;
     assert_eq!(
         run(&mut engine, &scene, &view),
-        vec![Pass::Sky, Pass::Display],
+        vec!["sky", "display"],
         "projection"
     );
 
     scene.display.exposure_ev += 1.0;
-    assert_eq!(
-        run(&mut engine, &scene, &view),
-        vec![Pass::Display],
-        "exposure"
-    );
+    assert_eq!(run(&mut engine, &scene, &view), vec!["display"], "exposure");
     view = view.luminance();
     assert_eq!(
         run(&mut engine, &scene, &view),
-        vec![Pass::Display],
+        vec!["display"],
         "luminance map"
     );
 
@@ -306,7 +316,7 @@ fn each_frame_runs_only_the_passes_whose_inputs_changed() {
     };
     assert_eq!(
         run(&mut engine, &scene, &view),
-        vec![Pass::Sky, Pass::Display],
+        vec!["sky", "display"],
         "sun azimuth"
     );
     scene.sun = SunSettings::Angles {
@@ -316,12 +326,7 @@ fn each_frame_runs_only_the_passes_whose_inputs_changed() {
     let moved = run(&mut engine, &scene, &view);
     assert_eq!(
         moved,
-        vec![
-            Pass::SkyView,
-            Pass::AerialPerspective,
-            Pass::Sky,
-            Pass::Display
-        ],
+        vec!["sky-view", "aerial-perspective", "sky", "display"],
         "sun elevation"
     );
     scene.camera.altitude_m = 5000.0;
@@ -330,20 +335,16 @@ fn each_frame_runs_only_the_passes_whose_inputs_changed() {
     view.width = 40;
     assert_eq!(
         run(&mut engine, &scene, &view),
-        vec![Pass::Sky, Pass::Display],
+        vec!["sky", "display"],
         "size"
     );
 
     scene.atmosphere.ground_albedo = 0.8;
-    assert_eq!(
-        run(&mut engine, &scene, &view),
-        Pass::ALL.to_vec(),
-        "albedo"
-    );
+    assert_eq!(run(&mut engine, &scene, &view), all.clone(), "albedo");
     scene.render.wavelengths = WavelengthSet::Rgb3;
     assert_eq!(
         run(&mut engine, &scene, &view),
-        Pass::ALL.to_vec(),
+        all.clone(),
         "wavelength set"
     );
     assert!(engine.render(&scene, &view).run.is_empty());
@@ -361,11 +362,52 @@ fn timing_reports_every_pass_that_ran() {
         )
         .clone();
     assert_eq!(stats.timing_source, Some(engine.timing_source()));
-    assert_eq!(stats.timings_ms.len(), Pass::ALL.len());
+    assert_eq!(stats.timings_ms.len(), stats.passes.len());
     assert!(
         stats
             .timings_ms
             .iter()
             .all(|(_, ms)| ms.is_finite() && *ms >= 0.0)
     );
+}
+
+#[test]
+fn every_model_skips_its_tables_when_only_the_view_or_the_display_changes() {
+    let Some(gpu) = context() else { return };
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    let view = View::new(Projection::Perspective, 24, 16);
+    for model in methods::realtime() {
+        let mut scene = with(model, &Scene::default());
+        let first = engine.render(&scene, &view).clone();
+        assert_eq!(
+            first.run, first.passes,
+            "{}: a new model runs every pass",
+            model.id
+        );
+        assert!(
+            engine.render(&scene, &view).run.is_empty(),
+            "{}: idle",
+            model.id
+        );
+        scene.camera.heading_deg += 30.0;
+        assert_eq!(
+            engine.render(&scene, &view).run,
+            vec!["sky", "display"],
+            "{}",
+            model.id
+        );
+        scene.display.exposure_ev += 1.0;
+        assert_eq!(
+            engine.render(&scene, &view).run,
+            vec!["display"],
+            "{}",
+            model.id
+        );
+        scene.atmosphere.ground_albedo = 0.5;
+        let stats = engine.render(&scene, &view).clone();
+        assert_eq!(stats.run, stats.passes, "{}: albedo", model.id);
+    }
+    let mut offline = Scene::default();
+    offline.render.method = atmoscope_model::scene::Method::PathTracer;
+    assert!(engine.try_render(&offline, &view).is_err());
 }
