@@ -366,6 +366,7 @@ impl Engine {
             viewpoint,
             size,
             mode: view.mode,
+            model: (gpu.constants)(),
         });
         if !changed.is_empty() {
             self.queue

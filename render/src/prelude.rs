@@ -62,6 +62,12 @@ pub fn wgsl_prelude() -> String {
         "vec2<u32>",
         format!("vec2<u32>({sw}u, {sh}u)"),
     );
+    let [gw, gh] = atmoscope_model::methods::garcia_linan::sky_texture::SKY_TEXTURE_SIZE;
+    c(
+        "SKY_TEXTURE_SIZE",
+        "vec2<u32>",
+        format!("vec2<u32>({gw}u, {gh}u)"),
+    );
     let [aw, ah, ad] = h::AERIAL_PERSPECTIVE_SIZE;
     c(
         "AERIAL_PERSPECTIVE_SIZE",

@@ -81,6 +81,7 @@ pub struct Globals {
     pub steps_a: [u32; 4],
     pub steps_b: [u32; 4],
     pub display: [f32; 4],
+    pub model: [f32; 4],
 }
 
 fn v4(v: DVec3, w: f64) -> [f32; 4] {
@@ -96,6 +97,8 @@ pub struct FrameInputs<'a> {
     pub viewpoint: Viewpoint,
     pub size: [u32; 2],
     pub mode: DisplayMode,
+    /// The constants of the model on screen.
+    pub model: [f64; 4],
 }
 
 impl From<&FrameInputs<'_>> for Globals {
@@ -157,6 +160,7 @@ impl From<&FrameInputs<'_>> for Globals {
                 log10_max as f32,
                 0.0,
             ],
+            model: f4(f.model),
         }
     }
 }
@@ -176,6 +180,7 @@ pub struct Batch {
     pub to_srgb_r: [f32; 4],
     pub to_srgb_g: [f32; 4],
     pub to_srgb_b: [f32; 4],
+    pub wavelengths_nm: [f32; 4],
 }
 
 fn f4(v: [f64; 4]) -> [f32; 4] {
@@ -196,6 +201,7 @@ impl From<&BatchOptics> for Batch {
             to_srgb_r: f4(b.colour.to_srgb[0]),
             to_srgb_g: f4(b.colour.to_srgb[1]),
             to_srgb_b: f4(b.colour.to_srgb[2]),
+            wavelengths_nm: f4(b.colour.wavelengths_nm),
         }
     }
 }

@@ -24,6 +24,8 @@ struct Globals {
     steps_b: vec4<u32>,
     // exposure scale, log10 luminance min and max (cd/m²), 0
     display: vec4<f32>,
+    // constants of the model on screen (render::methods::GpuMethod::constants)
+    model: vec4<f32>,
 }
 
 // The optics of one batch of four wavelengths (per unit of the density profile).
@@ -39,6 +41,8 @@ struct Batch {
     to_srgb_r: vec4<f32>,
     to_srgb_g: vec4<f32>,
     to_srgb_b: vec4<f32>,
+    // the batch's four wavelengths, nm
+    wavelengths_nm: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> globals: Globals;
@@ -60,6 +64,7 @@ fn batch_count() -> u32 { return globals.options.z; }
 @group(1) @binding(3) var<storage, read_write> sky_view_lut: array<vec4<f32>>;
 @group(1) @binding(4) var<storage, read_write> aerial_perspective_inscattering_lut: array<vec4<f32>>;
 @group(1) @binding(5) var<storage, read_write> aerial_perspective_transmittance_lut: array<vec4<f32>>;
+@group(1) @binding(9) var<storage, read_write> sky_texture_lut: array<vec4<f32>>;
 @group(1) @binding(6) var radiance_out: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(7) var radiance_in: texture_2d<f32>;
 @group(1) @binding(8) var display_out: texture_storage_2d<rgba8unorm, write>;

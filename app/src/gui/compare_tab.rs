@@ -1,13 +1,15 @@
-//! The Compare tab: the current view rendered with two wavelength sets of the real-time method
-//! (default Spectral4 | RGB3), side by side or split, with the per-pixel CIEDE2000 map between
-//! them and the mean ΔE of each against a dense spectral reference (default Spectral32).
-//! The path tracer is compared in the Reference tab.
+//! The Compare tab: the current view rendered by two (model, wavelength set) pairs (default
+//! García Liñán | Hillaire at Spectral4), side by side or split, with the per-pixel CIEDE2000
+//! map between them and the mean ΔE of each against a dense spectral reference (default
+//! Hillaire at Spectral32). The models come from the registry; the path tracer is compared in
+//! the Reference tab.
 
-use super::gpu_view::{Gpu, GpuView, pixels};
+use super::gpu_view::{Gpu, GpuView, mark, pixels};
 use super::{Layout, Tab};
 use atmoscope_model::Scene;
+use atmoscope_model::methods;
 use atmoscope_model::metrics::{DisplaySetup, delta_e2000_map, percentile};
-use atmoscope_model::scene::WavelengthSet;
+use atmoscope_model::scene::{Method, WavelengthSet};
 use atmoscope_render::View;
 use atmoscope_render::views::false_colour;
 use eframe::egui::{self, Sense, Vec2};
@@ -27,8 +29,11 @@ pub enum CompareMode {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct CompareSettings {
+    pub a_method: Method,
     pub a: WavelengthSet,
+    pub b_method: Method,
     pub b: WavelengthSet,
+    pub reference_method: Method,
     pub reference: WavelengthSet,
     pub mode: CompareMode,
     /// Where the split falls, 0–1 from the left.
@@ -38,8 +43,11 @@ pub struct CompareSettings {
 impl Default for CompareSettings {
     fn default() -> Self {
         CompareSettings {
+            a_method: Method::GarciaLinan,
             a: WavelengthSet::Spectral4,
-            b: WavelengthSet::Rgb3,
+            b_method: Method::Hillaire,
+            b: WavelengthSet::Spectral4,
+            reference_method: Method::Hillaire,
             reference: WavelengthSet::SpectralN(32),
             mode: CompareMode::SideBySide,
             split: 0.5,
@@ -70,6 +78,28 @@ fn set_label(set: WavelengthSet) -> String {
         WavelengthSet::Spectral4 => "Spectral4".into(),
         WavelengthSet::SpectralN(n) => format!("Spectral{n}"),
     }
+}
+
+/// A model and a wavelength set, chosen side by side.
+fn choice(ui: &mut egui::Ui, label: &str, method: &mut Method, set: &mut WavelengthSet, tip: &str) {
+    if !methods::info(*method).is_realtime() {
+        *method = Method::default();
+    }
+    egui::ComboBox::from_id_salt((label, "model"))
+        .selected_text(methods::info(*method).label)
+        .show_ui(ui, |ui| {
+            for m in methods::realtime() {
+                ui.selectable_value(method, m.method, m.label)
+                    .on_hover_text(m.summary);
+            }
+        })
+        .response
+        .on_hover_text(tip);
+    set_choice(ui, label, set, tip);
+}
+
+fn pair_label(method: Method, set: WavelengthSet) -> String {
+    format!("{} {}", methods::info(method).label, set_label(set))
 }
 
 fn set_choice(ui: &mut egui::Ui, label: &str, set: &mut WavelengthSet, tip: &str) {
@@ -112,11 +142,12 @@ impl CompareTab {
     pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene, layout: &mut Layout) {
         let c = &mut layout.compare;
         ui.horizontal(|ui| {
-            set_choice(ui, "A", &mut c.a, "Wavelengths of the left image (Hillaire 2020 on the GPU).");
-            set_choice(ui, "B", &mut c.b, "Wavelengths of the right image.");
-            set_choice(
+            choice(ui, "A", &mut c.a_method, &mut c.a, "Model and wavelengths of the left image.");
+            choice(ui, "B", &mut c.b_method, &mut c.b, "Model and wavelengths of the right image.");
+            choice(
                 ui,
                 "reference",
+                &mut c.reference_method,
                 &mut c.reference,
                 "A dense spectral render both are measured against (colour from many bands integrated against the CIE 1931 observer).",
             );
@@ -137,8 +168,14 @@ impl CompareTab {
         .max(Vec2::splat(16.0));
         let size = pixels(ui.ctx(), each, layout.scale(ui.ctx()));
         let view = View::new(super::sky_tab::projection(Tab::Sky), size[0], size[1]);
-        for (v, set) in self.views.iter_mut().zip([c.a, c.b, c.reference]) {
+        let pairs = [
+            (c.a_method, c.a),
+            (c.b_method, c.b),
+            (c.reference_method, c.reference),
+        ];
+        for (v, (method, set)) in self.views.iter_mut().zip(pairs) {
             let mut s = scene.clone();
+            s.render.method = method;
             s.render.wavelengths = set;
             v.render(&s, &view);
         }
@@ -146,15 +183,13 @@ impl CompareTab {
 
         if let Some(f) = &self.figures {
             ui.label(format!(
-                "ΔE2000 {} vs {}: mean {:.2}, 95th percentile {:.2}   ·   vs {}: {} {:.2}, {} {:.2}",
-                set_label(c.a),
-                set_label(c.b),
+                "ΔE2000 {} vs {}: mean {:.2}, 95th percentile {:.2}   ·   vs {}: A {:.2}, B {:.2}",
+                pair_label(c.a_method, c.a),
+                pair_label(c.b_method, c.b),
                 f.a_vs_b_mean,
                 f.a_vs_b_p95,
-                set_label(c.reference),
-                set_label(c.a),
+                pair_label(c.reference_method, c.reference),
                 f.a_vs_reference_mean,
-                set_label(c.b),
                 f.b_vs_reference_mean,
             ))
             .on_hover_text("CIEDE2000 between the displayed images (scene exposure and tone map): about 1 is a just-noticeable difference, above 5 is plainly visible.");
@@ -166,8 +201,14 @@ impl CompareTab {
         match c.mode {
             CompareMode::SideBySide => {
                 ui.horizontal(|ui| {
-                    ui.add(egui::Image::new((ta, each)));
-                    ui.add(egui::Image::new((tb, each)));
+                    for (texture, (method, set)) in [(ta, pairs[0]), (tb, pairs[1])] {
+                        let response = ui
+                            .add(egui::Image::new((texture, each)))
+                            .on_hover_text(pair_label(method, set));
+                        let mut s = scene.clone();
+                        s.render.method = method;
+                        mark(ui, response.rect, &s);
+                    }
                 });
             }
             CompareMode::Split => {

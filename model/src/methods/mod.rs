@@ -8,6 +8,7 @@
 //! tracer is the ground truth every model is measured against; it has a row (the scene can name
 //! it) but no real-time passes.
 
+pub mod garcia_linan;
 pub mod hillaire;
 pub mod path_tracer;
 pub mod rng;
@@ -186,6 +187,16 @@ pub const MODELS: &[ModelInfo] = &[
         domain: Domain::EVERYWHERE,
         tables: &hillaire::TABLES,
         build: Some(hillaire::build),
+    },
+    ModelInfo {
+        method: Method::GarciaLinan,
+        id: "garcia-linan",
+        label: "García Liñán 2023",
+        citation: "F. García Liñán (2023), A real-time spectral atmosphere model, master's thesis",
+        summary: "Transmittance table and ray-marched single scattering in a sky texture, plus a closed-form ground-bounce term and a fitted logistic multiple-scattering term.",
+        domain: garcia_linan::DOMAIN,
+        tables: &garcia_linan::TABLES,
+        build: Some(garcia_linan::build),
     },
     ModelInfo {
         method: Method::PathTracer,

@@ -7,7 +7,7 @@
 //! model's registry row (`model::methods::MODELS`) and their bindings once in
 //! `shaders/common/bindings.wgsl`.
 
-// GLTMP pub mod garcia_linan;
+pub mod garcia_linan;
 pub mod hillaire;
 
 use atmoscope_model::methods::{self, Inputs, ModelInfo};
@@ -126,6 +126,8 @@ pub struct GpuMethod {
     pub common: &'static [Shader],
     /// Table passes in dependency order, then the sky pass (which writes [`RADIANCE`]).
     pub passes: &'static [PassSpec],
+    /// The model's constants the passes read from `globals.model`.
+    pub constants: fn() -> [f64; 4],
 }
 
 impl GpuMethod {
@@ -164,17 +166,18 @@ pub const SKY_INPUTS: Inputs = Inputs::VIEWPOINT
     .union(Inputs::VIEW_SIZE);
 
 /// The WGSL files every pass includes, after the generated prelude.
-pub const COMMON: [Shader; 6] = [
+pub const COMMON: [Shader; 7] = [
     shader!("common/bindings.wgsl"),
     shader!("common/geometry.wgsl"),
     shader!("common/lut.wgsl"),
     shader!("common/phase.wgsl"),
     shader!("common/medium.wgsl"),
     shader!("common/transmittance.wgsl"),
+    shader!("common/view.wgsl"),
 ];
 
 /// Every real-time model's passes, in registry order.
-pub const GPU_METHODS: [GpuMethod; 1] = [hillaire::METHOD];
+pub const GPU_METHODS: [GpuMethod; 2] = [hillaire::METHOD, garcia_linan::METHOD];
 
 /// The passes of `method`, or None for a model with no real-time passes (the path tracer).
 pub fn gpu_method(method: Method) -> Option<&'static GpuMethod> {

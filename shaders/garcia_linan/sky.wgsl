@@ -1,0 +1,85 @@
+// Pass: the view with García Liñán (2023): the sky texture, the sun's disk and the sunlit
+// ground through the transmittance table; from above the atmosphere each pixel is marched with
+// the model's integrand. Writes linear sRGB and coverage in alpha. Twin of
+// model::methods::garcia_linan::sky.
+
+// Direct sunlight on the Lambertian ground (the model has no skylight term for surfaces).
+fn ground_radiance(layer: u32, mu_s_g: f32) -> vec4<f32> {
+    let albedo = batches[layer].ground_albedo;
+    let e = batches[layer].solar_irradiance;
+    return albedo / PI * e * sun_transmittance(layer, 0.0, mu_s_g) * max(mu_s_g, 0.0);
+}
+
+fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
+    let big_r = bottom_radius();
+    let top = top_radius();
+    let h = globals.camera_position.w;
+    let r = big_r + h;
+    let sun = globals.sun.xyz;
+    let e = batches[layer].solar_irradiance;
+    let up = normalize(globals.camera_position.xyz);
+    let mu = dot(dir, up);
+    let mu_s = dot(sun, up);
+    let nu = dot(dir, sun);
+    let disk = sun_disk(dir, sun);
+    if !ABOVE_ATMOSPHERE {
+        let dir_t = dir - up * mu;
+        let sun_t = sun - up * mu_s;
+        let l = length(dir_t) * length(sun_t);
+        var cos_phi = 1.0;
+        if l > 1e-12 {
+            cos_phi = dot(dir_t, sun_t) / l;
+        }
+        let phi = acos(clamp(cos_phi, -1.0, 1.0));
+        let elevation = 0.5 * PI - acos(clamp(mu, -1.0, 1.0));
+        let s = sky_texture(layer, phi, elevation);
+        if hits_ground(h, mu) {
+            let d = distance_to_ground(h, mu);
+            let mu_s_g = clamp((r * mu_s + d * nu) / big_r, -1.0, 1.0);
+            let at = altitude_along(h, mu, d);
+            let mu_d = clamp((r * mu + d) / at.y, -1.0, 1.0);
+            let tr = min(transmittance(layer, at.x, -mu_d) / max(transmittance(layer, h, -mu), vec4<f32>(1e-30)),
+                vec4<f32>(1.0));
+            return s + tr * ground_radiance(layer, mu_s_g);
+        }
+        if disk > 0.0 {
+            return s + transmittance(layer, h, mu) * e * disk;
+        }
+        return s;
+    }
+    let rm = r * mu;
+    let disc = rm * rm - (h - thickness()) * (r + top);
+    if mu >= 0.0 || disc < 0.0 {
+        return e * disk;
+    }
+    let t_entry = -rm - sqrt(disc);
+    let mu_e = clamp((rm + t_entry) / top, -1.0, 1.0);
+    let mu_s_e = clamp((r * mu_s + t_entry * nu) / top, -1.0, 1.0);
+    let t_max = distance_to_boundary(thickness(), mu_e);
+    let s = integrate(layer, vec4<f32>(thickness(), mu_e, mu_s_e, nu), 0.0, t_max, globals.steps_b.y);
+    var behind = e * disk;
+    if hits_ground(thickness(), mu_e) {
+        let mu_s_g = clamp((top * mu_s_e + t_max * nu) / big_r, -1.0, 1.0);
+        behind = ground_radiance(layer, mu_s_g);
+    }
+    return s.radiance * e + s.transmittance * behind;
+}
+
+@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= globals.view.xy) {
+        return;
+    }
+    let ray = camera_ray(f32(id.x) + 0.5, f32(id.y) + 0.5);
+    if ray.w == 0.0 {
+        textureStore(radiance_out, id.xy, vec4<f32>(0.0));
+        return;
+    }
+    var rgb = vec3<f32>(0.0);
+    for (var layer = 0u; layer < batch_count(); layer++) {
+        let l = radiance(layer, ray.xyz);
+        rgb += vec3<f32>(dot(batches[layer].to_srgb_r, l), dot(batches[layer].to_srgb_g, l),
+            dot(batches[layer].to_srgb_b, l));
+    }
+    textureStore(radiance_out, id.xy, vec4<f32>(rgb, 1.0));
+}
