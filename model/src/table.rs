@@ -1,4 +1,4 @@
-//! Embedded reference tables (CSV with `#` provenance headers, copied from `shared/data`).
+//! Embedded reference tables (CSV files in `model/data`, each with its `#` provenance header).
 //!
 //! The tables are compiled into the binary so the model never touches the file system; each is
 //! parsed once on first use. Parsing cannot fail at run time for a table that passed the tests,

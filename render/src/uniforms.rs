@@ -130,18 +130,8 @@ impl From<&FrameInputs<'_>> for Globals {
                 horizon_beta(f.viewpoint.h, p.bottom_radius_m) as f32,
             ],
             sun: v4(f.sun, f.viewpoint.mu_s),
-            view: [
-                f.size[0],
-                f.size[1],
-                projection_code(c.projection),
-                display_code(f.mode),
-            ],
-            options: [
-                phase_code(p.aerosol_phase),
-                tone_map_code(f.scene.display.tone_map),
-                p.batches.len() as u32,
-                0,
-            ],
+            view: [f.size[0], f.size[1], 0, 0],
+            options: [phase_code(p.aerosol_phase), p.batches.len() as u32, 0, 0],
             steps_a: [
                 p.steps.transmittance,
                 p.steps.multiple_scattering,

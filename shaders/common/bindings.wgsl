@@ -14,9 +14,9 @@ struct Globals {
     camera: vec4<f32>,
     // world direction to the sun; w: mu_s at the camera (the viewpoint of the view tables)
     sun: vec4<f32>,
-    // width, height (pixels); projection and display mode (the passes read them as pipeline constants)
+    // width, height (pixels), 0, 0 (projection, display mode and tone map are pipeline constants)
     view: vec4<u32>,
-    // aerosol phase function, tone map (a pipeline constant of the display pass), batch count, 0
+    // aerosol phase function, batch count, 0, 0
     options: vec4<u32>,
     // steps: transmittance, multiple scattering, ground irradiance, sky view
     steps_a: vec4<u32>,
@@ -53,7 +53,7 @@ struct Batch {
 fn bottom_radius() -> f32 { return globals.planet.x; }
 fn top_radius() -> f32 { return globals.planet.y; }
 fn thickness() -> f32 { return globals.planet.z; }
-fn batch_count() -> u32 { return globals.options.z; }
+fn batch_count() -> u32 { return globals.options.y; }
 
 // Group 1: every table of every model and the view's images, declared once for every pass. The
 // engine finds a table's binding here by its name (the registry id with `_` for `-`, then

@@ -1,6 +1,7 @@
-//! `atmoscope probe`: diffuse sky radiance seen from the scene's camera in given directions
-//! (zenith angle from straight up, azimuth from the sun's), by the path tracer or the exact
-//! single-scattering integrator, plus the direct transmittance to the sun.
+//! `atmoscope probe`: sky radiance seen from the scene's camera in given directions (zenith
+//! angle from straight up, azimuth from the sun's), by the path tracer, the exact
+//! single-scattering integrator or the f64 CPU twin of any real-time model of the registry,
+//! plus the direct transmittance to the sun.
 
 use super::SceneArgs;
 use anyhow::bail;
@@ -8,17 +9,47 @@ use atmoscope_model::camera::{Camera, Projection};
 use atmoscope_model::geometry::{Ray, direction_from_angles};
 use atmoscope_model::methods::path_tracer::{LANES, LaneOptics, PathTracer, PathTracerSettings};
 use atmoscope_model::methods::rng::Rng;
-use atmoscope_model::methods::single_scattering;
+use atmoscope_model::methods::shared::{Params, viewpoint};
+use atmoscope_model::methods::{self, single_scattering};
+use atmoscope_model::scene::Method;
 use atmoscope_model::{Atmosphere, Scene};
-use clap::{Args, ValueEnum};
+use clap::Args;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::process::ExitCode;
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+/// What computes the radiance.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ProbeMethod {
     PathTracer,
     SingleScattering,
+    /// The CPU twin of a real-time model.
+    Model(Method),
+}
+
+impl ProbeMethod {
+    fn id(self) -> &'static str {
+        match self {
+            ProbeMethod::PathTracer => "path-tracer",
+            ProbeMethod::SingleScattering => "single-scattering",
+            ProbeMethod::Model(m) => super::method_id(m),
+        }
+    }
+}
+
+fn parse_probe_method(s: &str) -> Result<ProbeMethod, String> {
+    match s {
+        "path-tracer" => Ok(ProbeMethod::PathTracer),
+        "single-scattering" => Ok(ProbeMethod::SingleScattering),
+        id => super::parse_method(id)
+            .map(ProbeMethod::Model)
+            .map_err(|_| {
+                format!(
+                    "no method `{id}` (path-tracer, single-scattering, {})",
+                    methods::realtime_ids()
+                )
+            }),
+    }
 }
 
 #[derive(Args, Debug)]
@@ -45,7 +76,9 @@ pub struct ProbeArgs {
         value_name = "LIST"
     )]
     pub wavelengths_nm: Vec<f64>,
-    #[arg(long, value_enum, default_value = "path-tracer")]
+    /// path-tracer, single-scattering, or a real-time model's id (its f64 CPU twin:
+    /// hillaire, garcia-linan).
+    #[arg(long, value_parser = parse_probe_method, default_value = "path-tracer")]
     pub method: ProbeMethod,
     /// Highest scattering order (path tracer; 1 = single scattering). Default: all orders.
     #[arg(long, value_name = "N")]
@@ -104,6 +137,13 @@ pub fn probe(scene: &Scene, args: &ProbeArgs) -> Probe {
         ..PathTracerSettings::default()
     };
     let tracer = PathTracer::new(&atm, sun, settings);
+    let model = match args.method {
+        ProbeMethod::Model(m) => methods::info(m).build.map(|build| {
+            let p = Params::at_wavelengths(&atm, &args.wavelengths_nm, scene.render.quality);
+            build(&p, viewpoint(scene, &camera))
+        }),
+        _ => None,
+    };
     let batches: Vec<Vec<f64>> = args
         .wavelengths_nm
         .chunks(LANES)
@@ -124,6 +164,12 @@ pub fn probe(scene: &Scene, args: &ProbeArgs) -> Probe {
             let batch = &batches[b];
             let lanes_nm: [f64; LANES] = std::array::from_fn(|i| batch[i.min(batch.len() - 1)]);
             let (mean, se) = match args.method {
+                ProbeMethod::Model(_) => (
+                    model.as_ref().map_or([f64::NAN; LANES], |m| {
+                        m.radiance(b, (camera.position, scene.camera.altitude_m), dir, sun)
+                    }),
+                    [0.0; LANES],
+                ),
                 ProbeMethod::SingleScattering => (
                     lanes_nm.map(|w| single_scattering::radiance(&atm, &ray, sun, w)),
                     [0.0; LANES],
@@ -175,10 +221,7 @@ pub fn probe(scene: &Scene, args: &ProbeArgs) -> Probe {
     Probe {
         samples: results.into_iter().flatten().collect(),
         direct_transmittance,
-        method: match args.method {
-            ProbeMethod::PathTracer => "path-tracer".into(),
-            ProbeMethod::SingleScattering => "single-scattering".into(),
-        },
+        method: args.method.id().into(),
         spp: if args.method == ProbeMethod::PathTracer {
             args.spp
         } else {

@@ -431,7 +431,7 @@ fn render(ui: &mut egui::Ui, s: &mut Scene) {
         })
         .response
         .on_hover_text(
-            "Sizes of the lookup tables and sample counts: higher is more accurate and slower.",
+            "Ray-marching sample counts of the model's passes (×1, ×2, ×4 from Low to High): higher is more accurate and slower. Table sizes stay the same.",
         );
     let d = &mut s.display;
     ui.add(

@@ -78,6 +78,30 @@ pub struct Params {
 
 impl Params {
     pub fn new(atm: &Atmosphere, set: WavelengthSet, quality: Quality) -> Params {
+        Params::with_batches(atm, batches(set), quality)
+    }
+
+    /// The optics at any wavelengths (nm, 360–830), four per batch (the last batch padded by
+    /// repeating its last wavelength), as point samples with no colour matrix: for probing a
+    /// model at given wavelengths.
+    pub fn at_wavelengths(atm: &Atmosphere, wavelengths_nm: &[f64], quality: Quality) -> Params {
+        let batches = wavelengths_nm
+            .chunks(LANES)
+            .map(|c| WavelengthBatch {
+                wavelengths_nm: std::array::from_fn(|i| c[i.min(c.len() - 1)]),
+                bandwidth_nm: None,
+                to_srgb: [[0.0; LANES]; 3],
+            })
+            .collect();
+        Params::with_batches(atm, batches, quality)
+    }
+
+    /// The optics of `colours` (batches of four wavelengths).
+    pub fn with_batches(
+        atm: &Atmosphere,
+        colours: Vec<WavelengthBatch>,
+        quality: Quality,
+    ) -> Params {
         let thickness = atm.thickness_m();
         let air_ref = atm.air_density_m3(0.0).max(f64::MIN_POSITIVE);
         let n = PROFILE_SAMPLES as usize;
@@ -102,7 +126,7 @@ impl Params {
             })
             .collect();
         let solar = atm.solar_spectrum;
-        let batches = batches(set)
+        let batches = colours
             .into_iter()
             .map(|colour| {
                 let optics = colour.wavelengths_nm.map(|w| atm.optics(w));
