@@ -384,6 +384,183 @@ fn join_errors(errors: &[FieldError]) -> String {
         .join("; ")
 }
 
+/// The allowed range of every numeric scene field: its one home, read by `Scene::validate`,
+/// the explorer's sliders and the command line's messages.
+pub mod limits {
+    use super::MAX_CAMERA_ALTITUDE_M;
+    use crate::ozone;
+
+    /// An inclusive range with the unit its values are given in.
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    pub struct Limit {
+        pub min: f64,
+        pub max: f64,
+        /// Suffix of a value, with its leading space (" km"), or empty.
+        pub unit: &'static str,
+    }
+
+    impl Limit {
+        pub fn range(&self) -> std::ops::RangeInclusive<f64> {
+            self.min..=self.max
+        }
+
+        pub fn contains(&self, v: f64) -> bool {
+            v >= self.min && v <= self.max
+        }
+    }
+
+    /// `atmosphere.planet_radius_km`.
+    pub const PLANET_RADIUS_KM: Limit = Limit {
+        min: 1000.0,
+        max: 100_000.0,
+        unit: " km",
+    };
+    /// `atmosphere.top_km`.
+    pub const TOP_KM: Limit = Limit {
+        min: 10.0,
+        max: 1000.0,
+        unit: " km",
+    };
+    /// `atmosphere.ground_albedo`.
+    pub const GROUND_ALBEDO: Limit = Limit {
+        min: 0.0,
+        max: 1.0,
+        unit: "",
+    };
+    /// `atmosphere.aerosol.aod550`.
+    pub const AOD550: Limit = Limit {
+        min: 0.0,
+        max: 5.0,
+        unit: "",
+    };
+    /// `atmosphere.aerosol.custom.single_scattering_albedo`.
+    pub const CUSTOM_AEROSOL_SSA: Limit = Limit {
+        min: 0.0,
+        max: 1.0,
+        unit: "",
+    };
+    /// `atmosphere.aerosol.custom.asymmetry_g`.
+    pub const CUSTOM_AEROSOL_G: Limit = Limit {
+        min: -0.95,
+        max: 0.95,
+        unit: "",
+    };
+    /// `atmosphere.aerosol.custom.angstrom_exponent`.
+    pub const CUSTOM_AEROSOL_ANGSTROM: Limit = Limit {
+        min: -1.0,
+        max: 4.0,
+        unit: "",
+    };
+    /// `atmosphere.aerosol.custom.scale_height_km`.
+    pub const CUSTOM_AEROSOL_SCALE_HEIGHT_KM: Limit = Limit {
+        min: 0.1,
+        max: 100.0,
+        unit: " km",
+    };
+    /// `atmosphere.ozone.temperature_k`.
+    pub const OZONE_TEMPERATURE_K: Limit = Limit {
+        min: ozone::TEMPERATURE_RANGE_K.0,
+        max: ozone::TEMPERATURE_RANGE_K.1,
+        unit: " K",
+    };
+    /// `atmosphere.ozone.column.Du`.
+    pub const OZONE_COLUMN_DU: Limit = Limit {
+        min: 0.0,
+        max: 1000.0,
+        unit: " DU",
+    };
+    /// `sun.Angles.elevation_deg`.
+    pub const SUN_ELEVATION_DEG: Limit = Limit {
+        min: -90.0,
+        max: 90.0,
+        unit: "°",
+    };
+    /// `sun.Angles.azimuth_deg`.
+    pub const SUN_AZIMUTH_DEG: Limit = Limit {
+        min: 0.0,
+        max: 360.0,
+        unit: "°",
+    };
+    /// `sun.Date.time.year`.
+    pub const DATE_YEAR: Limit = Limit {
+        min: 1900.0,
+        max: 2100.0,
+        unit: "",
+    };
+    /// `sun.Date.time.month`.
+    pub const DATE_MONTH: Limit = Limit {
+        min: 1.0,
+        max: 12.0,
+        unit: "",
+    };
+    /// `sun.Date.time.day`.
+    pub const DATE_DAY: Limit = Limit {
+        min: 1.0,
+        max: 31.0,
+        unit: "",
+    };
+    /// `sun.Date.time.hour`.
+    pub const DATE_HOUR: Limit = Limit {
+        min: 0.0,
+        max: 24.0,
+        unit: " h",
+    };
+    /// `sun.Date.time.utc_offset_h`.
+    pub const DATE_UTC_OFFSET_H: Limit = Limit {
+        min: -12.0,
+        max: 14.0,
+        unit: " h",
+    };
+    /// `sun.Date.latitude_deg`.
+    pub const LATITUDE_DEG: Limit = Limit {
+        min: -90.0,
+        max: 90.0,
+        unit: "°",
+    };
+    /// `sun.Date.longitude_deg`.
+    pub const LONGITUDE_DEG: Limit = Limit {
+        min: -180.0,
+        max: 180.0,
+        unit: "°",
+    };
+    /// `camera.altitude_m`.
+    pub const CAMERA_ALTITUDE_M: Limit = Limit {
+        min: 0.0,
+        max: MAX_CAMERA_ALTITUDE_M,
+        unit: " m",
+    };
+    /// `camera.heading_deg`.
+    pub const CAMERA_HEADING_DEG: Limit = Limit {
+        min: 0.0,
+        max: 360.0,
+        unit: "°",
+    };
+    /// `camera.pitch_deg`.
+    pub const CAMERA_PITCH_DEG: Limit = Limit {
+        min: -90.0,
+        max: 90.0,
+        unit: "°",
+    };
+    /// `camera.fov_deg`.
+    pub const CAMERA_FOV_DEG: Limit = Limit {
+        min: 1.0,
+        max: 170.0,
+        unit: "°",
+    };
+    /// `camera.back_km`.
+    pub const CAMERA_BACK_KM: Limit = Limit {
+        min: 0.0,
+        max: 20_000.0,
+        unit: " km",
+    };
+    /// `display.exposure_ev`.
+    pub const EXPOSURE_EV: Limit = Limit {
+        min: -20.0,
+        max: 20.0,
+        unit: " EV",
+    };
+}
+
 struct Checker {
     errors: Vec<FieldError>,
 }
@@ -396,6 +573,10 @@ impl Checker {
                 message: format!("is {value}{unit}, allowed {min}{unit} to {max}{unit}"),
             });
         }
+    }
+
+    fn limit(&mut self, path: &str, value: f64, l: limits::Limit) {
+        self.range(path, value, l.min, l.max, l.unit);
     }
 
     fn fail(&mut self, path: &str, message: String) {
@@ -420,59 +601,54 @@ impl Scene {
             );
         }
         let a = &self.atmosphere;
-        c.range(
+        c.limit(
             "atmosphere.planet_radius_km",
             a.planet_radius_km,
-            1000.0,
-            100_000.0,
-            " km",
+            limits::PLANET_RADIUS_KM,
         );
-        c.range("atmosphere.top_km", a.top_km, 10.0, 1000.0, " km");
-        c.range("atmosphere.ground_albedo", a.ground_albedo, 0.0, 1.0, "");
-        c.range("atmosphere.aerosol.aod550", a.aerosol.aod550, 0.0, 5.0, "");
+        c.limit("atmosphere.top_km", a.top_km, limits::TOP_KM);
+        c.limit(
+            "atmosphere.ground_albedo",
+            a.ground_albedo,
+            limits::GROUND_ALBEDO,
+        );
+        c.limit(
+            "atmosphere.aerosol.aod550",
+            a.aerosol.aod550,
+            limits::AOD550,
+        );
         let ca = &a.aerosol.custom;
-        c.range(
+        c.limit(
             "atmosphere.aerosol.custom.single_scattering_albedo",
             ca.single_scattering_albedo,
-            0.0,
-            1.0,
-            "",
+            limits::CUSTOM_AEROSOL_SSA,
         );
-        c.range(
+        c.limit(
             "atmosphere.aerosol.custom.asymmetry_g",
             ca.asymmetry_g,
-            -0.95,
-            0.95,
-            "",
+            limits::CUSTOM_AEROSOL_G,
         );
-        c.range(
+        c.limit(
             "atmosphere.aerosol.custom.angstrom_exponent",
             ca.angstrom_exponent,
-            -1.0,
-            4.0,
-            "",
+            limits::CUSTOM_AEROSOL_ANGSTROM,
         );
-        c.range(
+        c.limit(
             "atmosphere.aerosol.custom.scale_height_km",
             ca.scale_height_km,
-            0.1,
-            100.0,
-            " km",
+            limits::CUSTOM_AEROSOL_SCALE_HEIGHT_KM,
         );
         let o = &a.ozone;
-        let (t_min, t_max) = ozone::TEMPERATURE_RANGE_K;
-        c.range(
+        c.limit(
             "atmosphere.ozone.temperature_k",
             o.temperature_k,
-            t_min,
-            t_max,
-            " K",
+            limits::OZONE_TEMPERATURE_K,
         );
         match o.column {
             OzoneColumn::Month(m) if !(1..=12).contains(&m) => {
                 c.fail("atmosphere.ozone.column.Month", format!("is {m}, allowed 1 to 12"))
             }
-            OzoneColumn::Du(du) => c.range("atmosphere.ozone.column.Du", du, 0.0, 1000.0, " DU"),
+            OzoneColumn::Du(du) => c.limit("atmosphere.ozone.column.Du", du, limits::OZONE_COLUMN_DU),
             OzoneColumn::Profile if !matches!(o.profile, OzoneProfile::Afgl(_)) => c.fail(
                 "atmosphere.ozone.column",
                 format!("Profile needs an AFGL ozone profile, the profile is {:?}; give Month(m) or Du(x)", o.profile),
@@ -484,41 +660,53 @@ impl Scene {
                 elevation_deg,
                 azimuth_deg,
             } => {
-                c.range("sun.Angles.elevation_deg", elevation_deg, -90.0, 90.0, "°");
-                c.range("sun.Angles.azimuth_deg", azimuth_deg, 0.0, 360.0, "°");
+                c.limit(
+                    "sun.Angles.elevation_deg",
+                    elevation_deg,
+                    limits::SUN_ELEVATION_DEG,
+                );
+                c.limit(
+                    "sun.Angles.azimuth_deg",
+                    azimuth_deg,
+                    limits::SUN_AZIMUTH_DEG,
+                );
             }
             SunSettings::Date {
                 time,
                 latitude_deg,
                 longitude_deg,
             } => {
-                c.range("sun.Date.time.year", time.year as f64, 1900.0, 2100.0, "");
-                c.range("sun.Date.time.month", time.month as f64, 1.0, 12.0, "");
-                c.range("sun.Date.time.day", time.day as f64, 1.0, 31.0, "");
-                c.range("sun.Date.time.hour", time.hour, 0.0, 24.0, " h");
-                c.range(
+                c.limit("sun.Date.time.year", time.year as f64, limits::DATE_YEAR);
+                c.limit("sun.Date.time.month", time.month as f64, limits::DATE_MONTH);
+                c.limit("sun.Date.time.day", time.day as f64, limits::DATE_DAY);
+                c.limit("sun.Date.time.hour", time.hour, limits::DATE_HOUR);
+                c.limit(
                     "sun.Date.time.utc_offset_h",
                     time.utc_offset_h,
-                    -12.0,
-                    14.0,
-                    " h",
+                    limits::DATE_UTC_OFFSET_H,
                 );
-                c.range("sun.Date.latitude_deg", latitude_deg, -90.0, 90.0, "°");
-                c.range("sun.Date.longitude_deg", longitude_deg, -180.0, 180.0, "°");
+                c.limit("sun.Date.latitude_deg", latitude_deg, limits::LATITUDE_DEG);
+                c.limit(
+                    "sun.Date.longitude_deg",
+                    longitude_deg,
+                    limits::LONGITUDE_DEG,
+                );
             }
         }
         let cam = &self.camera;
-        c.range(
+        c.limit(
             "camera.altitude_m",
             cam.altitude_m,
-            0.0,
-            MAX_CAMERA_ALTITUDE_M,
-            " m",
+            limits::CAMERA_ALTITUDE_M,
         );
-        c.range("camera.heading_deg", cam.heading_deg, 0.0, 360.0, "°");
-        c.range("camera.pitch_deg", cam.pitch_deg, -90.0, 90.0, "°");
-        c.range("camera.fov_deg", cam.fov_deg, 1.0, 170.0, "°");
-        c.range("camera.back_km", cam.back_km, 0.0, 20_000.0, " km");
+        c.limit(
+            "camera.heading_deg",
+            cam.heading_deg,
+            limits::CAMERA_HEADING_DEG,
+        );
+        c.limit("camera.pitch_deg", cam.pitch_deg, limits::CAMERA_PITCH_DEG);
+        c.limit("camera.fov_deg", cam.fov_deg, limits::CAMERA_FOV_DEG);
+        c.limit("camera.back_km", cam.back_km, limits::CAMERA_BACK_KM);
         if let WavelengthSet::SpectralN(n) = self.render.wavelengths {
             if n % 4 != 0 || !(4..=128).contains(&n) {
                 c.fail(
@@ -527,12 +715,10 @@ impl Scene {
                 );
             }
         }
-        c.range(
+        c.limit(
             "display.exposure_ev",
             self.display.exposure_ev,
-            -20.0,
-            20.0,
-            " EV",
+            limits::EXPOSURE_EV,
         );
         if c.errors.is_empty() {
             Ok(())

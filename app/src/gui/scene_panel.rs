@@ -8,8 +8,9 @@ use atmoscope_model::aerosol::AerosolType;
 use atmoscope_model::methods;
 use atmoscope_model::ozone::OzoneCrossSection;
 use atmoscope_model::profiles::{AirProfile, OzoneProfile};
+use atmoscope_model::scene::limits;
 use atmoscope_model::scene::{
-    AerosolPhase, MAX_CAMERA_ALTITUDE_M, OzoneColumn, Quality, SunSettings, ToneMap, WavelengthSet,
+    AerosolPhase, OzoneColumn, Quality, SunSettings, ToneMap, WavelengthSet,
 };
 use atmoscope_model::solar::SolarSpectrum;
 use atmoscope_model::sun::DateTime;
@@ -95,7 +96,7 @@ fn aerosol(ui: &mut egui::Ui, s: &mut Scene) {
     }
     ui.add_enabled(
         a.kind != AerosolType::None,
-        Slider::new(&mut a.aod550, 0.0..=5.0).logarithmic(true).smallest_positive(0.001).text("AOD at 550 nm"),
+        Slider::new(&mut a.aod550, limits::AOD550.range()).logarithmic(true).smallest_positive(0.001).text("AOD at 550 nm"),
     )
     .on_hover_text(
         "Aerosol optical depth at 550 nm: how much a vertical beam of green light is dimmed by aerosols alone \
@@ -109,16 +110,23 @@ fn aerosol(ui: &mut egui::Ui, s: &mut Scene) {
     .on_hover_text("The angular shape of aerosol scattering: strongly forward, which makes the bright halo around the sun.");
     if a.kind == AerosolType::Custom {
         let c = &mut a.custom;
-        ui.add(Slider::new(&mut c.single_scattering_albedo, 0.0..=1.0).text("single-scattering albedo"))
+        ui.add(Slider::new(&mut c.single_scattering_albedo, limits::CUSTOM_AEROSOL_SSA.range()).text("single-scattering albedo"))
             .on_hover_text("Share of the light a particle removes that it scatters; the rest it absorbs (1 = no absorption).");
-        ui.add(Slider::new(&mut c.asymmetry_g, -0.95..=0.95).text("asymmetry g"))
-            .on_hover_text("Mean cosine of the scattering angle: 0 scatters evenly, near 1 almost straight ahead.");
-        ui.add(Slider::new(&mut c.angstrom_exponent, -1.0..=4.0).text("Ångström exponent"))
+        ui.add(
+            Slider::new(&mut c.asymmetry_g, limits::CUSTOM_AEROSOL_G.range()).text("asymmetry g"),
+        )
+        .on_hover_text(
+            "Mean cosine of the scattering angle: 0 scatters evenly, near 1 almost straight ahead.",
+        );
+        ui.add(Slider::new(&mut c.angstrom_exponent, limits::CUSTOM_AEROSOL_ANGSTROM.range()).text("Ångström exponent"))
             .on_hover_text("How fast extinction falls with wavelength, ∝ λ^−α: about 0 for coarse dust, 1.5–2 for fine smoke.");
         ui.add(
-            Slider::new(&mut c.scale_height_km, 0.1..=100.0)
-                .logarithmic(true)
-                .text("scale height (km)"),
+            Slider::new(
+                &mut c.scale_height_km,
+                limits::CUSTOM_AEROSOL_SCALE_HEIGHT_KM.range(),
+            )
+            .logarithmic(true)
+            .text("scale height (km)"),
         )
         .on_hover_text("Height over which the aerosol density falls by a factor e.");
     }
@@ -155,8 +163,14 @@ fn ozone(ui: &mut egui::Ui, s: &mut Scene) {
             );
         }
         OzoneColumn::Du(du) => {
-            ui.add(Slider::new(du, 0.0..=1000.0).suffix(" DU").text("column"))
-                .on_hover_text("Total ozone column in Dobson units; the Antarctic ozone hole falls below 220 DU.");
+            ui.add(
+                Slider::new(du, limits::OZONE_COLUMN_DU.range())
+                    .suffix(" DU")
+                    .text("column"),
+            )
+            .on_hover_text(
+                "Total ozone column in Dobson units; the Antarctic ozone hole falls below 220 DU.",
+            );
         }
         OzoneColumn::Profile => {}
     }
@@ -194,7 +208,7 @@ fn ozone(ui: &mut egui::Ui, s: &mut Scene) {
         );
     ui.add_enabled(
         o.cross_section == OzoneCrossSection::Bogumil2003,
-        Slider::new(&mut o.temperature_k, 203.0..=293.0)
+        Slider::new(&mut o.temperature_k, limits::OZONE_TEMPERATURE_K.range())
             .suffix(" K")
             .text("temperature"),
     )
@@ -205,7 +219,7 @@ fn ozone(ui: &mut egui::Ui, s: &mut Scene) {
 
 fn ground_and_air(ui: &mut egui::Ui, s: &mut Scene) {
     let atm = &mut s.atmosphere;
-    ui.add(Slider::new(&mut atm.ground_albedo, 0.0..=1.0).text("ground albedo")).on_hover_text(
+    ui.add(Slider::new(&mut atm.ground_albedo, limits::GROUND_ALBEDO.range()).text("ground albedo")).on_hover_text(
         "Share of light the ground reflects: ocean 0.06, forest 0.15, sand 0.4, fresh snow 0.9. A bright ground lights \
          the sky from below.",
     );
@@ -233,7 +247,7 @@ fn ground_and_air(ui: &mut egui::Ui, s: &mut Scene) {
         .response
         .on_hover_text("The sun's light above the atmosphere, as measured; the tables differ by a few percent.");
     ui.add(
-        Slider::new(&mut atm.planet_radius_km, 1000.0..=100_000.0)
+        Slider::new(&mut atm.planet_radius_km, limits::PLANET_RADIUS_KM.range())
             .logarithmic(true)
             .suffix(" km")
             .text("planet radius"),
@@ -242,7 +256,7 @@ fn ground_and_air(ui: &mut egui::Ui, s: &mut Scene) {
         "Earth's mean radius is 6360 km in sky models; a smaller planet curves the horizon more.",
     );
     ui.add(
-        Slider::new(&mut atm.top_km, 10.0..=1000.0)
+        Slider::new(&mut atm.top_km, limits::TOP_KM.range())
             .logarithmic(true)
             .suffix(" km")
             .text("top of atmosphere"),
@@ -290,11 +304,11 @@ fn sun(ui: &mut egui::Ui, s: &mut Scene) {
             elevation_deg,
             azimuth_deg,
         } => {
-            ui.add(Slider::new(elevation_deg, -90.0..=90.0).suffix("°").text("elevation")).on_hover_text(
+            ui.add(Slider::new(elevation_deg, limits::SUN_ELEVATION_DEG.range()).suffix("°").text("elevation")).on_hover_text(
                 "Height of the sun above the horizon. Low sun light crosses up to 40 times more air, so blue is scattered \
                  away and the sun turns red; below 0° only the upper air is lit (twilight).",
             );
-            ui.add(Slider::new(azimuth_deg, 0.0..=360.0).suffix("°").text("azimuth"))
+            ui.add(Slider::new(azimuth_deg, limits::SUN_AZIMUTH_DEG.range()).suffix("°").text("azimuth"))
                 .on_hover_text("Compass direction of the sun, clockwise from north (90° east, 180° south, 270° west).");
         }
         SunSettings::Date {
@@ -312,9 +326,12 @@ fn sun(ui: &mut egui::Ui, s: &mut Scene) {
                 ui.add(DragValue::new(&mut time.day).range(1..=31).prefix("day "));
             });
             ui.add(Slider::new(&mut time.hour, 0.0..=23.99).text("local time (h)"));
-            ui.add(Slider::new(&mut time.utc_offset_h, -12.0..=14.0).text("UTC offset (h)"));
             ui.add(
-                Slider::new(latitude_deg, -90.0..=90.0)
+                Slider::new(&mut time.utc_offset_h, limits::DATE_UTC_OFFSET_H.range())
+                    .text("UTC offset (h)"),
+            );
+            ui.add(
+                Slider::new(latitude_deg, limits::LATITUDE_DEG.range())
                     .suffix("° N")
                     .text("latitude"),
             )
@@ -322,7 +339,7 @@ fn sun(ui: &mut egui::Ui, s: &mut Scene) {
                 "The sun's path depends on latitude: it never rises far at the poles in winter.",
             );
             ui.add(
-                Slider::new(longitude_deg, -180.0..=180.0)
+                Slider::new(longitude_deg, limits::LONGITUDE_DEG.range())
                     .suffix("° E")
                     .text("longitude"),
             );
@@ -339,31 +356,31 @@ fn sun(ui: &mut egui::Ui, s: &mut Scene) {
 
 fn camera(ui: &mut egui::Ui, s: &mut Scene) {
     let c = &mut s.camera;
-    ui.add(Slider::new(&mut c.altitude_m, 0.0..=MAX_CAMERA_ALTITUDE_M).logarithmic(true).smallest_positive(1.0).suffix(" m").text("altitude"))
+    ui.add(Slider::new(&mut c.altitude_m, limits::CAMERA_ALTITUDE_M.range()).logarithmic(true).smallest_positive(1.0).suffix(" m").text("altitude"))
         .on_hover_text(
             "Camera height above the ground, from 1 m to 100 000 km. Half the air lies below 5.5 km; above 100 km the \
              atmosphere is a thin glowing shell.",
         );
     ui.add(
-        Slider::new(&mut c.heading_deg, 0.0..=360.0)
+        Slider::new(&mut c.heading_deg, limits::CAMERA_HEADING_DEG.range())
             .suffix("°")
             .text("heading"),
     )
     .on_hover_text("Compass direction the camera looks, clockwise from north.");
     ui.add(
-        Slider::new(&mut c.pitch_deg, -90.0..=90.0)
+        Slider::new(&mut c.pitch_deg, limits::CAMERA_PITCH_DEG.range())
             .suffix("°")
             .text("pitch"),
     )
     .on_hover_text("How far the camera looks above (+) or below (−) the horizon.");
     ui.add(
-        Slider::new(&mut c.fov_deg, 1.0..=170.0)
+        Slider::new(&mut c.fov_deg, limits::CAMERA_FOV_DEG.range())
             .suffix("°")
             .text("field of view"),
     )
     .on_hover_text("Vertical angle the image covers; the eye's comfortable field is about 60°.");
     ui.add(
-        Slider::new(&mut c.back_km, 0.0..=20_000.0)
+        Slider::new(&mut c.back_km, limits::CAMERA_BACK_KM.range())
             .logarithmic(true)
             .suffix(" km")
             .text("moved back"),
@@ -435,7 +452,7 @@ fn render(ui: &mut egui::Ui, s: &mut Scene) {
         );
     let d = &mut s.display;
     ui.add(
-        Slider::new(&mut d.exposure_ev, -20.0..=20.0)
+        Slider::new(&mut d.exposure_ev, limits::EXPOSURE_EV.range())
             .suffix(" EV")
             .text("exposure"),
     )
