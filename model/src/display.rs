@@ -10,6 +10,10 @@ use crate::scene::ToneMap;
 /// Scale from linear radiance (Y in W·m⁻²·sr⁻¹) to tone-mapper input at 0 EV.
 pub const EXPOSURE_SCALE: f64 = 1.0 / 20.0;
 
+/// The default range of luminance maps, log10 cd/m²: 10⁻² (deep twilight) to 10⁵ (a bright
+/// sky near the sun).
+pub const LUMINANCE_LOG10_RANGE: [f64; 2] = [-2.0, 5.0];
+
 /// One linear sRGB radiance → display sRGB in [0, 1].
 pub fn display(rgb: [f64; 3], exposure_ev: f64, tone_map: ToneMap) -> [f64; 3] {
     let k = EXPOSURE_SCALE * exposure_ev.exp2();

@@ -3,7 +3,7 @@
 //! layouts; a test checks the sizes with naga.
 
 use atmoscope_model::camera::{Camera, Projection};
-use atmoscope_model::display::EXPOSURE_SCALE;
+use atmoscope_model::display::{EXPOSURE_SCALE, LUMINANCE_LOG10_RANGE};
 use atmoscope_model::geometry::horizon_beta;
 use atmoscope_model::methods::shared::{BatchOptics, Params, Spacing, Viewpoint};
 use atmoscope_model::scene::{AerosolPhase, Scene, ToneMap};
@@ -20,10 +20,10 @@ pub enum DisplayMode {
 }
 
 impl DisplayMode {
-    /// The default luminance map: 10⁻² to 10⁵ cd/m², deep twilight to a bright sky.
+    /// The default luminance map (`model::display::LUMINANCE_LOG10_RANGE`).
     pub const LUMINANCE: DisplayMode = DisplayMode::Luminance {
-        log10_min: -2.0,
-        log10_max: 5.0,
+        log10_min: LUMINANCE_LOG10_RANGE[0],
+        log10_max: LUMINANCE_LOG10_RANGE[1],
     };
 }
 

@@ -5,7 +5,7 @@
 //! the Reference tab.
 
 use super::gpu_view::{Gpu, GpuView, mark, pixels};
-use super::{Layout, Tab};
+use super::state::{CompareMode, DELTA_E_SCALE_MAX, Layout, Tab, projection};
 use atmoscope_model::Scene;
 use atmoscope_model::methods;
 use atmoscope_model::metrics::{DisplaySetup, delta_e2000_map, percentile};
@@ -13,47 +13,6 @@ use atmoscope_model::scene::{Method, WavelengthSet};
 use atmoscope_render::View;
 use atmoscope_render::views::false_colour;
 use eframe::egui::{self, Sense, Vec2};
-use serde::{Deserialize, Serialize};
-
-/// ΔE2000 at the top of the heat map's colour scale.
-pub const DELTA_E_SCALE_MAX: f64 = 10.0;
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-pub enum CompareMode {
-    #[default]
-    SideBySide,
-    Split,
-    DeltaE,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
-pub struct CompareSettings {
-    pub a_method: Method,
-    pub a: WavelengthSet,
-    pub b_method: Method,
-    pub b: WavelengthSet,
-    pub reference_method: Method,
-    pub reference: WavelengthSet,
-    pub mode: CompareMode,
-    /// Where the split falls, 0–1 from the left.
-    pub split: f32,
-}
-
-impl Default for CompareSettings {
-    fn default() -> Self {
-        CompareSettings {
-            a_method: Method::GarciaLinan,
-            a: WavelengthSet::Spectral4,
-            b_method: Method::Hillaire,
-            b: WavelengthSet::Spectral4,
-            reference_method: Method::Hillaire,
-            reference: WavelengthSet::SpectralN(32),
-            mode: CompareMode::SideBySide,
-            split: 0.5,
-        }
-    }
-}
 
 /// ΔE2000 figures of one comparison.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -167,7 +126,7 @@ impl CompareTab {
         }
         .max(Vec2::splat(16.0));
         let size = pixels(ui.ctx(), each, layout.scale(ui.ctx()));
-        let view = View::new(super::sky_tab::projection(Tab::Sky), size[0], size[1]);
+        let view = View::new(projection(Tab::Sky), size[0], size[1]);
         let pairs = [
             (c.a_method, c.a),
             (c.b_method, c.b),

@@ -7,7 +7,6 @@
 //! XYZ, sRGB and luminance are those of the real-time render on screen.
 
 use super::jobs::{Job, Progress};
-use super::summary_panel::SummaryPanel;
 use atmoscope_model::atmosphere::Atmosphere;
 use atmoscope_model::colour::{cie1931, linear_srgb_to_xyz};
 use atmoscope_model::constants::MAX_LUMINOUS_EFFICACY_LM_PER_W;
@@ -20,7 +19,6 @@ use atmoscope_model::scene::{AerosolPhase, AtmosphereSettings};
 use atmoscope_model::{Scene, phase};
 use eframe::egui;
 use egui_plot::{Legend, Line, Plot, PlotPoints};
-use glam::DVec3;
 
 /// Wavelengths of the pixel's spectrum, nm.
 pub const INSPECT_NM: std::ops::RangeInclusive<u32> = 380..=780;
@@ -208,7 +206,6 @@ pub struct Inspector {
     job: Option<Job<Option<Analysis>>>,
     pub result: Option<Analysis>,
     plots: Option<AtmospherePlots>,
-    pub summary: SummaryPanel,
 }
 
 impl Inspector {
@@ -245,9 +242,6 @@ impl Inspector {
         egui::CollapsingHeader::new("Atmosphere")
             .default_open(true)
             .show(ui, |ui| self.atmosphere(ui, scene));
-        egui::CollapsingHeader::new("Summary per wavelength")
-            .default_open(false)
-            .show(ui, |ui| self.summary.show(ui, scene));
     }
 
     fn pixel(&self, ui: &mut egui::Ui) {
@@ -383,12 +377,4 @@ fn curves(
         })
         .response
         .on_hover_text(tip);
-}
-
-/// Direction of a ray as (elevation, azimuth) in degrees, for labels.
-pub fn angles_of(d: DVec3) -> (f64, f64) {
-    (
-        d.z.clamp(-1.0, 1.0).asin().to_degrees(),
-        d.x.atan2(d.y).to_degrees().rem_euclid(360.0),
-    )
 }

@@ -5,39 +5,12 @@
 //! (`model::methods::MODELS`), so a new model's tables appear here with no change.
 
 use super::gpu_view::GpuView;
+use super::state::LutSettings;
 use atmoscope_model::Scene;
 use atmoscope_model::colour::srgb_encode;
 use atmoscope_model::methods::{self, shared::TableSpec};
 use atmoscope_model::wavelengths::{LANES, to_linear_srgb};
 use eframe::egui::{self, Sense, Vec2};
-use serde::{Deserialize, Serialize};
-
-/// What the tab shows; persisted with the layout.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
-pub struct LutSettings {
-    /// Registry id of the table; the model's first table when the model has none of that id.
-    pub table: String,
-    /// None: colour; Some(i): wavelength i of the set alone.
-    pub lane: Option<usize>,
-    pub exposure_ev: f64,
-    /// Scale so the brightest texel is white before the exposure.
-    pub normalise: bool,
-    /// Slice of a 3D table (clamped to its depth).
-    pub slice: u32,
-}
-
-impl Default for LutSettings {
-    fn default() -> Self {
-        LutSettings {
-            table: "transmittance".into(),
-            lane: None,
-            exposure_ev: 0.0,
-            normalise: true,
-            slice: 16,
-        }
-    }
-}
 
 /// A table as shown: its image and linear colours, for one engine frame and settings.
 struct Shown {

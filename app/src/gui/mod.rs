@@ -13,162 +13,30 @@ mod performance_panel;
 mod reference_tab;
 mod scene_panel;
 mod sky_tab;
+mod state;
 mod summary_panel;
 
 use crate::cli::SceneArgs;
 use crate::presets::load_shipped;
 use atmoscope_model::Scene;
-use compare_tab::{CompareSettings, CompareTab};
+use compare_tab::CompareTab;
 use eframe::egui;
 use files::ExportKind;
 use gpu_view::{Gpu, GpuView};
 use inspector::{Inspector, Probe};
 use jobs::Job;
-use lut_tab::{LutSettings, LutTab};
-use reference_tab::{ReferenceSettings, ReferenceTab};
-use serde::{Deserialize, Serialize};
+use lut_tab::LutTab;
+use reference_tab::ReferenceTab;
+use state::angles_of;
+pub use state::{Command, Layout, Tab};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
+use summary_panel::SummaryPanel;
 
 /// Storage keys of the last scene and layout.
 const SCENE_KEY: &str = "scene";
 const LAYOUT_KEY: &str = "layout";
-
-/// The centre tabs, with their shortcut keys 1–6.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-pub enum Tab {
-    #[default]
-    Sky,
-    Fisheye,
-    Luminance,
-    Compare,
-    Luts,
-    Reference,
-}
-
-impl Tab {
-    pub const ALL: [Tab; 6] = [
-        Tab::Sky,
-        Tab::Fisheye,
-        Tab::Luminance,
-        Tab::Compare,
-        Tab::Luts,
-        Tab::Reference,
-    ];
-
-    pub fn label(self) -> &'static str {
-        match self {
-            Tab::Sky => "Sky",
-            Tab::Fisheye => "Fisheye",
-            Tab::Luminance => "Luminance",
-            Tab::Compare => "Compare",
-            Tab::Luts => "LUTs",
-            Tab::Reference => "Reference",
-        }
-    }
-
-    fn description(self) -> &'static str {
-        match self {
-            Tab::Sky => "The view from the camera, drawn live by Hillaire's (2020) method.",
-            Tab::Fisheye => {
-                "The whole sky dome from the camera, zenith in the centre, horizon on the circle."
-            }
-            Tab::Luminance => {
-                "Brightness as the eye weighs it (cd/m²), in false colour on a log scale."
-            }
-            Tab::Compare => {
-                "The same view with two wavelength sets, and how much their colours differ (ΔE2000)."
-            }
-            Tab::Luts => {
-                "The lookup tables the real-time method precomputes, and what their axes mean."
-            }
-            Tab::Reference => {
-                "A spectral path tracer's ground truth of the view, next to the real-time render."
-            }
-        }
-    }
-
-    fn key(self) -> egui::Key {
-        const KEYS: [egui::Key; 6] = [
-            egui::Key::Num1,
-            egui::Key::Num2,
-            egui::Key::Num3,
-            egui::Key::Num4,
-            egui::Key::Num5,
-            egui::Key::Num6,
-        ];
-        KEYS[Tab::ALL.iter().position(|&t| t == self).unwrap_or(0)]
-    }
-}
-
-impl Layout {
-    /// Texels per screen pixel for a view drawn now.
-    pub fn scale(&self, ctx: &egui::Context) -> f32 {
-        if ctx.input(|i| i.pointer.is_decidedly_dragging()) {
-            self.render_scale.min(self.drag_scale)
-        } else {
-            self.render_scale
-        }
-    }
-}
-
-/// Everything about the window that is not the scene; restored on start.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
-pub struct Layout {
-    pub tab: Tab,
-    /// Texels per screen pixel of the views (0.25–1): lower is faster on a software renderer.
-    pub render_scale: f32,
-    /// Scale while the pointer drags (turning, moving the sun, dragging a slider), 0.25–1: the
-    /// view follows the pointer at this resolution and is redrawn sharp when the drag ends.
-    pub drag_scale: f32,
-    /// Luminance map range, log10 cd/m².
-    pub luminance_log10_range: [f64; 2],
-    pub compare: CompareSettings,
-    pub luts: LutSettings,
-    pub reference: ReferenceSettings,
-    pub show_inspector: bool,
-    pub show_performance: bool,
-    /// Only the view (and the menu): for presenting, and for measuring a frame of a given size.
-    pub full_view: bool,
-}
-
-impl Default for Layout {
-    fn default() -> Self {
-        Layout {
-            tab: Tab::Sky,
-            render_scale: 1.0,
-            drag_scale: 0.5,
-            luminance_log10_range: [-2.0, 5.0],
-            compare: CompareSettings::default(),
-            luts: LutSettings::default(),
-            reference: ReferenceSettings::default(),
-            show_inspector: true,
-            show_performance: true,
-            full_view: false,
-        }
-    }
-}
-
-/// What a panel asks the app to do.
-pub enum Command {
-    /// Replace the scene (validated before it is applied).
-    SetScene(Box<Scene>),
-    /// Load a shipped preset by file name.
-    LoadPreset(&'static str),
-    /// Load a preset file; on any error the scene stays as it was.
-    LoadFile(PathBuf),
-    SaveFile(PathBuf),
-    CopyRon,
-    Export(ExportKind, PathBuf),
-    /// Analyse pixel (x, y) of the active view.
-    Inspect {
-        tab: Tab,
-        x: u32,
-        y: u32,
-    },
-}
 
 /// GPU state, present when eframe runs on wgpu.
 struct Views {
@@ -185,6 +53,8 @@ pub struct ExplorerApp {
     views: Option<Views>,
     luts: LutTab,
     inspector: Inspector,
+    /// The per-wavelength summary shown under the Inspector.
+    summary: SummaryPanel,
     /// A message for the user (why a preset did not load), dismissible.
     message: Option<String>,
     /// What the last finished export or save did.
@@ -217,6 +87,7 @@ impl ExplorerApp {
             views,
             luts: LutTab::default(),
             inspector: Inspector::default(),
+            summary: SummaryPanel::default(),
             message: None,
             notice: None,
             exports: Vec::new(),
@@ -322,7 +193,7 @@ impl ExplorerApp {
             return;
         };
         let displayed = views.main.radiance().ok().and_then(|r| r.at(x, y));
-        let (elevation, azimuth) = inspector::angles_of(ray.direction);
+        let (elevation, azimuth) = angles_of(ray.direction);
         self.inspector.inspect(
             ctx,
             Probe {
@@ -622,8 +493,12 @@ impl eframe::App for ExplorerApp {
                 .resizable(true)
                 .default_size(360.0)
                 .show(ui, |ui| {
-                    egui::ScrollArea::vertical()
-                        .show(ui, |ui| self.inspector.show(ui, &self.scene));
+                    egui::ScrollArea::vertical().show(ui, |ui| {
+                        self.inspector.show(ui, &self.scene);
+                        egui::CollapsingHeader::new("Summary per wavelength")
+                            .default_open(false)
+                            .show(ui, |ui| self.summary.show(ui, &self.scene));
+                    });
                 });
         }
         let centre = if full {

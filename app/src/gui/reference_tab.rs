@@ -13,34 +13,15 @@ use atmoscope_model::reference::ReferenceRender;
 use atmoscope_render::View;
 use atmoscope_render::views::false_colour;
 use eframe::egui::{self, Vec2};
-use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use super::compare_tab::DELTA_E_SCALE_MAX;
+use super::state::{DELTA_E_SCALE_MAX, ReferenceSettings};
 
 const SIZES: [(u32, u32); 3] = [(80, 45), (160, 90), (320, 180)];
 /// Paths per pixel added by each progressive pass.
 const SPP_PER_PASS: u32 = 4;
-
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
-pub struct ReferenceSettings {
-    /// Index into the sizes offered.
-    pub size: usize,
-    /// Stop after this many paths per pixel (16–4096).
-    pub target_spp: u64,
-}
-
-impl Default for ReferenceSettings {
-    fn default() -> Self {
-        ReferenceSettings {
-            size: 1,
-            target_spp: 256,
-        }
-    }
-}
 
 /// The path tracer's state after a pass.
 #[derive(Clone)]

@@ -1,7 +1,7 @@
 //! The Scene panel: every field of the scene as a control with its unit and a tooltip that
 //! explains the physics in a sentence or two.
 
-use super::Command;
+use super::state::Command;
 use crate::presets::SHIPPED;
 use atmoscope_model::Scene;
 use atmoscope_model::aerosol::AerosolType;

@@ -3,8 +3,7 @@
 //! pointer, a click inspects the pixel. The luminance map adds a legend and a hover read-out.
 
 use super::gpu_view::{GpuView, mark, notice, pixels};
-use super::inspector::angles_of;
-use super::{Command, Layout, Tab};
+use super::state::{Command, Layout, Tab, angles_of, projection};
 use atmoscope_model::Scene;
 use atmoscope_model::camera::{Camera, Projection};
 use atmoscope_model::constants::MAX_LUMINOUS_EFFICACY_LM_PER_W;
@@ -18,13 +17,6 @@ const LEGEND_HEIGHT: f32 = 72.0;
 const ALTITUDE_PER_SCROLL: f64 = 0.01;
 /// Lowest altitude the wheel goes to, m (the slider reaches 0).
 const MIN_WHEEL_ALTITUDE_M: f64 = 1.0;
-
-pub fn projection(tab: Tab) -> Projection {
-    match tab {
-        Tab::Fisheye => Projection::Fisheye,
-        _ => Projection::Perspective,
-    }
-}
 
 /// The view a tab shows in `points` of screen.
 pub fn view_for(tab: Tab, layout: &Layout, size: [u32; 2]) -> View {

@@ -77,7 +77,6 @@ fn sliders_change_albedo_sun_and_altitude_and_the_view_follows() {
     // The summary follows: no direct sunlight once the sun has set.
     let summary = h
         .state()
-        .inspector
         .summary
         .shown()
         .map(|info| info.wavelengths[0].direct_transmittance);
@@ -117,12 +116,7 @@ fn month_slider_sets_the_ozone_column_and_redraws() {
     slide_and_see_the_view_change(&mut h, "month", 1.0);
     h.get_by_label("Summary per wavelength").click();
     h.run();
-    let info = h
-        .state()
-        .inspector
-        .summary
-        .shown()
-        .map(|info| info.ozone_column_du);
+    let info = h.state().summary.shown().map(|info| info.ozone_column_du);
     assert_eq!(info, Some(347.0), "January at Arosa");
 }
 
@@ -340,7 +334,7 @@ fn the_lut_tab_reads_every_table() {
 fn reference_harness(target_spp: u64) -> Harness<'static, ExplorerApp> {
     let layout = Layout {
         tab: Tab::Reference,
-        reference: super::reference_tab::ReferenceSettings {
+        reference: super::state::ReferenceSettings {
             size: 0,
             target_spp,
         },

@@ -24,10 +24,9 @@ use crate::scene::AerosolPhase;
 use glam::DVec3;
 use std::f64::consts::PI;
 
-/// Wavelengths carried by one path.
-pub const LANES: usize = 4;
-/// A value per wavelength of a path.
-pub type Lanes = [f64; LANES];
+/// Wavelengths carried by one path: a batch's four lanes, as everywhere.
+pub use crate::methods::shared::Lanes;
+pub use crate::wavelengths::LANES;
 
 /// Altitudes (m) separating the majorant shells: thin where density changes fast, so each
 /// shell's densest and thinnest air are close and the control variate below is tight.

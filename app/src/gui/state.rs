@@ -1,0 +1,247 @@
+//! The explorer's state below the panels: the tabs, the layout (everything about the window
+//! that is not the scene, restored on start) with each tab's settings, and the commands panels
+//! return. Panels read this state and change the scene only through commands; no panel
+//! imports another.
+
+use super::files::ExportKind;
+use atmoscope_model::Scene;
+use atmoscope_model::camera::Projection;
+use atmoscope_model::scene::{Method, WavelengthSet};
+use eframe::egui;
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
+
+/// The centre tabs, with their shortcut keys 1–6.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+pub enum Tab {
+    #[default]
+    Sky,
+    Fisheye,
+    Luminance,
+    Compare,
+    Luts,
+    Reference,
+}
+
+impl Tab {
+    pub const ALL: [Tab; 6] = [
+        Tab::Sky,
+        Tab::Fisheye,
+        Tab::Luminance,
+        Tab::Compare,
+        Tab::Luts,
+        Tab::Reference,
+    ];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Tab::Sky => "Sky",
+            Tab::Fisheye => "Fisheye",
+            Tab::Luminance => "Luminance",
+            Tab::Compare => "Compare",
+            Tab::Luts => "LUTs",
+            Tab::Reference => "Reference",
+        }
+    }
+
+    pub fn description(self) -> &'static str {
+        match self {
+            Tab::Sky => "The view from the camera, drawn live by the scene's sky model.",
+            Tab::Fisheye => {
+                "The whole sky dome from the camera, zenith in the centre, horizon on the circle."
+            }
+            Tab::Luminance => {
+                "Brightness as the eye weighs it (cd/m²), in false colour on a log scale."
+            }
+            Tab::Compare => {
+                "The same view by two models or wavelength sets, and how much their colours differ (ΔE2000)."
+            }
+            Tab::Luts => "The lookup tables the sky model precomputes, and what their axes mean.",
+            Tab::Reference => {
+                "A spectral path tracer's ground truth of the view, next to the real-time render."
+            }
+        }
+    }
+
+    pub fn key(self) -> egui::Key {
+        const KEYS: [egui::Key; 6] = [
+            egui::Key::Num1,
+            egui::Key::Num2,
+            egui::Key::Num3,
+            egui::Key::Num4,
+            egui::Key::Num5,
+            egui::Key::Num6,
+        ];
+        KEYS[Tab::ALL.iter().position(|&t| t == self).unwrap_or(0)]
+    }
+}
+
+impl Layout {
+    /// Texels per screen pixel for a view drawn now.
+    pub fn scale(&self, ctx: &egui::Context) -> f32 {
+        if ctx.input(|i| i.pointer.is_decidedly_dragging()) {
+            self.render_scale.min(self.drag_scale)
+        } else {
+            self.render_scale
+        }
+    }
+}
+
+/// Everything about the window that is not the scene; restored on start.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct Layout {
+    pub tab: Tab,
+    /// Texels per screen pixel of the views (0.25–1): lower is faster on a software renderer.
+    pub render_scale: f32,
+    /// Scale while the pointer drags (turning, moving the sun, dragging a slider), 0.25–1: the
+    /// view follows the pointer at this resolution and is redrawn sharp when the drag ends.
+    pub drag_scale: f32,
+    /// Luminance map range, log10 cd/m².
+    pub luminance_log10_range: [f64; 2],
+    pub compare: CompareSettings,
+    pub luts: LutSettings,
+    pub reference: ReferenceSettings,
+    pub show_inspector: bool,
+    pub show_performance: bool,
+    /// Only the view (and the menu): for presenting, and for measuring a frame of a given size.
+    pub full_view: bool,
+}
+
+impl Default for Layout {
+    fn default() -> Self {
+        Layout {
+            tab: Tab::Sky,
+            render_scale: 1.0,
+            drag_scale: 0.5,
+            luminance_log10_range: atmoscope_model::display::LUMINANCE_LOG10_RANGE,
+            compare: CompareSettings::default(),
+            luts: LutSettings::default(),
+            reference: ReferenceSettings::default(),
+            show_inspector: true,
+            show_performance: true,
+            full_view: false,
+        }
+    }
+}
+
+/// What a panel asks the app to do.
+pub enum Command {
+    /// Replace the scene (validated before it is applied).
+    SetScene(Box<Scene>),
+    /// Load a shipped preset by file name.
+    LoadPreset(&'static str),
+    /// Load a preset file; on any error the scene stays as it was.
+    LoadFile(PathBuf),
+    SaveFile(PathBuf),
+    CopyRon,
+    Export(ExportKind, PathBuf),
+    /// Analyse pixel (x, y) of the active view.
+    Inspect {
+        tab: Tab,
+        x: u32,
+        y: u32,
+    },
+}
+
+/// ΔE2000 at the top of the heat map's colour scale.
+pub const DELTA_E_SCALE_MAX: f64 = 10.0;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+pub enum CompareMode {
+    #[default]
+    SideBySide,
+    Split,
+    DeltaE,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct CompareSettings {
+    pub a_method: Method,
+    pub a: WavelengthSet,
+    pub b_method: Method,
+    pub b: WavelengthSet,
+    pub reference_method: Method,
+    pub reference: WavelengthSet,
+    pub mode: CompareMode,
+    /// Where the split falls, 0–1 from the left.
+    pub split: f32,
+}
+
+impl Default for CompareSettings {
+    fn default() -> Self {
+        CompareSettings {
+            a_method: Method::GarciaLinan,
+            a: WavelengthSet::Spectral4,
+            b_method: Method::Hillaire,
+            b: WavelengthSet::Spectral4,
+            reference_method: Method::Hillaire,
+            reference: WavelengthSet::SpectralN(32),
+            mode: CompareMode::SideBySide,
+            split: 0.5,
+        }
+    }
+}
+
+/// What the tab shows; persisted with the layout.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct LutSettings {
+    /// Registry id of the table; the model's first table when the model has none of that id.
+    pub table: String,
+    /// None: colour; Some(i): wavelength i of the set alone.
+    pub lane: Option<usize>,
+    pub exposure_ev: f64,
+    /// Scale so the brightest texel is white before the exposure.
+    pub normalise: bool,
+    /// Slice of a 3D table (clamped to its depth).
+    pub slice: u32,
+}
+
+impl Default for LutSettings {
+    fn default() -> Self {
+        LutSettings {
+            table: "transmittance".into(),
+            lane: None,
+            exposure_ev: 0.0,
+            normalise: true,
+            slice: 16,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct ReferenceSettings {
+    /// Index into the sizes offered.
+    pub size: usize,
+    /// Stop after this many paths per pixel (16–4096).
+    pub target_spp: u64,
+}
+
+impl Default for ReferenceSettings {
+    fn default() -> Self {
+        ReferenceSettings {
+            size: 1,
+            target_spp: 256,
+        }
+    }
+}
+
+/// The projection a tab draws.
+pub fn projection(tab: Tab) -> Projection {
+    match tab {
+        Tab::Fisheye => Projection::Fisheye,
+        _ => Projection::Perspective,
+    }
+}
+
+/// Direction of a ray as (elevation, azimuth) in degrees, for labels.
+pub fn angles_of(d: DVec3) -> (f64, f64) {
+    (
+        d.z.clamp(-1.0, 1.0).asin().to_degrees(),
+        d.x.atan2(d.y).to_degrees().rem_euclid(360.0),
+    )
+}
