@@ -349,8 +349,10 @@ impl Engine {
             size,
             display: (scene.display.exposure_ev, scene.display.tone_map, view.mode),
         };
-        let changed = snapshot.changes_from(self.last.as_ref());
+        let mut changed = snapshot.changes_from(self.last.as_ref());
         if rebuilt || self.target.as_ref().is_none_or(|t| t.size != size) {
+            // New images: every pass that writes them must run.
+            changed = changed.union(Inputs::VIEW_SIZE);
             self.target = Some(Target::new(
                 &self.device,
                 &self.pipelines[0],
@@ -506,9 +508,9 @@ impl Engine {
         } = &self.timer
             && self.measure
         {
-            let count = 2 * MAX_PASSES as u32;
+            let count = 2 * run.len().min(MAX_PASSES) as u32;
             encoder.resolve_query_set(queries, 0..count, resolve, 0);
-            encoder.copy_buffer_to_buffer(resolve, 0, readback, 0, resolve.size());
+            encoder.copy_buffer_to_buffer(resolve, 0, readback, 0, 8 * u64::from(count));
             self.queue.submit([encoder.finish()]);
             if let Some(ticks) = map_u64(&self.device, readback) {
                 for (slot, &i) in run.iter().enumerate().take(MAX_PASSES) {
@@ -564,7 +566,7 @@ impl Engine {
     }
 
     /// Reads one lookup table back: every texel of every layer (batch), in the order of
-    /// `model::methods::hillaire::Lut`.
+    /// `model::methods::shared::Lut`.
     pub fn read_table(&self, id: &str) -> Result<Vec<[f32; 4]>, EngineError> {
         let buffer = self
             .atmosphere

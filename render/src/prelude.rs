@@ -39,7 +39,7 @@ pub fn wgsl_prelude() -> String {
     };
     c("PI", "f32", f(std::f64::consts::PI));
     c("WORKGROUP_SIZE", "u32", format!("{WORKGROUP_SIZE}u"));
-    let [tw, th] = h::TRANSMITTANCE_SIZE;
+    let [tw, th] = shared::transmittance::TRANSMITTANCE_SIZE;
     c(
         "TRANSMITTANCE_SIZE",
         "vec2<u32>",

@@ -1,5 +1,5 @@
-// Ray geometry in (h, mu) around a spherical planet; twins of model::methods::hillaire's
-// helpers. r² − R² is always formed as h(2R + h) to stay accurate in f32 near the ground.
+// Ray geometry in (h, mu) around a spherical planet; twins of model::geometry. r² − R² is
+// always formed as h(2R + h) to stay accurate in f32 near the ground.
 
 fn rho_squared(h: f32) -> f32 {
     return h * (2.0 * bottom_radius() + h);

@@ -1,5 +1,5 @@
 // Lookup tables live in storage buffers of vec4 texels, indexed ((layer·depth + z)·height + y)·width
-// + x exactly like model::methods::hillaire::Lut. Buffer loads are plain memory reads, far
+// + x exactly like model::methods::shared::Lut. Buffer loads are plain memory reads, far
 // cheaper than texel fetches on software drivers, and the manual bilinear and trilinear
 // interpolation below is the twin of Lut::bilinear / Lut::trilinear.
 // Coordinates are fractional texel indices, clamped to the table.

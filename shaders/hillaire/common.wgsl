@@ -38,7 +38,7 @@ fn ground_irradiance(layer: u32, mu_s: f32) -> vec4<f32> {
 // ---- sky view and aerial perspective ----
 
 // β at the camera's altitude, the only altitude the sky view and aerial perspective are built
-// for; computed once per frame in f64 (hillaire::horizon_beta).
+// for; computed once per frame in f64 (geometry::horizon_beta).
 fn horizon_beta(h: f32) -> f32 {
     return globals.camera.w;
 }

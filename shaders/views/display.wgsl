@@ -1,7 +1,7 @@
 // Pass: display. Linear radiance → exposure → tone map → sRGB (twin of model::display), or
 // luminance in cd/m² on a log scale in false colour (twin of render::views::false_colour).
 
-// Pipeline constants, one variant per display mode and tone map (see sky.wgsl).
+// Pipeline constants, one variant per display mode and tone map (see common/view.wgsl).
 override DISPLAY_MODE: u32 = DISPLAY_COLOUR;
 override TONE_MAP: u32 = TONE_MAP_EXPONENTIAL;
 

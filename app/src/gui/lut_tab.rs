@@ -42,6 +42,10 @@ impl LutTab {
         let table = *model.table(&s.table).unwrap_or(&first);
         s.table = table.id.to_string();
         let lanes = p.batches.len() * LANES;
+        // A lane of a larger set (an earlier scene, a restored layout) falls back to colour.
+        if s.lane.is_some_and(|l| l >= lanes) {
+            s.lane = None;
+        }
         ui.horizontal(|ui| {
             egui::ComboBox::from_label("table")
                 .selected_text(table.label)
@@ -70,9 +74,6 @@ impl LutTab {
                 })
                 .response
                 .on_hover_text("Colour combines every wavelength of the set with its matrix to sRGB; a single wavelength shows that band alone in grey.");
-            if s.lane.is_some_and(|l| l >= lanes) {
-                s.lane = None;
-            }
             ui.add(egui::Slider::new(&mut s.exposure_ev, -10.0..=10.0).suffix(" EV").text("exposure"))
                 .on_hover_text("Brightness of the table's image: each EV doubles it.");
             ui.checkbox(&mut s.normalise, "normalise")

@@ -317,15 +317,19 @@ fn sun(ui: &mut egui::Ui, s: &mut Scene) {
             longitude_deg,
         } => {
             ui.horizontal(|ui| {
-                ui.add(DragValue::new(&mut time.year).range(1900..=2100));
+                ui.add(DragValue::new(&mut time.year).range(limits::DATE_YEAR.range()));
                 ui.add(
                     DragValue::new(&mut time.month)
                         .range(1..=12)
                         .prefix("month "),
                 );
-                ui.add(DragValue::new(&mut time.day).range(1..=31).prefix("day "));
+                ui.add(
+                    DragValue::new(&mut time.day)
+                        .range(limits::DATE_DAY.range())
+                        .prefix("day "),
+                );
             });
-            ui.add(Slider::new(&mut time.hour, 0.0..=23.99).text("local time (h)"));
+            ui.add(Slider::new(&mut time.hour, limits::DATE_HOUR.range()).text("local time (h)"));
             ui.add(
                 Slider::new(&mut time.utc_offset_h, limits::DATE_UTC_OFFSET_H.range())
                     .text("UTC offset (h)"),

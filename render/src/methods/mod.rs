@@ -240,6 +240,12 @@ mod tests {
                 "{}: the sky pass comes last",
                 row.id
             );
+            // The engine recreates the view's images when the size changes.
+            assert!(
+                last.inputs.intersects(Inputs::VIEW_SIZE),
+                "{}: the sky pass reads the view size",
+                row.id
+            );
             for (i, p) in gpu.passes.iter().enumerate() {
                 for r in p.reads {
                     let earlier = gpu.passes[..i].iter().any(|q| q.writes.contains(r));

@@ -35,12 +35,13 @@ use std::f64::consts::PI;
 /// Every table of the method, in pass order.
 pub const TABLES: [TableSpec; 2] = [transmittance::TABLE, sky_texture::TABLE];
 
-/// Where the model is meant to work: from inside the atmosphere (the thesis shows views up to
-/// 80 km) with the sun up; the multiple-scattering fit was made at 10 km in daylight.
+/// Where the model is meant to work: below 100 km (the thesis shows views up to 80 km, inside
+/// its 100 km atmosphere) with the sun up; the multiple-scattering fit was made at 10 km in
+/// daylight.
 pub const DOMAIN: Domain = Domain {
     max_altitude_m: 100_000.0,
     min_sun_elevation_deg: 0.0,
-    note: "views from inside the atmosphere in daylight; L_ms was fitted at 10 km altitude with the sun above the horizon",
+    note: "views from below 100 km in daylight; L_ms was fitted at 10 km altitude with the sun above the horizon",
 };
 
 /// The fitted constants of L_ms = scale·(λ_ref/λ)⁴ / (1 + a·exp(−b·μ_s)) (thesis eq. 5.7, the

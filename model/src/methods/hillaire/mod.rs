@@ -57,14 +57,10 @@ pub use sky_view::{
 
 use super::SkyModel;
 use super::shared::{self, TableSpec, mul};
-use crate::atmosphere::Atmosphere;
-use crate::camera::{Camera, Projection};
-use crate::geometry::{altitude_along, direction_from_angles};
+use crate::geometry::altitude_along;
 use crate::phase;
-use crate::scene::Scene;
-use crate::wavelengths::{LANES, WavelengthBatch, to_linear_srgb};
+use crate::wavelengths::LANES;
 use glam::DVec3;
-use rayon::prelude::*;
 
 /// Every table of the method, in pass order.
 pub const TABLES: [TableSpec; 6] = [
@@ -184,58 +180,14 @@ pub fn build(params: &Params, vp: Viewpoint) -> Box<dyn SkyModel> {
     Box::new(Tables::compute(params, vp))
 }
 
-/// CPU render of a whole view: linear sRGB per pixel (row-major, top row first; zero where the
-/// projection shows nothing), sampled at pixel centres.
-pub fn render(scene: &Scene, projection: Projection, width: u32, height: u32) -> Vec<[f64; 3]> {
-    let atm = Atmosphere::new(&scene.atmosphere);
-    let p = Params::new(&atm, scene.render.wavelengths, scene.render.quality);
-    let camera = Camera::new(&scene.camera, atm.bottom_radius_m, projection);
-    let tables = Tables::compute(&p, viewpoint(scene, &camera));
-    render_with(&p, &tables, scene, &camera, width, height)
-}
-
-/// CPU render with tables already computed.
-pub fn render_with(
-    p: &Params,
-    tables: &Tables,
-    scene: &Scene,
-    camera: &Camera,
-    width: u32,
-    height: u32,
-) -> Vec<[f64; 3]> {
-    let a = scene.sun.angles();
-    let sun = direction_from_angles(a.elevation_deg, a.azimuth_deg);
-    let colours: Vec<WavelengthBatch> = p.batches.iter().map(|b| b.colour.clone()).collect();
-    (0..width * height)
-        .into_par_iter()
-        .map(|i| {
-            let (x, y) = (i % width, i / width);
-            match camera.ray(x as f64 + 0.5, y as f64 + 0.5, width, height) {
-                None => [0.0; 3],
-                Some(ray) => {
-                    let lanes: Vec<Lanes> = (0..p.batches.len())
-                        .map(|layer| {
-                            radiance(
-                                p,
-                                tables,
-                                layer,
-                                (ray.origin, scene.camera.altitude_m),
-                                ray.direction,
-                                sun,
-                            )
-                        })
-                        .collect();
-                    to_linear_srgb(&colours, &lanes)
-                }
-            }
-        })
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{Quality, WavelengthSet};
+    use crate::atmosphere::Atmosphere;
+    use crate::camera::{Camera, Projection};
+    use crate::geometry::direction_from_angles;
+    use crate::scene::{Quality, Scene, WavelengthSet};
+    use crate::wavelengths::to_linear_srgb;
 
     #[test]
     fn the_clear_sky_is_blue_the_ground_is_lit_and_space_is_black() {
