@@ -100,7 +100,7 @@ impl CompareTab {
 
     pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene, layout: &mut Layout) {
         let c = &mut layout.compare;
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             choice(ui, "A", &mut c.a_method, &mut c.a, "Model and wavelengths of the left image.");
             choice(ui, "B", &mut c.b_method, &mut c.b, "Model and wavelengths of the right image.");
             choice(
