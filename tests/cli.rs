@@ -489,3 +489,67 @@ fn fit_wavelengths_beats_the_published_matrix_and_writes_csv() {
     assert!(csv.starts_with('#') && csv.contains("row,lane,value"));
     assert_eq!(csv.lines().filter(|l| !l.starts_with('#')).count(), 13);
 }
+
+#[test]
+fn fit_garcia_linan_reports_before_and_after_and_writes_csv() {
+    let dir = std::env::temp_dir().join(format!("atmoscope-fitgl-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let reference = Command::new(env!("CARGO_BIN_EXE_atmoscope"))
+        .args([
+            "reference",
+            "--view",
+            "plane-noon",
+            "--size",
+            "24x16",
+            "--spp",
+            "32",
+            "--out",
+        ])
+        .arg(dir.join("plane-noon.exr"))
+        .env("ATMOSCOPE_CACHE_DIR", dir.join("cache"))
+        .output()
+        .expect("run");
+    assert!(reference.status.success(), "{}", stderr(&reference));
+    let refs = dir.to_str().unwrap();
+    let csv = dir.join("fit.csv");
+    let o = atmoscope(&[
+        "fit-garcia-linan",
+        "--refs",
+        refs,
+        "--grid",
+        "4",
+        "--max-evaluations",
+        "40",
+        "--out",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(
+        text.contains("published") && text.contains("fitted"),
+        "{text}"
+    );
+    assert!(text.contains("plane-noon"), "{text}");
+    let written = std::fs::read_to_string(&csv).expect("CSV");
+    let scale: f64 = written
+        .lines()
+        .find_map(|l| l.strip_prefix("ms_scale,"))
+        .and_then(|v| v.parse().ok())
+        .expect("ms_scale row");
+    assert!(scale > 0.0 && scale.is_finite());
+
+    // A view outside the model's domain, and an output nobody can write, are refused up front.
+    let o = atmoscope(&["fit-garcia-linan", "--refs", refs, "--views", "twilight-6"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("domain"), "{}", stderr(&o));
+    let o = atmoscope(&[
+        "fit-garcia-linan",
+        "--refs",
+        refs,
+        "--out",
+        "/no/such/dir/fit.csv",
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("does not exist"), "{}", stderr(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -14,6 +14,7 @@ pub mod geometry;
 pub mod methods;
 pub mod metrics;
 pub mod mie;
+pub mod optimize;
 pub mod ozone;
 pub mod phase;
 pub mod profiles;

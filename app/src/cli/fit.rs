@@ -148,8 +148,7 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     }
     match &args.out {
         Some(path) => {
-            std::fs::write(path, &csv)
-                .with_context(|| format!("cannot write {}", path.display()))?;
+            super::write_atomic(path, csv.as_bytes())?;
             eprintln!("wrote {}", path.display());
         }
         None => print!("{csv}"),

@@ -6,6 +6,7 @@ mod bench;
 mod bench_gpu;
 mod compare;
 mod fit;
+mod fit_garcia_linan;
 mod info;
 mod presets_cmd;
 mod probe;
@@ -53,6 +54,9 @@ pub enum Command {
     Compare(compare::CompareArgs),
     /// Refit the Spectral4 matrix against SpectralN renders over the view suite.
     FitWavelengths(fit::FitArgs),
+    /// Refit García Liñán's multiple-scattering constants against path-traced references of
+    /// the view suite; reports the error before and after.
+    FitGarciaLinan(fit_garcia_linan::FitGarciaLinanArgs),
     /// Benchmarks: run time and convergence (not part of the tests).
     Bench {
         #[command(subcommand)]
@@ -86,17 +90,21 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Render(args) => render::run(&args),
         Command::Compare(args) => compare::run(&args),
         Command::FitWavelengths(args) => fit::run(&args),
+        Command::FitGarciaLinan(args) => fit_garcia_linan::run(&args),
         Command::Bench { bench } => bench::run(&bench),
     }
 }
 
 /// Refuses wavelengths outside the visible range the model's tables cover.
 pub fn check_wavelengths(wavelengths_nm: &[f64]) -> anyhow::Result<()> {
+    use atmoscope_model::constants::{VISIBLE_MAX_NM, VISIBLE_MIN_NM};
     match wavelengths_nm
         .iter()
-        .find(|w| !(**w >= 360.0 && **w <= 830.0))
+        .find(|w| !(**w >= VISIBLE_MIN_NM && **w <= VISIBLE_MAX_NM))
     {
-        Some(w) => anyhow::bail!("--wavelengths-nm: {w} nm is outside 360 to 830 nm"),
+        Some(w) => anyhow::bail!(
+            "--wavelengths-nm: {w} nm is outside {VISIBLE_MIN_NM} to {VISIBLE_MAX_NM} nm"
+        ),
         None => Ok(()),
     }
 }
@@ -140,4 +148,39 @@ pub fn parse_methods(list: &str) -> Result<MethodList, String> {
 /// The registry id of a method, for tables and file names.
 pub fn method_id(method: atmoscope_model::scene::Method) -> &'static str {
     atmoscope_model::methods::info(method).id
+}
+
+/// Refuses an output path whose directory does not exist, before any work starts.
+pub fn check_writable(path: &std::path::Path) -> anyhow::Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => std::path::Path::new("."),
+    };
+    if !dir.is_dir() {
+        anyhow::bail!(
+            "{}: the directory {} does not exist",
+            path.display(),
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+/// Writes `bytes` to a temporary file beside `path`, then renames it into place, so that a
+/// full disk or a crash never leaves a half-written file.
+pub fn write_atomic(path: &std::path::Path, bytes: &[u8]) -> anyhow::Result<()> {
+    use anyhow::Context;
+    use std::io::Write;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => std::path::Path::new("."),
+    };
+    let mut tmp = tempfile::NamedTempFile::new_in(dir)
+        .with_context(|| format!("cannot write in {}", dir.display()))?;
+    tmp.write_all(bytes)
+        .and_then(|()| tmp.as_file().sync_all())
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    tmp.persist(path)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    Ok(())
 }

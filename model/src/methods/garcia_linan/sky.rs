@@ -4,8 +4,9 @@
 //! of `shaders/garcia_linan/sky.wgsl`.
 
 use super::sky_texture::sky_texture;
-use super::{Lanes, Tables, ground_radiance, integrate};
+use super::{Constants, Lanes, Lut, Params, Tables, ground_radiance, integrate};
 use crate::geometry::{distance_to_boundary, distance_to_ground, hits_ground};
+use crate::methods::shared::mul;
 use crate::methods::shared::sun_disk;
 use crate::methods::shared::transmittance::{transmittance, transmittance_between};
 use glam::DVec3;
@@ -13,15 +14,63 @@ use std::f64::consts::FRAC_PI_2;
 
 /// The radiance of one batch seen from `position` (m from the planet's centre, altitude `h`)
 /// along the unit direction `dir`, with the sun in direction `sun`.
-pub fn radiance(
-    tables: &Tables,
+pub fn radiance(tables: &Tables, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
+    let texture = |phi: f64, elevation: f64, _: (f64, f64, f64, f64)| {
+        sky_texture(&tables.sky_texture, layer, phi, elevation)
+    };
+    radiance_with(
+        &tables.params,
+        &tables.transmittance,
+        &tables.constants,
+        layer,
+        at,
+        dir,
+        sun,
+        texture,
+    )
+}
+
+/// The radiance with the sky texture's in-scattering integrated along the ray itself instead of
+/// looked up: the exact value the texture samples, for fitting the model's constants.
+pub fn radiance_marched(
+    p: &Params,
+    t: &Lut,
+    c: &Constants,
+    layer: usize,
+    at: (DVec3, f64),
+    dir: DVec3,
+    sun: DVec3,
+) -> Lanes {
+    let march = |_: f64, _: f64, (h, mu, mu_s, nu): (f64, f64, f64, f64)| {
+        let h = h.min(p.thickness_m());
+        let t_max = distance_to_boundary(h, mu, p.bottom_radius_m, p.top_radius_m);
+        let (l, _) = integrate(
+            p,
+            t,
+            c,
+            layer,
+            (h, mu, mu_s, nu),
+            (0.0, t_max),
+            p.steps.sky_view,
+        );
+        mul(l, p.batches[layer].solar_irradiance)
+    };
+    radiance_with(p, t, c, layer, at, dir, sun, march)
+}
+
+/// The sky pass with the in-scattering of a direction inside the atmosphere given by
+/// `inscattering(φ, elevation, (h, mu, mu_s, nu))`.
+#[allow(clippy::too_many_arguments)]
+fn radiance_with(
+    p: &Params,
+    t: &Lut,
+    c: &Constants,
     layer: usize,
     (position, h): (DVec3, f64),
     dir: DVec3,
     sun: DVec3,
+    inscattering: impl Fn(f64, f64, (f64, f64, f64, f64)) -> Lanes,
 ) -> Lanes {
-    let p = &tables.params;
-    let t = &tables.transmittance;
     let big_r = p.bottom_radius_m;
     let top = p.top_radius_m;
     let thickness = p.thickness_m();
@@ -37,7 +86,7 @@ pub fn radiance(
         let cos_phi = if l > 1e-12 { dir_t.dot(sun_t) / l } else { 1.0 };
         let phi = cos_phi.clamp(-1.0, 1.0).acos();
         let elevation = FRAC_PI_2 - mu.clamp(-1.0, 1.0).acos();
-        let s = sky_texture(&tables.sky_texture, layer, phi, elevation);
+        let s = inscattering(phi, elevation, (h, mu, mu_s, nu));
         if hits_ground(h, mu, big_r) {
             let d = distance_to_ground(h, mu, big_r);
             let mu_s_g = ((r * mu_s + d * nu) / big_r).clamp(-1.0, 1.0);
@@ -60,7 +109,7 @@ pub fn radiance(
         let (s, tr) = integrate(
             p,
             t,
-            &tables.constants,
+            c,
             layer,
             (thickness, mu_e, mu_s_e, nu),
             (0.0, t_max),
@@ -73,5 +122,46 @@ pub fn radiance(
             e.map(|e| e * disk)
         };
         std::array::from_fn(|i| s[i] * e[i] + tr[i] * behind[i])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::atmosphere::Atmosphere;
+    use crate::camera::{Camera, Projection};
+    use crate::geometry::direction_from_angles;
+    use crate::methods::shared::viewpoint;
+    use crate::scene::{Quality, Scene, WavelengthSet};
+
+    #[test]
+    fn the_sky_texture_agrees_with_the_march_it_samples() {
+        let scene = Scene::default();
+        let atm = Atmosphere::new(&scene.atmosphere);
+        let p = Params::new(&atm, WavelengthSet::Spectral4, Quality::Low);
+        let camera = Camera::new(&scene.camera, atm.bottom_radius_m, Projection::Perspective);
+        let tables = Tables::compute(&p, Constants::published(), viewpoint(&scene, &camera));
+        let a = scene.sun.angles();
+        let sun = direction_from_angles(a.elevation_deg, a.azimuth_deg);
+        let at = (camera.position, scene.camera.altitude_m);
+        for (elevation, azimuth) in [(80.0, 0.0), (30.0, 90.0), (5.0, 200.0), (-20.0, 45.0)] {
+            let dir = camera.local_to_world(direction_from_angles(elevation, azimuth));
+            let looked_up = radiance(&tables, 0, at, dir, sun);
+            let marched = radiance_marched(
+                &p,
+                &tables.transmittance,
+                &tables.constants,
+                0,
+                at,
+                dir,
+                sun,
+            );
+            for (l, m) in looked_up.iter().zip(&marched) {
+                assert!(
+                    (l / m - 1.0).abs() < 0.02,
+                    "{elevation}° {azimuth}°: {l} vs {m}"
+                );
+            }
+        }
     }
 }
