@@ -44,3 +44,21 @@ fn sun_transmittance(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
     return transmittance(layer, h, mu_s) * visible;
 }
 
+
+// Transmittance between the point at altitude h and the point at distance d along (h, mu), from
+// the table; along the reversed ray when it hits the ground. Twin of
+// shared::transmittance::transmittance_between.
+fn transmittance_between(layer: u32, h: f32, mu: f32, d: f32, ground: bool) -> vec4<f32> {
+    let at = altitude_along(h, mu, d);
+    let mu_d = clamp(((bottom_radius() + h) * mu + d) / at.y, -1.0, 1.0);
+    var a: vec4<f32>;
+    var b: vec4<f32>;
+    if ground {
+        a = transmittance(layer, at.x, -mu_d);
+        b = transmittance(layer, h, -mu);
+    } else {
+        a = transmittance(layer, h, mu);
+        b = transmittance(layer, at.x, mu_d);
+    }
+    return min(a / max(b, vec4<f32>(1e-30)), vec4<f32>(1.0));
+}

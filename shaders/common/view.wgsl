@@ -60,3 +60,31 @@ fn sun_disk(dir: vec3<f32>, sun: vec3<f32>) -> f32 {
     return limb / (4.0 * PI * sin(half_angle) * sin(half_angle));
 }
 
+
+// (φ, θ): azimuth from the sun in [0, π] and zenith angle of `dir` at a point whose vertical is
+// `up`; twin of model::methods::shared::sun_relative_angles.
+fn sun_relative_angles(up: vec3<f32>, dir: vec3<f32>, sun: vec3<f32>) -> vec2<f32> {
+    let mu = dot(dir, up);
+    let dir_t = dir - up * mu;
+    let sun_t = sun - up * dot(sun, up);
+    let l = length(dir_t) * length(sun_t);
+    var cos_phi = 1.0;
+    if l > 1e-12 {
+        cos_phi = dot(dir_t, sun_t) / l;
+    }
+    return vec2<f32>(acos(clamp(cos_phi, -1.0, 1.0)), acos(clamp(mu, -1.0, 1.0)));
+}
+
+// Where the ray (h, mu) from above the atmosphere enters it: (mu, mu_s) at the entry point and
+// z = 1, or z = 0 when it misses; twin of model::methods::shared::entry_into_atmosphere.
+fn entry_into_atmosphere(h: f32, mu: f32, mu_s: f32, nu: f32) -> vec3<f32> {
+    let r = bottom_radius() + h;
+    let top = top_radius();
+    let rm = r * mu;
+    let disc = rm * rm - (h - thickness()) * (r + top);
+    if mu >= 0.0 || disc < 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let t_entry = -rm - sqrt(disc);
+    return vec3<f32>(clamp((rm + t_entry) / top, -1.0, 1.0), clamp((r * mu_s + t_entry * nu) / top, -1.0, 1.0), 1.0);
+}

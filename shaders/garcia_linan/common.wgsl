@@ -27,41 +27,9 @@ fn ground_bounce(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
     return k * albedo * t_ground_sun * t_vertical;
 }
 
-struct Inscattering {
-    // per unit solar irradiance, sr⁻¹
-    radiance: vec4<f32>,
-    transmittance: vec4<f32>,
-}
-
-// (h, mu, mu_s, nu) start the ray; `steps` uniform segments over [t0, t1], midpoint samples.
-fn integrate(layer: u32, start: vec4<f32>, t0: f32, t1: f32, steps: u32) -> Inscattering {
-    let h = start.x;
-    let mu = start.y;
-    let mu_s = start.z;
-    let nu = start.w;
-    let r = bottom_radius() + h;
-    let b = batches[layer];
-    let phase_r = rayleigh_phase(nu, b.rayleigh_depolarisation);
-    let phase_a = aerosol_phase(nu, b.aerosol_g);
-    var result: Inscattering;
-    result.radiance = vec4<f32>(0.0);
-    result.transmittance = vec4<f32>(1.0);
-    for (var s = 0u; s < steps; s++) {
-        let seg = march_segment(SPACING_UNIFORM, t0, t1, s, steps);
-        let dt = seg.y - seg.x;
-        let ts = 0.5 * (seg.x + seg.y);
-        let at = altitude_along(h, mu, ts);
-        let mu_s_t = clamp((r * mu_s + ts * nu) / at.y, -1.0, 1.0);
-        let m = medium(b, at.x);
-        let sun_t = sun_transmittance(layer, at.x, mu_s_t);
-        let psi = ground_bounce(layer, at.x, mu_s_t) + multiple_scattering_fit(layer, mu_s_t);
-        let weight = result.transmittance * segment_weight(m.extinction, dt);
-        let source = m.rayleigh_scattering * (phase_r * sun_t + psi)
-            + m.aerosol_scattering * (phase_a * sun_t + psi);
-        result.radiance += weight * source;
-        result.transmittance *= exp(-m.extinction * dt);
-    }
-    return result;
+// The higher orders the shared march (common/march.wgsl) adds: L_g + L_ms.
+fn psi(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
+    return ground_bounce(layer, h, mu_s) + multiple_scattering_fit(layer, mu_s);
 }
 
 // ---- sky texture: azimuth from the sun (linear), elevation (quadratic towards the horizontal) ----

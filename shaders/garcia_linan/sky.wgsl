@@ -23,23 +23,14 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     let nu = dot(dir, sun);
     let disk = sun_disk(dir, sun);
     if !ABOVE_ATMOSPHERE {
-        let dir_t = dir - up * mu;
-        let sun_t = sun - up * mu_s;
-        let l = length(dir_t) * length(sun_t);
-        var cos_phi = 1.0;
-        if l > 1e-12 {
-            cos_phi = dot(dir_t, sun_t) / l;
-        }
-        let phi = acos(clamp(cos_phi, -1.0, 1.0));
-        let elevation = 0.5 * PI - acos(clamp(mu, -1.0, 1.0));
+        let angles = sun_relative_angles(up, dir, sun);
+        let phi = angles.x;
+        let elevation = 0.5 * PI - angles.y;
         let s = sky_texture(layer, phi, elevation);
         if hits_ground(h, mu) {
             let d = distance_to_ground(h, mu);
             let mu_s_g = clamp((r * mu_s + d * nu) / big_r, -1.0, 1.0);
-            let at = altitude_along(h, mu, d);
-            let mu_d = clamp((r * mu + d) / at.y, -1.0, 1.0);
-            let tr = min(transmittance(layer, at.x, -mu_d) / max(transmittance(layer, h, -mu), vec4<f32>(1e-30)),
-                vec4<f32>(1.0));
+            let tr = transmittance_between(layer, h, mu, d, true);
             return s + tr * ground_radiance(layer, mu_s_g);
         }
         if disk > 0.0 {
@@ -47,16 +38,15 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
         }
         return s;
     }
-    let rm = r * mu;
-    let disc = rm * rm - (h - thickness()) * (r + top);
-    if mu >= 0.0 || disc < 0.0 {
+    let entry = entry_into_atmosphere(h, mu, mu_s, nu);
+    if entry.z == 0.0 {
         return e * disk;
     }
-    let t_entry = -rm - sqrt(disc);
-    let mu_e = clamp((rm + t_entry) / top, -1.0, 1.0);
-    let mu_s_e = clamp((r * mu_s + t_entry * nu) / top, -1.0, 1.0);
+    let mu_e = entry.x;
+    let mu_s_e = entry.y;
     let t_max = distance_to_boundary(thickness(), mu_e);
-    let s = integrate(layer, vec4<f32>(thickness(), mu_e, mu_s_e, nu), 0.0, t_max, globals.steps_b.y);
+    let s = integrate_inscattering(layer, vec4<f32>(thickness(), mu_e, mu_s_e, nu), 0.0, t_max,
+        globals.steps_b.y, SPACING_UNIFORM);
     var behind = e * disk;
     if hits_ground(thickness(), mu_e) {
         let mu_s_g = clamp((top * mu_s_e + t_max * nu) / big_r, -1.0, 1.0);

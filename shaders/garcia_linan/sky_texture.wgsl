@@ -13,7 +13,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let mu = omega.z;
     let nu = dot(omega, local_sun(mu_s));
     let t_max = distance_to_boundary(h, mu);
-    let l = integrate(id.z, vec4<f32>(h, mu, mu_s, nu), 0.0, t_max, globals.steps_a.w);
+    let l = integrate_inscattering(id.z, vec4<f32>(h, mu, mu_s, nu), 0.0, t_max, globals.steps_a.w,
+        SPACING_UNIFORM);
     let i = (id.z * SKY_TEXTURE_SIZE.y + id.y) * SKY_TEXTURE_SIZE.x + id.x;
     sky_texture_lut[i] = l.radiance * batches[id.z].solar_irradiance;
 }

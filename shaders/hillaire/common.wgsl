@@ -107,49 +107,8 @@ fn aerial_perspective_slice_from_distance(d: f32) -> f32 {
     return sqrt(max(d / AERIAL_PERSPECTIVE_MAX_DISTANCE_M, 0.0)) * f32(AERIAL_PERSPECTIVE_SIZE.z) - 1.0;
 }
 
-// ---- in-scattering along a ray ----
+// ---- the higher orders the shared march (common/march.wgsl) adds: Ψ_ms (paper eq. 11) ----
 
-struct Inscattering {
-    // per unit solar irradiance, sr⁻¹
-    radiance: vec4<f32>,
-    transmittance: vec4<f32>,
+fn psi(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
+    return multiple_scattering(layer, h, mu_s);
 }
-
-// (h, mu, mu_s, nu) start the ray; the march covers [t0, t1].
-fn integrate_inscattering(
-    layer: u32,
-    start: vec4<f32>,
-    t0: f32,
-    t1: f32,
-    steps: u32,
-    spacing: u32,
-) -> Inscattering {
-    let h = start.x;
-    let mu = start.y;
-    let mu_s = start.z;
-    let nu = start.w;
-    let r = bottom_radius() + h;
-    let b = batches[layer];
-    let phase_r = rayleigh_phase(nu, b.rayleigh_depolarisation);
-    let phase_a = aerosol_phase(nu, b.aerosol_g);
-    var result: Inscattering;
-    result.radiance = vec4<f32>(0.0);
-    result.transmittance = vec4<f32>(1.0);
-    for (var s = 0u; s < steps; s++) {
-        let seg = march_segment(spacing, t0, t1, s, steps);
-        let dt = seg.y - seg.x;
-        let ts = 0.5 * (seg.x + seg.y);
-        let at = altitude_along(h, mu, ts);
-        let mu_s_t = clamp((r * mu_s + ts * nu) / at.y, -1.0, 1.0);
-        let m = medium(b, at.x);
-        let sun_t = sun_transmittance(layer, at.x, mu_s_t);
-        let psi = multiple_scattering(layer, at.x, mu_s_t);
-        let weight = result.transmittance * segment_weight(m.extinction, dt);
-        let source = (m.rayleigh_scattering * phase_r + m.aerosol_scattering * phase_a) * sun_t
-            + (m.rayleigh_scattering + m.aerosol_scattering) * psi;
-        result.radiance += weight * source;
-        result.transmittance *= exp(-m.extinction * dt);
-    }
-    return result;
-}
-

@@ -54,15 +54,9 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     let nu = dot(dir, sun);
     let disk = sun_disk(dir, sun);
     if !ABOVE_ATMOSPHERE {
-        let dir_t = dir - up * mu;
-        let sun_t = sun - up * mu_s;
-        let l = length(dir_t) * length(sun_t);
-        var cos_phi = 1.0;
-        if l > 1e-12 {
-            cos_phi = dot(dir_t, sun_t) / l;
-        }
-        let phi = acos(clamp(cos_phi, -1.0, 1.0));
-        let theta = acos(clamp(mu, -1.0, 1.0));
+        let angles = sun_relative_angles(up, dir, sun);
+        let phi = angles.x;
+        let theta = angles.y;
         if hits_ground(h, mu) {
             let d = distance_to_ground(h, mu);
             let mu_s_g = clamp((r * mu_s + d * nu) / big_r, -1.0, 1.0);
@@ -88,14 +82,12 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
         return s;
     }
     // Above the atmosphere: march from where the ray enters it.
-    let rm = r * mu;
-    let disc = rm * rm - (h - thickness()) * (r + top);
-    if mu >= 0.0 || disc < 0.0 {
+    let entry = entry_into_atmosphere(h, mu, mu_s, nu);
+    if entry.z == 0.0 {
         return e * disk;
     }
-    let t_entry = -rm - sqrt(disc);
-    let mu_e = clamp((rm + t_entry) / top, -1.0, 1.0);
-    let mu_s_e = clamp((r * mu_s + t_entry * nu) / top, -1.0, 1.0);
+    let mu_e = entry.x;
+    let mu_s_e = entry.y;
     let ground = hits_ground(thickness(), mu_e);
     var t_max: f32;
     var spacing = SPACING_UNIFORM;

@@ -10,7 +10,10 @@ use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::GarciaLinan,
-    common: &[shader!("garcia_linan/common.wgsl")],
+    common: &[
+        shader!("common/march.wgsl"),
+        shader!("garcia_linan/common.wgsl"),
+    ],
     constants: || Constants::published().uniform(),
     passes: &[
         TRANSMITTANCE_PASS,

@@ -12,7 +12,10 @@ const AP_TRANSMITTANCE: &str = "aerial-perspective-transmittance";
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Hillaire,
-    common: &[shader!("hillaire/common.wgsl")],
+    common: &[
+        shader!("common/march.wgsl"),
+        shader!("hillaire/common.wgsl"),
+    ],
     constants: || [0.0; 4],
     passes: &[
         TRANSMITTANCE_PASS,

@@ -20,15 +20,12 @@
 pub mod sky;
 pub mod sky_texture;
 
+use super::shared::march::march_inscattering;
 use super::shared::transmittance::{self, compute_transmittance_lut, sun_transmittance};
-use super::shared::{
-    Lanes, Lut, Params, Spacing, TableSpec, Viewpoint, add, mul, scale, segment_weight,
-};
+use super::shared::{Lanes, Lut, Params, Spacing, TableSpec, Viewpoint, add, scale};
 use super::{Domain, SkyModel};
-use crate::geometry::{altitude_along, rho_squared};
-use crate::phase;
+use crate::geometry::rho_squared;
 use crate::table::tables;
-use crate::wavelengths::LANES;
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -127,48 +124,26 @@ pub fn ground_bounce(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -> La
 }
 
 /// In-scattered radiance per unit solar irradiance and transmittance along (h, mu) over
-/// [t_start, t_end]: `steps` uniform segments with midpoint samples, the single-scattering
-/// source plus (L_g + L_ms) times the scattering coefficient (Hillaire's energy-conserving
-/// segment weight, as the thesis uses).
+/// [t_start, t_end]: `steps` uniform segments with midpoint samples, the higher orders being
+/// (L_g + L_ms) times the scattering coefficient (Hillaire's energy-conserving segment weight,
+/// as the thesis uses).
 pub fn integrate(
     p: &Params,
     t: &Lut,
     c: &Constants,
     layer: usize,
-    (h, mu, mu_s, nu): (f64, f64, f64, f64),
-    (t_start, t_end): (f64, f64),
+    ray: (f64, f64, f64, f64),
+    segment: (f64, f64),
     steps: u32,
 ) -> (Lanes, Lanes) {
-    let big_r = p.bottom_radius_m;
-    let r = big_r + h;
-    let b = &p.batches[layer];
-    let rayleigh_phase = b
-        .rayleigh_depolarisation
-        .map(|rho| phase::rayleigh(nu, rho));
-    let aerosol_phase = b.aerosol_g.map(|g| p.aerosol_phase(nu, g));
-    let mut inscattered = [0.0; LANES];
-    let mut throughput = [1.0; LANES];
-    for s in 0..steps {
-        let (t0, t1) = Spacing::Uniform.segment(t_start, t_end, s, steps);
-        let dt = t1 - t0;
-        let ts = 0.5 * (t0 + t1);
-        let (h_t, r_t) = altitude_along(h, mu, ts, big_r);
-        let mu_s_t = ((r * mu_s + ts * nu) / r_t).clamp(-1.0, 1.0);
-        let m = p.medium(layer, h_t);
-        let sun_t = sun_transmittance(p, t, layer, h_t, mu_s_t);
-        let psi = add(
+    let wavelengths_nm = &p.batches[layer].colour.wavelengths_nm;
+    let psi = |h_t, mu_s_t| {
+        add(
             ground_bounce(p, t, layer, h_t, mu_s_t),
-            multiple_scattering_fit(c, &b.colour.wavelengths_nm, mu_s_t),
-        );
-        let weight = mul(throughput, segment_weight(m.extinction, dt));
-        for i in 0..LANES {
-            let source = m.rayleigh_scattering[i] * (rayleigh_phase[i] * sun_t[i] + psi[i])
-                + m.aerosol_scattering[i] * (aerosol_phase[i] * sun_t[i] + psi[i]);
-            inscattered[i] += weight[i] * source;
-            throughput[i] *= (-m.extinction[i] * dt).exp();
-        }
-    }
-    (inscattered, throughput)
+            multiple_scattering_fit(c, wavelengths_nm, mu_s_t),
+        )
+    };
+    march_inscattering(p, t, layer, ray, segment, steps, Spacing::Uniform, psi)
 }
 
 /// Every table of the method for one atmosphere and viewpoint, with the constants used.

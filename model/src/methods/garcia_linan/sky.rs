@@ -6,9 +6,9 @@
 use super::sky_texture::sky_texture;
 use super::{Constants, Lanes, Lut, Params, Tables, ground_radiance, integrate};
 use crate::geometry::{distance_to_boundary, distance_to_ground, hits_ground};
-use crate::methods::shared::mul;
 use crate::methods::shared::sun_disk;
 use crate::methods::shared::transmittance::{transmittance, transmittance_between};
+use crate::methods::shared::{entry_into_atmosphere, mul, sun_relative_angles};
 use glam::DVec3;
 use std::f64::consts::FRAC_PI_2;
 
@@ -80,12 +80,8 @@ fn radiance_with(
     let (mu, mu_s, nu) = (dir.dot(up), sun.dot(up), dir.dot(sun));
     let disk = sun_disk(dir, sun);
     if h <= thickness {
-        let dir_t = dir - up * mu;
-        let sun_t = sun - up * mu_s;
-        let l = dir_t.length() * sun_t.length();
-        let cos_phi = if l > 1e-12 { dir_t.dot(sun_t) / l } else { 1.0 };
-        let phi = cos_phi.clamp(-1.0, 1.0).acos();
-        let elevation = FRAC_PI_2 - mu.clamp(-1.0, 1.0).acos();
+        let (phi, theta) = sun_relative_angles(up, dir, sun);
+        let elevation = FRAC_PI_2 - theta;
         let s = inscattering(phi, elevation, (h, mu, mu_s, nu));
         if hits_ground(h, mu, big_r) {
             let d = distance_to_ground(h, mu, big_r);
@@ -98,13 +94,9 @@ fn radiance_with(
             std::array::from_fn(|i| s[i] + tr[i] * e[i] * disk)
         }
     } else {
-        let disc = r * r * mu * mu - (h - thickness) * (r + top);
-        if mu >= 0.0 || disc < 0.0 {
+        let Some((mu_e, mu_s_e)) = entry_into_atmosphere(p, h, mu, mu_s, nu) else {
             return e.map(|e| e * disk);
-        }
-        let t_entry = -r * mu - disc.sqrt();
-        let mu_e = ((r * mu + t_entry) / top).clamp(-1.0, 1.0);
-        let mu_s_e = ((r * mu_s + t_entry * nu) / top).clamp(-1.0, 1.0);
+        };
         let t_max = distance_to_boundary(thickness, mu_e, big_r, top);
         let (s, tr) = integrate(
             p,

@@ -56,10 +56,7 @@ pub use sky_view::{
 };
 
 use super::SkyModel;
-use super::shared::{self, TableSpec, mul};
-use crate::geometry::altitude_along;
-use crate::phase;
-use crate::wavelengths::LANES;
+use super::shared::{self, TableSpec};
 use glam::DVec3;
 
 /// Every table of the method, in pass order.
@@ -73,47 +70,20 @@ pub const TABLES: [TableSpec; 6] = [
 ];
 
 /// In-scattered radiance (per unit solar irradiance) and transmittance along the ray from
-/// (h, mu) over [0, t_max], with the sun at zenith cosine `mu_s` and view–sun cosine `nu`.
+/// (h, mu) over [t_start, t_end], the higher orders from the Ψ_ms table `ms` (paper eq. 11).
 #[allow(clippy::too_many_arguments)]
 pub fn integrate_inscattering(
     p: &Params,
     t_lut: &Lut,
     ms: &Lut,
     layer: usize,
-    (h, mu, mu_s, nu): (f64, f64, f64, f64),
-    (t_start, t_end): (f64, f64),
+    ray: (f64, f64, f64, f64),
+    segment: (f64, f64),
     steps: u32,
     spacing: Spacing,
 ) -> (Lanes, Lanes) {
-    let big_r = p.bottom_radius_m;
-    let r = big_r + h;
-    let b = &p.batches[layer];
-    let rayleigh_phase = b
-        .rayleigh_depolarisation
-        .map(|rho| phase::rayleigh(nu, rho));
-    let aerosol_phase = b.aerosol_g.map(|g| p.aerosol_phase(nu, g));
-    let mut inscattered = [0.0; LANES];
-    let mut throughput = [1.0; LANES];
-    for s in 0..steps {
-        let (t0, t1) = spacing.segment(t_start, t_end, s, steps);
-        let dt = t1 - t0;
-        let ts = 0.5 * (t0 + t1);
-        let (h_t, r_t) = altitude_along(h, mu, ts, big_r);
-        let mu_s_t = ((r * mu_s + ts * nu) / r_t).clamp(-1.0, 1.0);
-        let m = p.medium(layer, h_t);
-        let sun_t = sun_transmittance(p, t_lut, layer, h_t, mu_s_t);
-        let psi = multiple_scattering(p, ms, layer, h_t, mu_s_t);
-        let weight = mul(throughput, segment_weight(m.extinction, dt));
-        for i in 0..LANES {
-            let source = (m.rayleigh_scattering[i] * rayleigh_phase[i]
-                + m.aerosol_scattering[i] * aerosol_phase[i])
-                * sun_t[i]
-                + (m.rayleigh_scattering[i] + m.aerosol_scattering[i]) * psi[i];
-            inscattered[i] += weight[i] * source;
-            throughput[i] *= (-m.extinction[i] * dt).exp();
-        }
-    }
-    (inscattered, throughput)
+    let psi = |h_t, mu_s_t| multiple_scattering(p, ms, layer, h_t, mu_s_t);
+    shared::march::march_inscattering(p, t_lut, layer, ray, segment, steps, spacing, psi)
 }
 
 // ---- the view ----

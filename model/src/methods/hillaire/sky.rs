@@ -9,7 +9,7 @@ use super::{
     transmittance,
 };
 use crate::geometry::{distance_to_ground, distance_to_top, hits_ground};
-use crate::methods::shared::{add, mul};
+use crate::methods::shared::{add, entry_into_atmosphere, mul, sun_relative_angles};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -43,12 +43,7 @@ pub fn radiance(
     let (mu, mu_s, nu) = (dir.dot(up), sun.dot(up), dir.dot(sun));
     let disk = sun_disk(dir, sun);
     if h <= thickness {
-        let dir_t = dir - up * mu;
-        let sun_t = sun - up * mu_s;
-        let l = dir_t.length() * sun_t.length();
-        let cos_phi = if l > 1e-12 { dir_t.dot(sun_t) / l } else { 1.0 };
-        let phi = cos_phi.clamp(-1.0, 1.0).acos();
-        let theta = mu.clamp(-1.0, 1.0).acos();
+        let (phi, theta) = sun_relative_angles(up, dir, sun);
         if hits_ground(h, mu, big_r) {
             let d = distance_to_ground(h, mu, big_r);
             let mu_s_g = ((r * mu_s + d * nu) / big_r).clamp(-1.0, 1.0);
@@ -82,13 +77,9 @@ pub fn radiance(
         }
     } else {
         // Above the atmosphere: march from where the ray enters it.
-        let disc = r * r * mu * mu - (h - thickness) * (r + top);
-        if mu >= 0.0 || disc < 0.0 {
+        let Some((mu_e, mu_s_e)) = entry_into_atmosphere(p, h, mu, mu_s, nu) else {
             return e.map(|e| e * disk);
-        }
-        let t_entry = -r * mu - disc.sqrt();
-        let mu_e = ((r * mu + t_entry) / top).clamp(-1.0, 1.0);
-        let mu_s_e = ((r * mu_s + t_entry * nu) / top).clamp(-1.0, 1.0);
+        };
         let ground = hits_ground(thickness, mu_e, big_r);
         let t_max = if ground {
             distance_to_ground(thickness, mu_e, big_r)

@@ -1,7 +1,12 @@
-//! How ray marches place their samples and weigh their segments; WGSL twins in
-//! `shaders/common/geometry.wgsl`.
+//! How ray marches place their samples and weigh their segments, and the in-scattering march
+//! every table-based model shares; WGSL twins in `shaders/common/geometry.wgsl` and
+//! `shaders/common/march.wgsl`.
 
-use super::Lanes;
+use super::transmittance::sun_transmittance;
+use super::{Lanes, Lut, Params, mul};
+use crate::geometry::altitude_along;
+use crate::phase;
+use crate::wavelengths::LANES;
 
 /// Optical thickness below which a segment's in-scattering weight uses its series expansion.
 pub const SMALL_OPTICAL_THICKNESS: f64 = 1e-4;
@@ -42,4 +47,48 @@ impl Spacing {
         };
         (at(i as f64), at(i as f64 + 1.0))
     }
+}
+
+/// In-scattered radiance (per unit solar irradiance) and transmittance along the ray from
+/// (h, mu) over [t_start, t_end], with the sun at zenith cosine `mu_s` and view–sun cosine `nu`:
+/// midpoint samples, single scattering through the transmittance table `t`, plus the model's
+/// isotropic higher-order term `psi(h, mu_s)` (sr⁻¹) times the local scattering coefficient.
+#[allow(clippy::too_many_arguments)]
+pub fn march_inscattering(
+    p: &Params,
+    t: &Lut,
+    layer: usize,
+    (h, mu, mu_s, nu): (f64, f64, f64, f64),
+    (t_start, t_end): (f64, f64),
+    steps: u32,
+    spacing: Spacing,
+    psi: impl Fn(f64, f64) -> Lanes,
+) -> (Lanes, Lanes) {
+    let big_r = p.bottom_radius_m;
+    let r = big_r + h;
+    let b = &p.batches[layer];
+    let rayleigh_phase = b
+        .rayleigh_depolarisation
+        .map(|rho| phase::rayleigh(nu, rho));
+    let aerosol_phase = b.aerosol_g.map(|g| p.aerosol_phase(nu, g));
+    let mut inscattered = [0.0; LANES];
+    let mut throughput = [1.0; LANES];
+    for s in 0..steps {
+        let (t0, t1) = spacing.segment(t_start, t_end, s, steps);
+        let dt = t1 - t0;
+        let ts = 0.5 * (t0 + t1);
+        let (h_t, r_t) = altitude_along(h, mu, ts, big_r);
+        let mu_s_t = ((r * mu_s + ts * nu) / r_t).clamp(-1.0, 1.0);
+        let m = p.medium(layer, h_t);
+        let sun_t = sun_transmittance(p, t, layer, h_t, mu_s_t);
+        let psi = psi(h_t, mu_s_t);
+        let weight = mul(throughput, segment_weight(m.extinction, dt));
+        for i in 0..LANES {
+            let source = m.rayleigh_scattering[i] * (rayleigh_phase[i] * sun_t[i] + psi[i])
+                + m.aerosol_scattering[i] * (aerosol_phase[i] * sun_t[i] + psi[i]);
+            inscattered[i] += weight[i] * source;
+            throughput[i] *= (-m.extinction[i] * dt).exp();
+        }
+    }
+    (inscattered, throughput)
 }

@@ -50,3 +50,37 @@ pub fn direction_from_phi_theta(phi: f64, theta: f64) -> DVec3 {
         theta.cos(),
     )
 }
+
+/// Azimuth from the sun φ ∈ [0, π] and zenith angle θ (rad) of the unit direction `dir` seen
+/// from a point whose local vertical is `up`, with the sun in the unit direction `sun`: the
+/// coordinates of the view tables.
+pub fn sun_relative_angles(up: DVec3, dir: DVec3, sun: DVec3) -> (f64, f64) {
+    let (mu, mu_s) = (dir.dot(up), sun.dot(up));
+    let dir_t = dir - up * mu;
+    let sun_t = sun - up * mu_s;
+    let l = dir_t.length() * sun_t.length();
+    let cos_phi = if l > 1e-12 { dir_t.dot(sun_t) / l } else { 1.0 };
+    (cos_phi.clamp(-1.0, 1.0).acos(), mu.clamp(-1.0, 1.0).acos())
+}
+
+/// Where the ray (h, mu) from above the atmosphere enters it: the zenith cosines of the ray and
+/// of the sun (`mu_s`, view–sun cosine `nu`) at the entry point on the top sphere, or None
+/// when the ray misses the atmosphere.
+pub fn entry_into_atmosphere(
+    p: &Params,
+    h: f64,
+    mu: f64,
+    mu_s: f64,
+    nu: f64,
+) -> Option<(f64, f64)> {
+    let (r, top) = (p.bottom_radius_m + h, p.top_radius_m);
+    let disc = r * r * mu * mu - (h - p.thickness_m()) * (r + top);
+    if mu >= 0.0 || disc < 0.0 {
+        return None;
+    }
+    let t_entry = -r * mu - disc.sqrt();
+    Some((
+        ((r * mu + t_entry) / top).clamp(-1.0, 1.0),
+        ((r * mu_s + t_entry * nu) / top).clamp(-1.0, 1.0),
+    ))
+}

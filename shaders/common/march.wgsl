@@ -1,0 +1,50 @@
+// The in-scattering march every table-based model shares; twin of
+// model::methods::shared::march::march_inscattering. Each model's common file defines
+// psi(layer, h, mu_s): its isotropic higher-order term per unit solar irradiance (sr⁻¹), which
+// the march multiplies by the local scattering coefficient. Included by the models' passes,
+// after common/, through their GpuMethod::common list.
+
+struct Inscattering {
+    // per unit solar irradiance, sr⁻¹
+    radiance: vec4<f32>,
+    transmittance: vec4<f32>,
+}
+
+// (h, mu, mu_s, nu) start the ray; the march covers [t0, t1].
+fn integrate_inscattering(
+    layer: u32,
+    start: vec4<f32>,
+    t0: f32,
+    t1: f32,
+    steps: u32,
+    spacing: u32,
+) -> Inscattering {
+    let h = start.x;
+    let mu = start.y;
+    let mu_s = start.z;
+    let nu = start.w;
+    let r = bottom_radius() + h;
+    let b = batches[layer];
+    let phase_r = rayleigh_phase(nu, b.rayleigh_depolarisation);
+    let phase_a = aerosol_phase(nu, b.aerosol_g);
+    var result: Inscattering;
+    result.radiance = vec4<f32>(0.0);
+    result.transmittance = vec4<f32>(1.0);
+    for (var s = 0u; s < steps; s++) {
+        let seg = march_segment(spacing, t0, t1, s, steps);
+        let dt = seg.y - seg.x;
+        let ts = 0.5 * (seg.x + seg.y);
+        let at = altitude_along(h, mu, ts);
+        let mu_s_t = clamp((r * mu_s + ts * nu) / at.y, -1.0, 1.0);
+        let m = medium(b, at.x);
+        let sun_t = sun_transmittance(layer, at.x, mu_s_t);
+        let higher = psi(layer, at.x, mu_s_t);
+        let weight = result.transmittance * segment_weight(m.extinction, dt);
+        let source = m.rayleigh_scattering * (phase_r * sun_t + higher)
+            + m.aerosol_scattering * (phase_a * sun_t + higher);
+        result.radiance += weight * source;
+        result.transmittance *= exp(-m.extinction * dt);
+    }
+    return result;
+}
+
