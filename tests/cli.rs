@@ -281,6 +281,9 @@ fn probe_runs_every_real_time_model_within_a_bound_of_the_path_tracer() {
         // underestimates multiple scattering at the ground (measured: 25–32 % low).
         let bound = match model.id {
             "hillaire" => 0.15,
+            // Bruneton at Medium quality with 4 orders: 5–13 % low (orders ≥ 5 and the
+            // coarser sphere quadrature of Medium; High is within 3 % of 4 path-traced orders).
+            "bruneton" => 0.2,
             "garcia-linan" => 0.4,
             other => panic!("state the bound of {other} here"),
         };

@@ -261,6 +261,7 @@ impl Default for CameraSettings {
 pub enum Method {
     #[default]
     Hillaire,
+    Bruneton,
     GarciaLinan,
     PathTracer,
 }
@@ -291,12 +292,28 @@ pub enum Quality {
     High,
 }
 
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct RenderSettings {
     pub method: Method,
     pub wavelengths: WavelengthSet,
     pub quality: Quality,
+    /// Scattering orders of the models that gather them one by one (Bruneton, Elek), 1–10.
+    pub scattering_orders: u32,
+}
+
+/// Scattering orders by default (Bruneton 2017's).
+pub const DEFAULT_SCATTERING_ORDERS: u32 = 4;
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            method: Method::default(),
+            wavelengths: WavelengthSet::default(),
+            quality: Quality::default(),
+            scattering_orders: DEFAULT_SCATTERING_ORDERS,
+        }
+    }
 }
 
 /// Tone mapping from linear radiance to display.
@@ -559,6 +576,12 @@ pub mod limits {
         max: 20.0,
         unit: " EV",
     };
+    /// `render.scattering_orders`.
+    pub const SCATTERING_ORDERS: Limit = Limit {
+        min: 1.0,
+        max: 10.0,
+        unit: "",
+    };
 }
 
 struct Checker {
@@ -715,6 +738,11 @@ impl Scene {
                 );
             }
         }
+        c.limit(
+            "render.scattering_orders",
+            f64::from(self.render.scattering_orders),
+            limits::SCATTERING_ORDERS,
+        );
         c.limit(
             "display.exposure_ev",
             self.display.exposure_ev,

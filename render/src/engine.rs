@@ -10,7 +10,7 @@
 //! display pass, an unchanged frame runs nothing.
 
 use crate::DisplayMode;
-use crate::methods::{Constant, Dispatch, GpuMethod, gpu_method};
+use crate::methods::{Constant, Dispatch, GpuMethod, PassSpec, Repeat, gpu_method};
 use crate::passes::{Pipelines, TableBuffers};
 use crate::readback::{ReadbackError, read_buffer_f32x4, read_texture, read_texture_f32x4};
 use crate::uniforms::{self, FrameInputs, Globals};
@@ -56,6 +56,8 @@ pub struct FrameStats {
     pub skipped: Vec<&'static str>,
     /// Table passes among those run.
     pub tables_run: Vec<&'static str>,
+    /// Dispatches encoded: the passes run, the order loop's once per order.
+    pub dispatched: usize,
     /// Milliseconds per pass run, when timing is on.
     pub timings_ms: Vec<(&'static str, f64)>,
     pub timing_source: Option<TimingSource>,
@@ -98,6 +100,7 @@ struct AtmosphereKey {
     method: Method,
     wavelengths: WavelengthSet,
     quality: Quality,
+    scattering_orders: u32,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -295,6 +298,7 @@ impl Engine {
             method,
             wavelengths: scene.render.wavelengths,
             quality: scene.render.quality,
+            scattering_orders: scene.render.scattering_orders,
         };
         let rebuilt = self.atmosphere.as_ref().is_none_or(|a| a.key != key);
         if rebuilt {
@@ -302,7 +306,8 @@ impl Engine {
                 &Atmosphere::new(&scene.atmosphere),
                 key.wavelengths,
                 key.quality,
-            );
+            )
+            .with_scattering_orders(key.scattering_orders);
             let tables = TableBuffers::new(
                 &self.device,
                 &self.pipelines[0],
@@ -387,6 +392,11 @@ impl Engine {
                 run.push(i);
             }
         }
+        let run = with_order_loop(
+            &run,
+            &pipelines.specs().collect::<Vec<_>>(),
+            params.scattering_orders,
+        );
         let above = viewpoint.h > params.thickness_m();
         let value = |c: Constant| match c {
             Constant::Projection => uniforms::projection_code(view.projection),
@@ -408,20 +418,35 @@ impl Engine {
         };
         let names: Vec<&'static str> = self.pipelines[0].specs().map(|s| s.name).collect();
         let is_table: Vec<bool> = self.pipelines[0].specs().map(|s| s.is_table()).collect();
+        // Each pass once, in order, however often the order loop ran it; its times summed.
+        let ran: Vec<usize> = (0..names.len()).filter(|i| run.contains(i)).collect();
+        let timings_ms: Vec<(usize, f64)> = ran
+            .iter()
+            .filter(|&&i| timings_ms.iter().any(|(j, _)| *j == i))
+            .map(|&i| {
+                let total = timings_ms
+                    .iter()
+                    .filter(|(j, _)| *j == i)
+                    .map(|(_, ms)| ms)
+                    .sum();
+                (i, total)
+            })
+            .collect();
         self.last = Some(snapshot);
         self.stats = FrameStats {
             method,
             timing_source: (self.measure && !run.is_empty()).then(|| self.timing_source()),
             skipped: (0..names.len())
-                .filter(|i| !run.contains(i))
+                .filter(|i| !ran.contains(i))
                 .map(|i| names[i])
                 .collect(),
-            tables_run: run
+            tables_run: ran
                 .iter()
                 .filter(|&&i| is_table[i])
                 .map(|&i| names[i])
                 .collect(),
-            run: run.iter().map(|&i| names[i]).collect(),
+            run: ran.iter().map(|&i| names[i]).collect(),
+            dispatched: run.len(),
             passes: names,
             timings_ms: timings_ms
                 .into_iter()
@@ -482,6 +507,10 @@ impl Engine {
                     Dispatch::Table(id) => {
                         let [w, h, _] = info.table(id).map_or([1, 1, 1], |t| t.size);
                         (state.tables.group(i), [groups(w), groups(h), layers])
+                    }
+                    Dispatch::Volume(id) => {
+                        let [w, h, d] = info.table(id).map_or([1, 1, 1], |t| t.size);
+                        (state.tables.group(i), [groups(w), groups(h), d * layers])
                     }
                 };
                 let (Some(group), Some(pipeline)) = (group, pipelines.pipeline(i, variants[i]))
@@ -592,6 +621,29 @@ fn map_u64(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Option<Vec<u64>> {
     };
     buffer.unmap();
     Some(ticks)
+}
+
+/// The passes to encode: `run` (pass indices in order) with each stretch of consecutive
+/// order-loop passes repeated once per scattering order from 2 to `orders`.
+fn with_order_loop(run: &[usize], specs: &[&PassSpec], orders: u32) -> Vec<usize> {
+    let mut out = Vec::with_capacity(run.len());
+    let mut group: Vec<usize> = Vec::new();
+    let flush = |group: &mut Vec<usize>, out: &mut Vec<usize>| {
+        for _ in 2..=orders {
+            out.extend_from_slice(group);
+        }
+        group.clear();
+    };
+    for &i in run {
+        if specs[i].repeat == Repeat::PerOrder {
+            group.push(i);
+        } else {
+            flush(&mut group, &mut out);
+            out.push(i);
+        }
+    }
+    flush(&mut group, &mut out);
+    out
 }
 
 fn groups(n: u32) -> u32 {

@@ -2,7 +2,9 @@
 //! writes, shader modules, pipeline variants compiled on first use, and the storage buffers of
 //! the model's tables (vec4 texels in the order of `model::methods::shared::Lut`).
 
-use crate::methods::{COMMON, Constant, DISPLAY, DISPLAY_PASS, GpuMethod, PassSpec, RADIANCE};
+use crate::methods::{
+    COMMON, Constant, DISPLAY, DISPLAY_PASS, GpuMethod, PassSpec, RADIANCE, SKY_ENTRY_POINT,
+};
 use crate::prelude::wgsl_prelude;
 use crate::uniforms::Batch;
 use atmoscope_model::methods::shared::{PROFILE_SAMPLES, Params};
@@ -77,7 +79,8 @@ fn pass_layout(pass: &PassSpec) -> Vec<wgpu::BindGroupLayoutEntry> {
         .collect()
 }
 
-/// The complete WGSL module of a pass of `method` (the display pass takes no model files).
+/// The complete WGSL module of a pass of `method` (the display pass takes no model files; a
+/// sky pass ends with the shared entry point).
 pub fn shader_source(method: &GpuMethod, pass: &PassSpec) -> String {
     let mut s = wgsl_prelude();
     for part in COMMON {
@@ -89,6 +92,9 @@ pub fn shader_source(method: &GpuMethod, pass: &PassSpec) -> String {
         }
     }
     s.push_str(pass.shader.source);
+    if pass.writes.contains(&RADIANCE) {
+        s.push_str(SKY_ENTRY_POINT.source);
+    }
     s
 }
 

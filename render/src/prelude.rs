@@ -12,6 +12,7 @@ use atmoscope_model::colour::linear_srgb_to_xyz;
 use atmoscope_model::constants::{
     MAX_LUMINOUS_EFFICACY_LM_PER_W, SUN_ANGULAR_RADIUS_RAD, SUN_LIMB_DARKENING_U,
 };
+use atmoscope_model::methods::bruneton;
 use atmoscope_model::methods::hillaire as h;
 use atmoscope_model::methods::shared::{self, Spacing};
 use atmoscope_model::scene::{AerosolPhase, ToneMap};
@@ -68,6 +69,27 @@ pub fn wgsl_prelude() -> String {
         "vec2<u32>",
         format!("vec2<u32>({gw}u, {gh}u)"),
     );
+    let [bx, by, bz] = bruneton::SCATTERING_SIZE;
+    c(
+        "SCATTERING_SIZE",
+        "vec3<u32>",
+        format!("vec3<u32>({bx}u, {by}u, {bz}u)"),
+    );
+    for (name, v) in [
+        ("SCATTERING_NU", bruneton::SCATTERING_NU),
+        ("SCATTERING_MU_S", bruneton::SCATTERING_MU_S),
+        ("SCATTERING_MU", bruneton::SCATTERING_MU),
+        ("SCATTERING_R", bruneton::SCATTERING_R),
+    ] {
+        c(name, "u32", format!("{v}u"));
+    }
+    let [iw, ih] = bruneton::IRRADIANCE_SIZE;
+    c(
+        "IRRADIANCE_SIZE",
+        "vec2<u32>",
+        format!("vec2<u32>({iw}u, {ih}u)"),
+    );
+    c("BRUNETON_MU_S_MIN", "f32", f(bruneton::MU_S_MIN));
     let [aw, ah, ad] = h::AERIAL_PERSPECTIVE_SIZE;
     c(
         "AERIAL_PERSPECTIVE_SIZE",

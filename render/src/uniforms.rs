@@ -141,8 +141,8 @@ impl From<&FrameInputs<'_>> for Globals {
             steps_b: [
                 p.steps.aerial_perspective_per_slice,
                 p.steps.ray_march,
-                0,
-                0,
+                p.steps.scattering,
+                p.steps.sphere_directions,
             ],
             display: [
                 (EXPOSURE_SCALE * f.scene.display.exposure_ev.exp2()) as f32,

@@ -20,7 +20,8 @@ struct Globals {
     options: vec4<u32>,
     // steps: transmittance, multiple scattering, ground irradiance, sky view
     steps_a: vec4<u32>,
-    // steps: aerial perspective per slice, ray march from space, 0, 0
+    // steps: aerial perspective per slice, ray march from space, Bruneton's trapezoid intervals,
+    // Bruneton's sphere zenith samples
     steps_b: vec4<u32>,
     // exposure scale, log10 luminance min and max (cd/m²), 0
     display: vec4<f32>,
@@ -65,6 +66,13 @@ fn batch_count() -> u32 { return globals.options.y; }
 @group(1) @binding(4) var<storage, read_write> aerial_perspective_inscattering_lut: array<vec4<f32>>;
 @group(1) @binding(5) var<storage, read_write> aerial_perspective_transmittance_lut: array<vec4<f32>>;
 @group(1) @binding(9) var<storage, read_write> sky_texture_lut: array<vec4<f32>>;
+@group(1) @binding(10) var<storage, read_write> delta_irradiance_lut: array<vec4<f32>>;
+@group(1) @binding(11) var<storage, read_write> irradiance_lut: array<vec4<f32>>;
+@group(1) @binding(12) var<storage, read_write> delta_rayleigh_lut: array<vec4<f32>>;
+@group(1) @binding(13) var<storage, read_write> delta_mie_lut: array<vec4<f32>>;
+@group(1) @binding(14) var<storage, read_write> scattering_lut: array<vec4<f32>>;
+@group(1) @binding(15) var<storage, read_write> single_mie_lut: array<vec4<f32>>;
+@group(1) @binding(16) var<storage, read_write> scattering_density_lut: array<vec4<f32>>;
 @group(1) @binding(6) var radiance_out: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(7) var radiance_in: texture_2d<f32>;
 @group(1) @binding(8) var display_out: texture_storage_2d<rgba8unorm, write>;

@@ -45,20 +45,29 @@ fn sun_transmittance(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
 }
 
 
-// Transmittance between the point at altitude h and the point at distance d along (h, mu), from
-// the table; along the reversed ray when it hits the ground. Twin of
+// Transmittance between the point at altitude h and the point at distance d along (h, mu), as
+// ratios of table values in which every ray rises from where it starts. Twin of
 // shared::transmittance::transmittance_between.
-fn transmittance_between(layer: u32, h: f32, mu: f32, d: f32, ground: bool) -> vec4<f32> {
+fn transmittance_between(layer: u32, h: f32, mu: f32, d: f32) -> vec4<f32> {
     let at = altitude_along(h, mu, d);
     let mu_d = clamp(((bottom_radius() + h) * mu + d) / at.y, -1.0, 1.0);
-    var a: vec4<f32>;
-    var b: vec4<f32>;
-    if ground {
-        a = transmittance(layer, at.x, -mu_d);
-        b = transmittance(layer, h, -mu);
+    var v: vec4<f32>;
+    if mu_d < 0.0 {
+        v = transmittance(layer, at.x, -mu_d) / max(transmittance(layer, h, -mu), vec4<f32>(1e-30));
+    } else if mu < 0.0 {
+        let low = transmittance(layer, lowest_altitude(h, mu), 0.0);
+        v = low * low / max(transmittance(layer, h, -mu), vec4<f32>(1e-30))
+            / max(transmittance(layer, at.x, mu_d), vec4<f32>(1e-30));
     } else {
-        a = transmittance(layer, h, mu);
-        b = transmittance(layer, at.x, mu_d);
+        v = transmittance(layer, h, mu) / max(transmittance(layer, at.x, mu_d), vec4<f32>(1e-30));
     }
-    return min(a / max(b, vec4<f32>(1e-30)), vec4<f32>(1.0));
+    return min(v, vec4<f32>(1.0));
+}
+
+// Altitude of the lowest point of the line (h, mu); twin of shared::transmittance::lowest_altitude.
+fn lowest_altitude(h: f32, mu: f32) -> f32 {
+    let big_r = bottom_radius();
+    let r = big_r + h;
+    let rho2 = rho_squared(h) - r * r * mu * mu;
+    return max(rho2 / (sqrt(max(rho2 + big_r * big_r, 0.0)) + big_r), 0.0);
 }

@@ -1,6 +1,6 @@
 // Pass: the view with García Liñán (2023): the sky texture, the sun's disk and the sunlit
 // ground through the transmittance table; from above the atmosphere each pixel is marched with
-// the model's integrand. Writes linear sRGB and coverage in alpha. Twin of
+// the model's integrand (entry point: views/sky.wgsl). Twin of
 // model::methods::garcia_linan::sky.
 
 // Direct sunlight on the Lambertian ground (the model has no skylight term for surfaces).
@@ -30,7 +30,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
         if hits_ground(h, mu) {
             let d = distance_to_ground(h, mu);
             let mu_s_g = clamp((r * mu_s + d * nu) / big_r, -1.0, 1.0);
-            let tr = transmittance_between(layer, h, mu, d, true);
+            let tr = transmittance_between(layer, h, mu, d);
             return s + tr * ground_radiance(layer, mu_s_g);
         }
         if disk > 0.0 {
@@ -53,23 +53,4 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
         behind = ground_radiance(layer, mu_s_g);
     }
     return s.radiance * e + s.transmittance * behind;
-}
-
-@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= globals.view.xy) {
-        return;
-    }
-    let ray = camera_ray(f32(id.x) + 0.5, f32(id.y) + 0.5);
-    if ray.w == 0.0 {
-        textureStore(radiance_out, id.xy, vec4<f32>(0.0));
-        return;
-    }
-    var rgb = vec3<f32>(0.0);
-    for (var layer = 0u; layer < batch_count(); layer++) {
-        let l = radiance(layer, ray.xyz);
-        rgb += vec3<f32>(dot(batches[layer].to_srgb_r, l), dot(batches[layer].to_srgb_g, l),
-            dot(batches[layer].to_srgb_b, l));
-    }
-    textureStore(radiance_out, id.xy, vec4<f32>(rgb, 1.0));
 }

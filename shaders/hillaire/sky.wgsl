@@ -1,7 +1,6 @@
 // Pass: the view. Each pixel's ray is looked up in the sky-view table (sky), the aerial-
 // perspective volume (near ground) or the sky view plus transmittance (far ground); from above
-// the atmosphere it is ray-marched (Hillaire 2020 §6). Writes linear sRGB (Y = ∫ȳL dλ,
-// W·m⁻²·sr⁻¹) and coverage in alpha.
+// the atmosphere it is ray-marched (Hillaire 2020 §6). The entry point is views/sky.wgsl.
 
 fn ground_radiance(layer: u32, mu_s_g: f32) -> vec4<f32> {
     // Field loads, not the whole struct: on software drivers every load is a per-lane gather.
@@ -105,23 +104,4 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
         behind = ground_radiance(layer, mu_s_g);
     }
     return s.radiance * e + s.transmittance * behind;
-}
-
-@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= globals.view.xy) {
-        return;
-    }
-    let ray = camera_ray(f32(id.x) + 0.5, f32(id.y) + 0.5);
-    if ray.w == 0.0 {
-        textureStore(radiance_out, id.xy, vec4<f32>(0.0));
-        return;
-    }
-    var rgb = vec3<f32>(0.0);
-    for (var layer = 0u; layer < batch_count(); layer++) {
-        let l = radiance(layer, ray.xyz);
-        rgb += vec3<f32>(dot(batches[layer].to_srgb_r, l), dot(batches[layer].to_srgb_g, l),
-            dot(batches[layer].to_srgb_b, l));
-    }
-    textureStore(radiance_out, id.xy, vec4<f32>(rgb, 1.0));
 }

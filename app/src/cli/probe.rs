@@ -139,7 +139,8 @@ pub fn probe(scene: &Scene, args: &ProbeArgs) -> Probe {
     let tracer = PathTracer::new(&atm, sun, settings);
     let model = match args.method {
         ProbeMethod::Model(m) => methods::info(m).build.map(|build| {
-            let p = Params::at_wavelengths(&atm, &args.wavelengths_nm, scene.render.quality);
+            let p = Params::at_wavelengths(&atm, &args.wavelengths_nm, scene.render.quality)
+                .with_scattering_orders(scene.render.scattering_orders);
             build(&p, viewpoint(scene, &camera))
         }),
         _ => None,

@@ -1,5 +1,5 @@
 //! The Compare tab: the current view rendered by two (model, wavelength set) pairs (default
-//! García Liñán | Hillaire at Spectral4), side by side or split, with the per-pixel CIEDE2000
+//! Bruneton | Hillaire at Spectral4), side by side or split, with the per-pixel CIEDE2000
 //! map between them and the mean ΔE of each against a dense spectral reference (default
 //! Hillaire at Spectral32). The models come from the registry; the path tracer is compared in
 //! the Reference tab.

@@ -423,6 +423,19 @@ fn render(ui: &mut egui::Ui, s: &mut Scene) {
             "The sky model that draws the views. {}\n\nThe path tracer, the ground truth every model is measured against, renders in the Reference tab.",
             model_tooltip(current)
         ));
+    if current.gathers_orders {
+        ui.add(
+            Slider::new(&mut r.scattering_orders, {
+                let l = limits::SCATTERING_ORDERS;
+                l.min as u32..=l.max as u32
+            })
+            .text("scattering orders"),
+        )
+        .on_hover_text(
+            "How many orders of scattering the model gathers one by one when it builds its tables: 1 is single \
+             scattering only; each order costs one more pass of every table. The reference uses 4.",
+        );
+    }
     let label = match r.wavelengths {
         WavelengthSet::Rgb3 => "RGB3".to_string(),
         WavelengthSet::Spectral4 => "Spectral4".to_string(),

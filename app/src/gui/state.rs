@@ -173,7 +173,7 @@ pub struct CompareSettings {
 impl Default for CompareSettings {
     fn default() -> Self {
         CompareSettings {
-            a_method: Method::GarciaLinan,
+            a_method: Method::Bruneton,
             a: WavelengthSet::Spectral4,
             b_method: Method::Hillaire,
             b: WavelengthSet::Spectral4,

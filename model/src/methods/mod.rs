@@ -8,6 +8,7 @@
 //! tracer is the ground truth every model is measured against; it has a row (the scene can name
 //! it) but no real-time passes.
 
+pub mod bruneton;
 pub mod garcia_linan;
 pub mod hillaire;
 pub mod path_tracer;
@@ -160,6 +161,9 @@ pub struct ModelInfo {
     pub domain: Domain,
     /// Every table, in the order the passes compute them.
     pub tables: &'static [TableSpec],
+    /// Whether the model gathers scattering orders one by one, as many as
+    /// `render.scattering_orders` says.
+    pub gathers_orders: bool,
     /// The CPU twin's constructor; None for the path tracer, which is not a real-time model.
     pub build: Option<fn(&Params, Viewpoint) -> Box<dyn SkyModel>>,
 }
@@ -186,7 +190,19 @@ pub const MODELS: &[ModelInfo] = &[
         summary: "Transmittance and multiple-scattering tables, a sky-view table at the camera's altitude and an aerial-perspective volume; ray-marched from space.",
         domain: Domain::EVERYWHERE,
         tables: &hillaire::TABLES,
+        gathers_orders: false,
         build: Some(hillaire::build),
+    },
+    ModelInfo {
+        method: Method::Bruneton,
+        id: "bruneton",
+        label: "Bruneton & Neyret 2008",
+        citation: "E. Bruneton, F. Neyret (2008), Precomputed Atmospheric Scattering, Computer Graphics Forum 27(4); parameterisation of E. Bruneton's 2017 reference implementation",
+        summary: "4D scattering tables (altitude, view, sun, view–sun angle) with every order up to N gathered one by one at precompute time, and sky irradiance; no table depends on the sun or the camera.",
+        domain: bruneton::DOMAIN,
+        tables: &bruneton::TABLES,
+        gathers_orders: true,
+        build: Some(bruneton::build),
     },
     ModelInfo {
         method: Method::GarciaLinan,
@@ -196,6 +212,7 @@ pub const MODELS: &[ModelInfo] = &[
         summary: "Transmittance table and ray-marched single scattering in a sky texture, plus a closed-form ground-bounce term and a fitted logistic multiple-scattering term.",
         domain: garcia_linan::DOMAIN,
         tables: &garcia_linan::TABLES,
+        gathers_orders: false,
         build: Some(garcia_linan::build),
     },
     ModelInfo {
@@ -206,6 +223,7 @@ pub const MODELS: &[ModelInfo] = &[
         summary: "The offline ground truth: all scattering orders, no tables. `atmoscope reference` and the Reference tab render with it.",
         domain: Domain::EVERYWHERE,
         tables: &[],
+        gathers_orders: false,
         build: None,
     },
 ];
@@ -245,7 +263,8 @@ pub fn build(scene: &Scene, camera: &Camera) -> Result<Box<dyn SkyModel>, NotRea
         .build
         .ok_or_else(|| NotRealtime(row.id, realtime_ids()))?;
     let atm = Atmosphere::new(&scene.atmosphere);
-    let p = Params::new(&atm, scene.render.wavelengths, scene.render.quality);
+    let p = Params::new(&atm, scene.render.wavelengths, scene.render.quality)
+        .with_scattering_orders(scene.render.scattering_orders);
     Ok(build(&p, shared::viewpoint(scene, camera)))
 }
 

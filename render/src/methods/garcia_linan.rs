@@ -2,7 +2,8 @@
 //! of every pass is `atmoscope_model::methods::garcia_linan::<pass>`.
 
 use super::{
-    Constant, Dispatch, GpuMethod, PassSpec, RADIANCE, SKY_INPUTS, TRANSMITTANCE_PASS, shader,
+    Constant, Dispatch, GpuMethod, PassSpec, RADIANCE, Repeat, SKY_INPUTS, TRANSMITTANCE_PASS,
+    shader,
 };
 use atmoscope_model::methods::Inputs;
 use atmoscope_model::methods::garcia_linan::Constants;
@@ -25,6 +26,7 @@ pub const METHOD: GpuMethod = GpuMethod {
             inputs: Inputs::NONE,
             dispatch: Dispatch::Table("sky-texture"),
             constants: &[],
+            repeat: Repeat::Once,
         },
         PassSpec {
             name: "sky",
@@ -34,6 +36,7 @@ pub const METHOD: GpuMethod = GpuMethod {
             inputs: SKY_INPUTS,
             dispatch: Dispatch::View,
             constants: &[Constant::Projection, Constant::AboveAtmosphere],
+            repeat: Repeat::Once,
         },
     ],
 };

@@ -2,7 +2,8 @@
 //! pass is `atmoscope_model::methods::hillaire::<pass>`.
 
 use super::{
-    Constant, Dispatch, GpuMethod, PassSpec, RADIANCE, SKY_INPUTS, TRANSMITTANCE_PASS, shader,
+    Constant, Dispatch, GpuMethod, PassSpec, RADIANCE, Repeat, SKY_INPUTS, TRANSMITTANCE_PASS,
+    shader,
 };
 use atmoscope_model::methods::Inputs;
 use atmoscope_model::scene::Method;
@@ -27,6 +28,7 @@ pub const METHOD: GpuMethod = GpuMethod {
             inputs: Inputs::NONE,
             dispatch: Dispatch::Table("multiple-scattering"),
             constants: &[],
+            repeat: Repeat::Once,
         },
         PassSpec {
             name: "ground-irradiance",
@@ -36,6 +38,7 @@ pub const METHOD: GpuMethod = GpuMethod {
             inputs: Inputs::NONE,
             dispatch: Dispatch::Table("ground-irradiance"),
             constants: &[],
+            repeat: Repeat::Once,
         },
         PassSpec {
             name: "sky-view",
@@ -45,6 +48,7 @@ pub const METHOD: GpuMethod = GpuMethod {
             inputs: Inputs::NONE,
             dispatch: Dispatch::Table("sky-view"),
             constants: &[],
+            repeat: Repeat::Once,
         },
         PassSpec {
             name: "aerial-perspective",
@@ -54,6 +58,7 @@ pub const METHOD: GpuMethod = GpuMethod {
             inputs: Inputs::NONE,
             dispatch: Dispatch::Table(AP_INSCATTERING),
             constants: &[],
+            repeat: Repeat::Once,
         },
         PassSpec {
             name: "sky",
@@ -70,6 +75,7 @@ pub const METHOD: GpuMethod = GpuMethod {
             inputs: SKY_INPUTS,
             dispatch: Dispatch::View,
             constants: &[Constant::Projection, Constant::AboveAtmosphere],
+            repeat: Repeat::Once,
         },
     ],
 };

@@ -7,6 +7,7 @@
 //! model's registry row (`model::methods::MODELS`) and their bindings once in
 //! `shaders/common/bindings.wgsl`.
 
+pub mod bruneton;
 pub mod garcia_linan;
 pub mod hillaire;
 
@@ -63,8 +64,20 @@ pub enum Dispatch {
     /// One invocation per texel (x, y) of the table with this id, one z per batch; a pass over a
     /// 3D table marches its slices inside each invocation.
     Table(&'static str),
+    /// One invocation per texel (x, y, z) of the 3D table with this id, z running over the
+    /// slices of every batch in turn.
+    Volume(&'static str),
     /// One invocation per pixel of the view.
     View,
+}
+
+/// How often a pass runs in a frame that runs it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Repeat {
+    Once,
+    /// Once for each scattering order from 2 to the scene's count (none for one order), the
+    /// consecutive passes marked so running in turn for each order: an order loop.
+    PerOrder,
 }
 
 /// Resources that are not tables: the view's images, written and read by the view passes.
@@ -87,6 +100,7 @@ pub struct PassSpec {
     pub inputs: Inputs,
     pub dispatch: Dispatch,
     pub constants: &'static [Constant],
+    pub repeat: Repeat,
 }
 
 impl PassSpec {
@@ -146,6 +160,7 @@ pub const DISPLAY_PASS: PassSpec = PassSpec {
     inputs: Inputs::DISPLAY.union(Inputs::VIEW_SIZE),
     dispatch: Dispatch::View,
     constants: &[Constant::DisplayMode, Constant::ToneMap],
+    repeat: Repeat::Once,
 };
 
 /// The transmittance pass the table-based models share.
@@ -157,7 +172,11 @@ pub const TRANSMITTANCE_PASS: PassSpec = PassSpec {
     inputs: Inputs::NONE,
     dispatch: Dispatch::Table("transmittance"),
     constants: &[],
+    repeat: Repeat::Once,
 };
+
+/// The entry point every sky pass ends with; the pass's own file defines `radiance(layer, dir)`.
+pub const SKY_ENTRY_POINT: Shader = shader!("views/sky.wgsl");
 
 /// What every sky pass reads besides its tables.
 pub const SKY_INPUTS: Inputs = Inputs::VIEWPOINT
@@ -177,7 +196,7 @@ pub const COMMON: [Shader; 7] = [
 ];
 
 /// Every real-time model's passes, in registry order.
-pub const GPU_METHODS: [GpuMethod; 2] = [hillaire::METHOD, garcia_linan::METHOD];
+pub const GPU_METHODS: [GpuMethod; 3] = [hillaire::METHOD, bruneton::METHOD, garcia_linan::METHOD];
 
 /// The passes of `method`, or None for a model with no real-time passes (the path tracer).
 pub fn gpu_method(method: Method) -> Option<&'static GpuMethod> {
@@ -221,18 +240,30 @@ mod tests {
             let gpu =
                 gpu_method(row.method).unwrap_or_else(|| panic!("{} has no GPU passes", row.id));
             for t in row.tables {
-                let writers = gpu
+                // One writer outside the order loop at most; the loop's passes may rewrite it.
+                let writers: Vec<_> = gpu
                     .passes
                     .iter()
                     .filter(|p| p.writes.contains(&t.id))
-                    .count();
-                assert_eq!(
-                    writers, 1,
-                    "{}: table {} written by {writers} passes",
-                    row.id, t.id
+                    .collect();
+                let once = writers.iter().filter(|p| p.repeat == Repeat::Once).count();
+                assert!(
+                    !writers.is_empty() && once <= 1,
+                    "{}: table {} is written by {} passes, {once} outside the order loop",
+                    row.id,
+                    t.id,
+                    writers.len()
                 );
                 assert!(binding(t.id).is_some(), "{} has no binding", t.id);
             }
+            let looped: Vec<usize> = (0..gpu.passes.len())
+                .filter(|&i| gpu.passes[i].repeat == Repeat::PerOrder)
+                .collect();
+            assert!(
+                looped.windows(2).all(|w| w[1] == w[0] + 1),
+                "{}: the order loop's passes are consecutive",
+                row.id
+            );
             let last = gpu.passes.last().expect("passes");
             assert_eq!(
                 last.writes,
@@ -255,7 +286,7 @@ mod tests {
                         row.id, p.name
                     );
                 }
-                if let Dispatch::Table(id) = p.dispatch {
+                if let Dispatch::Table(id) | Dispatch::Volume(id) = p.dispatch {
                     assert!(
                         row.table(id).is_some(),
                         "{}: {} dispatches over {id}",

@@ -87,7 +87,7 @@ fn radiance_with(
             let d = distance_to_ground(h, mu, big_r);
             let mu_s_g = ((r * mu_s + d * nu) / big_r).clamp(-1.0, 1.0);
             let lg = ground_radiance(p, t, layer, mu_s_g);
-            let tr = transmittance_between(p, t, layer, (h, mu), d, true);
+            let tr = transmittance_between(p, t, layer, (h, mu), d);
             std::array::from_fn(|i| s[i] + tr[i] * lg[i])
         } else {
             let tr = transmittance(p, t, layer, h, mu);

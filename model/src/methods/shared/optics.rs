@@ -24,6 +24,12 @@ pub struct Steps {
     pub aerial_perspective_per_slice: u32,
     /// Per-pixel march when the camera is above the atmosphere.
     pub ray_march: u32,
+    /// Intervals of each of the two pieces (before and after the lowest point) of Bruneton's
+    /// single- and multiple-scattering integrals along a ray (2017: 50 uniform ones over the ray).
+    pub scattering: u32,
+    /// Zenith-angle samples of Bruneton's scattering-density sphere (twice as many azimuths) and
+    /// of the indirect-irradiance hemisphere (four times as many azimuths) (2017: 16).
+    pub sphere_directions: u32,
 }
 
 impl Steps {
@@ -40,6 +46,14 @@ impl Steps {
             sky_view: 16 * k,
             aerial_perspective_per_slice: k,
             ray_march: 48 * k,
+            scattering: 8 * k,
+            // Even, so that no zenith sample lies on the horizontal, where f32 and f64 disagree
+            // about whether a ray from the ground meets it.
+            sphere_directions: match q {
+                Quality::Low => 6,
+                Quality::Medium => 10,
+                Quality::High => 16,
+            },
         }
     }
 }
@@ -74,6 +88,8 @@ pub struct Params {
     pub profile: Vec<[f64; 4]>,
     pub batches: Vec<BatchOptics>,
     pub steps: Steps,
+    /// Scattering orders the models that gather them one by one compute (Bruneton, Elek).
+    pub scattering_orders: u32,
 }
 
 impl Params {
@@ -159,7 +175,14 @@ impl Params {
             profile,
             batches,
             steps: Steps::for_quality(quality),
+            scattering_orders: crate::scene::DEFAULT_SCATTERING_ORDERS,
         }
+    }
+
+    /// The same optics for models that gather `orders` scattering orders (clamped to 1–10).
+    pub fn with_scattering_orders(mut self, orders: u32) -> Params {
+        self.scattering_orders = orders.clamp(1, 10);
+        self
     }
 
     pub fn thickness_m(&self) -> f64 {

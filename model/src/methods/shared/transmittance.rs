@@ -2,7 +2,7 @@
 //! the top of the atmosphere, in Bruneton's (2017) mapping (§4.1 of his notes) at Hillaire's
 //! (2020) 256 × 64. The pass is `shaders/shared/transmittance.wgsl`.
 
-use super::{Lanes, Lut, Params, Spacing, TableSpec, add, scale};
+use super::{Lanes, Lut, Params, Spacing, TableSpec, add, mul, scale};
 use crate::geometry::{altitude_along, distance_to_top, rho_squared};
 use crate::methods::Inputs;
 use crate::wavelengths::LANES;
@@ -97,32 +97,41 @@ pub fn sun_transmittance(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -
     scale(transmittance(p, t, layer, h, mu_s), visible)
 }
 
-/// The transmittance between two points of the ray (h, mu) at distance `d` apart, from the
-/// table: T(h, mu)/T(h_d, mu_d), or for a ray that hits the ground, the same along the reversed
-/// ray (Bruneton 2017's GetTransmittance), clamped to 1.
+/// The transmittance between the point at altitude `h` and the point at distance `d` along the
+/// ray (h, mu), as ratios of table values in which every ray rises from where it starts, so
+/// that no factor depends on the table's steep column at the horizon: along the reversed ray
+/// while the point is still descending (Bruneton 2017's form for rays to the ground), through
+/// the ray's lowest point once it has passed it, else directly. Clamped to 1.
 pub fn transmittance_between(
     p: &Params,
     t: &Lut,
     layer: usize,
     (h, mu): (f64, f64),
     d: f64,
-    ground: bool,
 ) -> Lanes {
     let big_r = p.bottom_radius_m;
+    let r = big_r + h;
     let (h_d, r_d) = altitude_along(h, mu, d, big_r);
-    let mu_d = (((big_r + h) * mu + d) / r_d).clamp(-1.0, 1.0);
-    let (a, b) = if ground {
-        (
-            transmittance(p, t, layer, h_d, -mu_d),
-            transmittance(p, t, layer, h, -mu),
-        )
+    let mu_d = ((r * mu + d) / r_d).clamp(-1.0, 1.0);
+    let table = |h, mu| transmittance(p, t, layer, h, mu);
+    let ratio = |a: Lanes, b: Lanes| -> Lanes { std::array::from_fn(|i| a[i] / b[i].max(1e-30)) };
+    let v = if mu_d < 0.0 {
+        ratio(table(h_d, -mu_d), table(h, -mu))
+    } else if mu < 0.0 {
+        let low = table(lowest_altitude(h, mu, big_r), 0.0);
+        ratio(ratio(mul(low, low), table(h, -mu)), table(h_d, mu_d))
     } else {
-        (
-            transmittance(p, t, layer, h, mu),
-            transmittance(p, t, layer, h_d, mu_d),
-        )
+        ratio(table(h, mu), table(h_d, mu_d))
     };
-    std::array::from_fn(|i| (a[i] / b[i].max(1e-30)).min(1.0))
+    v.map(|x| x.min(1.0))
+}
+
+/// Altitude of the lowest point of the line through altitude `h` with zenith cosine `mu`,
+/// r·√(1 − mu²) − R, cancellation-free; 0 for a line that meets the ground.
+pub fn lowest_altitude(h: f64, mu: f64, big_r: f64) -> f64 {
+    let r = big_r + h;
+    let rho2 = rho_squared(h, big_r) - r * r * mu * mu;
+    (rho2 / ((rho2 + big_r * big_r).max(0.0).sqrt() + big_r)).max(0.0)
 }
 
 #[cfg(test)]

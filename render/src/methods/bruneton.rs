@@ -1,0 +1,99 @@
+//! Bruneton (2017) on the GPU: the passes of `shaders/bruneton/` as data. The three passes of
+//! the order loop run once per scattering order from 2 to the scene's count, each order reading
+//! the deltas the previous one wrote. The f64 twin of every pass is
+//! `atmoscope_model::methods::bruneton::<pass>`.
+
+use super::{
+    Constant, Dispatch, GpuMethod, PassSpec, RADIANCE, Repeat, SKY_INPUTS, TRANSMITTANCE_PASS,
+    shader,
+};
+use atmoscope_model::methods::Inputs;
+use atmoscope_model::scene::Method;
+
+const T: &str = "transmittance";
+const DELTA_IRRADIANCE: &str = "delta-irradiance";
+const IRRADIANCE: &str = "irradiance";
+const DELTA_RAYLEIGH: &str = "delta-rayleigh";
+const DELTA_MIE: &str = "delta-mie";
+const SCATTERING: &str = "scattering";
+const SINGLE_MIE: &str = "single-mie";
+const DENSITY: &str = "scattering-density";
+
+const fn table_pass(
+    name: &'static str,
+    shader: super::Shader,
+    reads: &'static [&'static str],
+    writes: &'static [&'static str],
+    dispatch: Dispatch,
+    repeat: Repeat,
+) -> PassSpec {
+    PassSpec {
+        name,
+        shader,
+        reads,
+        writes,
+        inputs: Inputs::NONE,
+        dispatch,
+        constants: &[],
+        repeat,
+    }
+}
+
+pub const METHOD: GpuMethod = GpuMethod {
+    method: Method::Bruneton,
+    common: &[shader!("bruneton/common.wgsl")],
+    constants: || [0.0; 4],
+    passes: &[
+        TRANSMITTANCE_PASS,
+        table_pass(
+            "direct-irradiance",
+            shader!("bruneton/direct_irradiance.wgsl"),
+            &[T],
+            &[DELTA_IRRADIANCE, IRRADIANCE],
+            Dispatch::Table(IRRADIANCE),
+            Repeat::Once,
+        ),
+        table_pass(
+            "single-scattering",
+            shader!("bruneton/single_scattering.wgsl"),
+            &[T],
+            &[DELTA_RAYLEIGH, DELTA_MIE, SCATTERING, SINGLE_MIE],
+            Dispatch::Volume(SCATTERING),
+            Repeat::Once,
+        ),
+        table_pass(
+            "scattering-density",
+            shader!("bruneton/scattering_density.wgsl"),
+            &[T, DELTA_RAYLEIGH, DELTA_MIE, DELTA_IRRADIANCE],
+            &[DENSITY],
+            Dispatch::Volume(DENSITY),
+            Repeat::PerOrder,
+        ),
+        table_pass(
+            "indirect-irradiance",
+            shader!("bruneton/indirect_irradiance.wgsl"),
+            &[DELTA_RAYLEIGH, DELTA_MIE, IRRADIANCE],
+            &[DELTA_IRRADIANCE, IRRADIANCE],
+            Dispatch::Table(IRRADIANCE),
+            Repeat::PerOrder,
+        ),
+        table_pass(
+            "multiple-scattering",
+            shader!("bruneton/multiple_scattering.wgsl"),
+            &[T, DENSITY, SCATTERING],
+            &[DELTA_RAYLEIGH, DELTA_MIE, SCATTERING],
+            Dispatch::Volume(SCATTERING),
+            Repeat::PerOrder,
+        ),
+        PassSpec {
+            name: "sky",
+            shader: shader!("bruneton/sky.wgsl"),
+            reads: &[T, SCATTERING, SINGLE_MIE, IRRADIANCE],
+            writes: &[RADIANCE],
+            inputs: SKY_INPUTS,
+            dispatch: Dispatch::View,
+            constants: &[Constant::Projection, Constant::AboveAtmosphere],
+            repeat: Repeat::Once,
+        },
+    ],
+};

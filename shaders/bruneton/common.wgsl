@@ -1,0 +1,276 @@
+// Bruneton (2017): the mappings, look-ups and integration helpers the passes share. Twins of
+// model::methods::bruneton (same mappings, same sample placement, same arithmetic in f32).
+// 4D tables (mu_s, nu, mu, r) are stored as 3D tables with the nu slices side by side in x.
+
+struct Coords {
+    h: f32,
+    mu: f32,
+    mu_s: f32,
+    nu: f32,
+    ground: bool,
+}
+
+fn horizon_length() -> f32 {
+    return sqrt(rho_squared(thickness()));
+}
+
+fn mu_s_axis(mu_s: f32) -> f32 {
+    let d = distance_to_top(0.0, mu_s);
+    let d_min = thickness();
+    let d_max = horizon_length();
+    let a = (d - d_min) / (d_max - d_min);
+    let big_a = -2.0 * BRUNETON_MU_S_MIN * bottom_radius() / (d_max - d_min);
+    return clamp(max(1.0 - a / big_a, 0.0) / (1.0 + a), 0.0, 1.0);
+}
+
+fn mu_s_from_axis(x: f32) -> f32 {
+    let big_h = horizon_length();
+    let d_min = thickness();
+    let d_max = big_h;
+    let big_a = -2.0 * BRUNETON_MU_S_MIN * bottom_radius() / (d_max - d_min);
+    let a = (big_a - x * big_a) / (1.0 + x * big_a);
+    let d = d_min + min(a, big_a) * (d_max - d_min);
+    if d <= 0.0 {
+        return 1.0;
+    }
+    return clamp((big_h * big_h - d * d) / (2.0 * bottom_radius() * d), -1.0, 1.0);
+}
+
+fn mu_texel(h: f32, mu: f32, ground: bool) -> f32 {
+    let rho = sqrt(rho_squared(max(h, 0.0)));
+    let half = f32(SCATTERING_MU / 2u - 1u);
+    if ground {
+        let d = distance_to_ground(h, mu);
+        let d_min = max(h, 0.0);
+        let d_max = rho;
+        var x = 0.0;
+        if d_max > d_min {
+            x = clamp((d - d_min) / (d_max - d_min), 0.0, 1.0);
+        }
+        return half * (1.0 - x);
+    }
+    let d = distance_to_top(h, mu);
+    let d_min = thickness() - h;
+    let d_max = rho + horizon_length();
+    let x = clamp((d - d_min) / max(d_max - d_min, 1e-9), 0.0, 1.0);
+    return f32(SCATTERING_MU / 2u) + half * x;
+}
+
+fn r_texel(h: f32) -> f32 {
+    let rho = sqrt(rho_squared(max(h, 0.0)));
+    return min(rho / horizon_length(), 1.0) * f32(SCATTERING_R - 1u);
+}
+
+fn mu_s_texel(mu_s: f32) -> f32 {
+    return mu_s_axis(mu_s) * f32(SCATTERING_MU_S - 1u);
+}
+
+fn nu_texel(nu: f32) -> f32 {
+    return 0.5 * clamp(nu + 1.0, 0.0, 2.0) * f32(SCATTERING_NU - 1u);
+}
+
+fn scattering_texel(c: Coords) -> vec4<f32> {
+    return vec4<f32>(mu_s_texel(c.mu_s), nu_texel(c.nu), mu_texel(c.h, c.mu, c.ground), r_texel(c.h));
+}
+
+// The point of integer texel (x, y, z); nu clamped to what mu and mu_s allow.
+fn scattering_coords(x: u32, y: u32, z: u32) -> Coords {
+    let big_r = bottom_radius();
+    let big_h = horizon_length();
+    let rho = big_h * f32(z) / f32(SCATTERING_R - 1u);
+    let h = rho * rho / (sqrt(rho * rho + big_r * big_r) + big_r);
+    let r = big_r + h;
+    let half = f32(SCATTERING_MU / 2u - 1u);
+    var c: Coords;
+    c.h = h;
+    c.ground = y < SCATTERING_MU / 2u;
+    if c.ground {
+        let xm = 1.0 - f32(y) / half;
+        let d = h + xm * (rho - h);
+        c.mu = -1.0;
+        if d > 0.0 {
+            c.mu = clamp(-(rho * rho + d * d) / (2.0 * r * d), -1.0, 1.0);
+        }
+    } else {
+        let xm = f32(y - SCATTERING_MU / 2u) / half;
+        let d_min = thickness() - h;
+        let d = d_min + xm * (rho + big_h - d_min);
+        c.mu = 1.0;
+        if d > 0.0 {
+            c.mu = clamp((big_h * big_h - rho * rho - d * d) / (2.0 * r * d), -1.0, 1.0);
+        }
+    }
+    let slice = x / SCATTERING_MU_S;
+    let j = x % SCATTERING_MU_S;
+    c.mu_s = mu_s_from_axis(f32(j) / f32(SCATTERING_MU_S - 1u));
+    let nu = -1.0 + 2.0 * f32(slice) / f32(SCATTERING_NU - 1u);
+    let spread = sqrt(max((1.0 - c.mu * c.mu) * (1.0 - c.mu_s * c.mu_s), 0.0));
+    c.nu = clamp(nu, c.mu * c.mu_s - spread, c.mu * c.mu_s + spread);
+    return c;
+}
+
+fn scattering_index(layer: u32, x: u32, y: u32, z: u32) -> u32 {
+    return ((layer * SCATTERING_SIZE.z + z) * SCATTERING_SIZE.y + y) * SCATTERING_SIZE.x + x;
+}
+
+// The sixteen texels a look-up blends: trilinear in (mu_s, mu, r) in the two nu slices around
+// nu, then linear in nu.
+struct ScatteringTaps {
+    index: array<u32, 16>,
+    weight: array<f32, 16>,
+}
+
+fn axis_taps(f: f32, n: u32) -> vec3<f32> {
+    let c = clamp(f, 0.0, f32(n - 1u));
+    let i0 = min(floor(c), f32(n - 1u));
+    return vec3<f32>(i0, min(i0 + 1.0, f32(n - 1u)), c - i0);
+}
+
+fn scattering_taps(layer: u32, t: vec4<f32>) -> ScatteringTaps {
+    let f_nu = clamp(t.y, 0.0, f32(SCATTERING_NU - 1u));
+    let s0 = min(u32(floor(f_nu)), SCATTERING_NU - 2u);
+    let t_nu = f_nu - f32(s0);
+    let j = axis_taps(t.x, SCATTERING_MU_S);
+    let y = axis_taps(t.z, SCATTERING_SIZE.y);
+    let z = axis_taps(t.w, SCATTERING_SIZE.z);
+    var taps: ScatteringTaps;
+    var k = 0u;
+    for (var a = 0u; a < 2u; a++) {
+        let s = s0 + a;
+        let ws = select(1.0 - t_nu, t_nu, a == 1u);
+        for (var b = 0u; b < 2u; b++) {
+            let zi = u32(select(z.x, z.y, b == 1u));
+            let wz = select(1.0 - z.z, z.z, b == 1u);
+            for (var c = 0u; c < 2u; c++) {
+                let yi = u32(select(y.x, y.y, c == 1u));
+                let wy = select(1.0 - y.z, y.z, c == 1u);
+                for (var d = 0u; d < 2u; d++) {
+                    let ji = u32(select(j.x, j.y, d == 1u));
+                    let wx = select(1.0 - j.z, j.z, d == 1u);
+                    taps.index[k] = scattering_index(layer, s * SCATTERING_MU_S + ji, yi, zi);
+                    taps.weight[k] = ws * wz * wy * wx;
+                    k++;
+                }
+            }
+        }
+    }
+    return taps;
+}
+
+// One reader per table: WGSL passes no storage buffer to a function.
+fn read_delta_rayleigh(taps: ScatteringTaps) -> vec4<f32> {
+    var t = taps;
+    var v = vec4<f32>(0.0);
+    for (var k = 0u; k < 16u; k++) {
+        v += t.weight[k] * delta_rayleigh_lut[t.index[k]];
+    }
+    return v;
+}
+
+fn read_delta_mie(taps: ScatteringTaps) -> vec4<f32> {
+    var t = taps;
+    var v = vec4<f32>(0.0);
+    for (var k = 0u; k < 16u; k++) {
+        v += t.weight[k] * delta_mie_lut[t.index[k]];
+    }
+    return v;
+}
+
+fn read_scattering_density(taps: ScatteringTaps) -> vec4<f32> {
+    var t = taps;
+    var v = vec4<f32>(0.0);
+    for (var k = 0u; k < 16u; k++) {
+        v += t.weight[k] * scattering_density_lut[t.index[k]];
+    }
+    return v;
+}
+
+fn read_scattering(taps: ScatteringTaps) -> vec4<f32> {
+    var t = taps;
+    var v = vec4<f32>(0.0);
+    for (var k = 0u; k < 16u; k++) {
+        v += t.weight[k] * scattering_lut[t.index[k]];
+    }
+    return v;
+}
+
+fn read_single_mie(taps: ScatteringTaps) -> vec4<f32> {
+    var t = taps;
+    var v = vec4<f32>(0.0);
+    for (var k = 0u; k < 16u; k++) {
+        v += t.weight[k] * single_mie_lut[t.index[k]];
+    }
+    return v;
+}
+
+// The order held by the delta tables arriving from the direction at fractional texel t with
+// view–sun cosine nu: R·P_R(ν) + M·P_M(ν).
+fn previous_order(b: Batch, layer: u32, t: vec4<f32>, nu: f32) -> vec4<f32> {
+    let taps = scattering_taps(layer, t);
+    return read_delta_rayleigh(taps) * rayleigh_phase(nu, b.rayleigh_depolarisation)
+        + read_delta_mie(taps) * aerosol_phase(nu, b.aerosol_g);
+}
+
+// ---- irradiance tables: (mu_s, h), affine ----
+
+fn irradiance_texel(h: f32, mu_s: f32) -> vec2<f32> {
+    return vec2<f32>(0.5 * (mu_s + 1.0), clamp(h / thickness(), 0.0, 1.0)) * vec2<f32>(IRRADIANCE_SIZE - 1u);
+}
+
+fn irradiance_h_mu_s(f: vec2<f32>) -> vec2<f32> {
+    let x = f / vec2<f32>(IRRADIANCE_SIZE - 1u);
+    return vec2<f32>(x.y * thickness(), clamp(2.0 * x.x - 1.0, -1.0, 1.0));
+}
+
+fn read_delta_irradiance(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
+    let t = taps(IRRADIANCE_SIZE, layer, irradiance_texel(h, mu_s));
+    return blend(delta_irradiance_lut[t.i.x], delta_irradiance_lut[t.i.y], delta_irradiance_lut[t.i.z],
+        delta_irradiance_lut[t.i.w], t.w);
+}
+
+fn read_irradiance(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
+    let t = taps(IRRADIANCE_SIZE, layer, irradiance_texel(h, mu_s));
+    return blend(irradiance_lut[t.i.x], irradiance_lut[t.i.y], irradiance_lut[t.i.z], irradiance_lut[t.i.w], t.w);
+}
+
+// ---- integration along a texel's view ray ----
+
+fn ray_length(c: Coords) -> f32 {
+    if c.ground {
+        return distance_to_ground(c.h, c.mu);
+    }
+    return distance_to_top(c.h, c.mu);
+}
+
+// Sample k of the 2(n + 1) along the ray of c: (distance, weight), crowding towards the ray's
+// lowest point; twin of bruneton::single_scattering::ray_sample.
+fn ray_sample(c: Coords, k: u32, n: u32) -> vec2<f32> {
+    let length = ray_length(c);
+    var lowest = min(-(bottom_radius() + c.h) * c.mu, length);
+    if c.ground {
+        lowest = length;
+    } else if c.mu >= 0.0 {
+        lowest = 0.0;
+    }
+    let i = k % (n + 1u);
+    let s = f32(i) / f32(n);
+    let trapezoid = select(1.0, 0.5, i == 0u || i == n) / f32(n);
+    if k <= n {
+        return vec2<f32>(lowest * (1.0 - (1.0 - s) * (1.0 - s)), trapezoid * 2.0 * lowest * (1.0 - s));
+    }
+    let b = length - lowest;
+    return vec2<f32>(lowest + b * s * s, trapezoid * 2.0 * b * s);
+}
+
+// (altitude, view zenith cosine, sun zenith cosine) at distance d along the ray of c.
+fn along(c: Coords, d: f32) -> vec3<f32> {
+    let r = bottom_radius() + c.h;
+    let at = altitude_along(c.h, c.mu, d);
+    return vec3<f32>(max(at.x, 0.0), clamp((r * c.mu + d) / at.y, -1.0, 1.0),
+        clamp((r * c.mu_s + d * c.nu) / at.y, -1.0, 1.0));
+}
+
+// The 3D invocation of a pass over a scattering table: texel (x, y), slice z and layer.
+fn volume_texel(id: vec3<u32>) -> vec4<u32> {
+    return vec4<u32>(id.x, id.y, id.z % SCATTERING_SIZE.z, id.z / SCATTERING_SIZE.z);
+}

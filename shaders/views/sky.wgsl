@@ -1,0 +1,22 @@
+// The entry point of every model's sky pass, appended after the pass's file, which defines
+// `radiance(layer, dir)`: a batch's radiance along a world direction from the camera. Sums the
+// batches into linear sRGB (Y = ∫ȳL dλ) and writes coverage in alpha (0 outside the projection).
+
+@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= globals.view.xy) {
+        return;
+    }
+    let ray = camera_ray(f32(id.x) + 0.5, f32(id.y) + 0.5);
+    if ray.w == 0.0 {
+        textureStore(radiance_out, id.xy, vec4<f32>(0.0));
+        return;
+    }
+    var rgb = vec3<f32>(0.0);
+    for (var layer = 0u; layer < batch_count(); layer++) {
+        let l = radiance(layer, ray.xyz);
+        rgb += vec3<f32>(dot(batches[layer].to_srgb_r, l), dot(batches[layer].to_srgb_g, l),
+            dot(batches[layer].to_srgb_b, l));
+    }
+    textureStore(radiance_out, id.xy, vec4<f32>(rgb, 1.0));
+}
