@@ -257,7 +257,7 @@ fn the_compare_tab_shows_a_delta_e_figure() {
     assert!(figures.a_vs_b_mean > 0.0 && figures.a_vs_b_mean.is_finite());
     assert!(figures.a_vs_reference_mean.is_finite() && figures.b_vs_reference_mean.is_finite());
     h.get_by_label_contains(&format!(
-        "ΔE2000 García Liñán 2023 Spectral4 vs Hillaire 2020 Spectral4: mean {:.2}",
+        "ΔE2000 Bruneton & Neyret 2008 Spectral4 vs Hillaire 2020 Spectral4: mean {:.2}",
         figures.a_vs_b_mean
     ));
 }
