@@ -7,7 +7,8 @@
 //! that read an input that changed or a table rewritten earlier in the same frame (see
 //! docs/ARCHITECTURE.md): physics rebuilds the whole chain, the sun or the camera's altitude
 //! rebuilds the view tables, turning the camera redraws the view, exposure re-runs only the
-//! display pass, an unchanged frame runs nothing.
+//! display pass, an unchanged frame runs nothing. Passes marked `Repeat::PerOrder` (an order
+//! loop) are encoded once per scattering order from 2 to the scene's count.
 
 use crate::DisplayMode;
 use crate::methods::{Constant, Dispatch, GpuMethod, PassSpec, Repeat, gpu_method};

@@ -207,6 +207,12 @@ pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
         .collect();
     let name = |(m, s): (Method, WavelengthSet)| format!("{}/{}", super::method_id(m), set_name(s));
     let mut rows = Vec::new();
+    // One engine per run, kept across views: a table whose inputs a view leaves unchanged is
+    // not rebuilt (Bruneton's, which depend on the atmosphere alone, are built once).
+    let mut engines: Vec<Engine> = runs
+        .iter()
+        .map(|_| Engine::new(&context.device, &context.queue))
+        .collect();
     for v in views::suite() {
         if !args.views.is_empty() && !args.views.iter().any(|n| n == v.name.as_str()) {
             continue;
@@ -232,11 +238,11 @@ pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
         };
         let images: Vec<Vec<[f64; 3]>> = runs
             .iter()
-            .map(|&(method, set)| {
+            .zip(engines.iter_mut())
+            .map(|(&(method, set), engine)| {
                 let mut s = scene.clone();
                 s.render.method = method;
                 s.render.wavelengths = set;
-                let mut engine = Engine::new(&context.device, &context.queue);
                 engine.try_render(&s, &View::new(v.projection, w, h))?;
                 Ok(engine
                     .read_radiance()?
