@@ -120,19 +120,13 @@ struct ScatteringTaps {
     weight: array<f32, 16>,
 }
 
-fn axis_taps(f: f32, n: u32) -> vec3<f32> {
-    let c = clamp(f, 0.0, f32(n - 1u));
-    let i0 = min(floor(c), f32(n - 1u));
-    return vec3<f32>(i0, min(i0 + 1.0, f32(n - 1u)), c - i0);
-}
-
 fn scattering_taps(layer: u32, t: vec4<f32>) -> ScatteringTaps {
     let f_nu = clamp(t.y, 0.0, f32(SCATTERING_NU - 1u));
     let s0 = min(u32(floor(f_nu)), SCATTERING_NU - 2u);
     let t_nu = f_nu - f32(s0);
-    let j = axis_taps(t.x, SCATTERING_MU_S);
-    let y = axis_taps(t.z, SCATTERING_SIZE.y);
-    let z = axis_taps(t.w, SCATTERING_SIZE.z);
+    let j = depth_taps(SCATTERING_MU_S, t.x);
+    let y = depth_taps(SCATTERING_SIZE.y, t.z);
+    let z = depth_taps(SCATTERING_SIZE.z, t.w);
     var taps: ScatteringTaps;
     var k = 0u;
     for (var a = 0u; a < 2u; a++) {

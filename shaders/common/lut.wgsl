@@ -31,7 +31,8 @@ fn blend(a: vec4<f32>, b: vec4<f32>, c: vec4<f32>, d: vec4<f32>, w: vec2<f32>) -
     return mix(mix(a, b, w.x), mix(c, d, w.x), w.y);
 }
 
-// The slices (z0, z1) and weight of a fractional depth coordinate.
+// The texels (i0, i1) around a fractional coordinate on an axis of `depth` texels, and the
+// weight of i1 (the twin of shared::table::split).
 fn depth_taps(depth: u32, fz: f32) -> vec3<f32> {
     let c = clamp(fz, 0.0, f32(depth - 1u));
     let z0 = floor(c);

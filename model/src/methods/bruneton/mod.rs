@@ -31,6 +31,7 @@ pub mod scattering_density;
 pub mod single_scattering;
 pub mod sky;
 
+use super::shared::table::split;
 use super::shared::transmittance::{self, compute_transmittance_lut};
 use super::shared::{Lanes, Lut, Params, TableSpec, Viewpoint, add};
 use super::{Domain, Inputs, SkyModel};
@@ -302,11 +303,6 @@ impl ScatteringTaps {
     /// map those once.
     pub fn at(layer: usize, [f_mu_s, f_nu, fy, fz]: [f64; 4]) -> ScatteringTaps {
         let [w, h, d] = SCATTERING_SIZE.map(|n| n as usize);
-        let split = |f: f64, n: usize| {
-            let f = f.clamp(0.0, (n - 1) as f64);
-            let i0 = (f.floor() as usize).min(n - 1);
-            (i0, (i0 + 1).min(n - 1), f - i0 as f64)
-        };
         let f_nu = f_nu.clamp(0.0, f64::from(SCATTERING_NU - 1));
         let s0 = (f_nu.floor() as usize).min(SCATTERING_NU as usize - 2);
         let t_nu = f_nu - s0 as f64;

@@ -113,7 +113,9 @@ impl Lut {
     }
 }
 
-fn split(f: f64, n: usize) -> (usize, usize, f64) {
+/// The two texels around fractional coordinate `f` on an axis of `n` texels (clamped to it) and
+/// the weight of the second.
+pub(crate) fn split(f: f64, n: usize) -> (usize, usize, f64) {
     let f = f.clamp(0.0, (n - 1) as f64);
     let i0 = f.floor() as usize;
     let i1 = (i0 + 1).min(n - 1);
