@@ -6,6 +6,11 @@
 
 use std::f64::consts::PI;
 
+/// Elek's (2009) modified Rayleigh phase, in units of 1/(4π): a + b·nu with [a, b] = 0.8·[1.4,
+/// 0.5], as Bodare & Sandberg (2014) and the Atmosphere Plus notes give it. Its odd term darkens
+/// the sky opposite the sun, standing in for the azimuth his tables leave out.
+pub const ELEK_MODIFIED_RAYLEIGH: [f64; 2] = [0.8 * 1.4, 0.8 * 0.5];
+
 /// Rayleigh phase function for depolarisation ratio `rho` (0 = ideal dipole, air ≈ 0.03):
 /// 3/(16π)·[(1+3γ) + (1−γ)ν²]/(1+2γ), γ = ρ/(2−ρ).
 pub fn rayleigh(nu: f64, rho: f64) -> f64 {

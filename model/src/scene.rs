@@ -263,6 +263,7 @@ pub enum Method {
     Hillaire,
     Bruneton,
     GarciaLinan,
+    Elek,
     PathTracer,
 }
 

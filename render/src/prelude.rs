@@ -12,9 +12,9 @@ use atmoscope_model::colour::linear_srgb_to_xyz;
 use atmoscope_model::constants::{
     MAX_LUMINOUS_EFFICACY_LM_PER_W, SUN_ANGULAR_RADIUS_RAD, SUN_LIMB_DARKENING_U,
 };
-use atmoscope_model::methods::bruneton;
 use atmoscope_model::methods::hillaire as h;
 use atmoscope_model::methods::shared::{self, Spacing};
+use atmoscope_model::methods::{bruneton, elek};
 use atmoscope_model::scene::{AerosolPhase, ToneMap};
 use std::fmt::Write;
 
@@ -90,6 +90,18 @@ pub fn wgsl_prelude() -> String {
         format!("vec2<u32>({iw}u, {ih}u)"),
     );
     c("BRUNETON_MU_S_MIN", "f32", f(bruneton::MU_S_MIN));
+    let [ex, ey, ez] = elek::SIZE;
+    c(
+        "ELEK_SIZE",
+        "vec3<u32>",
+        format!("vec3<u32>({ex}u, {ey}u, {ez}u)"),
+    );
+    let [ea, eb] = atmoscope_model::phase::ELEK_MODIFIED_RAYLEIGH;
+    c(
+        "ELEK_MODIFIED_RAYLEIGH",
+        "vec2<f32>",
+        format!("vec2<f32>({}, {})", f(ea), f(eb)),
+    );
     let [aw, ah, ad] = h::AERIAL_PERSPECTIVE_SIZE;
     c(
         "AERIAL_PERSPECTIVE_SIZE",

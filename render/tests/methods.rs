@@ -11,7 +11,7 @@ use atmoscope_model::methods::shared::Lut;
 use atmoscope_model::methods::{self, ModelInfo};
 use atmoscope_model::metrics::{DisplaySetup, compare};
 use atmoscope_model::scene::{Method, Quality, Scene, SunSettings, WavelengthSet};
-use atmoscope_render::methods::{DISPLAY_PASS, GPU_METHODS};
+use atmoscope_render::methods::{DISPLAY_PASS, GPU_METHODS, Repeat, gpu_method};
 use atmoscope_render::passes::shader_source;
 use atmoscope_render::uniforms::{Batch, Globals};
 use atmoscope_render::{Engine, View};
@@ -392,41 +392,59 @@ fn timing_reports_every_pass_that_ran() {
     );
 }
 
-/// Bruneton's tables depend on the atmosphere alone; its order loop runs once per order.
+/// The tables of the models that gather scattering orders (Bruneton, Elek) depend on the
+/// atmosphere alone; their order loop runs once per order from the second.
 #[test]
-fn bruneton_rebuilds_no_table_when_the_sun_or_the_camera_moves() {
+fn order_gathering_models_rebuild_no_table_when_the_sun_or_the_camera_moves() {
     let Some(gpu) = context() else { return };
-    let mut engine = Engine::new(&gpu.device, &gpu.queue);
     let view = View::new(Projection::Perspective, 24, 16);
-    let mut scene = Scene::default();
-    scene.render.method = Method::Bruneton;
-    scene.render.quality = Quality::Low;
-    scene.render.wavelengths = WavelengthSet::Rgb3;
-    let first = engine.render(&scene, &view).clone();
-    assert_eq!(first.run, first.passes);
-    let looped = 3;
-    let once = first.passes.len() - looped;
-    assert_eq!(first.dispatched, once + looped * 3, "orders 2, 3 and 4");
-    let view_only = vec!["sky", "display"];
-    scene.sun = SunSettings::Angles {
-        elevation_deg: 5.0,
-        azimuth_deg: 200.0,
-    };
-    assert_eq!(engine.render(&scene, &view).run, view_only, "sun");
-    for altitude_m in [10_000.0, 400_000.0, 2.0] {
-        scene.camera.altitude_m = altitude_m;
+    let models: Vec<_> = methods::realtime().filter(|m| m.gathers_orders).collect();
+    assert!(models.len() >= 2, "Bruneton and Elek gather orders");
+    for model in models {
+        let mut engine = Engine::new(&gpu.device, &gpu.queue);
+        let mut scene = with(model, &Scene::default());
+        scene.render.quality = Quality::Low;
+        scene.render.wavelengths = WavelengthSet::Rgb3;
+        let looped = gpu_method(model.method)
+            .expect("passes")
+            .passes
+            .iter()
+            .filter(|p| p.repeat == Repeat::PerOrder)
+            .count();
+        let id = model.id;
+        let first = engine.render(&scene, &view).clone();
+        assert_eq!(first.run, first.passes, "{id}");
+        let once = first.passes.len() - looped;
         assert_eq!(
-            engine.render(&scene, &view).run,
-            view_only,
-            "{altitude_m} m"
+            first.dispatched,
+            once + looped * 3,
+            "{id}: orders 2, 3 and 4"
+        );
+        let view_only = vec!["sky", "display"];
+        scene.sun = SunSettings::Angles {
+            elevation_deg: 5.0,
+            azimuth_deg: 200.0,
+        };
+        assert_eq!(engine.render(&scene, &view).run, view_only, "{id}: sun");
+        for altitude_m in [10_000.0, 400_000.0, 2.0] {
+            scene.camera.altitude_m = altitude_m;
+            assert_eq!(
+                engine.render(&scene, &view).run,
+                view_only,
+                "{id}: {altitude_m} m"
+            );
+        }
+        scene.render.scattering_orders = 1;
+        let single = engine.render(&scene, &view).clone();
+        assert_eq!(single.dispatched, once, "{id}: one order, no loop");
+        assert_eq!(single.skipped.len(), looped, "{id}");
+        scene.render.scattering_orders = 10;
+        assert_eq!(
+            engine.render(&scene, &view).dispatched,
+            once + looped * 9,
+            "{id}"
         );
     }
-    scene.render.scattering_orders = 1;
-    let single = engine.render(&scene, &view).clone();
-    assert_eq!(single.dispatched, once, "one order: no loop");
-    assert_eq!(single.skipped.len(), looped);
-    scene.render.scattering_orders = 10;
-    assert_eq!(engine.render(&scene, &view).dispatched, once + looped * 9);
 }
 
 #[test]

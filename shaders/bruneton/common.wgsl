@@ -2,14 +2,6 @@
 // model::methods::bruneton (same mappings, same sample placement, same arithmetic in f32).
 // 4D tables (mu_s, nu, mu, r) are stored as 3D tables with the nu slices side by side in x.
 
-struct Coords {
-    h: f32,
-    mu: f32,
-    mu_s: f32,
-    nu: f32,
-    ground: bool,
-}
-
 fn horizon_length() -> f32 {
     return sqrt(rho_squared(thickness()));
 }
@@ -225,43 +217,6 @@ fn read_delta_irradiance(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
 fn read_irradiance(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
     let t = taps(IRRADIANCE_SIZE, layer, irradiance_texel(h, mu_s));
     return blend(irradiance_lut[t.i.x], irradiance_lut[t.i.y], irradiance_lut[t.i.z], irradiance_lut[t.i.w], t.w);
-}
-
-// ---- integration along a texel's view ray ----
-
-fn ray_length(c: Coords) -> f32 {
-    if c.ground {
-        return distance_to_ground(c.h, c.mu);
-    }
-    return distance_to_top(c.h, c.mu);
-}
-
-// Sample k of the 2(n + 1) along the ray of c: (distance, weight), crowding towards the ray's
-// lowest point; twin of bruneton::single_scattering::ray_sample.
-fn ray_sample(c: Coords, k: u32, n: u32) -> vec2<f32> {
-    let length = ray_length(c);
-    var lowest = min(-(bottom_radius() + c.h) * c.mu, length);
-    if c.ground {
-        lowest = length;
-    } else if c.mu >= 0.0 {
-        lowest = 0.0;
-    }
-    let i = k % (n + 1u);
-    let s = f32(i) / f32(n);
-    let trapezoid = select(1.0, 0.5, i == 0u || i == n) / f32(n);
-    if k <= n {
-        return vec2<f32>(lowest * (1.0 - (1.0 - s) * (1.0 - s)), trapezoid * 2.0 * lowest * (1.0 - s));
-    }
-    let b = length - lowest;
-    return vec2<f32>(lowest + b * s * s, trapezoid * 2.0 * b * s);
-}
-
-// (altitude, view zenith cosine, sun zenith cosine) at distance d along the ray of c.
-fn along(c: Coords, d: f32) -> vec3<f32> {
-    let r = bottom_radius() + c.h;
-    let at = altitude_along(c.h, c.mu, d);
-    return vec3<f32>(max(at.x, 0.0), clamp((r * c.mu + d) / at.y, -1.0, 1.0),
-        clamp((r * c.mu_s + d * c.nu) / at.y, -1.0, 1.0));
 }
 
 // The 3D invocation of a pass over a scattering table: texel (x, y), slice z and layer.

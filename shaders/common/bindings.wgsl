@@ -20,8 +20,8 @@ struct Globals {
     options: vec4<u32>,
     // steps: transmittance, multiple scattering, ground irradiance, sky view
     steps_a: vec4<u32>,
-    // steps: aerial perspective per slice, ray march from space, Bruneton's trapezoid intervals,
-    // Bruneton's sphere zenith samples
+    // steps: aerial perspective per slice, ray march from space, trapezoid intervals along a
+    // texel's ray (Bruneton, Elek), sphere zenith samples (Bruneton, Elek)
     steps_b: vec4<u32>,
     // exposure scale, log10 luminance min and max (cd/m²), 0
     display: vec4<f32>,
@@ -73,6 +73,10 @@ fn batch_count() -> u32 { return globals.options.y; }
 @group(1) @binding(14) var<storage, read_write> scattering_lut: array<vec4<f32>>;
 @group(1) @binding(15) var<storage, read_write> single_mie_lut: array<vec4<f32>>;
 @group(1) @binding(16) var<storage, read_write> scattering_density_lut: array<vec4<f32>>;
+@group(1) @binding(17) var<storage, read_write> gathered_rayleigh_lut: array<vec4<f32>>;
+@group(1) @binding(18) var<storage, read_write> gathered_mie_lut: array<vec4<f32>>;
+@group(1) @binding(19) var<storage, read_write> rayleigh_scattering_lut: array<vec4<f32>>;
+@group(1) @binding(20) var<storage, read_write> mie_scattering_lut: array<vec4<f32>>;
 @group(1) @binding(6) var radiance_out: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(7) var radiance_in: texture_2d<f32>;
 @group(1) @binding(8) var display_out: texture_storage_2d<rgba8unorm, write>;

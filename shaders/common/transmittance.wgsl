@@ -44,6 +44,12 @@ fn sun_transmittance(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
     return transmittance(layer, h, mu_s) * visible;
 }
 
+// The Lambertian ground where the sun's zenith cosine is mu_s_g, lit by direct sunlight alone
+// (models with no skylight term for surfaces). Twin of shared::transmittance::sunlit_ground.
+fn sunlit_ground(layer: u32, mu_s_g: f32) -> vec4<f32> {
+    let b = batches[layer];
+    return b.ground_albedo / PI * b.solar_irradiance * sun_transmittance(layer, 0.0, mu_s_g) * max(mu_s_g, 0.0);
+}
 
 // Transmittance between the point at altitude h and the point at distance d along (h, mu), as
 // ratios of table values in which every ray rises from where it starts. Twin of

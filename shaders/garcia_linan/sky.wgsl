@@ -3,13 +3,6 @@
 // the model's integrand (entry point: views/sky.wgsl). Twin of
 // model::methods::garcia_linan::sky.
 
-// Direct sunlight on the Lambertian ground (the model has no skylight term for surfaces).
-fn ground_radiance(layer: u32, mu_s_g: f32) -> vec4<f32> {
-    let albedo = batches[layer].ground_albedo;
-    let e = batches[layer].solar_irradiance;
-    return albedo / PI * e * sun_transmittance(layer, 0.0, mu_s_g) * max(mu_s_g, 0.0);
-}
-
 fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     let big_r = bottom_radius();
     let top = top_radius();
@@ -31,7 +24,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
             let d = distance_to_ground(h, mu);
             let mu_s_g = clamp((r * mu_s + d * nu) / big_r, -1.0, 1.0);
             let tr = transmittance_between(layer, h, mu, d);
-            return s + tr * ground_radiance(layer, mu_s_g);
+            return s + tr * sunlit_ground(layer, mu_s_g);
         }
         if disk > 0.0 {
             return s + transmittance(layer, h, mu) * e * disk;
@@ -50,7 +43,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     var behind = e * disk;
     if hits_ground(thickness(), mu_e) {
         let mu_s_g = clamp((top * mu_s_e + t_max * nu) / big_r, -1.0, 1.0);
-        behind = ground_radiance(layer, mu_s_g);
+        behind = sunlit_ground(layer, mu_s_g);
     }
     return s.radiance * e + s.transmittance * behind;
 }

@@ -178,6 +178,10 @@ pub struct AccuracyBench {
     /// The spectral set the others are compared with.
     #[arg(long, value_parser = parse_wavelengths, default_value = "spectral32")]
     pub spectral: WavelengthSet,
+    /// Wavelength sets to measure, comma-separated, the first being the one the others are
+    /// compared with (default: the --spectral set, spectral4, rgb3).
+    #[arg(long, value_delimiter = ',', value_parser = parse_wavelengths)]
+    pub sets: Vec<WavelengthSet>,
     /// Sky models, comma-separated registry ids, or `all`.
     #[arg(long, value_name = "IDS", value_parser = super::parse_methods, default_value = "hillaire")]
     pub methods: super::MethodList,
@@ -198,7 +202,11 @@ struct AccuracyRow {
 
 pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
     let context = gpu()?;
-    let sets = [args.spectral, WavelengthSet::Spectral4, WavelengthSet::Rgb3];
+    let sets = if args.sets.is_empty() {
+        vec![args.spectral, WavelengthSet::Spectral4, WavelengthSet::Rgb3]
+    } else {
+        args.sets.clone()
+    };
     let runs: Vec<(Method, WavelengthSet)> = args
         .methods
         .0
@@ -263,7 +271,8 @@ pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
                 (name(run), m, p)
             })
             .collect();
-        // Each model's Spectral4 and RGB3 against its own spectral set (the first of its three).
+        // Each model's other sets against its first (by default Spectral4 and RGB3 against
+        // the spectral set).
         let vs_spectral = runs
             .iter()
             .enumerate()
@@ -289,7 +298,7 @@ pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
         println!("{}", serde_json::to_string_pretty(&rows)?);
         return Ok(ExitCode::SUCCESS);
     }
-    let s = set_name(args.spectral);
+    let s = set_name(sets[0]);
     println!("ΔE2000 mean / p95, display-referred at each view's exposure");
     print!("{:20} {:>6} ", "view", "sun°");
     let first = &rows[0];

@@ -9,6 +9,7 @@
 //! it) but no real-time passes.
 
 pub mod bruneton;
+pub mod elek;
 pub mod garcia_linan;
 pub mod hillaire;
 pub mod path_tracer;
@@ -214,6 +215,17 @@ pub const MODELS: &[ModelInfo] = &[
         tables: &garcia_linan::TABLES,
         gathers_orders: false,
         build: Some(garcia_linan::build),
+    },
+    ModelInfo {
+        method: Method::Elek,
+        id: "elek",
+        label: "Elek 2009",
+        citation: "O. Elek (2009), Rendering Parametrizable Planetary Atmospheres with Multiple Scattering in Real-Time, CESCG; as described in J. Boody's Atmosphere Plus notes after Bodare & Sandberg (2014)",
+        summary: "3D tables (altitude, view, sun) without the view–sun azimuth, Rayleigh and Mie apart with their phase functions applied at look-up (a modified Rayleigh phase), every order up to N gathered one by one; no table depends on the sun or the camera.",
+        domain: elek::DOMAIN,
+        tables: &elek::TABLES,
+        gathers_orders: true,
+        build: Some(elek::build),
     },
     ModelInfo {
         method: Method::PathTracer,

@@ -8,6 +8,7 @@
 //! `shaders/common/bindings.wgsl`.
 
 pub mod bruneton;
+pub mod elek;
 pub mod garcia_linan;
 pub mod hillaire;
 
@@ -79,6 +80,10 @@ pub enum Repeat {
     /// consecutive passes marked so running in turn for each order: an order loop.
     PerOrder,
 }
+
+/// Most tables one pass may bind: wgpu's default limit of 8 storage buffers per shader stage
+/// (the engine asks for the default limits) less group 0's batches and profile.
+pub const MAX_TABLES_PER_PASS: usize = 6;
 
 /// Resources that are not tables: the view's images, written and read by the view passes.
 pub const RADIANCE: &str = "radiance";
@@ -185,18 +190,24 @@ pub const SKY_INPUTS: Inputs = Inputs::VIEWPOINT
     .union(Inputs::VIEW_SIZE);
 
 /// The WGSL files every pass includes, after the generated prelude.
-pub const COMMON: [Shader; 7] = [
+pub const COMMON: [Shader; 8] = [
     shader!("common/bindings.wgsl"),
     shader!("common/geometry.wgsl"),
     shader!("common/lut.wgsl"),
     shader!("common/phase.wgsl"),
     shader!("common/medium.wgsl"),
     shader!("common/transmittance.wgsl"),
+    shader!("common/ray.wgsl"),
     shader!("common/view.wgsl"),
 ];
 
 /// Every real-time model's passes, in registry order.
-pub const GPU_METHODS: [GpuMethod; 3] = [hillaire::METHOD, bruneton::METHOD, garcia_linan::METHOD];
+pub const GPU_METHODS: [GpuMethod; 4] = [
+    hillaire::METHOD,
+    bruneton::METHOD,
+    garcia_linan::METHOD,
+    elek::METHOD,
+];
 
 /// The passes of `method`, or None for a model with no real-time passes (the path tracer).
 pub fn gpu_method(method: Method) -> Option<&'static GpuMethod> {
@@ -278,6 +289,17 @@ mod tests {
                 row.id
             );
             for (i, p) in gpu.passes.iter().enumerate() {
+                let tables = p
+                    .resources()
+                    .iter()
+                    .filter(|r| ![RADIANCE, DISPLAY].contains(r))
+                    .count();
+                assert!(
+                    tables <= MAX_TABLES_PER_PASS,
+                    "{}: {} binds {tables} tables",
+                    row.id,
+                    p.name
+                );
                 for r in p.reads {
                     let earlier = gpu.passes[..i].iter().any(|q| q.writes.contains(r));
                     assert!(

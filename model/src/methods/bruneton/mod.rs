@@ -31,15 +31,15 @@ pub mod scattering_density;
 pub mod single_scattering;
 pub mod sky;
 
+pub use super::shared::ray::Coords;
 use super::shared::table::split;
 use super::shared::transmittance::{self, compute_transmittance_lut};
-use super::shared::{Lanes, Lut, Params, TableSpec, Viewpoint, add};
+use super::shared::{Lanes, Lut, Params, TableSpec, Viewpoint};
+pub use super::shared::{aerosol_phase, rayleigh_phase};
 use super::{Domain, Inputs, SkyModel};
 use crate::geometry::{distance_to_ground, distance_to_top, rho_squared};
-use crate::phase;
 use crate::wavelengths::LANES;
 use glam::DVec3;
-use rayon::prelude::*;
 
 /// View–sun cosine (nu) slices of the scattering tables.
 pub const SCATTERING_NU: u32 = 8;
@@ -148,17 +148,6 @@ pub const TABLES: [TableSpec; 8] = [
     SINGLE_MIE,
     SCATTERING_DENSITY,
 ];
-
-/// A point of the scattering tables' domain: altitude (m), view and sun zenith cosines,
-/// view–sun cosine, and whether the view ray ends on the ground (which half of the mu axis).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Coords {
-    pub h: f64,
-    pub mu: f64,
-    pub mu_s: f64,
-    pub nu: f64,
-    pub ground: bool,
-}
 
 /// √(top² − R²): the distance from the ground to the top along the horizontal.
 fn horizon_length(p: &Params) -> f64 {
@@ -347,18 +336,6 @@ pub fn scattering(p: &Params, lut: &Lut, layer: usize, c: Coords) -> Lanes {
     ScatteringTaps::new(p, layer, c).read(lut)
 }
 
-/// The Rayleigh phase function per lane at `nu`.
-pub fn rayleigh_phase(p: &Params, layer: usize, nu: f64) -> Lanes {
-    p.batches[layer]
-        .rayleigh_depolarisation
-        .map(|rho| phase::rayleigh(nu, rho))
-}
-
-/// The aerosol phase function per lane at `nu`.
-pub fn aerosol_phase(p: &Params, layer: usize, nu: f64) -> Lanes {
-    p.batches[layer].aerosol_g.map(|g| p.aerosol_phase(nu, g))
-}
-
 /// The radiance of the order held by the delta tables arriving from the direction at
 /// fractional texel `texel` whose view–sun cosine is `nu`: R·P_R(ν) + M·P_M(ν).
 pub fn previous_order(
@@ -398,42 +375,8 @@ pub fn irradiance(p: &Params, lut: &Lut, layer: usize, h: f64, mu_s: f64) -> Lan
     lut.bilinear(layer, fx, fy, 0)
 }
 
-/// A table of `spec`'s size filled by `f(layer, z, y, x)` giving two values per texel: two
-/// tables written by one pass.
-fn build_pair(
-    spec: &TableSpec,
-    layers: usize,
-    f: impl Fn(usize, usize, usize, usize) -> (Lanes, Lanes) + Sync,
-) -> (Lut, Lut) {
-    let [w, h, d] = spec.size.map(|n| n as usize);
-    let (a, b): (Vec<Lanes>, Vec<Lanes>) = (0..layers * d * h * w)
-        .into_par_iter()
-        .map(|i| f(i / (d * h * w), (i / (h * w)) % d, (i / w) % h, i % w))
-        .unzip();
-    let lut = |data| Lut {
-        width: w,
-        height: h,
-        depth: d,
-        layers,
-        data,
-    };
-    (lut(a), lut(b))
-}
-
 fn zeros(spec: &TableSpec, layers: usize) -> Lut {
     Lut::from_spec(spec, layers, |_, _, _, _| [0.0; LANES])
-}
-
-fn sum(a: &Lut, b: &Lut) -> Lut {
-    Lut {
-        data: a
-            .data
-            .iter()
-            .zip(&b.data)
-            .map(|(x, y)| add(*x, *y))
-            .collect(),
-        ..a.clone()
-    }
 }
 
 /// Every table of the method for one atmosphere, in the state the GPU leaves them.
@@ -462,7 +405,7 @@ impl Tables {
         });
         let mut irradiance = zeros(&IRRADIANCE, layers);
         let (mut delta_rayleigh, mut delta_mie) =
-            build_pair(&DELTA_RAYLEIGH, layers, |layer, z, y, x| {
+            Lut::pair_from_spec(&DELTA_RAYLEIGH, layers, |layer, z, y, x| {
                 single_scattering::single_scattering(p, &t, layer, scattering_coords(p, x, y, z))
             });
         let mut scattering = delta_rayleigh.clone();
@@ -489,7 +432,7 @@ impl Tables {
                     mu_s,
                 )
             });
-            irradiance = sum(&irradiance, &delta_irradiance);
+            irradiance = irradiance.plus(&delta_irradiance);
             delta_rayleigh = Lut::from_spec(&DELTA_RAYLEIGH, layers, |layer, z, y, x| {
                 multiple_scattering::multiple_scattering(
                     p,
@@ -500,7 +443,7 @@ impl Tables {
                 )
             });
             delta_mie = zeros(&DELTA_MIE, layers);
-            scattering = sum(&scattering, &delta_rayleigh);
+            scattering = scattering.plus(&delta_rayleigh);
         }
         Tables {
             params: p.clone(),

@@ -4,8 +4,8 @@
 //! becomes the delta the next order reads, and is added to the scattering sum. Twin of
 //! `shaders/bruneton/multiple_scattering.wgsl`.
 
-use super::single_scattering::{along, ray_sample};
 use super::{Coords, Lanes, Lut, Params, rayleigh_phase, scattering};
+use crate::methods::shared::ray::{along, ray_sample};
 use crate::methods::shared::transmittance::transmittance_between;
 use crate::wavelengths::LANES;
 

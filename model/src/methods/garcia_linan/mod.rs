@@ -22,7 +22,7 @@ pub mod sky_texture;
 
 use super::shared::march::march_inscattering;
 use super::shared::transmittance::{self, compute_transmittance_lut, sun_transmittance};
-use super::shared::{Lanes, Lut, Params, Spacing, TableSpec, Viewpoint, add, scale};
+use super::shared::{Lanes, Lut, Params, Spacing, TableSpec, Viewpoint, add};
 use super::{Domain, SkyModel};
 use crate::geometry::rho_squared;
 use crate::table::tables;
@@ -191,17 +191,6 @@ impl SkyModel for Tables {
 /// Builds the method's CPU twin with the published constants (the registry's constructor).
 pub fn build(params: &Params, vp: Viewpoint) -> Box<dyn SkyModel> {
     Box::new(Tables::compute(params, Constants::published(), vp))
-}
-
-/// The radiance of the sunlit Lambertian ground where the sun's zenith cosine is `mu_s_g`:
-/// direct sunlight only, the model having no sky-irradiance term for surfaces.
-pub fn ground_radiance(p: &Params, t: &Lut, layer: usize, mu_s_g: f64) -> Lanes {
-    let b = &p.batches[layer];
-    let sun_t = sun_transmittance(p, t, layer, 0.0, mu_s_g);
-    scale(
-        std::array::from_fn(|i| b.ground_albedo[i] / PI * b.solar_irradiance[i] * sun_t[i]),
-        mu_s_g.max(0.0),
-    )
 }
 
 #[cfg(test)]

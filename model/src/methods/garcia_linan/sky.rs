@@ -4,10 +4,10 @@
 //! of `shaders/garcia_linan/sky.wgsl`.
 
 use super::sky_texture::sky_texture;
-use super::{Constants, Lanes, Lut, Params, Tables, ground_radiance, integrate};
+use super::{Constants, Lanes, Lut, Params, Tables, integrate};
 use crate::geometry::{distance_to_boundary, distance_to_ground, hits_ground};
 use crate::methods::shared::sun_disk;
-use crate::methods::shared::transmittance::{transmittance, transmittance_between};
+use crate::methods::shared::transmittance::{sunlit_ground, transmittance, transmittance_between};
 use crate::methods::shared::{entry_into_atmosphere, mul, sun_relative_angles};
 use glam::DVec3;
 use std::f64::consts::FRAC_PI_2;
@@ -86,7 +86,7 @@ fn radiance_with(
         if hits_ground(h, mu, big_r) {
             let d = distance_to_ground(h, mu, big_r);
             let mu_s_g = ((r * mu_s + d * nu) / big_r).clamp(-1.0, 1.0);
-            let lg = ground_radiance(p, t, layer, mu_s_g);
+            let lg = sunlit_ground(p, t, layer, mu_s_g);
             let tr = transmittance_between(p, t, layer, (h, mu), d);
             std::array::from_fn(|i| s[i] + tr[i] * lg[i])
         } else {
@@ -109,7 +109,7 @@ fn radiance_with(
         );
         let behind = if hits_ground(thickness, mu_e, big_r) {
             let mu_s_g = ((top * mu_s_e + t_max * nu) / big_r).clamp(-1.0, 1.0);
-            ground_radiance(p, t, layer, mu_s_g)
+            sunlit_ground(p, t, layer, mu_s_g)
         } else {
             e.map(|e| e * disk)
         };

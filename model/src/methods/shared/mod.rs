@@ -1,11 +1,13 @@
 //! What every table-based sky model shares: the per-batch optics and density profile
 //! ([`optics`]), the table container with its declared axes ([`table`]), the transmittance table
 //! in Bruneton's (2017) mapping with the sun's visible fraction ([`transmittance`]), the spacing
-//! and weights of ray marches ([`march`]) and the sun's disk ([`sun`]). Geometry in (h, mu) lives
+//! and weights of ray marches ([`march`]), the sun's disk ([`sun`]) and the integrals along a
+//! table texel's ray ([`ray`]). Geometry in (h, mu) lives
 //! in [`crate::geometry`]. WGSL twins are in `shaders/common/`.
 
 pub mod march;
 pub mod optics;
+pub mod ray;
 pub mod sun;
 pub mod table;
 pub mod transmittance;
@@ -35,6 +37,18 @@ pub(crate) fn mul(a: Lanes, b: Lanes) -> Lanes {
 
 pub(crate) fn scale(a: Lanes, k: f64) -> Lanes {
     a.map(|v| v * k)
+}
+
+/// The Rayleigh phase function per lane of batch `layer` at view–sun cosine `nu`, sr⁻¹.
+pub fn rayleigh_phase(p: &Params, layer: usize, nu: f64) -> Lanes {
+    p.batches[layer]
+        .rayleigh_depolarisation
+        .map(|rho| crate::phase::rayleigh(nu, rho))
+}
+
+/// The aerosol phase function per lane of batch `layer` at view–sun cosine `nu`, sr⁻¹.
+pub fn aerosol_phase(p: &Params, layer: usize, nu: f64) -> Lanes {
+    p.batches[layer].aerosol_g.map(|g| p.aerosol_phase(nu, g))
 }
 
 /// The sun's direction in a local frame where the view azimuth is measured from it: (x, 0, mu_s).

@@ -2,7 +2,7 @@
 //! size, what its axes mean and which scene inputs invalidate it. The GPU stores the same
 //! texels in the same order (`shaders/common/lut.wgsl`).
 
-use super::{Lanes, Params, lerp};
+use super::{Lanes, Params, add, lerp};
 use crate::methods::Inputs;
 use rayon::prelude::*;
 
@@ -77,6 +77,41 @@ impl Lut {
             depth: d,
             layers,
             data,
+        }
+    }
+
+    /// Two tables of the size `spec` declares, written together: `f(layer, z, y, x)` gives
+    /// the texel of each, in parallel (a pass with two outputs).
+    pub fn pair_from_spec(
+        spec: &TableSpec,
+        layers: usize,
+        f: impl Fn(usize, usize, usize, usize) -> (Lanes, Lanes) + Sync,
+    ) -> (Lut, Lut) {
+        let [w, h, d] = spec.size.map(|n| n as usize);
+        let (a, b): (Vec<Lanes>, Vec<Lanes>) = (0..layers * d * h * w)
+            .into_par_iter()
+            .map(|i| f(i / (d * h * w), (i / (h * w)) % d, (i / w) % h, i % w))
+            .unzip();
+        let lut = |data| Lut {
+            width: w,
+            height: h,
+            depth: d,
+            layers,
+            data,
+        };
+        (lut(a), lut(b))
+    }
+
+    /// The texel-by-texel sum of two tables of the same size.
+    pub fn plus(&self, other: &Lut) -> Lut {
+        Lut {
+            data: self
+                .data
+                .iter()
+                .zip(&other.data)
+                .map(|(a, b)| add(*a, *b))
+                .collect(),
+            ..self.clone()
         }
     }
 

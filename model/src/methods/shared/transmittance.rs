@@ -97,6 +97,19 @@ pub fn sun_transmittance(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -
     scale(transmittance(p, t, layer, h, mu_s), visible)
 }
 
+/// The radiance of the Lambertian ground where the sun's zenith cosine is `mu_s_g`, lit by
+/// direct sunlight alone (for models with no skylight term for surfaces), W·m⁻²·sr⁻¹·nm⁻¹.
+pub fn sunlit_ground(p: &Params, t: &Lut, layer: usize, mu_s_g: f64) -> Lanes {
+    let b = &p.batches[layer];
+    let sun_t = sun_transmittance(p, t, layer, 0.0, mu_s_g);
+    std::array::from_fn(|i| {
+        b.ground_albedo[i] / std::f64::consts::PI
+            * b.solar_irradiance[i]
+            * sun_t[i]
+            * mu_s_g.max(0.0)
+    })
+}
+
 /// The transmittance between the point at altitude `h` and the point at distance `d` along the
 /// ray (h, mu), as ratios of table values in which every ray rises from where it starts, so
 /// that no factor depends on the table's steep column at the horizon: along the reversed ray

@@ -1,0 +1,73 @@
+// A ray of a table texel through the atmosphere, as the models that tabulate in-scattering per
+// (h, mu, mu_s, nu) integrate it: its length, its samples, the local angles at a sample and
+// single scattering along it without phase functions. Twin of model::methods::shared::ray.
+
+struct Coords {
+    h: f32,
+    mu: f32,
+    mu_s: f32,
+    nu: f32,
+    ground: bool,
+}
+
+fn ray_length(c: Coords) -> f32 {
+    if c.ground {
+        return distance_to_ground(c.h, c.mu);
+    }
+    return distance_to_top(c.h, c.mu);
+}
+
+// Sample k of the 2(n + 1) along the ray of c: (distance, weight), crowding towards the ray's
+// lowest point.
+fn ray_sample(c: Coords, k: u32, n: u32) -> vec2<f32> {
+    let length = ray_length(c);
+    var lowest = min(-(bottom_radius() + c.h) * c.mu, length);
+    if c.ground {
+        lowest = length;
+    } else if c.mu >= 0.0 {
+        lowest = 0.0;
+    }
+    let i = k % (n + 1u);
+    let s = f32(i) / f32(n);
+    let trapezoid = select(1.0, 0.5, i == 0u || i == n) / f32(n);
+    if k <= n {
+        return vec2<f32>(lowest * (1.0 - (1.0 - s) * (1.0 - s)), trapezoid * 2.0 * lowest * (1.0 - s));
+    }
+    let b = length - lowest;
+    return vec2<f32>(lowest + b * s * s, trapezoid * 2.0 * b * s);
+}
+
+// (altitude, view zenith cosine, sun zenith cosine) at distance d along the ray of c.
+fn along(c: Coords, d: f32) -> vec3<f32> {
+    let r = bottom_radius() + c.h;
+    let at = altitude_along(c.h, c.mu, d);
+    return vec3<f32>(max(at.x, 0.0), clamp((r * c.mu + d) / at.y, -1.0, 1.0),
+        clamp((r * c.mu_s + d * c.nu) / at.y, -1.0, 1.0));
+}
+
+struct RayleighMie {
+    rayleigh: vec4<f32>,
+    mie: vec4<f32>,
+}
+
+// Rayleigh and Mie single scattering along the ray of c without phase functions.
+fn single_scattering(layer: u32, c: Coords) -> RayleighMie {
+    let b = batches[layer];
+    let n = globals.steps_b.z;
+    var s: RayleighMie;
+    s.rayleigh = vec4<f32>(0.0);
+    s.mie = vec4<f32>(0.0);
+    for (var k = 0u; k < 2u * (n + 1u); k++) {
+        let sample = ray_sample(c, k, n);
+        let d = sample.x;
+        let at = along(c, d);
+        let tr = sample.y * transmittance_between(layer, c.h, c.mu, d)
+            * sun_transmittance(layer, at.x, at.z);
+        let m = medium(b, at.x);
+        s.rayleigh += tr * m.rayleigh_scattering;
+        s.mie += tr * m.aerosol_scattering;
+    }
+    s.rayleigh *= b.solar_irradiance;
+    s.mie *= b.solar_irradiance;
+    return s;
+}
