@@ -301,6 +301,19 @@ pub struct RenderSettings {
     pub quality: Quality,
     /// Scattering orders of the models that gather them one by one (Bruneton, Elek), 1–10.
     pub scattering_orders: u32,
+    /// Which fitted constants the models that have them use (García Liñán's L_ms).
+    pub fitted_constants: FittedConstants,
+}
+
+/// The source of a model's fitted constants.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+pub enum FittedConstants {
+    /// As the model's author published them.
+    #[default]
+    Published,
+    /// Refitted by this project against the path tracer over the view suite
+    /// (`atmoscope fit-garcia-linan`), shipped in `model/data`.
+    Refit,
 }
 
 /// Scattering orders by default (Bruneton 2017's).
@@ -313,6 +326,7 @@ impl Default for RenderSettings {
             wavelengths: WavelengthSet::default(),
             quality: Quality::default(),
             scattering_orders: DEFAULT_SCATTERING_ORDERS,
+            fitted_constants: FittedConstants::default(),
         }
     }
 }

@@ -157,6 +157,7 @@ pub mod tables {
     embedded_table!(opac_refractive_indices, "opac_refractive_indices.csv");
     embedded_table!(guimera_aerosol_types, "aerosol_guimera2018_type_params.csv");
     embedded_table!(garcia_linan_constants, "garcia_linan_2023_constants.csv");
+    embedded_table!(garcia_linan_refit, "garcia_linan_refit.csv");
     embedded_table!(spectral4_fitted_matrix, "spectral4_fitted_matrix.csv");
 }
 
@@ -186,6 +187,7 @@ mod tests {
             tables::guimera_aerosol_types(),
             tables::garcia_linan_constants(),
         ];
+        assert_eq!(tables::garcia_linan_refit().len(), 4);
         for t in all {
             assert!(t.len() >= 6, "table {} has only {} rows", t.name, t.len());
         }

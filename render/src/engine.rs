@@ -22,7 +22,8 @@ use atmoscope_model::geometry::direction_from_angles;
 use atmoscope_model::methods::shared::{Params, viewpoint};
 use atmoscope_model::methods::{self, Inputs, NotRealtime};
 use atmoscope_model::scene::{
-    AtmosphereSettings, CameraSettings, Method, Quality, Scene, ToneMap, WavelengthSet,
+    AtmosphereSettings, CameraSettings, FittedConstants, Method, Quality, Scene, ToneMap,
+    WavelengthSet,
 };
 use std::time::Instant;
 
@@ -102,6 +103,7 @@ struct AtmosphereKey {
     wavelengths: WavelengthSet,
     quality: Quality,
     scattering_orders: u32,
+    fitted_constants: FittedConstants,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -300,6 +302,7 @@ impl Engine {
             wavelengths: scene.render.wavelengths,
             quality: scene.render.quality,
             scattering_orders: scene.render.scattering_orders,
+            fitted_constants: scene.render.fitted_constants,
         };
         let rebuilt = self.atmosphere.as_ref().is_none_or(|a| a.key != key);
         if rebuilt {
@@ -308,7 +311,7 @@ impl Engine {
                 key.wavelengths,
                 key.quality,
             )
-            .with_scattering_orders(key.scattering_orders);
+            .with_render(&scene.render);
             let tables = TableBuffers::new(
                 &self.device,
                 &self.pipelines[0],
@@ -374,7 +377,7 @@ impl Engine {
             viewpoint,
             size,
             mode: view.mode,
-            model: (gpu.constants)(),
+            model: (gpu.constants)(params),
         });
         if !changed.is_empty() {
             self.queue

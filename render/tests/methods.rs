@@ -10,7 +10,7 @@ use atmoscope_model::colour::linear_srgb_to_xyz;
 use atmoscope_model::methods::shared::Lut;
 use atmoscope_model::methods::{self, ModelInfo};
 use atmoscope_model::metrics::{DisplaySetup, compare};
-use atmoscope_model::scene::{Method, Quality, Scene, SunSettings, WavelengthSet};
+use atmoscope_model::scene::{FittedConstants, Method, Quality, Scene, SunSettings, WavelengthSet};
 use atmoscope_render::methods::{DISPLAY_PASS, GPU_METHODS, Repeat, gpu_method};
 use atmoscope_render::passes::shader_source;
 use atmoscope_render::uniforms::{Batch, Globals};
@@ -445,6 +445,46 @@ fn order_gathering_models_rebuild_no_table_when_the_sun_or_the_camera_moves() {
             "{id}"
         );
     }
+}
+
+/// `render.fitted_constants` reaches García Liñán's passes: switching it rebuilds the sky
+/// texture, and the GPU matches the CPU twin with either set of constants.
+#[test]
+fn fitted_constants_reach_the_gpu_and_rebuild_the_tables() {
+    let Some(gpu) = context() else { return };
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    let model = methods::realtime()
+        .find(|m| m.refittable)
+        .expect("a model with fitted constants");
+    let mut scene = with(model, &Scene::default());
+    let (w, h) = (24, 24);
+    let view = View::new(Projection::Fisheye, w, h);
+    let mut images = Vec::new();
+    for choice in [FittedConstants::Published, FittedConstants::Refit] {
+        scene.render.fitted_constants = choice;
+        let stats = engine.render(&scene, &view).clone();
+        assert_eq!(stats.run, stats.passes, "{choice:?}: every table rebuilt");
+        let gpu_image: Vec<[f64; 3]> = engine
+            .read_radiance()
+            .expect("read-back")
+            .iter()
+            .map(|p| [p[0], p[1], p[2]].map(f64::from))
+            .collect();
+        let cpu_image = methods::render(&scene, view.projection, w, h).expect("real-time");
+        let (c, _) = compare(&gpu_image, &cpu_image, w, h, DisplaySetup::default());
+        assert!(
+            c.delta_e2000_mean < 0.3,
+            "{choice:?}: {}",
+            c.delta_e2000_mean
+        );
+        images.push(gpu_image);
+    }
+    let (c, _) = compare(&images[0], &images[1], w, h, DisplaySetup::default());
+    assert!(
+        c.delta_e2000_mean > 0.5,
+        "the refit changes the sky: {}",
+        c.delta_e2000_mean
+    );
 }
 
 #[test]

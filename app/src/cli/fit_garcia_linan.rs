@@ -256,7 +256,8 @@ pub fn run(args: &FitGarciaLinanArgs) -> anyhow::Result<ExitCode> {
         let mut csv = String::new();
         writeln!(
             csv,
-            "# García Liñán (2023) L_ms constants refitted by `atmoscope fit-garcia-linan` against path-traced references of {} suite views ({}×{} pixels each, {:?}); RMS log luminance error {:.3} -> {:.3}.\nname,value\nms_scale,{}\nms_a,{}\nms_b,{}\nreference_wavelength_nm,{}",
+            "# García Liñán (2023) L_ms constants refitted by `atmoscope fit-garcia-linan` against path-traced references ({}) of {} suite views ({}×{} pixels each, {:?}); RMS log luminance error {:.3} -> {:.3}.\nname,value\nms_scale,{}\nms_a,{}\nms_b,{}\nreference_wavelength_nm,{}",
+            args.refs.display(),
             views.len(),
             args.grid,
             args.grid,

@@ -140,7 +140,7 @@ pub fn probe(scene: &Scene, args: &ProbeArgs) -> Probe {
     let model = match args.method {
         ProbeMethod::Model(m) => methods::info(m).build.map(|build| {
             let p = Params::at_wavelengths(&atm, &args.wavelengths_nm, scene.render.quality)
-                .with_scattering_orders(scene.render.scattering_orders);
+                .with_render(&scene.render);
             build(&p, viewpoint(scene, &camera))
         }),
         _ => None,

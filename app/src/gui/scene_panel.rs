@@ -10,7 +10,7 @@ use atmoscope_model::ozone::OzoneCrossSection;
 use atmoscope_model::profiles::{AirProfile, OzoneProfile};
 use atmoscope_model::scene::limits;
 use atmoscope_model::scene::{
-    AerosolPhase, OzoneColumn, Quality, SunSettings, ToneMap, WavelengthSet,
+    AerosolPhase, FittedConstants, OzoneColumn, Quality, SunSettings, ToneMap, WavelengthSet,
 };
 use atmoscope_model::solar::SolarSpectrum;
 use atmoscope_model::sun::DateTime;
@@ -435,6 +435,23 @@ fn render(ui: &mut egui::Ui, s: &mut Scene) {
             "How many orders of scattering the model gathers one by one when it builds its tables: 1 is single \
              scattering only; each order costs one more pass of every table. The reference uses 4.",
         );
+    }
+    if current.refittable {
+        ComboBox::from_label("fitted constants")
+            .selected_text(match r.fitted_constants {
+                FittedConstants::Published => "published",
+                FittedConstants::Refit => "refit",
+            })
+            .show_ui(ui, |ui| {
+                ui.selectable_value(&mut r.fitted_constants, FittedConstants::Published, "published");
+                ui.selectable_value(&mut r.fitted_constants, FittedConstants::Refit, "refit");
+            })
+            .response
+            .on_hover_text(
+                "The model's fitted constants (García Liñán's multiple-scattering fit L_ms): as the author published \
+                 them (fitted at 10 km), or this project's refit against the path tracer over the suite's daylight \
+                 views (`atmoscope fit-garcia-linan`).",
+            );
     }
     let label = match r.wavelengths {
         WavelengthSet::Rgb3 => "RGB3".to_string(),

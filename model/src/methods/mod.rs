@@ -165,6 +165,9 @@ pub struct ModelInfo {
     /// Whether the model gathers scattering orders one by one, as many as
     /// `render.scattering_orders` says.
     pub gathers_orders: bool,
+    /// Whether the model has fitted constants, published and refitted, that
+    /// `render.fitted_constants` chooses between.
+    pub refittable: bool,
     /// The CPU twin's constructor; None for the path tracer, which is not a real-time model.
     pub build: Option<fn(&Params, Viewpoint) -> Box<dyn SkyModel>>,
 }
@@ -192,6 +195,7 @@ pub const MODELS: &[ModelInfo] = &[
         domain: Domain::EVERYWHERE,
         tables: &hillaire::TABLES,
         gathers_orders: false,
+        refittable: false,
         build: Some(hillaire::build),
     },
     ModelInfo {
@@ -203,6 +207,7 @@ pub const MODELS: &[ModelInfo] = &[
         domain: bruneton::DOMAIN,
         tables: &bruneton::TABLES,
         gathers_orders: true,
+        refittable: false,
         build: Some(bruneton::build),
     },
     ModelInfo {
@@ -214,6 +219,7 @@ pub const MODELS: &[ModelInfo] = &[
         domain: garcia_linan::DOMAIN,
         tables: &garcia_linan::TABLES,
         gathers_orders: false,
+        refittable: true,
         build: Some(garcia_linan::build),
     },
     ModelInfo {
@@ -225,6 +231,7 @@ pub const MODELS: &[ModelInfo] = &[
         domain: elek::DOMAIN,
         tables: &elek::TABLES,
         gathers_orders: true,
+        refittable: false,
         build: Some(elek::build),
     },
     ModelInfo {
@@ -236,6 +243,7 @@ pub const MODELS: &[ModelInfo] = &[
         domain: Domain::EVERYWHERE,
         tables: &[],
         gathers_orders: false,
+        refittable: false,
         build: None,
     },
 ];
@@ -276,7 +284,7 @@ pub fn build(scene: &Scene, camera: &Camera) -> Result<Box<dyn SkyModel>, NotRea
         .ok_or_else(|| NotRealtime(row.id, realtime_ids()))?;
     let atm = Atmosphere::new(&scene.atmosphere);
     let p = Params::new(&atm, scene.render.wavelengths, scene.render.quality)
-        .with_scattering_orders(scene.render.scattering_orders);
+        .with_render(&scene.render);
     Ok(build(&p, shared::viewpoint(scene, camera)))
 }
 

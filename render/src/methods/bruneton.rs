@@ -42,7 +42,7 @@ const fn table_pass(
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Bruneton,
     common: &[shader!("bruneton/common.wgsl")],
-    constants: || [0.0; 4],
+    constants: |_| [0.0; 4],
     passes: &[
         TRANSMITTANCE_PASS,
         table_pass(

@@ -40,7 +40,7 @@ const fn table_pass(
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Elek,
     common: &[shader!("elek/common.wgsl")],
-    constants: || [0.0; 4],
+    constants: |_| [0.0; 4],
     passes: &[
         TRANSMITTANCE_PASS,
         table_pass(

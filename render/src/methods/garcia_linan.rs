@@ -15,7 +15,7 @@ pub const METHOD: GpuMethod = GpuMethod {
         shader!("common/march.wgsl"),
         shader!("garcia_linan/common.wgsl"),
     ],
-    constants: || Constants::published().uniform(),
+    constants: |p| Constants::chosen(p.fitted_constants).uniform(),
     passes: &[
         TRANSMITTANCE_PASS,
         PassSpec {

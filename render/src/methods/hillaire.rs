@@ -17,7 +17,7 @@ pub const METHOD: GpuMethod = GpuMethod {
         shader!("common/march.wgsl"),
         shader!("hillaire/common.wgsl"),
     ],
-    constants: || [0.0; 4],
+    constants: |_| [0.0; 4],
     passes: &[
         TRANSMITTANCE_PASS,
         PassSpec {

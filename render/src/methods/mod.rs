@@ -145,8 +145,9 @@ pub struct GpuMethod {
     pub common: &'static [Shader],
     /// Table passes in dependency order, then the sky pass (which writes [`RADIANCE`]).
     pub passes: &'static [PassSpec],
-    /// The model's constants the passes read from `globals.model`.
-    pub constants: fn() -> [f64; 4],
+    /// The model's constants the passes read from `globals.model`, for the optics and model
+    /// settings of `Params`.
+    pub constants: fn(&atmoscope_model::methods::shared::Params) -> [f64; 4],
 }
 
 impl GpuMethod {

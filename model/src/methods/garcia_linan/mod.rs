@@ -25,6 +25,7 @@ use super::shared::transmittance::{self, compute_transmittance_lut, sun_transmit
 use super::shared::{Lanes, Lut, Params, Spacing, TableSpec, Viewpoint, add};
 use super::{Domain, SkyModel};
 use crate::geometry::rho_squared;
+use crate::scene::FittedConstants;
 use crate::table::tables;
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -61,6 +62,35 @@ impl Constants {
     pub fn published() -> Constants {
         static PUBLISHED: std::sync::OnceLock<Constants> = std::sync::OnceLock::new();
         *PUBLISHED.get_or_init(Constants::read_published)
+    }
+
+    /// The project's refit against the path tracer (`atmoscope fit-garcia-linan`), read from
+    /// the embedded `data/garcia_linan_refit.csv`.
+    pub fn refit() -> Constants {
+        static REFIT: std::sync::OnceLock<Constants> = std::sync::OnceLock::new();
+        *REFIT.get_or_init(|| {
+            let t = tables::garcia_linan_refit();
+            let (names, values) = (t.text("name"), t.numbers("value"));
+            let value = |name: &str| {
+                (0..t.len())
+                    .find(|&i| names[i] == name)
+                    .map_or(f64::NAN, |i| values[i])
+            };
+            Constants {
+                ms_scale: value("ms_scale"),
+                ms_a: value("ms_a"),
+                ms_b: value("ms_b"),
+                reference_wavelength_nm: value("reference_wavelength_nm"),
+            }
+        })
+    }
+
+    /// The constants a scene chooses (`render.fitted_constants`).
+    pub fn chosen(choice: FittedConstants) -> Constants {
+        match choice {
+            FittedConstants::Published => Constants::published(),
+            FittedConstants::Refit => Constants::refit(),
+        }
     }
 
     fn read_published() -> Constants {
@@ -188,9 +218,11 @@ impl SkyModel for Tables {
     }
 }
 
-/// Builds the method's CPU twin with the published constants (the registry's constructor).
+/// Builds the method's CPU twin with the constants `params` chooses (the registry's
+/// constructor).
 pub fn build(params: &Params, vp: Viewpoint) -> Box<dyn SkyModel> {
-    Box::new(Tables::compute(params, Constants::published(), vp))
+    let c = Constants::chosen(params.fitted_constants);
+    Box::new(Tables::compute(params, c, vp))
 }
 
 #[cfg(test)]
@@ -210,6 +242,38 @@ mod tests {
         for (t, published) in tints.iter().zip([0.217, 0.347, 0.594, 1.0]) {
             assert!((t - published).abs() < 1.5e-3, "{t} vs {published}");
         }
+    }
+
+    #[test]
+    fn the_refit_is_read_from_its_table_and_chosen_by_the_scene() {
+        let (published, refit) = (Constants::published(), Constants::refit());
+        for v in refit.uniform() {
+            assert!(v.is_finite() && v > 0.0, "{refit:?}");
+        }
+        assert_eq!(
+            refit.reference_wavelength_nm,
+            published.reference_wavelength_nm
+        );
+        assert_ne!(refit.ms_scale, published.ms_scale);
+        assert_eq!(Constants::chosen(FittedConstants::Refit), refit);
+        assert_eq!(Constants::chosen(FittedConstants::Published), published);
+        // The registry's constructor follows the choice carried by the optics.
+        let p = crate::methods::shared::optics::tests::params();
+        let vp = Viewpoint { h: 10.0, mu_s: 0.5 };
+        let texture = |choice| {
+            let p = Params {
+                fitted_constants: choice,
+                ..p.clone()
+            };
+            build(&p, vp)
+                .table("sky-texture")
+                .cloned()
+                .expect("sky texture")
+        };
+        assert_ne!(
+            texture(FittedConstants::Published),
+            texture(FittedConstants::Refit)
+        );
     }
 
     #[test]

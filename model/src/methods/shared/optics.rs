@@ -8,7 +8,7 @@ use crate::atmosphere::Atmosphere;
 use crate::camera::Camera;
 use crate::geometry::direction_from_angles;
 use crate::phase;
-use crate::scene::{AerosolPhase, Quality, Scene, WavelengthSet};
+use crate::scene::{AerosolPhase, FittedConstants, Quality, RenderSettings, Scene, WavelengthSet};
 use crate::wavelengths::{LANES, WavelengthBatch, batches};
 
 /// Samples of the density profile table, spaced as h = H·x² (dense near the ground).
@@ -90,6 +90,8 @@ pub struct Params {
     pub steps: Steps,
     /// Scattering orders the models that gather them one by one compute (Bruneton, Elek).
     pub scattering_orders: u32,
+    /// The fitted constants the models that have them use (García Liñán).
+    pub fitted_constants: FittedConstants,
 }
 
 impl Params {
@@ -176,6 +178,16 @@ impl Params {
             batches,
             steps: Steps::for_quality(quality),
             scattering_orders: crate::scene::DEFAULT_SCATTERING_ORDERS,
+            fitted_constants: FittedConstants::default(),
+        }
+    }
+
+    /// The same optics with the model settings of `render`: scattering orders and fitted
+    /// constants.
+    pub fn with_render(self, render: &RenderSettings) -> Params {
+        Params {
+            fitted_constants: render.fitted_constants,
+            ..self.with_scattering_orders(render.scattering_orders)
         }
     }
 
