@@ -142,6 +142,16 @@ fn every_lookup_table_matches_its_cpu_twin() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// The engine's last rendered view as linear sRGB.
+fn radiance_image(engine: &Engine) -> Vec<[f64; 3]> {
+    engine
+        .read_radiance()
+        .expect("read-back")
+        .iter()
+        .map(|p| [p[0], p[1], p[2]].map(f64::from))
+        .collect()
+}
+
 fn luminance(rgb: [f64; 3]) -> f64 {
     linear_srgb_to_xyz(rgb).y
 }
@@ -193,12 +203,7 @@ fn rendered_views_match_the_cpu_twin() {
         let name = format!("{} {name}", model.id);
         let mut engine = Engine::new(&gpu.device, &gpu.queue);
         engine.render(&scene, &View::new(projection, w, h));
-        let gpu_image: Vec<[f64; 3]> = engine
-            .read_radiance()
-            .expect("read-back")
-            .iter()
-            .map(|p| [p[0], p[1], p[2]].map(f64::from))
-            .collect();
+        let gpu_image = radiance_image(&engine);
         let cpu_image = methods::render(&scene, projection, w, h).expect("a real-time model");
         let (c, _) = compare(&gpu_image, &cpu_image, w, h, DisplaySetup::default());
         let off = gpu_image
@@ -464,12 +469,7 @@ fn fitted_constants_reach_the_gpu_and_rebuild_the_tables() {
         scene.render.fitted_constants = choice;
         let stats = engine.render(&scene, &view).clone();
         assert_eq!(stats.run, stats.passes, "{choice:?}: every table rebuilt");
-        let gpu_image: Vec<[f64; 3]> = engine
-            .read_radiance()
-            .expect("read-back")
-            .iter()
-            .map(|p| [p[0], p[1], p[2]].map(f64::from))
-            .collect();
+        let gpu_image = radiance_image(&engine);
         let cpu_image = methods::render(&scene, view.projection, w, h).expect("real-time");
         let (c, _) = compare(&gpu_image, &cpu_image, w, h, DisplaySetup::default());
         assert!(

@@ -3,11 +3,7 @@
 //! the deltas the previous one wrote. The f64 twin of every pass is
 //! `atmoscope_model::methods::bruneton::<pass>`.
 
-use super::{
-    Constant, Dispatch, GpuMethod, PassSpec, RADIANCE, Repeat, SKY_INPUTS, TRANSMITTANCE_PASS,
-    shader,
-};
-use atmoscope_model::methods::Inputs;
+use super::{Dispatch, GpuMethod, PassSpec, Repeat, TRANSMITTANCE_PASS, shader};
 use atmoscope_model::scene::Method;
 
 const T: &str = "transmittance";
@@ -19,33 +15,13 @@ const SCATTERING: &str = "scattering";
 const SINGLE_MIE: &str = "single-mie";
 const DENSITY: &str = "scattering-density";
 
-const fn table_pass(
-    name: &'static str,
-    shader: super::Shader,
-    reads: &'static [&'static str],
-    writes: &'static [&'static str],
-    dispatch: Dispatch,
-    repeat: Repeat,
-) -> PassSpec {
-    PassSpec {
-        name,
-        shader,
-        reads,
-        writes,
-        inputs: Inputs::NONE,
-        dispatch,
-        constants: &[],
-        repeat,
-    }
-}
-
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Bruneton,
     common: &[shader!("bruneton/common.wgsl")],
     constants: |_| [0.0; 4],
     passes: &[
         TRANSMITTANCE_PASS,
-        table_pass(
+        PassSpec::table(
             "direct-irradiance",
             shader!("bruneton/direct_irradiance.wgsl"),
             &[T],
@@ -53,7 +29,7 @@ pub const METHOD: GpuMethod = GpuMethod {
             Dispatch::Table(IRRADIANCE),
             Repeat::Once,
         ),
-        table_pass(
+        PassSpec::table(
             "single-scattering",
             shader!("bruneton/single_scattering.wgsl"),
             &[T],
@@ -61,7 +37,7 @@ pub const METHOD: GpuMethod = GpuMethod {
             Dispatch::Volume(SCATTERING),
             Repeat::Once,
         ),
-        table_pass(
+        PassSpec::table(
             "scattering-density",
             shader!("bruneton/scattering_density.wgsl"),
             &[T, DELTA_RAYLEIGH, DELTA_MIE, DELTA_IRRADIANCE],
@@ -69,7 +45,7 @@ pub const METHOD: GpuMethod = GpuMethod {
             Dispatch::Volume(DENSITY),
             Repeat::PerOrder,
         ),
-        table_pass(
+        PassSpec::table(
             "indirect-irradiance",
             shader!("bruneton/indirect_irradiance.wgsl"),
             &[DELTA_RAYLEIGH, DELTA_MIE, IRRADIANCE],
@@ -77,7 +53,7 @@ pub const METHOD: GpuMethod = GpuMethod {
             Dispatch::Table(IRRADIANCE),
             Repeat::PerOrder,
         ),
-        table_pass(
+        PassSpec::table(
             "multiple-scattering",
             shader!("bruneton/multiple_scattering.wgsl"),
             &[T, DENSITY, SCATTERING],
@@ -85,15 +61,9 @@ pub const METHOD: GpuMethod = GpuMethod {
             Dispatch::Volume(SCATTERING),
             Repeat::PerOrder,
         ),
-        PassSpec {
-            name: "sky",
-            shader: shader!("bruneton/sky.wgsl"),
-            reads: &[T, SCATTERING, SINGLE_MIE, IRRADIANCE],
-            writes: &[RADIANCE],
-            inputs: SKY_INPUTS,
-            dispatch: Dispatch::View,
-            constants: &[Constant::Projection, Constant::AboveAtmosphere],
-            repeat: Repeat::Once,
-        },
+        PassSpec::sky(
+            shader!("bruneton/sky.wgsl"),
+            &[T, SCATTERING, SINGLE_MIE, IRRADIANCE],
+        ),
     ],
 };

@@ -1,10 +1,7 @@
 //! Hillaire (2020) on the GPU: the passes of `shaders/hillaire/` as data. The f64 twin of every
 //! pass is `atmoscope_model::methods::hillaire::<pass>`.
 
-use super::{
-    Constant, Dispatch, GpuMethod, PassSpec, RADIANCE, Repeat, SKY_INPUTS, TRANSMITTANCE_PASS,
-    shader,
-};
+use super::{Dispatch, GpuMethod, PassSpec, Repeat, TRANSMITTANCE_PASS, shader};
 use atmoscope_model::methods::Inputs;
 use atmoscope_model::scene::Method;
 
@@ -60,10 +57,9 @@ pub const METHOD: GpuMethod = GpuMethod {
             constants: &[],
             repeat: Repeat::Once,
         },
-        PassSpec {
-            name: "sky",
-            shader: shader!("hillaire/sky.wgsl"),
-            reads: &[
+        PassSpec::sky(
+            shader!("hillaire/sky.wgsl"),
+            &[
                 "transmittance",
                 "multiple-scattering",
                 "ground-irradiance",
@@ -71,11 +67,6 @@ pub const METHOD: GpuMethod = GpuMethod {
                 AP_INSCATTERING,
                 AP_TRANSMITTANCE,
             ],
-            writes: &[RADIANCE],
-            inputs: SKY_INPUTS,
-            dispatch: Dispatch::View,
-            constants: &[Constant::Projection, Constant::AboveAtmosphere],
-            repeat: Repeat::Once,
-        },
+        ),
     ],
 };

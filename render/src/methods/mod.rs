@@ -109,6 +109,43 @@ pub struct PassSpec {
 }
 
 impl PassSpec {
+    /// A pass that builds tables from tables, reading no scene input itself (those of the
+    /// tables it writes come from the registry).
+    pub const fn table(
+        name: &'static str,
+        shader: Shader,
+        reads: &'static [&'static str],
+        writes: &'static [&'static str],
+        dispatch: Dispatch,
+        repeat: Repeat,
+    ) -> PassSpec {
+        PassSpec {
+            name,
+            shader,
+            reads,
+            writes,
+            inputs: Inputs::NONE,
+            dispatch,
+            constants: &[],
+            repeat,
+        }
+    }
+
+    /// A model's sky pass: draws the view from the tables it reads, compiled per projection
+    /// and per camera inside or above the atmosphere.
+    pub const fn sky(shader: Shader, reads: &'static [&'static str]) -> PassSpec {
+        PassSpec {
+            name: "sky",
+            shader,
+            reads,
+            writes: &[RADIANCE],
+            inputs: SKY_INPUTS,
+            dispatch: Dispatch::View,
+            constants: &[Constant::Projection, Constant::AboveAtmosphere],
+            repeat: Repeat::Once,
+        }
+    }
+
     /// Whether the pass builds a table (as opposed to drawing the view).
     pub fn is_table(&self) -> bool {
         !matches!(self.dispatch, Dispatch::View)
