@@ -643,3 +643,132 @@ fn every_model_is_within_its_stated_delta_e_of_the_path_tracer_on_each_view_of_i
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Numbers a command cannot use are refused before any work, with the flag and the allowed
+/// range; a negative number gets the range message, not "unexpected argument".
+#[test]
+fn out_of_range_and_non_finite_flags_are_refused_up_front() {
+    let refused = |args: &[&str], expect: &str| {
+        let o = atmoscope(args);
+        assert!(!o.status.success(), "{args:?} was accepted");
+        assert!(
+            stderr(&o).contains(expect),
+            "{args:?}: expected `{expect}` in {}",
+            stderr(&o)
+        );
+        assert!(!stderr(&o).contains("panicked"), "{args:?}: {}", stderr(&o));
+    };
+    refused(&["bench", "path-tracer", "--size", "0"], "--size");
+    refused(&["reference", "--spp", "0", "--out", "/tmp/x.exr"], "--spp");
+    refused(
+        &["reference", "--max-order", "0", "--out", "/tmp/x.exr"],
+        "--max-order",
+    );
+    refused(
+        &["reference", "--noise", "-0.1", "--out", "/tmp/x.exr"],
+        "must be above 0",
+    );
+    let probe = |az: &str| {
+        vec![
+            "probe".to_string(),
+            "--view-zenith-deg".into(),
+            "0".into(),
+            "--view-azimuth-deg".into(),
+            az.into(),
+        ]
+    };
+    let nan = probe("nan");
+    refused(
+        &nan.iter().map(String::as_str).collect::<Vec<_>>(),
+        "not a finite number",
+    );
+    refused(
+        &[
+            "probe",
+            "--view-zenith-deg",
+            "0",
+            "--view-azimuth-deg",
+            "0",
+            "--max-order",
+            "0",
+        ],
+        "--max-order",
+    );
+    refused(
+        &["compare", "a.exr", "b.exr", "--exposure-ev", "nan"],
+        "not a finite number",
+    );
+    refused(&["info", "--albedo", "-5"], "allowed 0 to 1");
+    refused(&["info", "--altitude-m", "-5"], "camera.altitude_m");
+    // The probe with a negative azimuth is fine: azimuths are measured either way from the sun.
+    let ok = probe("-30");
+    let o = atmoscope(
+        &ok.iter()
+            .map(String::as_str)
+            .chain(["--spp", "16"])
+            .collect::<Vec<_>>(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
+/// `compare` measures linear radiance: a PNG (display-referred) is refused with a message.
+#[test]
+fn compare_refuses_display_referred_images() {
+    let dir = std::env::temp_dir().join(format!("atmoscope-cmp-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = dir.join("a.png");
+    image::RgbImage::new(4, 4).save(&png).unwrap();
+    let o = atmoscope(&["compare", png.to_str().unwrap(), png.to_str().unwrap()]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("not an OpenEXR file"), "{}", stderr(&o));
+}
+
+/// `reference` refuses an output it cannot write before tracing, and a cache entry cut short
+/// (a full disk, a crash) is rendered anew instead of failing every later run.
+#[test]
+fn reference_checks_its_output_first_and_survives_a_truncated_cache_entry() {
+    let dir = std::env::temp_dir().join(format!("atmoscope-refcache-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cache = dir.join("cache");
+    let run = |out: &std::path::Path| {
+        Command::new(env!("CARGO_BIN_EXE_atmoscope"))
+            .args(["reference", "--size", "6x4", "--spp", "2", "--out"])
+            .arg(out)
+            .env("ATMOSCOPE_CACHE_DIR", &cache)
+            .output()
+            .expect("run")
+    };
+    let png = dir.join("x.png");
+    let o = run(&png);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("must end in .exr"), "{}", stderr(&o));
+    assert!(!png.exists(), "nothing written");
+    let o = run(&dir.join("no/such/dir/x.exr"));
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("does not exist"), "{}", stderr(&o));
+
+    let out = dir.join("x.exr");
+    assert!(run(&out).status.success());
+    let entry = std::fs::read_dir(&cache)
+        .expect("a cache entry")
+        .filter_map(|e| e.ok())
+        .map(|e| e.path())
+        .find(|p| p.extension().is_some_and(|e| e == "exr"))
+        .expect("an EXR in the cache");
+    let bytes = std::fs::read(&entry).unwrap();
+    std::fs::write(&entry, &bytes[..bytes.len() / 3]).unwrap();
+    let o = run(&out);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("unreadable cache entry"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(
+        std::fs::read(&entry).unwrap().len(),
+        bytes.len(),
+        "the entry is replaced"
+    );
+    let o = run(&out);
+    assert!(stderr(&o).contains("from the cache"), "{}", stderr(&o));
+}

@@ -2,14 +2,15 @@
 # Runs Atmoscope's whole test suite: unit tests, CLI and preset tests, and GPU tests on Mesa's
 # software Vulkan driver (lavapipe) when the machine has no GPU.
 #
-# On a machine without the Vulkan loader and lavapipe it installs them (Debian packages
-# mesa-vulkan-drivers, libvulkan1) when run as root; otherwise it says what to install.
+# On a machine without the Vulkan loader and lavapipe, or without a C/C++ compiler (the FLIP
+# metric's crate builds C++), it installs them (Debian packages mesa-vulkan-drivers, libvulkan1,
+# g++) when run as root; otherwise it says what to install.
 # With CI=true a missing GPU adapter fails the GPU tests instead of skipping them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH="$HOME/.cargo/bin:$PATH"
 
-packages=(mesa-vulkan-drivers libvulkan1)
+packages=(mesa-vulkan-drivers libvulkan1 g++)
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -20,7 +21,7 @@ if [ ${#missing[@]} -gt 0 ]; then
         apt-get update -qq
         DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
     else
-        echo "tests/run.sh: GPU tests need ${missing[*]} (Debian/Ubuntu: sudo apt-get install ${missing[*]})" >&2
+        echo "tests/run.sh: the build and the GPU tests need ${missing[*]} (Debian/Ubuntu: sudo apt-get install ${missing[*]})" >&2
     fi
 fi
 

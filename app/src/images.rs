@@ -10,13 +10,40 @@ use std::path::Path;
 pub fn write_exr(path: &Path, rgb: &[[f64; 3]], width: u32, height: u32) -> anyhow::Result<()> {
     let data: Vec<f32> = rgb.iter().flat_map(|c| c.map(|v| v as f32)).collect();
     let img = ImageBuffer::<Rgb<f32>, _>::from_raw(width, height, data).context("image size")?;
-    img.save(path)
-        .with_context(|| format!("cannot write {}", path.display()))
+    save_atomic(path, &img.into(), image::ImageFormat::OpenExr)
+}
+
+/// Encodes `img` in memory and writes it atomically: a full disk or a cancelled export never
+/// leaves a truncated image.
+fn save_atomic(
+    path: &Path,
+    img: &image::DynamicImage,
+    format: image::ImageFormat,
+) -> anyhow::Result<()> {
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut bytes, format)
+        .with_context(|| format!("cannot encode {}", path.display()))?;
+    crate::cli::write_atomic(path, bytes.get_ref())
 }
 
 /// Reads an EXR written by `write_exr` back as linear sRGB.
 pub fn read_exr(path: &Path) -> anyhow::Result<(Vec<[f64; 3]>, u32, u32)> {
-    let img = image::open(path)
+    let reader = image::ImageReader::open(path)
+        .and_then(|r| r.with_guessed_format())
+        .with_context(|| format!("cannot read {}", path.display()))?;
+    match reader.format() {
+        Some(image::ImageFormat::OpenExr) => {}
+        other => anyhow::bail!(
+            "{} is {}, not an OpenEXR file of linear radiance: a display-referred image cannot be \
+             compared as radiance (write EXR with `atmoscope render --out FILE.exr` or `atmoscope reference`)",
+            path.display(),
+            other.map_or("of an unknown format".to_string(), |f| format!(
+                "a {f:?} image"
+            ))
+        ),
+    }
+    let img = reader
+        .decode()
         .with_context(|| format!("cannot read {}", path.display()))?
         .to_rgb32f();
     let (w, h) = img.dimensions();
@@ -65,8 +92,7 @@ pub fn write_heat_map(
 /// Saves 8-bit RGB rows as an image file (format from the extension).
 pub fn save_rgb8(path: &Path, data: Vec<u8>, width: u32, height: u32) -> anyhow::Result<()> {
     let img = ImageBuffer::<Rgb<u8>, _>::from_raw(width, height, data).context("image size")?;
-    img.save(path)
-        .with_context(|| format!("cannot write {}", path.display()))
+    save_atomic(path, &img.into(), image::ImageFormat::Png)
 }
 
 /// 3×5 pixel glyphs (rows top to bottom, 3 bits each, high bit left) for legend labels.

@@ -10,6 +10,7 @@ pub mod camera;
 pub mod colour;
 pub mod constants;
 pub mod display;
+pub mod files;
 pub mod geometry;
 pub mod methods;
 pub mod metrics;

@@ -378,10 +378,16 @@ impl fmt::Display for FieldError {
 /// Why a scene could not be loaded, parsed or accepted.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
-    #[error("{file}: cannot read: {source}")]
+    // The cause is part of the message and not a `source`: error chains would print it twice.
+    #[error("{file}: cannot read: {error}")]
     Io {
         file: PathBuf,
-        source: std::io::Error,
+        error: std::io::Error,
+    },
+    #[error("{file}: cannot write: {error}")]
+    Write {
+        file: PathBuf,
+        error: std::io::Error,
     },
     #[error("{file}:{line}:{column}: {path}{message}")]
     Parse {
@@ -531,10 +537,10 @@ pub mod limits {
         max: 31.0,
         unit: "",
     };
-    /// `sun.Date.time.hour`.
+    /// `sun.Date.time.hour` (24 is the next day's 0: refused, so a date names one instant).
     pub const DATE_HOUR: Limit = Limit {
         min: 0.0,
-        max: 24.0,
+        max: 23.99,
         unit: " h",
     };
     /// `sun.Date.time.utc_offset_h`.
@@ -625,10 +631,23 @@ impl Checker {
     }
 }
 
+/// Days in `month` (1–12) of `year` in the Gregorian calendar.
+fn days_in_month(year: i32, month: u32) -> u32 {
+    match month {
+        2 if (year % 4 == 0 && year % 100 != 0) || year % 400 == 0 => 29,
+        2 => 28,
+        4 | 6 | 9 | 11 => 30,
+        _ => 31,
+    }
+}
+
 impl Scene {
     /// Checks every field against its range; returns all problems at once.
     pub fn validate(&self) -> Result<(), Vec<FieldError>> {
         let mut c = Checker { errors: vec![] };
+        if self.version == 0 {
+            c.fail("version", format!("is 0, allowed 1 to {SCENE_VERSION}"));
+        }
         if self.version > SCENE_VERSION {
             c.fail(
                 "version",
@@ -717,6 +736,16 @@ impl Scene {
                 c.limit("sun.Date.time.year", time.year as f64, limits::DATE_YEAR);
                 c.limit("sun.Date.time.month", time.month as f64, limits::DATE_MONTH);
                 c.limit("sun.Date.time.day", time.day as f64, limits::DATE_DAY);
+                let last = days_in_month(time.year, time.month);
+                if (1..=12).contains(&time.month) && time.day > last && time.day <= 31 {
+                    c.fail(
+                        "sun.Date.time.day",
+                        format!(
+                            "is {}, but month {} of {} has {last} days",
+                            time.day, time.month, time.year
+                        ),
+                    );
+                }
                 c.limit("sun.Date.time.hour", time.hour, limits::DATE_HOUR);
                 c.limit(
                     "sun.Date.time.utc_offset_h",
@@ -770,8 +799,10 @@ impl Scene {
         }
     }
 
-    /// Parses RON text; `file` names the source in messages.
+    /// Parses RON text; `file` names the source in messages. A UTF-8 byte-order mark (which
+    /// some editors write) is skipped.
     pub fn from_ron(text: &str, file: &Path) -> Result<Scene, SceneError> {
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         #[derive(Deserialize)]
         struct VersionOnly {
             #[serde(default)]
@@ -819,9 +850,9 @@ impl Scene {
 
     /// Reads and validates a preset file.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        let text = std::fs::read_to_string(path).map_err(|error| SceneError::Io {
             file: path.into(),
-            source,
+            error,
         })?;
         Scene::from_ron(&text, path)
     }
@@ -835,11 +866,12 @@ impl Scene {
             .unwrap_or_else(|e| format!("// cannot serialise scene: {e}"))
     }
 
-    /// Writes the scene as RON.
+    /// Writes the scene as RON, atomically (the file is replaced whole or not at all).
     pub fn save(&self, path: &Path) -> Result<(), SceneError> {
-        std::fs::write(path, self.to_ron() + "\n").map_err(|source| SceneError::Io {
+        let text = self.to_ron() + "\n";
+        crate::files::write_atomic(path, text.as_bytes()).map_err(|error| SceneError::Write {
             file: path.into(),
-            source,
+            error,
         })
     }
 
@@ -907,6 +939,33 @@ mod tests {
         let s = Scene::default();
         s.validate().unwrap();
         assert_eq!(parse(&s.to_ron()).unwrap(), s);
+    }
+
+    #[test]
+    fn impossible_dates_version_zero_are_refused_and_a_byte_order_mark_is_read() {
+        let date = |y: i32, m: u32, d: u32, h: f64| {
+            format!(
+                "(sun: Date(time: (year: {y}, month: {m}, day: {d}, hour: {h}, utc_offset_h: 0.0), latitude_deg: 46.8, longitude_deg: 9.7))"
+            )
+        };
+        let e = parse(&date(2025, 2, 31, 12.0)).unwrap_err().to_string();
+        assert!(
+            e.contains("sun.Date.time.day") && e.contains("has 28 days"),
+            "{e}"
+        );
+        assert!(parse(&date(2024, 2, 29, 12.0)).is_ok(), "a leap day");
+        assert!(
+            parse(&date(2100, 2, 29, 12.0)).is_err(),
+            "2100 is no leap year"
+        );
+        assert!(parse(&date(2025, 4, 31, 12.0)).is_err());
+        let e = parse(&date(2025, 6, 21, 24.0)).unwrap_err().to_string();
+        assert!(e.contains("sun.Date.time.hour"), "{e}");
+        assert!(parse(&date(2025, 12, 31, 23.5)).is_ok());
+        let e = parse("(version: 0)").unwrap_err().to_string();
+        assert!(e.contains("version") && e.contains("is 0"), "{e}");
+        let good = Scene::default().to_ron();
+        assert_eq!(parse(&format!("\u{feff}{good}")).unwrap(), Scene::default());
     }
 
     #[test]

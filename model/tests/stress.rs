@@ -67,3 +67,53 @@ proptest! {
         prop_assert!(optics.aerosol_ssa > 0.0 && optics.aerosol_ssa <= 1.0);
     }
 }
+
+/// A preset the mutations start from: every kind of field, the sun by date.
+fn preset_text() -> String {
+    let mut s = atmoscope_model::Scene::default();
+    s.sun = atmoscope_model::scene::SunSettings::Date {
+        time: atmoscope_model::sun::DateTime {
+            year: 2024,
+            month: 6,
+            day: 21,
+            hour: 12.0,
+            utc_offset_h: 2.0,
+        },
+        latitude_deg: 46.8,
+        longitude_deg: 9.7,
+    };
+    s.to_ron()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// The preset loader never panics: any text is a scene that validates, or an error.
+    #[test]
+    fn any_text_is_a_valid_scene_or_an_error(text in "\\PC{0,300}") {
+        let path = std::path::Path::new("fuzz.ron");
+        if let Ok(scene) = atmoscope_model::Scene::from_ron(&text, path) {
+            prop_assert!(scene.validate().is_ok());
+        }
+    }
+
+    /// Valid presets with a few bytes replaced (a number cut short, a field renamed, binary
+    /// noise) load as valid scenes or are refused with a message naming the file.
+    #[test]
+    fn mutated_presets_are_valid_scenes_or_named_errors(
+        at in any::<prop::sample::Index>(),
+        cut in 0usize..12,
+        noise in prop::collection::vec(any::<u8>(), 0..12),
+    ) {
+        let text = preset_text();
+        let start = at.index(text.len());
+        let end = (start + cut).min(text.len());
+        let mut bytes = text.as_bytes().to_vec();
+        bytes.splice(start..end, noise);
+        let mutated = String::from_utf8_lossy(&bytes);
+        match atmoscope_model::Scene::from_ron(&mutated, std::path::Path::new("fuzz.ron")) {
+            Ok(scene) => prop_assert!(scene.validate().is_ok()),
+            Err(e) => prop_assert!(e.to_string().contains("fuzz.ron"), "{e}"),
+        }
+    }
+}

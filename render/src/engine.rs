@@ -94,6 +94,8 @@ pub enum EngineError {
     NotRealtime(#[from] NotRealtime),
     #[error(transparent)]
     Readback(#[from] ReadbackError),
+    #[error("a {0}×{1} view is larger than this GPU allows ({2} pixels on a side at most)")]
+    ViewTooLarge(u32, u32, u32),
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -292,6 +294,10 @@ impl Engine {
     /// changed since the last frame. Returns the frame's statistics. The work is submitted; it
     /// finishes on the GPU. A model with no real-time passes (the path tracer) is refused.
     pub fn try_render(&mut self, scene: &Scene, view: &View) -> Result<&FrameStats, EngineError> {
+        let max = self.device.limits().max_texture_dimension_2d;
+        if view.width > max || view.height > max {
+            return Err(EngineError::ViewTooLarge(view.width, view.height, max));
+        }
         let method = scene.render.method;
         let gpu = gpu_method(method)
             .ok_or_else(|| NotRealtime(methods::info(method).id, methods::realtime_ids()))?;

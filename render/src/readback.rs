@@ -27,37 +27,73 @@ pub fn read_texture(
     let padded =
         row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
     let images = size.depth_or_array_layers;
-    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("read-back"),
-        size: u64::from(padded) * u64::from(size.height) * u64::from(images),
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut encoder = device.create_command_encoder(&Default::default());
-    encoder.copy_texture_to_buffer(
-        wgpu::TexelCopyTextureInfo {
-            texture,
-            mip_level: 0,
-            origin: wgpu::Origin3d::ZERO,
-            aspect: wgpu::TextureAspect::All,
-        },
-        wgpu::TexelCopyBufferInfo {
-            buffer: &buffer,
-            layout: wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(padded),
-                rows_per_image: Some(size.height),
-            },
-        },
-        size,
-    );
-    queue.submit([encoder.finish()]);
-    let data = map(device, &buffer)?;
-    let mut out = Vec::with_capacity((row * size.height * images) as usize);
-    for chunk in data.chunks_exact(padded as usize) {
-        out.extend_from_slice(&chunk[..row as usize]);
+    let mut out = Vec::with_capacity(row as usize * size.height as usize * images as usize);
+    for layer in 0..images {
+        for (y, rows) in bands(size.height, padded, device.limits().max_buffer_size) {
+            let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("read-back"),
+                size: u64::from(padded) * u64::from(rows),
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let mut encoder = device.create_command_encoder(&Default::default());
+            encoder.copy_texture_to_buffer(
+                wgpu::TexelCopyTextureInfo {
+                    texture,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d { x: 0, y, z: layer },
+                    aspect: wgpu::TextureAspect::All,
+                },
+                wgpu::TexelCopyBufferInfo {
+                    buffer: &buffer,
+                    layout: wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(padded),
+                        rows_per_image: Some(rows),
+                    },
+                },
+                wgpu::Extent3d {
+                    width: size.width,
+                    height: rows,
+                    depth_or_array_layers: 1,
+                },
+            );
+            queue.submit([encoder.finish()]);
+            let data = map(device, &buffer)?;
+            for chunk in data.chunks_exact(padded as usize) {
+                out.extend_from_slice(&chunk[..row as usize]);
+            }
+        }
     }
     Ok(out)
+}
+
+/// The bands of rows (first row, row count) of an image `height` rows high, `padded` bytes a
+/// row, each small enough for one buffer of at most `max_buffer` bytes: a large view exceeds
+/// the device's largest buffer (256 MiB by default) long before its largest texture.
+fn bands(height: u32, padded: u32, max_buffer: u64) -> Vec<(u32, u32)> {
+    let band = (max_buffer / u64::from(padded)).clamp(1, u64::from(height.max(1))) as u32;
+    (0..height)
+        .step_by(band as usize)
+        .map(|y| (y, band.min(height - y)))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::bands;
+
+    #[test]
+    fn bands_cover_every_row_once_within_the_buffer_limit() {
+        // 5000×5000 RGBA32F: 80 000 bytes a row, 400 MB in all, over a 256 MiB limit.
+        let b = bands(5000, 80_128, 256 << 20);
+        assert_eq!(b.len(), 2);
+        assert!(b.iter().all(|&(_, n)| u64::from(n) * 80_128 <= 256 << 20));
+        assert_eq!(b.iter().map(|&(_, n)| n).sum::<u32>(), 5000);
+        assert!(b.windows(2).all(|w| w[0].0 + w[0].1 == w[1].0));
+        assert_eq!(bands(720, 20_480, 256 << 20), vec![(0, 720)]);
+        assert_eq!(bands(3, 100, 10), vec![(0, 1), (1, 1), (2, 1)]);
+    }
 }
 
 /// `read_texture` for four-channel f32 textures.

@@ -35,13 +35,13 @@ pub struct PathTracerBench {
     )]
     pub views: Vec<String>,
     /// Square image size, pixels.
-    #[arg(long, default_value_t = 128)]
+    #[arg(long, default_value_t = 128, value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub size: u32,
     /// Target relative standard error of luminance.
-    #[arg(long, default_value_t = 0.01)]
+    #[arg(long, default_value_t = 0.01, value_parser = super::parse_positive, allow_hyphen_values = true)]
     pub noise: f64,
     /// Give up on a view after this many seconds.
-    #[arg(long, default_value_t = 600.0)]
+    #[arg(long, default_value_t = 600.0, value_parser = super::parse_positive, allow_hyphen_values = true)]
     pub max_seconds: f64,
     #[arg(long)]
     pub json: bool,

@@ -109,6 +109,23 @@ pub fn check_wavelengths(wavelengths_nm: &[f64]) -> anyhow::Result<()> {
     }
 }
 
+/// A finite number (NaN and infinities are refused: they would pass every later comparison).
+pub fn parse_finite(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(v) => Err(format!("{v} is not a finite number")),
+        Err(e) => Err(format!("`{s}` is not a number: {e}")),
+    }
+}
+
+/// A finite number above zero.
+pub fn parse_positive(s: &str) -> Result<f64, String> {
+    match parse_finite(s)? {
+        v if v > 0.0 => Ok(v),
+        v => Err(format!("{v} must be above 0")),
+    }
+}
+
 /// A real-time model by its registry id (`--method`).
 pub fn parse_method(id: &str) -> Result<atmoscope_model::scene::Method, String> {
     use atmoscope_model::methods;
@@ -166,21 +183,9 @@ pub fn check_writable(path: &std::path::Path) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Writes `bytes` to a temporary file beside `path`, then renames it into place, so that a
-/// full disk or a crash never leaves a half-written file.
+/// Writes `bytes` to `path` atomically (`atmoscope_model::files::write_atomic`).
 pub fn write_atomic(path: &std::path::Path, bytes: &[u8]) -> anyhow::Result<()> {
     use anyhow::Context;
-    use std::io::Write;
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => std::path::Path::new("."),
-    };
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)
-        .with_context(|| format!("cannot write in {}", dir.display()))?;
-    tmp.write_all(bytes)
-        .and_then(|()| tmp.as_file().sync_all())
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    tmp.persist(path)
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    Ok(())
+    atmoscope_model::files::write_atomic(path, bytes)
+        .with_context(|| format!("cannot write {}", path.display()))
 }

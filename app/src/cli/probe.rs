@@ -57,7 +57,14 @@ pub struct ProbeArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// View zenith angles, degrees (0 = straight up, 180 = straight down).
-    #[arg(long, value_delimiter = ',', required = true, value_name = "LIST")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        required = true,
+        value_name = "LIST",
+        value_parser = super::parse_finite,
+        allow_hyphen_values = true
+    )]
     pub view_zenith_deg: Vec<f64>,
     /// View azimuths measured from the sun's azimuth, degrees (0 = towards the sun).
     #[arg(
@@ -65,6 +72,7 @@ pub struct ProbeArgs {
         value_delimiter = ',',
         required = true,
         value_name = "LIST",
+        value_parser = super::parse_finite,
         allow_hyphen_values = true
     )]
     pub view_azimuth_deg: Vec<f64>,
@@ -81,10 +89,10 @@ pub struct ProbeArgs {
     #[arg(long, value_parser = parse_probe_method, default_value = "path-tracer")]
     pub method: ProbeMethod,
     /// Highest scattering order (path tracer; 1 = single scattering). Default: all orders.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub max_order: Option<u32>,
     /// Paths per direction and wavelength batch (path tracer).
-    #[arg(long, default_value_t = 4096, value_name = "N")]
+    #[arg(long, default_value_t = 4096, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub spp: u64,
     /// Random seed (path tracer).
     #[arg(long, default_value_t = 1)]

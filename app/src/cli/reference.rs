@@ -60,13 +60,13 @@ pub struct ReferenceArgs {
     #[arg(long, value_enum, default_value = "perspective")]
     pub projection: ProjectionArg,
     /// Paths per pixel.
-    #[arg(long, value_name = "N", conflicts_with = "noise")]
+    #[arg(long, value_name = "N", conflicts_with = "noise", value_parser = clap::value_parser!(u64).range(1..))]
     pub spp: Option<u64>,
     /// Stop when the mean relative standard error of pixel luminance falls to REL (e.g. 0.01).
-    #[arg(long, value_name = "REL")]
+    #[arg(long, value_name = "REL", value_parser = super::parse_positive, allow_hyphen_values = true)]
     pub noise: Option<f64>,
     /// Highest scattering order (1 = single scattering); default all.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub max_order: Option<u32>,
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -135,6 +135,16 @@ pub fn run(args: &ReferenceArgs) -> anyhow::Result<ExitCode> {
             .collect()
     } else {
         let out = args.out.clone().context("--out FILE.exr is required")?;
+        if out
+            .extension()
+            .is_none_or(|e| !e.eq_ignore_ascii_case("exr"))
+        {
+            bail!(
+                "--out {}: the file name must end in .exr (linear radiance; a PNG preview is written beside it)",
+                out.display()
+            );
+        }
+        super::check_writable(&out)?;
         match &args.view {
             Some(name) => {
                 let v = views::find(name).with_context(|| {
@@ -195,10 +205,22 @@ fn render_job(job: &Job, args: &ReferenceArgs) -> anyhow::Result<()> {
     );
     let cached = cache_dir().join(format!("{:016x}.exr", fnv1a(key.as_bytes())));
     let png = job.out.with_extension("png");
-    if cached.exists() && !args.no_cache {
-        std::fs::copy(&cached, &job.out)
-            .with_context(|| format!("cannot write {}", job.out.display()))?;
-        let (rgb, cw, ch) = crate::images::read_exr(&cached)?;
+    // A cache entry that does not read back whole (cut short, corrupted, another size) is
+    // ignored and replaced.
+    let hit = (cached.exists() && !args.no_cache)
+        .then(|| crate::images::read_exr(&cached))
+        .and_then(|r| match r {
+            Ok((rgb, cw, ch)) if (cw, ch) == (w, h) => Some((rgb, cw, ch)),
+            Ok(_) | Err(_) => {
+                eprintln!(
+                    "{}: unreadable cache entry, rendering anew",
+                    cached.display()
+                );
+                None
+            }
+        });
+    if let Some((rgb, cw, ch)) = hit {
+        write_exr(&job.out, &rgb, cw, ch)?;
         write_png(
             &png,
             &rgb,
@@ -271,7 +293,7 @@ fn render_job(job: &Job, args: &ReferenceArgs) -> anyhow::Result<()> {
         && std::fs::create_dir_all(dir).is_ok()
     {
         // The cache is an optimisation: failing to fill it loses nothing.
-        let _ = std::fs::copy(&job.out, &cached);
+        let _ = write_exr(&cached, &rgb, w, h);
     }
     eprintln!(
         "{}: {} spp, noise {:.2} % (mean per-pixel relative standard error of luminance), {:.1} s; preview {}",

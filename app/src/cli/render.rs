@@ -107,6 +107,7 @@ pub fn gpu() -> anyhow::Result<GpuContext> {
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let format = format_of(&args.out)?;
+    super::check_writable(&args.out)?;
     let mut scene = args.scene.scene()?;
     let mut projection = Projection::Perspective;
     let mut size = (1280, 720);
@@ -150,7 +151,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let (width, height) = args.size.unwrap_or(size);
     let gpu = gpu()?;
     let mut engine = Engine::new(&gpu.device, &gpu.queue);
-    engine.render(
+    engine.try_render(
         &scene,
         &View {
             projection,
@@ -158,7 +159,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
             width,
             height,
         },
-    );
+    )?;
     match format {
         Format::Exr => {
             let rgb: Vec<[f64; 3]> = engine

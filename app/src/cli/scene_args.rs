@@ -22,7 +22,7 @@ pub struct SceneArgs {
     /// Without it the built-in default scene is used.
     #[arg(long, value_name = "FILE")]
     pub preset: Option<PathBuf>,
-    #[arg(long, value_name = "M", help = ranged("Camera height above the ground", limits::CAMERA_ALTITUDE_M))]
+    #[arg(long, value_name = "M", allow_hyphen_values = true, help = ranged("Camera height above the ground", limits::CAMERA_ALTITUDE_M))]
     pub altitude_m: Option<f64>,
     /// Sun zenith angle, degrees (0 to 180).
     #[arg(
@@ -34,21 +34,26 @@ pub struct SceneArgs {
     pub sun_zenith_deg: Option<f64>,
     #[arg(long, value_name = "DEG", allow_hyphen_values = true, help = ranged("Sun elevation above the horizon", limits::SUN_ELEVATION_DEG))]
     pub sun_elevation_deg: Option<f64>,
-    #[arg(long, value_name = "DEG", help = ranged("Sun azimuth clockwise from north", limits::SUN_AZIMUTH_DEG))]
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, help = ranged("Sun azimuth clockwise from north", limits::SUN_AZIMUTH_DEG))]
     pub sun_azimuth_deg: Option<f64>,
     /// Aerosol type: none, background, desert-dust, maritime-clean, maritime-mineral,
     /// polar-antarctic, polar-arctic, remote-continental, rural, urban, custom. Sets the
     /// type's typical AOD unless --aod550 is given.
     #[arg(long, value_name = "TYPE")]
     pub aerosol: Option<String>,
-    #[arg(long, value_name = "TAU", help = ranged("Aerosol optical depth at 550 nm", limits::AOD550))]
+    #[arg(long, value_name = "TAU", allow_hyphen_values = true, help = ranged("Aerosol optical depth at 550 nm", limits::AOD550))]
     pub aod550: Option<f64>,
     /// Month 1–12: sets the total ozone column to that month's mean.
-    #[arg(long, value_name = "1-12", conflicts_with = "ozone_du")]
+    #[arg(
+        long,
+        value_name = "1-12",
+        allow_hyphen_values = true,
+        conflicts_with = "ozone_du"
+    )]
     pub month: Option<u32>,
-    #[arg(long, value_name = "DU", help = ranged("Total ozone column", limits::OZONE_COLUMN_DU))]
+    #[arg(long, value_name = "DU", allow_hyphen_values = true, help = ranged("Total ozone column", limits::OZONE_COLUMN_DU))]
     pub ozone_du: Option<f64>,
-    #[arg(long, value_name = "A", help = ranged("Ground albedo", limits::GROUND_ALBEDO))]
+    #[arg(long, value_name = "A", allow_hyphen_values = true, help = ranged("Ground albedo", limits::GROUND_ALBEDO))]
     pub albedo: Option<f64>,
     /// Air density profile: us-standard-1976, afgl-us-standard, afgl-tropical,
     /// afgl-midlatitude-summer, afgl-midlatitude-winter, afgl-subarctic-summer,
@@ -59,11 +64,11 @@ pub struct SceneArgs {
     /// given), guimera, or fit.
     #[arg(long, value_name = "NAME")]
     pub ozone_profile: Option<String>,
-    #[arg(long, value_name = "K", help = ranged("Temperature of the ozone cross-section", limits::OZONE_TEMPERATURE_K))]
+    #[arg(long, value_name = "K", allow_hyphen_values = true, help = ranged("Temperature of the ozone cross-section", limits::OZONE_TEMPERATURE_K))]
     pub ozone_temperature_k: Option<f64>,
-    #[arg(long, value_name = "KM", help = ranged("Planet radius", limits::PLANET_RADIUS_KM))]
+    #[arg(long, value_name = "KM", allow_hyphen_values = true, help = ranged("Planet radius", limits::PLANET_RADIUS_KM))]
     pub planet_radius_km: Option<f64>,
-    #[arg(long, value_name = "KM", help = ranged("Height of the top of the atmosphere", limits::TOP_KM))]
+    #[arg(long, value_name = "KM", allow_hyphen_values = true, help = ranged("Height of the top of the atmosphere", limits::TOP_KM))]
     pub top_km: Option<f64>,
     /// Any other scene field by its dotted path, value as JSON or a bare word, e.g.
     /// `--set camera.fov_deg=50`, `--set atmosphere.aerosol.phase=CornetteShanks`. Repeatable.

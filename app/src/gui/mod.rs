@@ -128,9 +128,9 @@ impl ExplorerApp {
                 None => self.message = Some(format!("no shipped preset {name}")),
             },
             Command::LoadFile(path) => self.load_file(&path),
-            Command::SaveFile(path) => match std::fs::write(&path, self.scene.to_ron()) {
+            Command::SaveFile(path) => match self.scene.save(&path) {
                 Ok(()) => self.notice = Some(format!("saved {}", path.display())),
-                Err(e) => self.message = Some(format!("cannot write {}: {e}", path.display())),
+                Err(e) => self.message = Some(e.to_string()),
             },
             Command::CopyRon => {
                 ctx.copy_text(self.scene.to_ron());
@@ -554,14 +554,16 @@ pub fn run(args: SceneArgs) -> anyhow::Result<ExitCode> {
 }
 
 /// The scene and layout to open with: `from_args` if given, else the last session's (a stored
-/// scene that no longer validates is dropped), else the defaults.
+/// scene that no longer validates is dropped, a stored layout is brought into range), else the
+/// defaults.
 fn restore(storage: Option<&dyn eframe::Storage>, from_args: Option<Scene>) -> (Scene, Layout) {
     let stored = storage
         .and_then(|s| eframe::get_value::<Scene>(s, SCENE_KEY))
         .filter(|s| s.validate().is_ok());
     let layout = storage
         .and_then(|s| eframe::get_value::<Layout>(s, LAYOUT_KEY))
-        .unwrap_or_default();
+        .unwrap_or_default()
+        .validated();
     (from_args.or(stored).unwrap_or_default(), layout)
 }
 

@@ -17,9 +17,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use super::state::{DELTA_E_SCALE_MAX, ReferenceSettings};
+use super::state::{DELTA_E_SCALE_MAX, REFERENCE_SIZES, REFERENCE_SPP_RANGE, ReferenceSettings};
 
-const SIZES: [(u32, u32); 3] = [(80, 45), (160, 90), (320, 180)];
 /// Paths per pixel added by each progressive pass.
 const SPP_PER_PASS: u32 = 4;
 
@@ -89,11 +88,13 @@ impl ReferenceTab {
         if let Some(run) = &self.run {
             run.job.cancel();
         }
-        let (w, h) = SIZES[settings.size.min(SIZES.len() - 1)];
+        let (w, h) = REFERENCE_SIZES[settings.size.min(REFERENCE_SIZES.len() - 1)];
         let latest = Arc::new(Mutex::new(None));
         let out = latest.clone();
         let s = scene.clone();
-        let target = settings.target_spp.clamp(16, 4096);
+        let target = settings
+            .target_spp
+            .clamp(*REFERENCE_SPP_RANGE.start(), *REFERENCE_SPP_RANGE.end());
         let visible = Arc::new(AtomicBool::new(true));
         let shown = visible.clone();
         let job = Job::spawn(format!("path tracing {w}×{h}"), ctx, move |progress| {
@@ -144,10 +145,10 @@ impl ReferenceTab {
             egui::ComboBox::from_label("size")
                 .selected_text(format!(
                     "{}×{}",
-                    SIZES[settings.size].0, SIZES[settings.size].1
+                    REFERENCE_SIZES[settings.size].0, REFERENCE_SIZES[settings.size].1
                 ))
                 .show_ui(ui, |ui| {
-                    for (i, (w, h)) in SIZES.iter().enumerate() {
+                    for (i, (w, h)) in REFERENCE_SIZES.iter().enumerate() {
                         ui.selectable_value(&mut settings.size, i, format!("{w}×{h}"));
                     }
                 })
@@ -156,7 +157,7 @@ impl ReferenceTab {
                     "Pixels of the reference: the path tracer's time grows with their number.",
                 );
             ui.add(
-                egui::Slider::new(&mut settings.target_spp, 16..=4096)
+                egui::Slider::new(&mut settings.target_spp, REFERENCE_SPP_RANGE)
                     .logarithmic(true)
                     .text("paths per pixel"),
             )
@@ -174,7 +175,7 @@ impl ReferenceTab {
         if stale {
             self.start(ui.ctx(), scene, *settings);
         }
-        let (w, h) = SIZES[settings.size];
+        let (w, h) = REFERENCE_SIZES[settings.size.min(REFERENCE_SIZES.len() - 1)];
         self.realtime
             .render(scene, &View::new(Projection::Perspective, w, h));
 

@@ -3,7 +3,7 @@
 //! pointer, a click inspects the pixel. The luminance map adds a legend and a hover read-out.
 
 use super::gpu_view::{GpuView, mark, notice, pixels};
-use super::state::{Command, Layout, Tab, angles_of, projection};
+use super::state::{Command, LUMINANCE_LOG10_LIMITS, Layout, Tab, angles_of, projection};
 use atmoscope_model::Scene;
 use atmoscope_model::camera::{Camera, Projection};
 use atmoscope_model::constants::MAX_LUMINOUS_EFFICACY_LM_PER_W;
@@ -218,10 +218,10 @@ fn legend(ui: &mut egui::Ui, layout: &mut Layout, read_out: Option<f64>) {
     ui.horizontal(|ui| {
         ui.label("cd/m², log scale from 10^");
         let [mut lo, mut hi] = layout.luminance_log10_range;
-        ui.add(egui::DragValue::new(&mut lo).range(-6.0..=hi - 1.0).speed(0.1))
+        ui.add(egui::DragValue::new(&mut lo).range(LUMINANCE_LOG10_LIMITS[0]..=hi - 1.0).speed(0.1))
             .on_hover_text("Lowest luminance shown, as a power of ten (deep twilight ≈ 10^-2, night < 10^-3).");
         ui.label("to 10^");
-        ui.add(egui::DragValue::new(&mut hi).range(lo + 1.0..=10.0).speed(0.1))
+        ui.add(egui::DragValue::new(&mut hi).range(lo + 1.0..=LUMINANCE_LOG10_LIMITS[1]).speed(0.1))
             .on_hover_text("Highest luminance shown, as a power of ten (a bright sky ≈ 10^4, the sun's disk ≈ 10^9).");
         layout.luminance_log10_range = [lo, hi];
         ui.separator();

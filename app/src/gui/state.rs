@@ -77,7 +77,82 @@ impl Tab {
     }
 }
 
+/// The range of render and drag scales, texels per screen pixel.
+pub const SCALE_RANGE: std::ops::RangeInclusive<f32> = 0.25..=1.0;
+/// The luminance map's range may lie anywhere in 10^-6 to 10^10 cd/m², at least a decade wide.
+pub const LUMINANCE_LOG10_LIMITS: [f64; 2] = [-6.0, 10.0];
+/// Image sizes the Reference tab offers.
+pub const REFERENCE_SIZES: [(u32, u32); 3] = [(80, 45), (160, 90), (320, 180)];
+/// Paths per pixel the Reference tab may stop at.
+pub const REFERENCE_SPP_RANGE: std::ops::RangeInclusive<u64> = 16..=4096;
+
 impl Layout {
+    /// The layout with every field brought into its allowed range: a restored layout is
+    /// untrusted (an older or hand-edited settings file), and a bad index must not panic a
+    /// panel nor an absurd range hang one. What is out of range takes its default.
+    pub fn validated(self) -> Layout {
+        let d = Layout::default();
+        let scale = |v: f32, default: f32| if SCALE_RANGE.contains(&v) { v } else { default };
+        let [lo, hi] = self.luminance_log10_range;
+        let [min, max] = LUMINANCE_LOG10_LIMITS;
+        let luminance_ok = lo >= min && hi <= max && hi - lo >= 1.0;
+        let realtime = |m: Method, default: Method| {
+            if atmoscope_model::methods::info(m).is_realtime() {
+                m
+            } else {
+                default
+            }
+        };
+        let (c, dc) = (self.compare, d.compare);
+        let sets_ok = |s: WavelengthSet| match s {
+            WavelengthSet::SpectralN(n) => n % 4 == 0 && (4..=128).contains(&n),
+            _ => true,
+        };
+        Layout {
+            render_scale: scale(self.render_scale, d.render_scale),
+            drag_scale: scale(self.drag_scale, d.drag_scale),
+            luminance_log10_range: if luminance_ok {
+                [lo, hi]
+            } else {
+                d.luminance_log10_range
+            },
+            compare: CompareSettings {
+                a_method: realtime(c.a_method, dc.a_method),
+                b_method: realtime(c.b_method, dc.b_method),
+                reference_method: realtime(c.reference_method, dc.reference_method),
+                a: if sets_ok(c.a) { c.a } else { dc.a },
+                b: if sets_ok(c.b) { c.b } else { dc.b },
+                reference: if sets_ok(c.reference) {
+                    c.reference
+                } else {
+                    dc.reference
+                },
+                split: if (0.0..=1.0).contains(&c.split) {
+                    c.split
+                } else {
+                    dc.split
+                },
+                mode: c.mode,
+            },
+            luts: LutSettings {
+                exposure_ev: if self.luts.exposure_ev.abs() <= 20.0 {
+                    self.luts.exposure_ev
+                } else {
+                    d.luts.exposure_ev
+                },
+                ..self.luts
+            },
+            reference: ReferenceSettings {
+                size: self.reference.size.min(REFERENCE_SIZES.len() - 1),
+                target_spp: self
+                    .reference
+                    .target_spp
+                    .clamp(*REFERENCE_SPP_RANGE.start(), *REFERENCE_SPP_RANGE.end()),
+            },
+            ..self
+        }
+    }
+
     /// Texels per screen pixel for a view drawn now.
     pub fn scale(&self, ctx: &egui::Context) -> f32 {
         if ctx.input(|i| i.pointer.is_decidedly_dragging()) {

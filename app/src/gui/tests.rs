@@ -597,3 +597,74 @@ fn the_luminance_tab_reads_out_the_pixel_under_the_pointer() {
     // Daylight sky: between a dim 10³ and the sun's aureole 10⁵ cd/m².
     assert!((1e3..1e5).contains(&value), "{value} cd/m²");
 }
+
+/// A stored layout is untrusted: out-of-range indices, absurd ranges, an offline model in
+/// Compare or an unreadable value must neither panic a panel nor hang one.
+#[test]
+fn a_corrupt_stored_layout_is_brought_into_range_and_every_tab_draws() {
+    use super::state::{
+        CompareSettings, LUMINANCE_LOG10_LIMITS, LutSettings, REFERENCE_SIZES, ReferenceSettings,
+    };
+    let bad = Layout {
+        tab: Tab::Reference,
+        render_scale: f32::NAN,
+        drag_scale: 40.0,
+        luminance_log10_range: [-1e300, 1e300],
+        compare: CompareSettings {
+            a_method: atmoscope_model::scene::Method::PathTracer,
+            b: atmoscope_model::scene::WavelengthSet::SpectralN(7),
+            split: -3.0,
+            ..CompareSettings::default()
+        },
+        luts: LutSettings {
+            lane: Some(999),
+            exposure_ev: f64::INFINITY,
+            slice: u32::MAX,
+            ..LutSettings::default()
+        },
+        reference: ReferenceSettings {
+            size: 99,
+            target_spp: 0,
+        },
+        ..Layout::default()
+    };
+    let mut storage = MemoryStorage::default();
+    eframe::set_value(&mut storage, super::LAYOUT_KEY, &bad);
+    let (_, layout) = super::restore(Some(&storage), None);
+    let d = Layout::default();
+    assert_eq!(layout.render_scale, d.render_scale);
+    assert_eq!(layout.drag_scale, d.drag_scale);
+    assert_eq!(layout.luminance_log10_range, d.luminance_log10_range);
+    assert!(layout.luminance_log10_range[0] >= LUMINANCE_LOG10_LIMITS[0]);
+    assert_eq!(layout.compare.a_method, d.compare.a_method);
+    assert_eq!(layout.compare.b, d.compare.b);
+    assert_eq!(layout.compare.split, d.compare.split);
+    assert_eq!(layout.luts.exposure_ev, 0.0);
+    assert_eq!(layout.reference.size, REFERENCE_SIZES.len() - 1);
+    assert_eq!(layout.reference.target_spp, 16);
+    assert_eq!(layout.tab, Tab::Reference, "what is in range is kept");
+
+    eframe::Storage::set_string(
+        &mut storage,
+        super::LAYOUT_KEY,
+        "(tab: Sky, render_scale: ".into(),
+    );
+    assert_eq!(super::restore(Some(&storage), None).1, Layout::default());
+
+    // Every tab draws with what survives (the LUT lane and slice are clamped where drawn).
+    let mut h = harness_with(
+        Layout {
+            reference: ReferenceSettings {
+                size: 0,
+                target_spp: 16,
+            },
+            ..layout
+        },
+        egui::vec2(900.0, 700.0),
+    );
+    for tab in Tab::ALL {
+        h.key_press(tab.key());
+        h.run();
+        assert_eq!(h.state().layout.tab, tab);
+    }
+}
