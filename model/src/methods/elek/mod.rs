@@ -9,8 +9,8 @@
 //! look-up applies them; Rayleigh with the notes' modified phase 0.8·(1.4 + 0.5·cos θ)/(4π),
 //! which darkens the sky opposite the sun to make up for the missing azimuth.
 //!
-//! Orders are gathered one by one ([`gather`], [`multiple_scattering`], [`accumulate`]): order k of a texel is
-//! the previous order's table, looked up along every direction of the sphere at the local
+//! Orders are gathered one by one ([`gather`], [`multiple_scattering`], [`accumulate`]): order
+//! k of a texel is the previous order's table, looked up along every direction of the sphere at the local
 //! altitude and angles (again without azimuth) and weighted by the phase function between that
 //! direction and the view, integrated along the view ray. As the notes do, each order carries
 //! the view's phase pulled out of it, Rayleigh feeds only Rayleigh and Mie only Mie, and the
