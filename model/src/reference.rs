@@ -19,11 +19,6 @@ use crate::scene::Scene;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// Width of a spectral bin, nm.
-pub const BIN_WIDTH_NM: f64 = 10.0;
-/// Number of spectral bins over 360–830 nm.
-pub const BIN_COUNT: usize = 47;
-
 /// Draws the wavelengths of a path with density ∝ x̄ + ȳ + z̄ + floor over 360–830 nm.
 #[derive(Debug, Clone)]
 pub struct WavelengthSampler {
@@ -75,16 +70,15 @@ impl WavelengthSampler {
     }
 }
 
-/// Accumulated estimates of one pixel.
-#[derive(Debug, Clone, Default)]
+/// Accumulated estimates of one pixel: 48 bytes, so that the largest reference (8192²) needs
+/// about 3 GB.
+#[derive(Debug, Clone, Copy, Default)]
 pub struct Pixel {
     pub samples: u64,
     /// Sums of per-path XYZ estimates, W·m⁻²·sr⁻¹.
     pub xyz_sum: [f64; 3],
     /// Sum of squares of the per-path Y estimates.
     pub y_sum_sq: f64,
-    /// Sums of per-path spectral radiance estimates per bin, W·m⁻²·sr⁻¹·nm⁻¹.
-    pub bins_sum: Vec<f64>,
     /// False for pixels the projection leaves empty.
     pub covered: bool,
 }
@@ -117,12 +111,6 @@ impl Pixel {
         let var = (self.y_sum_sq / n - mean * mean).max(0.0) / (n - 1.0);
         var.sqrt() / mean
     }
-
-    /// Mean spectral radiance per bin, W·m⁻²·sr⁻¹·nm⁻¹.
-    pub fn spectrum(&self) -> Vec<f64> {
-        let n = self.samples.max(1) as f64;
-        self.bins_sum.iter().map(|b| b / n).collect()
-    }
 }
 
 /// A progressive reference render of one scene and projection.
@@ -150,13 +138,7 @@ impl ReferenceRender {
         let camera = Camera::new(&scene.camera, atmosphere.bottom_radius_m, projection);
         let sun_angles = scene.sun.angles();
         let sun = direction_from_angles(sun_angles.elevation_deg, sun_angles.azimuth_deg);
-        let pixels = vec![
-            Pixel {
-                bins_sum: vec![0.0; BIN_COUNT],
-                ..Pixel::default()
-            };
-            (width * height) as usize
-        ];
+        let pixels = vec![Pixel::default(); (width * height) as usize];
         ReferenceRender {
             width,
             height,
@@ -213,9 +195,6 @@ impl ReferenceRender {
                             xyz[0] += v * cmf.x.sample(wl);
                             xyz[1] += v * cmf.y.sample(wl);
                             xyz[2] += v * cmf.z.sample(wl);
-                            let bin = (((wl - VISIBLE_MIN_NM) / BIN_WIDTH_NM) as usize)
-                                .min(BIN_COUNT - 1);
-                            pixel.bins_sum[bin] += v / BIN_WIDTH_NM;
                         }
                         for c in 0..3 {
                             pixel.xyz_sum[c] += xyz[c];
@@ -267,6 +246,16 @@ impl ReferenceRender {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_pixel_fits_in_48_bytes() {
+        // 8192² pixels then need about 3 GB (they needed ~30 GB with per-pixel spectra).
+        assert!(
+            std::mem::size_of::<Pixel>() <= 48,
+            "{}",
+            std::mem::size_of::<Pixel>()
+        );
+    }
 
     #[test]
     fn passes_of_any_size_give_the_same_image_for_a_seed() {
