@@ -176,6 +176,9 @@ pub struct Engine {
     timer: Timer,
     measure: bool,
     stats: FrameStats,
+    /// Passes left stale because the last frames did not need them (by pass index of the
+    /// model on screen); they run as soon as a frame needs them.
+    deferred: Vec<bool>,
 }
 
 impl Engine {
@@ -225,6 +228,7 @@ impl Engine {
             timer,
             measure: false,
             stats: FrameStats::default(),
+            deferred: Vec::new(),
         }
     }
 
@@ -389,25 +393,39 @@ impl Engine {
             self.queue
                 .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
         }
-        // A pass runs when an input it reads changed or a table it reads was just rewritten.
+        // A pass is stale when an input it reads changed, a table it reads was just rewritten
+        // or it was left stale before; it runs when the view drawn this frame needs what it
+        // writes (from above the atmosphere a marching sky pass reads fewer tables).
+        let above = viewpoint.h > params.thickness_m();
         let pipelines = &self.pipelines[0];
         let info = gpu.info();
+        let specs: Vec<&PassSpec> = pipelines.specs().collect();
+        let mut needed = vec![false; specs.len()];
+        let mut needed_resources: Vec<&str> = Vec::new();
+        for (i, spec) in specs.iter().enumerate().rev() {
+            if !spec.is_table() || spec.writes.iter().any(|w| needed_resources.contains(w)) {
+                needed[i] = true;
+                needed_resources.extend(spec.reads_where(above));
+            }
+        }
+        if rebuilt || self.deferred.len() != specs.len() {
+            self.deferred = vec![false; specs.len()];
+        }
         let mut written: Vec<&str> = Vec::new();
         let mut run = Vec::new();
-        for (i, spec) in pipelines.specs().enumerate() {
-            let stale = spec.direct_inputs(info).intersects(changed)
+        for (i, spec) in specs.iter().enumerate() {
+            let stale = self.deferred[i]
+                || spec.direct_inputs(info).intersects(changed)
                 || spec.reads.iter().any(|r| written.contains(r));
             if stale {
                 written.extend(spec.writes);
-                run.push(i);
+                self.deferred[i] = !needed[i];
+                if needed[i] {
+                    run.push(i);
+                }
             }
         }
-        let run = with_order_loop(
-            &run,
-            &pipelines.specs().collect::<Vec<_>>(),
-            params.scattering_orders,
-        );
-        let above = viewpoint.h > params.thickness_m();
+        let run = with_order_loop(&run, &specs, params.scattering_orders);
         let value = |c: Constant| match c {
             Constant::Projection => uniforms::projection_code(view.projection),
             Constant::AboveAtmosphere => u32::from(above),

@@ -487,6 +487,60 @@ fn fitted_constants_reach_the_gpu_and_rebuild_the_tables() {
     );
 }
 
+/// From above the atmosphere the models that march every pixel leave the view tables they do
+/// not read stale, and build them when the camera comes back down: the image is then the same
+/// as a fresh engine's.
+#[test]
+fn from_above_the_atmosphere_the_view_tables_wait_until_a_view_needs_them() {
+    let Some(gpu) = context() else { return };
+    let view = View::new(Projection::Perspective, 24, 16);
+    for model in methods::realtime() {
+        let from_space: &[&str] = match model.id {
+            "hillaire" => &[
+                "transmittance",
+                "multiple-scattering",
+                "ground-irradiance",
+                "sky",
+                "display",
+            ],
+            "garcia-linan" => &["transmittance", "sky", "display"],
+            "bruneton" | "elek" => continue,
+            other => panic!("state what {other} runs from space"),
+        };
+        let mut engine = Engine::new(&gpu.device, &gpu.queue);
+        let mut scene = with(model, &Scene::default());
+        scene.camera.altitude_m = 400_000.0;
+        scene.camera.pitch_deg = -60.0;
+        let first = engine.render(&scene, &view).clone();
+        assert_eq!(first.run, from_space, "{}: from space", model.id);
+        scene.sun = SunSettings::Angles {
+            elevation_deg: 12.0,
+            azimuth_deg: 100.0,
+        };
+        assert_eq!(
+            engine.render(&scene, &view).run,
+            vec!["sky", "display"],
+            "{}: the sun moves in space",
+            model.id
+        );
+        scene.camera.altitude_m = 1000.0;
+        let down = engine.render(&scene, &view).clone();
+        assert!(
+            down.passes
+                .iter()
+                .filter(|p| !from_space.contains(p))
+                .all(|p| down.run.contains(p)),
+            "{}: coming down runs what waited: {:?}",
+            model.id,
+            down.run
+        );
+        let image = radiance_image(&engine);
+        let mut fresh = Engine::new(&gpu.device, &gpu.queue);
+        fresh.render(&scene, &view);
+        assert_eq!(image, radiance_image(&fresh), "{}", model.id);
+    }
+}
+
 #[test]
 fn every_model_skips_its_tables_when_only_the_view_or_the_display_changes() {
     let Some(gpu) = context() else { return };

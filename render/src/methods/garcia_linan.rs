@@ -22,9 +22,11 @@ pub const METHOD: GpuMethod = GpuMethod {
             Dispatch::Table("sky-texture"),
             Repeat::Once,
         ),
-        PassSpec::sky(
+        PassSpec::sky_marching_from_space(
             shader!("garcia_linan/sky.wgsl"),
             &["transmittance", "sky-texture"],
+            // Above the atmosphere each pixel is marched with the model's integrand.
+            &["transmittance"],
         ),
     ],
 };

@@ -2,7 +2,6 @@
 //! pass is `atmoscope_model::methods::hillaire::<pass>`.
 
 use super::{Dispatch, GpuMethod, PassSpec, Repeat, TRANSMITTANCE_PASS, shader};
-use atmoscope_model::methods::Inputs;
 use atmoscope_model::scene::Method;
 
 const AP_INSCATTERING: &str = "aerial-perspective-inscattering";
@@ -17,47 +16,39 @@ pub const METHOD: GpuMethod = GpuMethod {
     constants: |_| [0.0; 4],
     passes: &[
         TRANSMITTANCE_PASS,
-        PassSpec {
-            name: "multiple-scattering",
-            shader: shader!("hillaire/multiple_scattering.wgsl"),
-            reads: &["transmittance"],
-            writes: &["multiple-scattering"],
-            inputs: Inputs::NONE,
-            dispatch: Dispatch::Table("multiple-scattering"),
-            constants: &[],
-            repeat: Repeat::Once,
-        },
-        PassSpec {
-            name: "ground-irradiance",
-            shader: shader!("hillaire/ground_irradiance.wgsl"),
-            reads: &["transmittance", "multiple-scattering"],
-            writes: &["ground-irradiance"],
-            inputs: Inputs::NONE,
-            dispatch: Dispatch::Table("ground-irradiance"),
-            constants: &[],
-            repeat: Repeat::Once,
-        },
-        PassSpec {
-            name: "sky-view",
-            shader: shader!("hillaire/sky_view.wgsl"),
-            reads: &["transmittance", "multiple-scattering"],
-            writes: &["sky-view"],
-            inputs: Inputs::NONE,
-            dispatch: Dispatch::Table("sky-view"),
-            constants: &[],
-            repeat: Repeat::Once,
-        },
-        PassSpec {
-            name: "aerial-perspective",
-            shader: shader!("hillaire/aerial_perspective.wgsl"),
-            reads: &["transmittance", "multiple-scattering"],
-            writes: &[AP_INSCATTERING, AP_TRANSMITTANCE],
-            inputs: Inputs::NONE,
-            dispatch: Dispatch::Table(AP_INSCATTERING),
-            constants: &[],
-            repeat: Repeat::Once,
-        },
-        PassSpec::sky(
+        PassSpec::table(
+            "multiple-scattering",
+            shader!("hillaire/multiple_scattering.wgsl"),
+            &["transmittance"],
+            &["multiple-scattering"],
+            Dispatch::Table("multiple-scattering"),
+            Repeat::Once,
+        ),
+        PassSpec::table(
+            "ground-irradiance",
+            shader!("hillaire/ground_irradiance.wgsl"),
+            &["transmittance", "multiple-scattering"],
+            &["ground-irradiance"],
+            Dispatch::Table("ground-irradiance"),
+            Repeat::Once,
+        ),
+        PassSpec::table(
+            "sky-view",
+            shader!("hillaire/sky_view.wgsl"),
+            &["transmittance", "multiple-scattering"],
+            &["sky-view"],
+            Dispatch::Table("sky-view"),
+            Repeat::Once,
+        ),
+        PassSpec::table(
+            "aerial-perspective",
+            shader!("hillaire/aerial_perspective.wgsl"),
+            &["transmittance", "multiple-scattering"],
+            &[AP_INSCATTERING, AP_TRANSMITTANCE],
+            Dispatch::Table(AP_INSCATTERING),
+            Repeat::Once,
+        ),
+        PassSpec::sky_marching_from_space(
             shader!("hillaire/sky.wgsl"),
             &[
                 "transmittance",
@@ -67,6 +58,8 @@ pub const METHOD: GpuMethod = GpuMethod {
                 AP_INSCATTERING,
                 AP_TRANSMITTANCE,
             ],
+            // Above the atmosphere each pixel is marched: no sky view, no aerial perspective.
+            &["transmittance", "multiple-scattering", "ground-irradiance"],
         ),
     ],
 };

@@ -106,6 +106,10 @@ pub struct PassSpec {
     pub dispatch: Dispatch,
     pub constants: &'static [Constant],
     pub repeat: Repeat,
+    /// What the pass reads when the camera is above the atmosphere, where it reads less (a sky
+    /// pass that marches every pixel instead of looking up the view tables); None: `reads`.
+    /// The engine leaves the passes that only the other reads need stale until they are.
+    pub reads_above_atmosphere: Option<&'static [&'static str]>,
 }
 
 impl PassSpec {
@@ -128,6 +132,7 @@ impl PassSpec {
             dispatch,
             constants: &[],
             repeat,
+            reads_above_atmosphere: None,
         }
     }
 
@@ -143,6 +148,28 @@ impl PassSpec {
             dispatch: Dispatch::View,
             constants: &[Constant::Projection, Constant::AboveAtmosphere],
             repeat: Repeat::Once,
+            reads_above_atmosphere: None,
+        }
+    }
+
+    /// A sky pass that marches every pixel from above the atmosphere, reading only
+    /// `reads_above_atmosphere` there.
+    pub const fn sky_marching_from_space(
+        shader: Shader,
+        reads: &'static [&'static str],
+        reads_above_atmosphere: &'static [&'static str],
+    ) -> PassSpec {
+        PassSpec {
+            reads_above_atmosphere: Some(reads_above_atmosphere),
+            ..PassSpec::sky(shader, reads)
+        }
+    }
+
+    /// What the pass reads with the camera above the atmosphere or not.
+    pub fn reads_where(&self, above_atmosphere: bool) -> &'static [&'static str] {
+        match self.reads_above_atmosphere {
+            Some(r) if above_atmosphere => r,
+            _ => self.reads,
         }
     }
 
@@ -204,6 +231,7 @@ pub const DISPLAY_PASS: PassSpec = PassSpec {
     dispatch: Dispatch::View,
     constants: &[Constant::DisplayMode, Constant::ToneMap],
     repeat: Repeat::Once,
+    reads_above_atmosphere: None,
 };
 
 /// The transmittance pass the table-based models share.
@@ -216,6 +244,7 @@ pub const TRANSMITTANCE_PASS: PassSpec = PassSpec {
     dispatch: Dispatch::Table("transmittance"),
     constants: &[],
     repeat: Repeat::Once,
+    reads_above_atmosphere: None,
 };
 
 /// The entry point every sky pass ends with; the pass's own file defines `radiance(layer, dir)`.
@@ -335,6 +364,13 @@ mod tests {
                 assert!(
                     tables <= MAX_TABLES_PER_PASS,
                     "{}: {} binds {tables} tables",
+                    row.id,
+                    p.name
+                );
+                let above = p.reads_where(true);
+                assert!(
+                    above.iter().all(|r| p.reads.contains(r)),
+                    "{}: {} reads from space what it does not declare",
                     row.id,
                     p.name
                 );
