@@ -772,3 +772,40 @@ fn reference_checks_its_output_first_and_survives_a_truncated_cache_entry() {
     let o = run(&out);
     assert!(stderr(&o).contains("from the cache"), "{}", stderr(&o));
 }
+
+/// `bench gpu` times the floor pass in the same run and reports every model's frame, sun move
+/// and table rebuild as multiples of it.
+#[test]
+fn bench_gpu_reports_multiples_of_the_floor_pass() {
+    let o = atmoscope(&[
+        "bench",
+        "gpu",
+        "--methods",
+        "hillaire,elek",
+        "--sets",
+        "rgb3",
+        "--size",
+        "32x18",
+        "--repeats",
+        "1",
+        "--cpu-timing",
+        "--json",
+    ]);
+    if !o.status.success() && stderr(&o).contains("GPU adapter") && !gpu_required() {
+        eprintln!("SKIPPED: {}", stderr(&o));
+        return;
+    }
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rows: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
+    let rows = rows.as_array().expect("rows");
+    assert_eq!(rows.len(), 2);
+    for (row, id) in rows.iter().zip(["hillaire", "elek"]) {
+        assert_eq!(row["method"].as_str(), Some(id));
+        let f = |k: &str| row[k].as_f64().unwrap_or_else(|| panic!("{id}: no {k}"));
+        assert!(f("floor_ms") > 0.0 && f("floor_ms").is_finite());
+        let frame = f("sky_ms") + f("display_ms");
+        assert!((f("frame_floors") - frame / f("floor_ms")).abs() < 1e-9 * f("frame_floors"));
+        assert!((f("tables_floors") - f("lut_total_ms") / f("floor_ms")).abs() < 1e-6);
+        assert!(f("sun_move_ms") > 0.0, "a sun move runs passes");
+    }
+}

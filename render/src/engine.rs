@@ -153,13 +153,76 @@ struct Target {
     groups: Vec<Option<wgpu::BindGroup>>,
 }
 
+/// GPU timestamp queries around up to `passes` compute passes, and their read-back.
+pub struct Timestamps {
+    queries: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    readback: wgpu::Buffer,
+    period_ns: f64,
+}
+
+impl Timestamps {
+    /// Queries for `passes` passes (the device must have `TIMESTAMP_QUERY`).
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, passes: u32) -> Timestamps {
+        let count = 2 * passes;
+        let bytes = u64::from(count) * 8;
+        let buffer = |label, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: bytes,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        Timestamps {
+            queries: device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("pass timestamps"),
+                ty: wgpu::QueryType::Timestamp,
+                count,
+            }),
+            resolve: buffer(
+                "timestamp resolve",
+                wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            ),
+            readback: buffer(
+                "timestamp read-back",
+                wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            ),
+            period_ns: f64::from(queue.get_timestamp_period()),
+        }
+    }
+
+    /// The timestamp writes of the pass in `slot`.
+    pub fn writes(&self, slot: u32) -> wgpu::ComputePassTimestampWrites<'_> {
+        wgpu::ComputePassTimestampWrites {
+            query_set: &self.queries,
+            beginning_of_pass_write_index: Some(2 * slot),
+            end_of_pass_write_index: Some(2 * slot + 1),
+        }
+    }
+
+    /// Encodes the copy of the first `passes` slots' timestamps for [`Timestamps::read_ms`].
+    pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder, passes: u32) {
+        let count = 2 * passes;
+        encoder.resolve_query_set(&self.queries, 0..count, &self.resolve, 0);
+        encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.readback, 0, 8 * u64::from(count));
+    }
+
+    /// Milliseconds of the first `passes` slots, once the resolving submission has run (waits
+    /// for it); empty if the read-back failed.
+    pub fn read_ms(&self, device: &wgpu::Device, passes: usize) -> Vec<f64> {
+        map_u64(device, &self.readback).map_or_else(Vec::new, |ticks| {
+            (0..passes)
+                .map(|s| {
+                    ticks[2 * s + 1].saturating_sub(ticks[2 * s]) as f64 * self.period_ns * 1e-6
+                })
+                .collect()
+        })
+    }
+}
+
 enum Timer {
-    Gpu {
-        queries: wgpu::QuerySet,
-        resolve: wgpu::Buffer,
-        readback: wgpu::Buffer,
-        period_ns: f64,
-    },
+    Gpu(Timestamps),
     Cpu,
 }
 
@@ -192,28 +255,7 @@ impl Engine {
             mapped_at_creation: false,
         });
         let timer = if device.features().contains(wgpu::Features::TIMESTAMP_QUERY) {
-            let count = 2 * MAX_PASSES as u32;
-            let bytes = u64::from(count) * 8;
-            Timer::Gpu {
-                queries: device.create_query_set(&wgpu::QuerySetDescriptor {
-                    label: Some("pass timestamps"),
-                    ty: wgpu::QueryType::Timestamp,
-                    count,
-                }),
-                resolve: device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("timestamp resolve"),
-                    size: bytes,
-                    usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-                    mapped_at_creation: false,
-                }),
-                readback: device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("timestamp read-back"),
-                    size: bytes,
-                    usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                }),
-                period_ns: f64::from(queue.get_timestamp_period()),
-            }
+            Timer::Gpu(Timestamps::new(device, queue, MAX_PASSES as u32))
         } else {
             Timer::Cpu
         };
@@ -251,7 +293,7 @@ impl Engine {
     /// Where per-pass times come from on this device.
     pub fn timing_source(&self) -> TimingSource {
         match self.timer {
-            Timer::Gpu { .. } => TimingSource::GpuTimestamps,
+            Timer::Gpu(_) => TimingSource::GpuTimestamps,
             Timer::Cpu => TimingSource::CpuFenced,
         }
     }
@@ -509,7 +551,7 @@ impl Engine {
         let pipelines = &self.pipelines[0];
         let info = pipelines.method.info();
         let gpu_timer = match &self.timer {
-            Timer::Gpu { queries, .. } if self.measure => Some(queries),
+            Timer::Gpu(t) if self.measure => Some(t),
             _ => None,
         };
         let fenced = self.measure && gpu_timer.is_none();
@@ -520,12 +562,7 @@ impl Engine {
             let spec = &specs[i];
             let start = Instant::now();
             {
-                let s = slot as u32;
-                let timestamp_writes = gpu_timer.map(|q| wgpu::ComputePassTimestampWrites {
-                    query_set: q,
-                    beginning_of_pass_write_index: Some(2 * s),
-                    end_of_pass_write_index: Some(2 * s + 1),
-                });
+                let timestamp_writes = gpu_timer.map(|t| t.writes(slot as u32));
                 let mut cpass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                     label: Some(spec.name),
                     timestamp_writes,
@@ -557,24 +594,11 @@ impl Engine {
                 encoder = self.device.create_command_encoder(&Default::default());
             }
         }
-        if let Timer::Gpu {
-            queries,
-            resolve,
-            readback,
-            period_ns,
-        } = &self.timer
-            && self.measure
-        {
-            let count = 2 * run.len().min(MAX_PASSES) as u32;
-            encoder.resolve_query_set(queries, 0..count, resolve, 0);
-            encoder.copy_buffer_to_buffer(resolve, 0, readback, 0, 8 * u64::from(count));
+        if let Some(t) = gpu_timer {
+            let passes = run.len().min(MAX_PASSES);
+            t.resolve(&mut encoder, passes as u32);
             self.queue.submit([encoder.finish()]);
-            if let Some(ticks) = map_u64(&self.device, readback) {
-                for (slot, &i) in run.iter().enumerate().take(MAX_PASSES) {
-                    let ns = ticks[2 * slot + 1].saturating_sub(ticks[2 * slot]) as f64 * period_ns;
-                    timings.push((i, ns * 1e-6));
-                }
-            }
+            timings.extend(run.iter().copied().zip(t.read_ms(&self.device, passes)));
         } else {
             self.queue.submit([encoder.finish()]);
         }

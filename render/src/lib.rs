@@ -7,6 +7,7 @@
 //! by [`passes`], run by the [`engine`]) → [`views`] textures.
 
 pub mod engine;
+pub mod floor;
 pub mod gpu;
 pub mod methods;
 pub mod passes;

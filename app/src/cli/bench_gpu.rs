@@ -10,7 +10,7 @@ use atmoscope_model::Scene;
 use atmoscope_model::camera::Projection;
 use atmoscope_model::metrics::{DisplaySetup, compare};
 use atmoscope_model::scene::Method;
-use atmoscope_model::scene::WavelengthSet;
+use atmoscope_model::scene::{SunSettings, WavelengthSet};
 use atmoscope_model::views;
 use atmoscope_render::{Engine, View};
 use clap::Args;
@@ -56,6 +56,16 @@ struct GpuRow {
     frame_gpu_ms: f64,
     /// Median wall time of a turning-camera frame from `render` to the GPU being idle.
     frame_wall_ms: f64,
+    /// Median of every pass a change of the sun's elevation runs (the tables it invalidates,
+    /// the sky and the display).
+    sun_move_ms: f64,
+    /// Median of the floor pass: a trivial full-screen pass of the same size and output
+    /// format, timed the same way in the same run.
+    floor_ms: f64,
+    /// The frame, a sun move and a full table rebuild as multiples of the floor.
+    frame_floors: f64,
+    sun_move_floors: f64,
+    tables_floors: f64,
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -79,6 +89,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
     let view = View::new(Projection::Perspective, w, h);
     let repeats = args.repeats.max(1);
     let mut rows = Vec::new();
+    let floor = atmoscope_render::floor::FloorPass::new(&context.device);
     let methods = args
         .methods
         .clone()
@@ -116,21 +127,45 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             sky.extend(stats.ms("sky"));
             display.extend(stats.ms("display"));
         }
+        let sun = base.sun.angles();
+        let mut sun_moves = Vec::new();
+        for i in 0..repeats {
+            scene.sun = SunSettings::Angles {
+                elevation_deg: (sun.elevation_deg + 0.5 * (i + 1) as f64).min(90.0),
+                azimuth_deg: sun.azimuth_deg,
+            };
+            let stats = engine.render(&scene, &view).clone();
+            sun_moves.push(stats.timings_ms.iter().map(|(_, ms)| ms).sum::<f64>());
+        }
+        let floor_ms = median(floor.time_ms(
+            &context.device,
+            &context.queue,
+            [w, h],
+            engine.timing_source(),
+            repeats,
+        ));
         let lut_ms: Vec<(String, f64)> = lut
             .into_iter()
             .map(|(p, v)| (p.to_string(), median(v)))
             .collect();
         let (sky_ms, display_ms) = (median(sky), median(display));
+        let lut_total_ms: f64 = lut_ms.iter().map(|(_, ms)| ms).sum();
+        let sun_move_ms = median(sun_moves);
         rows.push(GpuRow {
             method: super::method_id(method).into(),
             wavelengths: set_name(set),
             timing: engine.timing_source().label().into(),
-            lut_total_ms: lut_ms.iter().map(|(_, ms)| ms).sum(),
+            lut_total_ms,
             lut_ms,
             sky_ms,
             display_ms,
             frame_gpu_ms: sky_ms + display_ms,
             frame_wall_ms: median(wall),
+            sun_move_ms,
+            floor_ms,
+            frame_floors: (sky_ms + display_ms) / floor_ms,
+            sun_move_floors: sun_move_ms / floor_ms,
+            tables_floors: lut_total_ms / floor_ms,
         });
     }
     if args.json {
@@ -142,8 +177,19 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         rows.first().map_or("", |r| r.timing.as_str())
     );
     println!(
-        "{:14} {:12} {:>10} {:>8} {:>8} {:>12} {:>12}   table passes",
-        "method", "set", "tables", "sky", "display", "frame (GPU)", "frame (wall)"
+        "{:14} {:12} {:>10} {:>8} {:>8} {:>12} {:>12} {:>9} {:>8}   ×floor: {:>6} {:>6} {:>7}   table passes",
+        "method",
+        "set",
+        "tables",
+        "sky",
+        "display",
+        "frame (GPU)",
+        "frame (wall)",
+        "sun move",
+        "floor",
+        "frame",
+        "sun",
+        "tables"
     );
     for r in &rows {
         let passes: Vec<String> = r
@@ -152,7 +198,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             .map(|(name, ms)| format!("{name} {ms:.2}"))
             .collect();
         println!(
-            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms   {}",
+            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms {:>6.2} ms {:>5.2} ms          {:>6.1} {:>6.1} {:>7.1}   {}",
             r.method,
             r.wavelengths,
             r.lut_total_ms,
@@ -160,6 +206,11 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             r.display_ms,
             r.frame_gpu_ms,
             r.frame_wall_ms,
+            r.sun_move_ms,
+            r.floor_ms,
+            r.frame_floors,
+            r.sun_move_floors,
+            r.tables_floors,
             passes.join(", ")
         );
     }
