@@ -142,7 +142,8 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             &context.queue,
             [w, h],
             engine.timing_source(),
-            repeats,
+            // A few milliseconds each: enough runs for a steady median.
+            repeats.max(20),
         ));
         let lut_ms: Vec<(String, f64)> = lut
             .into_iter()
