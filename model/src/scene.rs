@@ -278,6 +278,16 @@ pub enum WavelengthSet {
     SpectralN(u32),
 }
 
+impl WavelengthSet {
+    /// Whether the set is one this build renders: SpectralN needs N a multiple of 4 in 4–128.
+    pub fn is_valid(self) -> bool {
+        match self {
+            WavelengthSet::SpectralN(n) => n % 4 == 0 && (4..=128).contains(&n),
+            _ => true,
+        }
+    }
+}
+
 impl Default for WavelengthSet {
     fn default() -> Self {
         WavelengthSet::Spectral4
@@ -775,7 +785,7 @@ impl Scene {
         c.limit("camera.fov_deg", cam.fov_deg, limits::CAMERA_FOV_DEG);
         c.limit("camera.back_km", cam.back_km, limits::CAMERA_BACK_KM);
         if let WavelengthSet::SpectralN(n) = self.render.wavelengths {
-            if n % 4 != 0 || !(4..=128).contains(&n) {
+            if !self.render.wavelengths.is_valid() {
                 c.fail(
                     "render.wavelengths.SpectralN",
                     format!("is {n}, allowed a multiple of 4 from 4 to 128"),

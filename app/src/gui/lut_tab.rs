@@ -5,7 +5,7 @@
 //! (`model::methods::MODELS`), so a new model's tables appear here with no change.
 
 use super::gpu_view::GpuView;
-use super::state::LutSettings;
+use super::state::{LUT_EXPOSURE_EV, LutSettings};
 use atmoscope_model::Scene;
 use atmoscope_model::colour::srgb_encode;
 use atmoscope_model::methods::{self, shared::TableSpec};
@@ -74,7 +74,7 @@ impl LutTab {
                 })
                 .response
                 .on_hover_text("Colour combines every wavelength of the set with its matrix to sRGB; a single wavelength shows that band alone in grey.");
-            ui.add(egui::Slider::new(&mut s.exposure_ev, -10.0..=10.0).suffix(" EV").text("exposure"))
+            ui.add(egui::Slider::new(&mut s.exposure_ev, LUT_EXPOSURE_EV).suffix(" EV").text("exposure"))
                 .on_hover_text("Brightness of the table's image: each EV doubles it.");
             ui.checkbox(&mut s.normalise, "normalise")
                 .on_hover_text("Scale the brightest texel to white first, so tables of any unit are visible.");

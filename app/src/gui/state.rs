@@ -83,6 +83,8 @@ pub const SCALE_RANGE: std::ops::RangeInclusive<f32> = 0.25..=1.0;
 pub const LUMINANCE_LOG10_LIMITS: [f64; 2] = [-6.0, 10.0];
 /// Image sizes the Reference tab offers.
 pub const REFERENCE_SIZES: [(u32, u32); 3] = [(80, 45), (160, 90), (320, 180)];
+/// The LUT tab's exposure range, EV.
+pub const LUT_EXPOSURE_EV: std::ops::RangeInclusive<f64> = -10.0..=10.0;
 /// Paths per pixel the Reference tab may stop at.
 pub const REFERENCE_SPP_RANGE: std::ops::RangeInclusive<u64> = 16..=4096;
 
@@ -104,10 +106,6 @@ impl Layout {
             }
         };
         let (c, dc) = (self.compare, d.compare);
-        let sets_ok = |s: WavelengthSet| match s {
-            WavelengthSet::SpectralN(n) => n % 4 == 0 && (4..=128).contains(&n),
-            _ => true,
-        };
         Layout {
             render_scale: scale(self.render_scale, d.render_scale),
             drag_scale: scale(self.drag_scale, d.drag_scale),
@@ -120,9 +118,9 @@ impl Layout {
                 a_method: realtime(c.a_method, dc.a_method),
                 b_method: realtime(c.b_method, dc.b_method),
                 reference_method: realtime(c.reference_method, dc.reference_method),
-                a: if sets_ok(c.a) { c.a } else { dc.a },
-                b: if sets_ok(c.b) { c.b } else { dc.b },
-                reference: if sets_ok(c.reference) {
+                a: if c.a.is_valid() { c.a } else { dc.a },
+                b: if c.b.is_valid() { c.b } else { dc.b },
+                reference: if c.reference.is_valid() {
                     c.reference
                 } else {
                     dc.reference
@@ -135,7 +133,7 @@ impl Layout {
                 mode: c.mode,
             },
             luts: LutSettings {
-                exposure_ev: if self.luts.exposure_ev.abs() <= 20.0 {
+                exposure_ev: if LUT_EXPOSURE_EV.contains(&self.luts.exposure_ev) {
                     self.luts.exposure_ev
                 } else {
                     d.luts.exposure_ev
