@@ -374,6 +374,16 @@ fn gpu_required() -> bool {
         || std::env::var("ATMOSCOPE_REQUIRE_GPU").is_ok_and(|v| v == "1")
 }
 
+/// Whether a command failed only for want of a GPU where none is required (then the test
+/// says SKIPPED and stops).
+fn skipped_without_gpu(o: &Output) -> bool {
+    let skip = !o.status.success() && stderr(o).contains("GPU adapter") && !gpu_required();
+    if skip {
+        eprintln!("SKIPPED: {}", stderr(o));
+    }
+    skip
+}
+
 #[test]
 fn render_writes_png_luminance_map_and_exr_and_refuses_bad_input() {
     let dir = std::env::temp_dir().join(format!("atmoscope-render-{}", std::process::id()));
@@ -390,8 +400,7 @@ fn render_writes_png_luminance_map_and_exr_and_refuses_bad_input() {
         "--out",
         png.to_str().unwrap(),
     ]);
-    if !o.status.success() && stderr(&o).contains("GPU adapter") && !gpu_required() {
-        eprintln!("SKIPPED: {}", stderr(&o));
+    if skipped_without_gpu(&o) {
         return;
     }
     assert!(o.status.success(), "{}", stderr(&o));
@@ -593,8 +602,7 @@ fn every_model_is_within_its_stated_delta_e_of_the_path_tracer_on_each_view_of_i
         "spectral4",
         "--json",
     ]);
-    if !o.status.success() && stderr(&o).contains("GPU adapter") && !gpu_required() {
-        eprintln!("SKIPPED: {}", stderr(&o));
+    if skipped_without_gpu(&o) {
         return;
     }
     assert!(o.status.success(), "{}", stderr(&o));
@@ -791,8 +799,7 @@ fn bench_gpu_reports_multiples_of_the_floor_pass() {
         "--cpu-timing",
         "--json",
     ]);
-    if !o.status.success() && stderr(&o).contains("GPU adapter") && !gpu_required() {
-        eprintln!("SKIPPED: {}", stderr(&o));
+    if skipped_without_gpu(&o) {
         return;
     }
     assert!(o.status.success(), "{}", stderr(&o));
