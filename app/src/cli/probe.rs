@@ -84,8 +84,8 @@ pub struct ProbeArgs {
         value_name = "LIST"
     )]
     pub wavelengths_nm: Vec<f64>,
-    /// path-tracer, single-scattering, or a real-time model's id (its f64 CPU twin:
-    /// hillaire, garcia-linan).
+    /// path-tracer, single-scattering, or a real-time model's registry id (its f64 CPU twin;
+    /// an unknown id is answered with the list).
     #[arg(long, value_parser = parse_probe_method, default_value = "path-tracer")]
     pub method: ProbeMethod,
     /// Highest scattering order (path tracer; 1 = single scattering). Default: all orders.

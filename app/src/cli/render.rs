@@ -28,7 +28,8 @@ pub struct RenderArgs {
     /// A named view of the suite (`atmoscope reference --list-views`), applied on the scene.
     #[arg(long, value_name = "NAME")]
     pub view: Option<String>,
-    /// Sky model, a registry id: hillaire, garcia-linan (default: the scene's).
+    /// Sky model, a real-time model's registry id (default: the scene's; an unknown id is
+    /// answered with the list).
     #[arg(long, value_name = "ID", value_parser = super::parse_method)]
     pub method: Option<Method>,
     /// Wavelength set: rgb3, spectral4 or spectralN (N a multiple of 4, 4–128, e.g. spectral32).
