@@ -71,3 +71,31 @@ fn single_scattering(layer: u32, c: Coords) -> RayleighMie {
     s.mie *= b.solar_irradiance;
     return s;
 }
+
+// The camera's ray along `dir` as the models that look a whole ray up in their tables see it:
+// at the camera, or where the ray enters the atmosphere when the camera is above it; `hit` is
+// false when it misses. Twin of model::methods::shared::ray::camera_coords.
+struct CameraCoords {
+    c: Coords,
+    hit: bool,
+}
+
+fn camera_coords(dir: vec3<f32>) -> CameraCoords {
+    let up = normalize(globals.camera_position.xyz);
+    let sun = globals.sun.xyz;
+    var r: CameraCoords;
+    r.c.h = globals.camera_position.w;
+    r.c.mu = dot(dir, up);
+    r.c.mu_s = dot(sun, up);
+    r.c.nu = clamp(dot(dir, sun), -1.0, 1.0);
+    r.hit = true;
+    if ABOVE_ATMOSPHERE {
+        let entry = entry_into_atmosphere(r.c.h, r.c.mu, r.c.mu_s, r.c.nu);
+        r.hit = entry.z != 0.0;
+        r.c.h = thickness();
+        r.c.mu = entry.x;
+        r.c.mu_s = entry.y;
+    }
+    r.c.ground = hits_ground(r.c.h, r.c.mu);
+    return r;
+}

@@ -5,31 +5,20 @@
 // model::methods::elek::sky.
 
 fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
-    let big_r = bottom_radius();
     let b = batches[layer];
-    let up = normalize(globals.camera_position.xyz);
-    let sun = globals.sun.xyz;
-    var h = globals.camera_position.w;
-    var mu = dot(dir, up);
-    var mu_s = dot(sun, up);
-    let nu = clamp(dot(dir, sun), -1.0, 1.0);
-    let disk = sun_disk(dir, sun);
-    if ABOVE_ATMOSPHERE {
-        let entry = entry_into_atmosphere(h, mu, mu_s, nu);
-        if entry.z == 0.0 {
-            return b.solar_irradiance * disk;
-        }
-        h = thickness();
-        mu = entry.x;
-        mu_s = entry.y;
+    let disk = b.solar_irradiance * sun_disk(dir, globals.sun.xyz);
+    let camera = camera_coords(dir);
+    if !camera.hit {
+        return disk;
     }
-    let t = elek_taps(layer, elek_texel(h, mu, mu_s));
-    let inscattered = read_rayleigh_scattering(t) * modified_rayleigh_phase(nu)
-        + read_mie_scattering(t) * aerosol_phase(nu, b.aerosol_g);
-    if hits_ground(h, mu) {
-        let d = distance_to_ground(h, mu);
-        let mu_s_g = clamp(((big_r + h) * mu_s + d * nu) / big_r, -1.0, 1.0);
-        return inscattered + transmittance_between(layer, h, mu, d) * sunlit_ground(layer, mu_s_g);
+    let c = camera.c;
+    let t = elek_taps(layer, elek_texel(c.h, c.mu, c.mu_s));
+    let inscattered = read_rayleigh_scattering(t) * modified_rayleigh_phase(c.nu)
+        + read_mie_scattering(t) * aerosol_phase(c.nu, b.aerosol_g);
+    if c.ground {
+        let d = distance_to_ground(c.h, c.mu);
+        let mu_s_g = clamp(((bottom_radius() + c.h) * c.mu_s + d * c.nu) / bottom_radius(), -1.0, 1.0);
+        return inscattered + transmittance_between(layer, c.h, c.mu, d) * sunlit_ground(layer, mu_s_g);
     }
-    return inscattered + transmittance(layer, h, mu) * b.solar_irradiance * disk;
+    return inscattered + transmittance(layer, c.h, c.mu) * disk;
 }

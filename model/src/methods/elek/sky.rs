@@ -5,48 +5,27 @@
 //! enters it. Twin of `shaders/elek/sky.wgsl`.
 
 use super::{Lanes, Tables, look_up, modified_rayleigh_phase};
-use crate::geometry::{distance_to_ground, hits_ground};
-use crate::methods::shared::aerosol_phase;
-use crate::methods::shared::transmittance::{sunlit_ground, transmittance, transmittance_between};
-use crate::methods::shared::{entry_into_atmosphere, sun_disk};
+use crate::methods::shared::ray::{behind, camera_coords};
+use crate::methods::shared::transmittance::sunlit_ground;
+use crate::methods::shared::{aerosol_phase, sun_disk};
 use glam::DVec3;
 
-/// The radiance of one batch seen from `position` (m from the planet's centre, altitude `h`)
-/// along the unit direction `dir`, with the sun in direction `sun`.
-pub fn radiance(
-    tables: &Tables,
-    layer: usize,
-    (position, h): (DVec3, f64),
-    dir: DVec3,
-    sun: DVec3,
-) -> Lanes {
+/// The radiance of one batch seen from `at` (position from the planet's centre and altitude,
+/// m) along the unit direction `dir`, with the sun in direction `sun`.
+pub fn radiance(tables: &Tables, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
     let p = &tables.params;
-    let big_r = p.bottom_radius_m;
-    let e = p.batches[layer].solar_irradiance;
-    let up = position.normalize();
-    let (mu, mu_s, nu) = (dir.dot(up), sun.dot(up), dir.dot(sun).clamp(-1.0, 1.0));
-    let disk = sun_disk(dir, sun);
-    let (h, mu, mu_s) = if h > p.thickness_m() {
-        match entry_into_atmosphere(p, h, mu, mu_s, nu) {
-            Some((mu_e, mu_s_e)) => (p.thickness_m(), mu_e, mu_s_e),
-            None => return e.map(|e| e * disk),
-        }
-    } else {
-        (h, mu, mu_s)
-    };
-    let rayleigh = look_up(p, &tables.rayleigh, layer, h, mu, mu_s);
-    let mie = look_up(p, &tables.mie, layer, h, mu, mu_s);
-    let (pr, pm) = (modified_rayleigh_phase(nu), aerosol_phase(p, layer, nu));
     let t = &tables.transmittance;
-    let (tr, behind) = if hits_ground(h, mu, big_r) {
-        let d = distance_to_ground(h, mu, big_r);
-        let mu_s_g = (((big_r + h) * mu_s + d * nu) / big_r).clamp(-1.0, 1.0);
-        (
-            transmittance_between(p, t, layer, (h, mu), d),
-            sunlit_ground(p, t, layer, mu_s_g),
-        )
-    } else {
-        (transmittance(p, t, layer, h, mu), e.map(|e| e * disk))
+    let disk = p.batches[layer]
+        .solar_irradiance
+        .map(|e| e * sun_disk(dir, sun));
+    let Some(c) = camera_coords(p, at, dir, sun) else {
+        return disk;
     };
+    let rayleigh = look_up(p, &tables.rayleigh, layer, c.h, c.mu, c.mu_s);
+    let mie = look_up(p, &tables.mie, layer, c.h, c.mu, c.mu_s);
+    let (pr, pm) = (modified_rayleigh_phase(c.nu), aerosol_phase(p, layer, c.nu));
+    let (tr, behind) = behind(p, t, layer, &c, disk, |mu_s_g| {
+        sunlit_ground(p, t, layer, mu_s_g)
+    });
     std::array::from_fn(|i| rayleigh[i] * pr + mie[i] * pm[i] + tr[i] * behind[i])
 }

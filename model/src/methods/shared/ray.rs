@@ -3,10 +3,11 @@
 //! weights of its samples, the local angles at a sample, and single scattering along it without
 //! phase functions. Twin of `shaders/common/ray.wgsl`.
 
-use super::transmittance::{sun_transmittance, transmittance_between};
-use super::{Lanes, Lut, Params};
-use crate::geometry::{altitude_along, distance_to_ground, distance_to_top};
+use super::transmittance::{sun_transmittance, transmittance, transmittance_between};
+use super::{Lanes, Lut, Params, entry_into_atmosphere};
+use crate::geometry::{altitude_along, distance_to_ground, distance_to_top, hits_ground};
 use crate::wavelengths::LANES;
+use glam::DVec3;
 
 /// A point of a scattering table's domain: altitude (m), view and sun zenith cosines,
 /// view–sun cosine, and whether the view ray ends on the ground.
@@ -17,6 +18,57 @@ pub struct Coords {
     pub mu_s: f64,
     pub nu: f64,
     pub ground: bool,
+}
+
+/// The camera's ray along the unit direction `dir` (camera at `position`, m from the planet's
+/// centre, altitude `h`; sun in the unit direction `sun`) as the models that look a whole ray
+/// up in their tables see it: at the camera, or where the ray enters the atmosphere when the
+/// camera is above it; None when it misses the atmosphere.
+pub fn camera_coords(
+    p: &Params,
+    (position, h): (DVec3, f64),
+    dir: DVec3,
+    sun: DVec3,
+) -> Option<Coords> {
+    let up = position.normalize();
+    let (mu, mu_s, nu) = (dir.dot(up), sun.dot(up), dir.dot(sun).clamp(-1.0, 1.0));
+    let (h, mu, mu_s) = if h > p.thickness_m() {
+        let (mu_e, mu_s_e) = entry_into_atmosphere(p, h, mu, mu_s, nu)?;
+        (p.thickness_m(), mu_e, mu_s_e)
+    } else {
+        (h, mu, mu_s)
+    };
+    Some(Coords {
+        h,
+        mu,
+        mu_s,
+        nu,
+        ground: hits_ground(h, mu, p.bottom_radius_m),
+    })
+}
+
+/// What a looked-up ray `c` ends on, and the transmittance to it: the ground, whose radiance
+/// `ground(mu_s_g)` gives for the sun's zenith cosine where the ray meets it, or else `sky`
+/// (the sun's disk) through the whole atmosphere.
+pub fn behind(
+    p: &Params,
+    t: &Lut,
+    layer: usize,
+    c: &Coords,
+    sky: Lanes,
+    ground: impl Fn(f64) -> Lanes,
+) -> (Lanes, Lanes) {
+    let big_r = p.bottom_radius_m;
+    if c.ground {
+        let d = distance_to_ground(c.h, c.mu, big_r);
+        let mu_s_g = (((big_r + c.h) * c.mu_s + d * c.nu) / big_r).clamp(-1.0, 1.0);
+        (
+            transmittance_between(p, t, layer, (c.h, c.mu), d),
+            ground(mu_s_g),
+        )
+    } else {
+        (transmittance(p, t, layer, c.h, c.mu), sky)
+    }
 }
 
 /// Length of the view ray of `c` to where it leaves the atmosphere (its ground flag decides).
