@@ -96,6 +96,33 @@ pub enum EngineError {
     Readback(#[from] ReadbackError),
     #[error("a {0}×{1} view is larger than this GPU allows ({2} pixels on a side at most)")]
     ViewTooLarge(u32, u32, u32),
+    /// A wgpu validation, out-of-memory or internal error, or a lost device, caught by the
+    /// error scopes around the frame; the engine starts afresh on the next frame.
+    #[error("the GPU refused the frame: {0}")]
+    Gpu(String),
+}
+
+/// Runs `f` inside wgpu error scopes for validation, out-of-memory and internal errors, so that
+/// a fault (an absurd size, a lost device, a driver failure) is an error for the caller instead
+/// of wgpu's default handler, which panics.
+pub fn capture<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> Result<T, EngineError> {
+    let scopes = [
+        wgpu::ErrorFilter::Validation,
+        wgpu::ErrorFilter::OutOfMemory,
+        wgpu::ErrorFilter::Internal,
+    ]
+    .map(|filter| device.push_error_scope(filter));
+    let value = f();
+    let mut fault = None;
+    for scope in scopes.into_iter().rev() {
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            fault.get_or_insert(e.to_string());
+        }
+    }
+    match fault {
+        Some(e) => Err(EngineError::Gpu(e)),
+        None => Ok(value),
+    }
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -339,7 +366,24 @@ impl Engine {
     /// Renders `view` of `scene` with the scene's model, running only the passes whose inputs
     /// changed since the last frame. Returns the frame's statistics. The work is submitted; it
     /// finishes on the GPU. A model with no real-time passes (the path tracer) is refused.
+    /// GPU faults come back as [`EngineError::Gpu`]; the next frame then rebuilds everything.
     pub fn try_render(&mut self, scene: &Scene, view: &View) -> Result<&FrameStats, EngineError> {
+        let device = self.device.clone();
+        match capture(&device, || self.render_frame(scene, view)) {
+            Ok(Ok(())) => Ok(&self.stats),
+            Ok(Err(e)) => Err(e),
+            Err(fault) => {
+                // Whatever the frame created may be invalid: start from nothing.
+                self.pipelines.clear();
+                self.atmosphere = None;
+                self.target = None;
+                self.last = None;
+                Err(fault)
+            }
+        }
+    }
+
+    fn render_frame(&mut self, scene: &Scene, view: &View) -> Result<(), EngineError> {
         let max = self.device.limits().max_texture_dimension_2d;
         if view.width > max || view.height > max {
             return Err(EngineError::ViewTooLarge(view.width, view.height, max));
@@ -523,7 +567,7 @@ impl Engine {
                 .map(|(i, ms)| (self.pipelines[0].specs().nth(i).map_or("", |s| s.name), ms))
                 .collect(),
         };
-        Ok(&self.stats)
+        Ok(())
     }
 
     /// [`Engine::try_render`] for callers that have already checked the scene's model is a
@@ -637,13 +681,17 @@ impl Engine {
     /// Reads the linear radiance back, row-major from the top row.
     pub fn read_radiance(&self) -> Result<Vec<[f32; 4]>, EngineError> {
         let t = self.radiance_texture().ok_or(EngineError::NotRendered)?;
-        Ok(read_texture_f32x4(&self.device, &self.queue, t)?)
+        Ok(capture(&self.device, || {
+            read_texture_f32x4(&self.device, &self.queue, t)
+        })??)
     }
 
     /// Reads the displayed image back as RGBA8, row-major from the top row.
     pub fn read_display(&self) -> Result<Vec<u8>, EngineError> {
         let t = self.display_texture().ok_or(EngineError::NotRendered)?;
-        Ok(read_texture(&self.device, &self.queue, t)?)
+        Ok(capture(&self.device, || {
+            read_texture(&self.device, &self.queue, t)
+        })??)
     }
 
     /// Reads one lookup table back: every texel of every layer (batch), in the order of
@@ -656,7 +704,9 @@ impl Engine {
             .tables
             .buffer(id)
             .ok_or_else(|| EngineError::NoSuchTable(id.to_string()))?;
-        Ok(read_buffer_f32x4(&self.device, &self.queue, buffer)?)
+        Ok(capture(&self.device, || {
+            read_buffer_f32x4(&self.device, &self.queue, buffer)
+        })??)
     }
 }
 

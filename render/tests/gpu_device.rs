@@ -91,3 +91,34 @@ fn headless_device_is_the_requested_backend_and_computes() {
         assert_eq!(got, want, "element {i}");
     }
 }
+
+/// wgpu's default handler panics on a validation error; the engine turns faults into errors.
+#[test]
+fn gpu_faults_are_errors_not_panics() {
+    use atmoscope_model::camera::Projection;
+    use atmoscope_model::scene::Scene;
+    use atmoscope_render::engine::capture;
+    use atmoscope_render::{Engine, EngineError, View};
+    let Some(gpu) = context() else { return };
+    let too_big = gpu.device.limits().max_buffer_size.saturating_add(1);
+    let fault = capture(&gpu.device, || {
+        gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("larger than the device allows"),
+            size: too_big,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        })
+    });
+    assert!(matches!(fault, Err(EngineError::Gpu(_))), "{fault:?}");
+
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    let view = View::new(Projection::Perspective, 8, 8);
+    engine
+        .try_render(&Scene::default(), &view)
+        .expect("a first frame");
+    gpu.device.destroy();
+    let mut scene = Scene::default();
+    scene.atmosphere.aerosol.aod550 = 0.3;
+    let lost = engine.try_render(&scene, &view).map(|_| ());
+    assert!(matches!(lost, Err(EngineError::Gpu(_))), "{lost:?}");
+}

@@ -67,6 +67,8 @@ pub struct GpuView {
     radiance: Option<(u64, Arc<Radiance>)>,
     /// Wall time of the last frame that ran a pass, from `render` until the GPU was idle, ms.
     pub last_frame_ms: f64,
+    /// The last frame's GPU fault, until the app shows it.
+    fault: Option<String>,
 }
 
 impl GpuView {
@@ -84,13 +86,22 @@ impl GpuView {
             generation: 0,
             radiance: None,
             last_frame_ms: 0.0,
+            fault: None,
         }
     }
 
     /// Renders `view` of `scene` if anything changed; returns what the frame ran.
     pub fn render(&mut self, scene: &Scene, view: &View) -> &FrameStats {
         let start = Instant::now();
-        let drew = !self.engine.render(scene, view).run.is_empty();
+        let drew = match self.engine.try_render(scene, view) {
+            Ok(stats) => !stats.run.is_empty(),
+            // A path-tracer scene draws nothing here; a GPU fault is shown to the user.
+            Err(EngineError::NotRealtime(_)) => false,
+            Err(e) => {
+                self.fault = Some(e.to_string());
+                false
+            }
+        };
         if drew {
             self.last_frame_ms = start.elapsed().as_secs_f64() * 1e3;
             self.generation += 1;
@@ -120,6 +131,11 @@ impl GpuView {
                 ))
             }
         }
+    }
+
+    /// The last GPU fault not yet shown, if any.
+    pub fn take_fault(&mut self) -> Option<String> {
+        self.fault.take()
     }
 
     pub fn texture(&self) -> Option<egui::TextureId> {

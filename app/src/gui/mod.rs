@@ -510,6 +510,9 @@ impl eframe::App for ExplorerApp {
         for c in commands {
             self.apply(&ctx, c);
         }
+        if let Some(fault) = self.views.as_mut().and_then(|v| v.main.take_fault()) {
+            self.message = Some(fault);
+        }
         if self.frame_log {
             self.log_frame();
         }
