@@ -6,6 +6,7 @@
 //! views); its own local frame then turns with the surface.
 
 use crate::geometry::{Ray, direction_from_angles};
+use crate::methods::shared::sun::SunInView;
 use crate::scene::CameraSettings;
 use glam::{DMat3, DVec3};
 use serde::{Deserialize, Serialize};
@@ -99,11 +100,114 @@ impl Camera {
         };
         Some(Ray::new(self.position, self.frame * local))
     }
+
+    /// Where the world direction `dir` falls in a view of `width` × `height`: pixel
+    /// coordinates (x to the right, y down; inverse of [`Camera::ray`]), or None where the
+    /// projection does not show it (behind a perspective camera, below the fisheye's horizon).
+    pub fn project(&self, dir: DVec3, width: u32, height: u32) -> Option<(f64, f64)> {
+        let (w, h) = (width as f64, height as f64);
+        let local = self.frame.transpose() * dir.normalize();
+        let elevation = local.z.clamp(-1.0, 1.0).asin().to_degrees();
+        let azimuth = local.x.atan2(local.y).to_degrees() - self.heading_deg;
+        match self.projection {
+            Projection::Perspective => {
+                let tan_half = (self.fov_deg.to_radians() * 0.5).tan();
+                let forward = direction_from_angles(self.pitch_deg, self.heading_deg);
+                let right = direction_from_angles(0.0, self.heading_deg + 90.0);
+                let up = right.cross(forward);
+                let z = local.dot(forward);
+                if z <= 0.0 {
+                    return None;
+                }
+                let (sx, sy) = (local.dot(right) / z, local.dot(up) / z);
+                Some((
+                    (sx / (tan_half * w / h) + 1.0) * 0.5 * w,
+                    (1.0 - sy / tan_half) * 0.5 * h,
+                ))
+            }
+            Projection::Fisheye => {
+                if elevation < 0.0 {
+                    return None;
+                }
+                let size = w.min(h);
+                let rho = 1.0 - elevation / 90.0;
+                let a = azimuth.to_radians();
+                Some((
+                    0.5 * (w + rho * a.sin() * size),
+                    0.5 * (h - rho * a.cos() * size),
+                ))
+            }
+            Projection::Panorama => Some((
+                ((azimuth / 360.0 + 0.5).rem_euclid(1.0)) * w,
+                (90.0 - elevation) / 180.0 * h,
+            )),
+        }
+    }
+
+    /// Where the sun's centre falls in a view and how wide a pixel is there: what every
+    /// pixel's share of the sun's disk is measured from; None where the view cannot show it.
+    pub fn sun_in_view(&self, sun: DVec3, width: u32, height: u32) -> Option<SunInView> {
+        let (x, y) = self.project(sun, width, height)?;
+        let axes = self.pixel_axes_at(x, y, width, height);
+        Some(SunInView {
+            x,
+            y,
+            pixel_width_rad: axes.x.length(),
+            pixel_height_rad: axes.y.length(),
+            wrap_width: match self.projection {
+                Projection::Panorama => width as f64,
+                _ => 0.0,
+            },
+        })
+    }
+
+    /// The pixel centred at (x, y) on the sky: the world vectors across its width and its
+    /// height (their lengths are its angular width and height, rad); None where the projection
+    /// shows nothing there.
+    pub fn pixel_axes(&self, x: f64, y: f64, width: u32, height: u32) -> Option<PixelAxes> {
+        self.ray(x, y, width, height)?;
+        Some(self.pixel_axes_at(x, y, width, height))
+    }
+
+    /// [`Camera::pixel_axes`] anywhere: where a side of the pixel falls outside the projection
+    /// (the fisheye's rim) the difference is taken one-sided.
+    fn pixel_axes_at(&self, x: f64, y: f64, width: u32, height: u32) -> PixelAxes {
+        let dir = |x: f64, y: f64| self.ray(x, y, width, height).map(|r| r.direction);
+        let across = |dx: f64, dy: f64| match (
+            dir(x + 0.5 * dx, y + 0.5 * dy),
+            dir(x - 0.5 * dx, y - 0.5 * dy),
+            dir(x, y),
+        ) {
+            (Some(p), Some(m), _) => p - m,
+            (Some(p), None, Some(c)) => 2.0 * (p - c),
+            (None, Some(m), Some(c)) => 2.0 * (c - m),
+            _ => DVec3::ZERO,
+        };
+        PixelAxes {
+            x: across(1.0, 0.0),
+            y: across(0.0, 1.0),
+        }
+    }
+}
+
+/// A pixel's extent on the sky: world vectors across its width and height, rad long.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PixelAxes {
+    pub x: DVec3,
+    pub y: DVec3,
+}
+
+impl PixelAxes {
+    /// Solid angle, sr.
+    pub fn solid_angle(&self) -> f64 {
+        self.x.cross(self.y).length()
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::PI;
 
     const R: f64 = 6_360_000.0;
 
@@ -114,6 +218,61 @@ mod tests {
             pitch_deg: 0.0,
             fov_deg: 60.0,
             back_km: 0.0,
+        }
+    }
+
+    /// The pixels' solid angles add up to what the projection covers.
+    #[test]
+    fn pixel_solid_angles_add_up_to_the_projection() {
+        let mut s = settings(10.0);
+        s.fov_deg = 90.0;
+        let (w, h) = (160, 90);
+        let half_y = 45f64.to_radians();
+        let half_x = (half_y.tan() * 160.0 / 90.0).atan();
+        for (projection, total) in [
+            (
+                Projection::Perspective,
+                4.0 * (half_x.sin() * half_y.sin()).asin(),
+            ),
+            // The sky dome in the inscribed circle; the panorama the whole sphere.
+            (Projection::Fisheye, 2.0 * PI),
+            (Projection::Panorama, 4.0 * PI),
+        ] {
+            let c = Camera::new(&s, R, projection);
+            let sum: f64 = (0..w * h)
+                .filter_map(|i| {
+                    let (x, y) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
+                    Some(c.pixel_axes(x, y, w, h)?.solid_angle())
+                })
+                .sum();
+            assert!(
+                (sum / total - 1.0).abs() < 0.02,
+                "{projection:?}: {sum} sr, expected {total}"
+            );
+        }
+    }
+
+    #[test]
+    fn project_inverts_ray_in_every_projection() {
+        let mut s = settings(500.0);
+        s.heading_deg = 130.0;
+        s.pitch_deg = 20.0;
+        for projection in [
+            Projection::Perspective,
+            Projection::Fisheye,
+            Projection::Panorama,
+        ] {
+            let c = Camera::new(&s, R, projection);
+            for (x, y) in [(10.5, 20.5), (80.0, 45.0), (150.25, 3.75)] {
+                let Some(ray) = c.ray(x, y, 160, 90) else {
+                    continue;
+                };
+                let (px, py) = c.project(ray.direction, 160, 90).expect("shown");
+                assert!(
+                    (px - x).abs() < 1e-6 && (py - y).abs() < 1e-6,
+                    "{projection:?}: ({x}, {y}) came back as ({px}, {py})"
+                );
+            }
         }
     }
 

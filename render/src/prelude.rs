@@ -136,6 +136,7 @@ pub fn wgsl_prelude() -> String {
     );
     c("SUN_ANGULAR_RADIUS_RAD", "f32", f(SUN_ANGULAR_RADIUS_RAD));
     c("SUN_LIMB_DARKENING_U", "f32", f(SUN_LIMB_DARKENING_U));
+    c("SUN_LIMB_INSET", "f32", f(shared::sun::SUN_LIMB_INSET));
     c(
         "MAX_LUMINOUS_EFFICACY_LM_PER_W",
         "f32",

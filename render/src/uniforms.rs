@@ -76,6 +76,7 @@ pub struct Globals {
     pub camera_up: [f32; 4],
     pub camera: [f32; 4],
     pub sun: [f32; 4],
+    pub sun_view: [f32; 4],
     pub view: [u32; 4],
     pub options: [u32; 4],
     pub steps_a: [u32; 4],
@@ -130,6 +131,11 @@ impl From<&FrameInputs<'_>> for Globals {
                 horizon_beta(f.viewpoint.h, p.bottom_radius_m) as f32,
             ],
             sun: v4(f.sun, f.viewpoint.mu_s),
+            sun_view: c
+                .sun_in_view(f.sun, f.size[0], f.size[1])
+                .map_or([0.0; 4], |s| {
+                    [s.x, s.y, s.pixel_width_rad, s.pixel_height_rad].map(|v| v as f32)
+                }),
             view: [f.size[0], f.size[1], 0, 0],
             options: [phase_code(p.aerosol_phase), p.batches.len() as u32, 0, 0],
             steps_a: [

@@ -581,3 +581,69 @@ fn every_model_skips_its_tables_when_only_the_view_or_the_display_changes() {
     offline.render.method = Method::PathTracer;
     assert!(engine.try_render(&offline, &view).is_err());
 }
+
+/// A sun exactly at the centre of an even-sized view falls between pixel centres: each pixel
+/// averages the disk over its footprint, so the view keeps the sun's energy (it vanished when
+/// the disk was point-sampled).
+#[test]
+fn the_sun_centred_in_an_even_sized_view_keeps_its_energy() {
+    let Some(gpu) = context() else { return };
+    let mut scene = Scene::default();
+    scene.sun = SunSettings::Angles {
+        elevation_deg: 30.0,
+        azimuth_deg: 180.0,
+    };
+    scene.camera.heading_deg = 180.0;
+    scene.camera.pitch_deg = 30.0;
+    scene.camera.fov_deg = 2.0;
+    let radius = scene.atmosphere.planet_radius_km * 1000.0;
+    // Σ Y·Ω over the view: the sun's illuminance through the atmosphere, plus a little sky.
+    let energy = |image: &[[f64; 3]], camera: &Camera, size: u32| -> f64 {
+        image
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let (x, y) = (
+                    (i as u32 % size) as f64 + 0.5,
+                    (i as u32 / size) as f64 + 0.5,
+                );
+                luminance(*p)
+                    * camera
+                        .pixel_axes(x, y, size, size)
+                        .map_or(0.0, |a| a.solid_angle())
+            })
+            .sum()
+    };
+    for model in methods::realtime() {
+        let scene = with(model, &scene);
+        let camera = Camera::new(&scene.camera, radius, Projection::Perspective);
+        let twin = methods::build(&scene, &camera).expect("a real-time model");
+        let fine = energy(
+            &methods::render_with(twin.as_ref(), &scene, &camera, 256, 256),
+            &camera,
+            256,
+        );
+        let coarse = energy(
+            &methods::render_with(twin.as_ref(), &scene, &camera, 4, 4),
+            &camera,
+            4,
+        );
+        let mut engine = Engine::new(&gpu.device, &gpu.queue);
+        engine.render(&scene, &View::new(Projection::Perspective, 4, 4));
+        let on_gpu = energy(&radiance_image(&engine), &camera, 4);
+        eprintln!(
+            "{}: Σ Y·Ω fine {fine:.4e}, 4×4 {coarse:.4e}, GPU 4×4 {on_gpu:.4e}",
+            model.id
+        );
+        assert!(
+            (coarse / fine - 1.0).abs() < 0.03,
+            "{}: the 4×4 view holds {coarse:e}, the 256×256 one {fine:e}",
+            model.id
+        );
+        assert!(
+            (on_gpu / coarse - 1.0).abs() < 0.02,
+            "{}: GPU {on_gpu:e}, CPU twin {coarse:e}",
+            model.id
+        );
+    }
+}

@@ -9,9 +9,9 @@ fn ground_radiance(layer: u32, mu_s_g: f32) -> vec4<f32> {
         + read_irradiance(layer, 0.0, mu_s_g));
 }
 
-fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
+fn radiance(layer: u32, dir: vec3<f32>, sun_disk_sr: f32) -> vec4<f32> {
     let b = batches[layer];
-    let disk = b.solar_irradiance * sun_disk(dir, globals.sun.xyz);
+    let disk = b.solar_irradiance * sun_disk_sr;
     let camera = camera_coords(dir);
     if !camera.hit {
         return disk;

@@ -14,6 +14,9 @@ struct Globals {
     camera: vec4<f32>,
     // world direction to the sun; w: mu_s at the camera (the viewpoint of the view tables)
     sun: vec4<f32>,
+    // where the sun's centre falls in the view (pixels: x, y) and a pixel's angular width and
+    // height there (rad); z = 0 when the view cannot show the sun
+    sun_view: vec4<f32>,
     // width, height (pixels), 0, 0 (projection, display mode and tone map are pipeline constants)
     view: vec4<u32>,
     // aerosol phase function, batch count, 0, 0

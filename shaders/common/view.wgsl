@@ -1,5 +1,5 @@
 // What every sky pass shares: the camera's rays and the sun's disk. Twins of
-// model::camera::Camera::ray and model::methods::shared::sun_disk.
+// model::camera::Camera::ray and model::methods::shared::sun::SunInView::disk_in_pixel.
 
 // Pipeline constants: the engine compiles one variant per projection and per camera inside or
 // above the atmosphere, so that no pixel pays for branches the frame cannot take (software
@@ -44,22 +44,71 @@ fn camera_ray(x: f32, y: f32) -> vec4<f32> {
     return vec4<f32>(world, 1.0);
 }
 
-// Limb-darkened sun disk per unit solar irradiance (sr⁻¹).
-fn sun_disk(dir: vec3<f32>, sun: vec3<f32>) -> f32 {
-    if dot(dir, sun) <= 0.0 {
-        return 0.0;
-    }
-    let gamma = asin(min(length(cross(dir, sun)), 1.0));
-    if gamma >= SUN_ANGULAR_RADIUS_RAD {
-        return 0.0;
-    }
-    let x = gamma / SUN_ANGULAR_RADIUS_RAD;
-    let mu_prime = sqrt(1.0 - x * x);
-    let limb = (1.0 - SUN_LIMB_DARKENING_U * (1.0 - mu_prime)) / (1.0 - SUN_LIMB_DARKENING_U / 3.0);
-    let half_angle = 0.5 * SUN_ANGULAR_RADIUS_RAD;
-    return limb / (4.0 * PI * sin(half_angle) * sin(half_angle));
+// Linear limb darkening at the fraction x of the disk's radius, normalised to its mean.
+fn limb(x: f32) -> f32 {
+    return (1.0 - SUN_LIMB_DARKENING_U * (1.0 - sqrt(1.0 - x * x))) / (1.0 - SUN_LIMB_DARKENING_U / 3.0);
 }
 
+// Area shared by two disks of radii a and b whose centres are d apart; twin of
+// model::methods::shared::sun::disk_overlap.
+fn disk_overlap(a: f32, b: f32, d: f32) -> f32 {
+    if d >= a + b {
+        return 0.0;
+    }
+    if d <= abs(a - b) {
+        let m = min(a, b);
+        return PI * m * m;
+    }
+    let ca = clamp((d * d + a * a - b * b) / (2.0 * d * a), -1.0, 1.0);
+    let cb = clamp((d * d + b * b - a * a) / (2.0 * d * b), -1.0, 1.0);
+    let k = max((-d + a + b) * (d + a - b) * (d - a + b) * (d + a + b), 0.0);
+    return a * a * acos(ca) + b * b * acos(cb) - 0.5 * sqrt(k);
+}
+
+// Share of the sun's disk whose offset from its centre along an axis is below s (rad).
+fn chord_share(s: f32) -> f32 {
+    let t = clamp(s / SUN_ANGULAR_RADIUS_RAD, -1.0, 1.0);
+    return 1.0 - (acos(t) - t * sqrt(1.0 - t * t)) / PI;
+}
+
+// The sun's disk averaged over the pixel centred at (x, y), per unit solar irradiance (sr⁻¹),
+// from where the sun falls in the view (globals.sun_view); twin of
+// model::methods::shared::sun::SunInView::disk_in_pixel.
+fn sun_in_pixel(x: f32, y: f32) -> f32 {
+    let a = SUN_ANGULAR_RADIUS_RAD;
+    let wx = globals.sun_view.z;
+    let wy = globals.sun_view.w;
+    if wx <= 0.0 {
+        return 0.0;
+    }
+    var dx = x - globals.sun_view.x;
+    if PROJECTION == PROJECTION_PANORAMA {
+        let w = f32(globals.view.x);
+        dx -= w * round(dx / w);
+    }
+    let ox = dx * wx;
+    let oy = (y - globals.sun_view.y) * wy;
+    let gamma = length(vec2<f32>(ox, oy));
+    if gamma >= a + wx + wy {
+        return 0.0;
+    }
+    let sr = wx * wy;
+    let blend = smoothstep(1.0, 2.0, sqrt(sr) / a);
+    var resolved = 0.0;
+    if blend < 1.0 {
+        let p = sqrt(sr / PI);
+        let l = limb(min(max(gamma - SUN_LIMB_INSET * p, 0.0) / a, 1.0));
+        let fade = min(p / a, 1.0);
+        resolved = (l + (1.0 - l) * fade) * disk_overlap(a, p, gamma) / (PI * a * a) / sr;
+    }
+    var unresolved = 0.0;
+    if blend > 0.0 {
+        let share_x = chord_share(0.5 * wx + ox) - chord_share(-0.5 * wx + ox);
+        let share_y = chord_share(0.5 * wy + oy) - chord_share(-0.5 * wy + oy);
+        unresolved = share_x * share_y / sr;
+    }
+    return mix(resolved, unresolved, blend);
+}
 
 // (φ, θ): azimuth from the sun in [0, π] and zenith angle of `dir` at a point whose vertical is
 // `up`; twin of model::methods::shared::sun_relative_angles.

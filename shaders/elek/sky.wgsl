@@ -4,9 +4,9 @@
 // atmosphere the look-up starts where the ray enters it (entry point: views/sky.wgsl). Twin of
 // model::methods::elek::sky.
 
-fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
+fn radiance(layer: u32, dir: vec3<f32>, sun_disk_sr: f32) -> vec4<f32> {
     let b = batches[layer];
-    let disk = b.solar_irradiance * sun_disk(dir, globals.sun.xyz);
+    let disk = b.solar_irradiance * sun_disk_sr;
     let camera = camera_coords(dir);
     if !camera.hit {
         return disk;

@@ -3,7 +3,7 @@
 // the model's integrand (entry point: views/sky.wgsl). Twin of
 // model::methods::garcia_linan::sky.
 
-fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
+fn radiance(layer: u32, dir: vec3<f32>, sun_disk_sr: f32) -> vec4<f32> {
     let big_r = bottom_radius();
     let top = top_radius();
     let h = globals.camera_position.w;
@@ -14,7 +14,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     let mu = dot(dir, up);
     let mu_s = dot(sun, up);
     let nu = dot(dir, sun);
-    let disk = sun_disk(dir, sun);
+    let disk = sun_disk_sr;
     if !ABOVE_ATMOSPHERE {
         let angles = sun_relative_angles(up, dir, sun);
         let phi = angles.x;

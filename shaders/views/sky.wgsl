@@ -1,5 +1,6 @@
 // The entry point of every model's sky pass, appended after the pass's file, which defines
-// `radiance(layer, dir)`: a batch's radiance along a world direction from the camera. Sums the
+// `radiance(layer, dir, disk)`: a batch's radiance along a world direction from the camera,
+// with the sun's disk averaged over the pixel (sr⁻¹ per unit irradiance). Sums the
 // batches into linear sRGB (Y = ∫ȳL dλ) and writes coverage in alpha (0 outside the projection).
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
@@ -7,14 +8,17 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if any(id.xy >= globals.view.xy) {
         return;
     }
-    let ray = camera_ray(f32(id.x) + 0.5, f32(id.y) + 0.5);
+    let x = f32(id.x) + 0.5;
+    let y = f32(id.y) + 0.5;
+    let ray = camera_ray(x, y);
     if ray.w == 0.0 {
         textureStore(radiance_out, id.xy, vec4<f32>(0.0));
         return;
     }
+    let disk = sun_in_pixel(x, y);
     var rgb = vec3<f32>(0.0);
     for (var layer = 0u; layer < batch_count(); layer++) {
-        let l = radiance(layer, ray.xyz);
+        let l = radiance(layer, ray.xyz, disk);
         rgb += vec3<f32>(dot(batches[layer].to_srgb_r, l), dot(batches[layer].to_srgb_g, l),
             dot(batches[layer].to_srgb_b, l));
     }

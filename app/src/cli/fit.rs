@@ -62,13 +62,14 @@ fn samples(
                 grid,
                 grid,
             )?;
+            // Pixels on the sun's disk are left out, so none below carries it.
             if sun_disk(ray.direction, sun) > 0.0 {
                 return None;
             }
             let at = (ray.origin, scene.camera.altitude_m);
-            let l4 = hillaire::radiance(&p4, &t4, 0, at, ray.direction, sun);
+            let l4 = hillaire::radiance(&p4, &t4, 0, at, ray.direction, (sun, 0.0));
             let ln: Vec<[f64; 4]> = (0..pn.batches.len())
-                .map(|b| hillaire::radiance(&pn, &tn, b, at, ray.direction, sun))
+                .map(|b| hillaire::radiance(&pn, &tn, b, at, ray.direction, (sun, 0.0)))
                 .collect();
             Some((l4, to_linear_srgb(&colours, &ln)))
         })

@@ -13,6 +13,7 @@ mod probe;
 mod reference;
 mod render;
 mod scene_args;
+mod stress;
 
 pub use scene_args::SceneArgs;
 
@@ -57,6 +58,9 @@ pub enum Command {
     /// Refit García Liñán's multiple-scattering constants against path-traced references of
     /// the view suite; reports the error before and after.
     FitGarciaLinan(fit_garcia_linan::FitGarciaLinanArgs),
+    /// Numerical stress: scenes over the whole parameter space, every model on the GPU against
+    /// its f64 CPU twin; a report, and a preset per failing case.
+    Stress(stress::StressArgs),
     /// Benchmarks: run time and convergence (not part of the tests).
     Bench {
         #[command(subcommand)]
@@ -91,6 +95,7 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Compare(args) => compare::run(&args),
         Command::FitWavelengths(args) => fit::run(&args),
         Command::FitGarciaLinan(args) => fit_garcia_linan::run(&args),
+        Command::Stress(args) => stress::run(&args),
         Command::Bench { bench } => bench::run(&bench),
     }
 }

@@ -9,7 +9,7 @@ use atmoscope_model::camera::{Camera, Projection};
 use atmoscope_model::geometry::{Ray, direction_from_angles};
 use atmoscope_model::methods::path_tracer::{LANES, LaneOptics, PathTracer, PathTracerSettings};
 use atmoscope_model::methods::rng::Rng;
-use atmoscope_model::methods::shared::{Params, viewpoint};
+use atmoscope_model::methods::shared::{Params, sun_disk, viewpoint};
 use atmoscope_model::methods::{self, single_scattering};
 use atmoscope_model::scene::Method;
 use atmoscope_model::{Atmosphere, Scene};
@@ -175,7 +175,13 @@ pub fn probe(scene: &Scene, args: &ProbeArgs) -> Probe {
             let (mean, se) = match args.method {
                 ProbeMethod::Model(_) => (
                     model.as_ref().map_or([f64::NAN; LANES], |m| {
-                        m.radiance(b, (camera.position, scene.camera.altitude_m), dir, sun)
+                        m.radiance(
+                            b,
+                            (camera.position, scene.camera.altitude_m),
+                            dir,
+                            sun,
+                            sun_disk(dir, sun),
+                        )
                     }),
                     [0.0; LANES],
                 ),

@@ -142,8 +142,10 @@ pub trait SkyModel: Send + Sync {
 
     /// Radiance of batch `layer` (W·m⁻²·sr⁻¹·nm⁻¹ per lane) seen from `position` (m from the
     /// planet's centre, at altitude `h`, m) along the unit direction `dir`, with the sun in the
-    /// unit direction `sun`; the sun's disk included.
-    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes;
+    /// unit direction `sun`; the sun's disk included with radiance `disk` per unit solar
+    /// irradiance (sr⁻¹): `shared::sun_disk` in a single direction, `SunInView::disk_in_pixel`
+    /// averaged over a pixel.
+    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3, disk: f64) -> Lanes;
 
     /// One of the model's tables by its registry id.
     fn table(&self, id: &str) -> Option<&Lut>;
@@ -176,6 +178,14 @@ impl ModelInfo {
     /// Whether the model renders in real time on the GPU.
     pub fn is_realtime(&self) -> bool {
         self.build.is_some()
+    }
+
+    /// Whether any table depends on the viewpoint (camera altitude, sun elevation): if not,
+    /// one CPU twin serves every viewpoint of an atmosphere.
+    pub fn reads_viewpoint(&self) -> bool {
+        self.tables
+            .iter()
+            .any(|t| t.invalidated_by.intersects(Inputs::VIEWPOINT))
     }
 
     /// A table of the model by id.
@@ -317,6 +327,7 @@ pub fn render_with(
     let sun = direction_from_angles(a.elevation_deg, a.azimuth_deg);
     let p = model.params();
     let colours: Vec<WavelengthBatch> = p.batches.iter().map(|b| b.colour.clone()).collect();
+    let sun_in_view = camera.sun_in_view(sun, width, height);
     (0..width * height)
         .into_par_iter()
         .map(|i| {
@@ -325,8 +336,10 @@ pub fn render_with(
                 None => [0.0; 3],
                 Some(ray) => {
                     let at = (ray.origin, scene.camera.altitude_m);
+                    let disk = sun_in_view
+                        .map_or(0.0, |s| s.disk_in_pixel(x as f64 + 0.5, y as f64 + 0.5));
                     let lanes: Vec<Lanes> = (0..p.batches.len())
-                        .map(|layer| model.radiance(layer, at, ray.direction, sun))
+                        .map(|layer| model.radiance(layer, at, ray.direction, sun, disk))
                         .collect();
                     to_linear_srgb(&colours, &lanes)
                 }

@@ -6,18 +6,22 @@
 
 use super::{Lanes, Params, ScatteringTaps, Tables, aerosol_phase, irradiance, rayleigh_phase};
 use crate::methods::shared::ray::{behind, camera_coords};
-use crate::methods::shared::sun_disk;
 use crate::methods::shared::transmittance::sun_transmittance;
 use glam::DVec3;
 use std::f64::consts::PI;
 
 /// The radiance of one batch seen from `at` (position from the planet's centre and altitude,
-/// m) along the unit direction `dir`, with the sun in direction `sun`.
-pub fn radiance(tables: &Tables, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
+/// m) along the unit direction `dir`, with the sun in direction `sun` and its disk averaged
+/// over a pixel (`disk`: the disk's radiance there per unit irradiance, sr⁻¹).
+pub fn radiance(
+    tables: &Tables,
+    layer: usize,
+    at: (DVec3, f64),
+    dir: DVec3,
+    (sun, disk): (DVec3, f64),
+) -> Lanes {
     let p: &Params = &tables.params;
-    let disk = p.batches[layer]
-        .solar_irradiance
-        .map(|e| e * sun_disk(dir, sun));
+    let disk = p.batches[layer].solar_irradiance.map(|e| e * disk);
     let Some(c) = camera_coords(p, at, dir, sun) else {
         return disk;
     };

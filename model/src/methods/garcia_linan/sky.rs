@@ -6,15 +6,21 @@
 use super::sky_texture::sky_texture;
 use super::{Constants, Lanes, Lut, Params, Tables, integrate};
 use crate::geometry::{distance_to_boundary, distance_to_ground, hits_ground};
-use crate::methods::shared::sun_disk;
 use crate::methods::shared::transmittance::{sunlit_ground, transmittance, transmittance_between};
 use crate::methods::shared::{entry_into_atmosphere, mul, sun_relative_angles};
 use glam::DVec3;
 use std::f64::consts::FRAC_PI_2;
 
 /// The radiance of one batch seen from `position` (m from the planet's centre, altitude `h`)
-/// along the unit direction `dir`, with the sun in direction `sun`.
-pub fn radiance(tables: &Tables, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
+/// along the unit direction `dir`, with the sun in direction `sun` and its disk averaged over a
+/// pixel (`disk`: the disk's radiance there per unit irradiance, sr⁻¹).
+pub fn radiance(
+    tables: &Tables,
+    layer: usize,
+    at: (DVec3, f64),
+    dir: DVec3,
+    sun: (DVec3, f64),
+) -> Lanes {
     let texture = |phi: f64, elevation: f64, _: (f64, f64, f64, f64)| {
         sky_texture(&tables.sky_texture, layer, phi, elevation)
     };
@@ -39,7 +45,7 @@ pub fn radiance_marched(
     layer: usize,
     at: (DVec3, f64),
     dir: DVec3,
-    sun: DVec3,
+    sun: (DVec3, f64),
 ) -> Lanes {
     let march = |_: f64, _: f64, (h, mu, mu_s, nu): (f64, f64, f64, f64)| {
         let h = h.min(p.thickness_m());
@@ -68,7 +74,7 @@ fn radiance_with(
     layer: usize,
     (position, h): (DVec3, f64),
     dir: DVec3,
-    sun: DVec3,
+    (sun, disk): (DVec3, f64),
     inscattering: impl Fn(f64, f64, (f64, f64, f64, f64)) -> Lanes,
 ) -> Lanes {
     let big_r = p.bottom_radius_m;
@@ -78,7 +84,6 @@ fn radiance_with(
     let r = big_r + h;
     let up = position.normalize();
     let (mu, mu_s, nu) = (dir.dot(up), sun.dot(up), dir.dot(sun));
-    let disk = sun_disk(dir, sun);
     if h <= thickness {
         let (phi, theta) = sun_relative_angles(up, dir, sun);
         let elevation = FRAC_PI_2 - theta;
@@ -123,6 +128,7 @@ mod tests {
     use crate::atmosphere::Atmosphere;
     use crate::camera::{Camera, Projection};
     use crate::geometry::direction_from_angles;
+    use crate::methods::shared::sun_disk;
     use crate::methods::shared::viewpoint;
     use crate::scene::{Quality, Scene, WavelengthSet};
 
@@ -138,7 +144,7 @@ mod tests {
         let at = (camera.position, scene.camera.altitude_m);
         for (elevation, azimuth) in [(80.0, 0.0), (30.0, 90.0), (5.0, 200.0), (-20.0, 45.0)] {
             let dir = camera.local_to_world(direction_from_angles(elevation, azimuth));
-            let looked_up = radiance(&tables, 0, at, dir, sun);
+            let looked_up = radiance(&tables, 0, at, dir, (sun, sun_disk(dir, sun)));
             let marched = radiance_marched(
                 &p,
                 &tables.transmittance,
@@ -146,7 +152,7 @@ mod tests {
                 0,
                 at,
                 dir,
-                sun,
+                (sun, sun_disk(dir, sun)),
             );
             for (l, m) in looked_up.iter().zip(&marched) {
                 assert!(

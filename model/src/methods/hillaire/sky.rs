@@ -5,8 +5,7 @@
 
 use super::{
     AERIAL_PERSPECTIVE_MAX_DISTANCE_M, Lanes, Params, Spacing, Tables, aerial_perspective,
-    ground_irradiance, integrate_inscattering, sky_view, sun_disk, sun_transmittance,
-    transmittance,
+    ground_irradiance, integrate_inscattering, sky_view, sun_transmittance, transmittance,
 };
 use crate::geometry::{distance_to_ground, distance_to_top, hits_ground};
 use crate::methods::shared::{add, entry_into_atmosphere, mul, sun_relative_angles};
@@ -25,14 +24,15 @@ fn ground_radiance(p: &Params, tables: &Tables, layer: usize, mu_s_g: f64) -> La
 }
 
 /// The radiance of one batch seen from `position` (m from the planet's centre, altitude `h`)
-/// along the unit direction `dir`, with the sun in direction `sun`.
+/// along the unit direction `dir`, with the sun in direction `sun` and its disk averaged over a
+/// pixel (`disk`: the disk's radiance there per unit irradiance, sr⁻¹).
 pub fn radiance(
     p: &Params,
     tables: &Tables,
     layer: usize,
     (position, h): (DVec3, f64),
     dir: DVec3,
-    sun: DVec3,
+    (sun, disk): (DVec3, f64),
 ) -> Lanes {
     let big_r = p.bottom_radius_m;
     let top = p.top_radius_m;
@@ -41,7 +41,6 @@ pub fn radiance(
     let r = big_r + h;
     let up = position.normalize();
     let (mu, mu_s, nu) = (dir.dot(up), sun.dot(up), dir.dot(sun));
-    let disk = sun_disk(dir, sun);
     if h <= thickness {
         let (phi, theta) = sun_relative_angles(up, dir, sun);
         if hits_ground(h, mu, big_r) {

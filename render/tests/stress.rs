@@ -1,0 +1,64 @@
+//! Numerical stress in CI: property tests over the whole scene space (`atmoscope_render::stress`)
+//! for every real-time model — radiance finite and non-negative on the GPU and in the CPU twin,
+//! the GPU within the stated bound of the twin, direct transmittance falling with more aerosol,
+//! the zenith brightening as the sun climbs. Few cases per model here; `atmoscope stress` is the
+//! long run.
+
+mod common;
+
+use atmoscope_model::methods;
+use atmoscope_render::stress::{DIMENSIONS, Stress, scene_at};
+use proptest::prelude::*;
+use proptest::test_runner::{Config, TestRunner};
+
+/// Runs `cases` draws for the model with registry id `id`; a failure names the scene.
+fn stress_model(id: &str, cases: u32) {
+    let Some(gpu) = common::context() else { return };
+    let model = methods::by_id(id).expect("a registry id");
+    let stress = std::cell::RefCell::new(Stress::new(&gpu.device, &gpu.queue));
+    let mut runner = TestRunner::new(Config {
+        cases,
+        // A failure is reported as drawn: shrinking would rebuild the tables hundreds of times.
+        max_shrink_iters: 0,
+        failure_persistence: None,
+        // The same draws on every run: CI must not pass or fail by chance.
+        rng_seed: proptest::test_runner::RngSeed::Fixed(1),
+        ..Config::default()
+    });
+    let unit = prop::array::uniform11(0.0..1.0f64);
+    const { assert!(DIMENSIONS == 11) };
+    let result = runner.run(&unit, |u| {
+        let scene = scene_at(&u, model.method);
+        let findings = stress.borrow_mut().check(&scene);
+        prop_assert!(
+            !findings.failed(),
+            "{id}: {findings:?}\nscene:\n{}",
+            scene.to_ron()
+        );
+        Ok(())
+    });
+    if let Err(e) = result {
+        panic!("{e}");
+    }
+}
+
+/// Cases per model: Bruneton's and Elek's twins take seconds to build, so they get fewer; a
+/// model not listed gets [`DEFAULT_CASES`].
+const CASES: [(&str, u32); 4] = [
+    ("hillaire", 24),
+    ("garcia-linan", 24),
+    ("bruneton", 3),
+    ("elek", 4),
+];
+const DEFAULT_CASES: u32 = 8;
+
+#[test]
+fn every_real_time_model_holds_under_stress() {
+    for model in methods::realtime() {
+        let cases = CASES
+            .iter()
+            .find(|(id, _)| *id == model.id)
+            .map_or(DEFAULT_CASES, |(_, n)| *n);
+        stress_model(model.id, cases);
+    }
+}
