@@ -137,7 +137,12 @@ impl From<&FrameInputs<'_>> for Globals {
                     [s.x, s.y, s.pixel_width_rad, s.pixel_height_rad].map(|v| v as f32)
                 }),
             view: [f.size[0], f.size[1], 0, 0],
-            options: [phase_code(p.aerosol_phase), p.batches.len() as u32, 0, 0],
+            options: [
+                phase_code(p.aerosol_phase),
+                p.batches.len() as u32,
+                u32::from(p.has_aerosol()),
+                0,
+            ],
             steps_a: [
                 p.steps.transmittance,
                 p.steps.multiple_scattering,

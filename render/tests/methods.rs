@@ -647,3 +647,33 @@ fn the_sun_centred_in_an_even_sized_view_keeps_its_energy() {
         );
     }
 }
+
+/// A constituent of zero amount costs no integration work: without aerosol every pass skips
+/// the aerosol terms (`has_aerosol()` in the shaders), and the view still matches the CPU twin.
+#[test]
+fn no_aerosol_skips_the_aerosol_terms_and_matches_the_twin() {
+    let Some(gpu) = context() else { return };
+    let mut clear = Scene::default();
+    clear.atmosphere.aerosol.aod550 = 0.0;
+    let (w, h) = (32, 16);
+    for model in methods::realtime() {
+        let scene = with(model, &clear);
+        let mut engine = Engine::new(&gpu.device, &gpu.queue);
+        engine.render(&scene, &View::new(Projection::Panorama, w, h));
+        assert!(!engine.params().expect("rendered").has_aerosol());
+        let cpu = methods::render(&scene, Projection::Panorama, w, h).expect("a real-time model");
+        let (c, _) = compare(
+            &radiance_image(&engine),
+            &cpu,
+            w,
+            h,
+            DisplaySetup::default(),
+        );
+        assert!(
+            c.delta_e2000_mean < 0.3,
+            "{}: ΔE2000 {}",
+            model.id,
+            c.delta_e2000_mean
+        );
+    }
+}

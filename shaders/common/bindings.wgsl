@@ -19,7 +19,7 @@ struct Globals {
     sun_view: vec4<f32>,
     // width, height (pixels), 0, 0 (projection, display mode and tone map are pipeline constants)
     view: vec4<u32>,
-    // aerosol phase function, batch count, 0, 0
+    // aerosol phase function, batch count, 1 with aerosol in the atmosphere (else 0), 0
     options: vec4<u32>,
     // steps: transmittance, multiple scattering, ground irradiance, sky view
     steps_a: vec4<u32>,
@@ -58,6 +58,9 @@ fn bottom_radius() -> f32 { return globals.planet.x; }
 fn top_radius() -> f32 { return globals.planet.y; }
 fn thickness() -> f32 { return globals.planet.z; }
 fn batch_count() -> u32 { return globals.options.y; }
+// Whether the atmosphere holds aerosol: without, no pass spends work on its terms (the branch
+// is uniform, so no invocation takes it).
+fn has_aerosol() -> bool { return globals.options.z != 0u; }
 
 // Group 1: every table of every model and the view's images, declared once for every pass. The
 // engine finds a table's binding here by its name (the registry id with `_` for `-`, then

@@ -18,14 +18,18 @@ fn densities(h: f32) -> vec3<f32> {
     return mix(profile[i].xyz, profile[i + 1u].xyz, f);
 }
 
+
 // The batch is passed by value: load it once per invocation, not once per step.
 fn medium(b: Batch, h: f32) -> Medium {
     let d = densities(h);
     var m: Medium;
     m.rayleigh_scattering = b.rayleigh_scattering * d.x;
-    m.aerosol_scattering = b.aerosol_scattering * d.z;
-    m.extinction = m.rayleigh_scattering + m.aerosol_scattering + b.ozone_absorption * d.y
-        + b.aerosol_absorption * d.z;
+    m.extinction = m.rayleigh_scattering + b.ozone_absorption * d.y;
+    m.aerosol_scattering = vec4<f32>(0.0);
+    if has_aerosol() {
+        m.aerosol_scattering = b.aerosol_scattering * d.z;
+        m.extinction += m.aerosol_scattering + b.aerosol_absorption * d.z;
+    }
     return m;
 }
 

@@ -16,6 +16,9 @@ fn cornette_shanks(nu: f32, g: vec4<f32>) -> vec4<f32> {
 }
 
 fn aerosol_phase(nu: f32, g: vec4<f32>) -> vec4<f32> {
+    if !has_aerosol() {
+        return vec4<f32>(0.0);
+    }
     if globals.options.x == PHASE_CORNETTE_SHANKS {
         return cornette_shanks(nu, g);
     }

@@ -95,6 +95,17 @@ pub struct Params {
 }
 
 impl Params {
+    /// Whether the atmosphere holds any aerosol (an amount of zero costs the GPU no work: its
+    /// passes skip the aerosol terms).
+    pub fn has_aerosol(&self) -> bool {
+        self.batches.iter().any(|b| {
+            b.aerosol_scattering
+                .iter()
+                .chain(&b.aerosol_absorption)
+                .any(|&v| v != 0.0)
+        })
+    }
+
     pub fn new(atm: &Atmosphere, set: WavelengthSet, quality: Quality) -> Params {
         Params::with_batches(atm, batches(set), quality)
     }
@@ -269,6 +280,20 @@ pub fn viewpoint(scene: &Scene, camera: &Camera) -> Viewpoint {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+
+    #[test]
+    fn aerosol_of_zero_amount_or_type_none_is_no_aerosol() {
+        let of = |kind: crate::aerosol::AerosolType, aod550: f64| {
+            let mut s = Scene::default().atmosphere;
+            s.aerosol.kind = kind;
+            s.aerosol.aod550 = aod550;
+            Params::new(&Atmosphere::new(&s), WavelengthSet::Rgb3, Quality::Low).has_aerosol()
+        };
+        use crate::aerosol::AerosolType::{None, Rural};
+        assert!(of(Rural, 0.1));
+        assert!(!of(Rural, 0.0));
+        assert!(!of(None, 0.1));
+    }
 
     /// The default scene's optics at Spectral4, medium quality.
     pub(crate) fn params() -> Params {
