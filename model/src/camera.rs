@@ -149,6 +149,12 @@ impl Camera {
     pub fn sun_in_view(&self, sun: DVec3, width: u32, height: u32) -> Option<SunInView> {
         let (x, y) = self.project(sun, width, height)?;
         let axes = self.pixel_axes_at(x, y, width, height);
+        // A sun at the edge of what a projection shows (on the image plane of a camera looking
+        // at right angles to it) lands far away on pixels of no size: it is not in the view.
+        let far = 1e6 * f64::from(width.max(height));
+        if !(x.abs() < far && y.abs() < far && axes.x.length() > 0.0 && axes.y.length() > 0.0) {
+            return None;
+        }
         Some(SunInView {
             x,
             y,
@@ -249,6 +255,17 @@ mod tests {
                 (sum / total - 1.0).abs() < 0.02,
                 "{projection:?}: {sum} sr, expected {total}"
             );
+        }
+    }
+
+    /// Found by `atmoscope stress`: the sun at the nadir seen by a camera looking level landed
+    /// at 1e16 pixels on a pixel of no size, and the disk's share came out NaN.
+    #[test]
+    fn a_sun_at_right_angles_to_the_view_is_not_in_it() {
+        let c = Camera::new(&settings(10.0), R, Projection::Perspective);
+        for elevation in [-90.0, 90.0] {
+            let sun = direction_from_angles(elevation, 250.0);
+            assert_eq!(c.sun_in_view(sun, 5, 5), None, "{elevation}°");
         }
     }
 

@@ -137,6 +137,7 @@ pub fn wgsl_prelude() -> String {
     c("SUN_ANGULAR_RADIUS_RAD", "f32", f(SUN_ANGULAR_RADIUS_RAD));
     c("SUN_LIMB_DARKENING_U", "f32", f(SUN_LIMB_DARKENING_U));
     c("SUN_LIMB_INSET", "f32", f(shared::sun::SUN_LIMB_INSET));
+    c("VERTICAL_RAD", "f32", f(shared::VERTICAL_RAD));
     c(
         "MAX_LUMINOUS_EFFICACY_LM_PER_W",
         "f32",

@@ -17,8 +17,10 @@ use atmoscope_model::camera::{Camera, Projection};
 use atmoscope_model::colour::linear_srgb_to_xyz;
 use atmoscope_model::constants::{AOD_REFERENCE_NM, MAX_LUMINOUS_EFFICACY_LM_PER_W};
 use atmoscope_model::geometry::direction_from_angles;
+use atmoscope_model::methods::shared::sun_disk;
 use atmoscope_model::methods::{self, SkyModel, render_with};
 use atmoscope_model::scene::{AerosolSettings, Method, Scene, SunSettings, WavelengthSet};
+use atmoscope_model::wavelengths::to_linear_srgb;
 
 /// Coordinates of a scene in the unit cube: 5 for the atmosphere, 6 for the viewpoint.
 pub const DIMENSIONS: usize = 11;
@@ -217,17 +219,25 @@ impl Stress {
             .collect())
     }
 
-    /// Zenith luminance of `scene` as the CPU twin sees it.
+    /// Luminance of the sky straight up from the camera of `scene` as the CPU twin sees it: the
+    /// single direction, so the sun's disk counts only when it is at the zenith.
     fn zenith_luminance(&mut self, scene: &Scene) -> f64 {
-        let mut up = scene.clone();
-        up.camera.pitch_deg = 90.0;
         let camera = Camera::new(
-            &up.camera,
-            up.atmosphere.planet_radius_km * 1000.0,
+            &scene.camera,
+            scene.atmosphere.planet_radius_km * 1000.0,
             Projection::Perspective,
         );
-        let rgb = render_with(self.twin(&up, &camera), &up, &camera, 1, 1);
-        linear_srgb_to_xyz(rgb[0]).y
+        let a = scene.sun.angles();
+        let sun = direction_from_angles(a.elevation_deg, a.azimuth_deg);
+        let up = camera.position.normalize();
+        let at = (camera.position, scene.camera.altitude_m);
+        let twin = self.twin(scene, &camera);
+        let p = twin.params();
+        let lanes: Vec<_> = (0..p.batches.len())
+            .map(|layer| twin.radiance(layer, at, up, sun, sun_disk(up, sun)))
+            .collect();
+        let colours: Vec<_> = p.batches.iter().map(|b| b.colour.clone()).collect();
+        linear_srgb_to_xyz(to_linear_srgb(&colours, &lanes)).y
     }
 
     /// Runs every check on `scene` (its model must be a real-time one).

@@ -116,10 +116,11 @@ fn sun_relative_angles(up: vec3<f32>, dir: vec3<f32>, sun: vec3<f32>) -> vec2<f3
     let mu = dot(dir, up);
     let dir_t = dir - up * mu;
     let sun_t = sun - up * dot(sun, up);
-    let l = length(dir_t) * length(sun_t);
+    let a = length(dir_t);
+    let b = length(sun_t);
     var cos_phi = 1.0;
-    if l > 1e-12 {
-        cos_phi = dot(dir_t, sun_t) / l;
+    if a > VERTICAL_RAD && b > VERTICAL_RAD {
+        cos_phi = dot(dir_t, sun_t) / (a * b);
     }
     return vec2<f32>(acos(clamp(cos_phi, -1.0, 1.0)), acos(clamp(mu, -1.0, 1.0)));
 }

@@ -65,6 +65,11 @@ pub fn direction_from_phi_theta(phi: f64, theta: f64) -> DVec3 {
     )
 }
 
+/// Within this angle of the vertical (rad) a direction's azimuth is taken as the sun's: f32
+/// rounds an exactly vertical direction to one up to 3.5e-4 rad off, whose azimuth is noise
+/// (found by `atmoscope stress` at the nadir from the top of the atmosphere).
+pub const VERTICAL_RAD: f64 = 1e-3;
+
 /// Azimuth from the sun φ ∈ [0, π] and zenith angle θ (rad) of the unit direction `dir` seen
 /// from a point whose local vertical is `up`, with the sun in the unit direction `sun`: the
 /// coordinates of the view tables.
@@ -72,8 +77,12 @@ pub fn sun_relative_angles(up: DVec3, dir: DVec3, sun: DVec3) -> (f64, f64) {
     let (mu, mu_s) = (dir.dot(up), sun.dot(up));
     let dir_t = dir - up * mu;
     let sun_t = sun - up * mu_s;
-    let l = dir_t.length() * sun_t.length();
-    let cos_phi = if l > 1e-12 { dir_t.dot(sun_t) / l } else { 1.0 };
+    let (a, b) = (dir_t.length(), sun_t.length());
+    let cos_phi = if a > VERTICAL_RAD && b > VERTICAL_RAD {
+        dir_t.dot(sun_t) / (a * b)
+    } else {
+        1.0
+    };
     (cos_phi.clamp(-1.0, 1.0).acos(), mu.clamp(-1.0, 1.0).acos())
 }
 
@@ -97,4 +106,24 @@ pub fn entry_into_atmosphere(
         ((r * mu + t_entry) / top).clamp(-1.0, 1.0),
         ((r * mu_s + t_entry * nu) / top).clamp(-1.0, 1.0),
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An exactly vertical direction as f32 rounds it (3.5e-4 rad off) has the sun's azimuth,
+    /// as the exact one does: the GPU and its twin read the same texel at the nadir.
+    #[test]
+    fn a_vertical_direction_takes_the_suns_azimuth() {
+        let up = DVec3::Z;
+        let sun = DVec3::new(0.0, 0.99, -0.1).normalize();
+        for dir in [-DVec3::Z, DVec3::new(3.5e-4, -2e-4, -1.0).normalize()] {
+            let (phi, theta) = sun_relative_angles(up, dir, sun);
+            assert_eq!(phi, 0.0, "{dir}");
+            assert!(theta > 3.14, "{theta}");
+        }
+        let (phi, _) = sun_relative_angles(up, DVec3::new(0.1, 0.0, -1.0).normalize(), sun);
+        assert!((phi - std::f64::consts::FRAC_PI_2).abs() < 1e-9, "{phi}");
+    }
 }
