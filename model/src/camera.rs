@@ -144,6 +144,29 @@ impl Camera {
         }
     }
 
+    /// Whether any part of a view of `width` × `height` sees the ground of a planet of radius
+    /// `planet_radius_m`: the nadir in the view, or a point of its border below the horizon
+    /// (the lowest direction of a view lies on its border unless the nadir is inside).
+    pub fn shows_ground(&self, planet_radius_m: f64, width: u32, height: u32) -> bool {
+        let up = self.position.normalize();
+        let (w, h) = (f64::from(width), f64::from(height));
+        if self
+            .project(-up, width, height)
+            .is_some_and(|(x, y)| (0.0..=w).contains(&x) && (0.0..=h).contains(&y))
+        {
+            return true;
+        }
+        let sin_horizon = (planet_radius_m / self.position.length()).min(1.0);
+        let mu_horizon = -(1.0 - sin_horizon * sin_horizon).sqrt();
+        // A margin for the GPU, whose f32 rays graze the horizon a little differently.
+        let below = |x: f64, y: f64| {
+            self.ray(x, y, width, height)
+                .is_some_and(|r| r.direction.dot(up) < mu_horizon + 1e-4)
+        };
+        (0..=width).any(|i| below(f64::from(i), 0.0) || below(f64::from(i), h))
+            || (0..=height).any(|j| below(0.0, f64::from(j)) || below(w, f64::from(j)))
+    }
+
     /// Where the sun's centre falls in a view and how wide a pixel is there: what every
     /// pixel's share of the sun's disk is measured from; None where the view cannot show it.
     pub fn sun_in_view(&self, sun: DVec3, width: u32, height: u32) -> Option<SunInView> {
@@ -267,6 +290,24 @@ mod tests {
             let sun = direction_from_angles(elevation, 250.0);
             assert_eq!(c.sun_in_view(sun, 5, 5), None, "{elevation}°");
         }
+    }
+
+    #[test]
+    fn the_ground_is_in_a_view_that_looks_below_the_horizon() {
+        let ground = |altitude_m: f64, pitch_deg: f64, projection| {
+            let mut s = settings(altitude_m);
+            s.pitch_deg = pitch_deg;
+            Camera::new(&s, R, projection).shows_ground(R, 64, 36)
+        };
+        // 60° of field: the lower edge at pitch − 30° (corners a little lower).
+        assert!(!ground(2.0, 40.0, Projection::Perspective));
+        assert!(ground(2.0, 20.0, Projection::Perspective));
+        assert!(ground(2.0, -90.0, Projection::Perspective));
+        // From 400 km the horizon dips 20°.
+        assert!(!ground(400_000.0, 15.0, Projection::Perspective));
+        assert!(ground(400_000.0, 5.0, Projection::Perspective));
+        assert!(!ground(2.0, 0.0, Projection::Fisheye));
+        assert!(ground(2.0, 0.0, Projection::Panorama));
     }
 
     #[test]

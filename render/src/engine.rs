@@ -481,8 +481,10 @@ impl Engine {
         }
         // A pass is stale when an input it reads changed, a table it reads was just rewritten
         // or it was left stale before; it runs when the view drawn this frame needs what it
-        // writes (from above the atmosphere a marching sky pass reads fewer tables).
+        // writes (from above the atmosphere a marching sky pass reads fewer tables, and a view
+        // without ground none of those only the ground's pixels read).
         let above = viewpoint.h > params.thickness_m();
+        let ground = camera.shows_ground(params.bottom_radius_m, view.width, view.height);
         let pipelines = &self.pipelines[0];
         let info = gpu.info();
         let specs: Vec<&PassSpec> = pipelines.specs().collect();
@@ -491,7 +493,7 @@ impl Engine {
         for (i, spec) in specs.iter().enumerate().rev() {
             if !spec.is_table() || spec.writes.iter().any(|w| needed_resources.contains(w)) {
                 needed[i] = true;
-                needed_resources.extend(spec.reads_where(above));
+                needed_resources.extend(spec.reads_where(above, ground));
             }
         }
         if rebuilt || self.deferred.len() != specs.len() {

@@ -60,6 +60,8 @@ pub const METHOD: GpuMethod = GpuMethod {
             ],
             // Above the atmosphere each pixel is marched: no sky view, no aerial perspective.
             &["transmittance", "multiple-scattering", "ground-irradiance"],
-        ),
+        )
+        // The sky's pixels read the sky view; only the ground's read these.
+        .with_reads_for_ground(&["ground-irradiance", AP_INSCATTERING, AP_TRANSMITTANCE]),
     ],
 };

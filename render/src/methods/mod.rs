@@ -110,6 +110,9 @@ pub struct PassSpec {
     /// pass that marches every pixel instead of looking up the view tables); None: `reads`.
     /// The engine leaves the passes that only the other reads need stale until they are.
     pub reads_above_atmosphere: Option<&'static [&'static str]>,
+    /// What the pass reads only for pixels that see the ground: a view without ground leaves
+    /// the passes that only these need stale until a view shows the ground.
+    pub reads_for_ground: &'static [&'static str],
 }
 
 impl PassSpec {
@@ -133,6 +136,7 @@ impl PassSpec {
             constants: &[],
             repeat,
             reads_above_atmosphere: None,
+            reads_for_ground: &[],
         }
     }
 
@@ -149,6 +153,7 @@ impl PassSpec {
             constants: &[Constant::Projection, Constant::AboveAtmosphere],
             repeat: Repeat::Once,
             reads_above_atmosphere: None,
+            reads_for_ground: &[],
         }
     }
 
@@ -165,12 +170,26 @@ impl PassSpec {
         }
     }
 
-    /// What the pass reads with the camera above the atmosphere or not.
-    pub fn reads_where(&self, above_atmosphere: bool) -> &'static [&'static str] {
-        match self.reads_above_atmosphere {
+    /// The same pass reading `tables` only for pixels that see the ground.
+    pub const fn with_reads_for_ground(self, tables: &'static [&'static str]) -> PassSpec {
+        PassSpec {
+            reads_for_ground: tables,
+            ..self
+        }
+    }
+
+    /// What the pass reads with the camera above the atmosphere or not, in a view that shows
+    /// the ground or not.
+    pub fn reads_where(&self, above_atmosphere: bool, ground_in_view: bool) -> Vec<&'static str> {
+        let reads = match self.reads_above_atmosphere {
             Some(r) if above_atmosphere => r,
             _ => self.reads,
-        }
+        };
+        reads
+            .iter()
+            .copied()
+            .filter(|r| ground_in_view || !self.reads_for_ground.contains(r))
+            .collect()
     }
 
     /// Whether the pass builds a table (as opposed to drawing the view).
@@ -232,6 +251,7 @@ pub const DISPLAY_PASS: PassSpec = PassSpec {
     constants: &[Constant::DisplayMode, Constant::ToneMap],
     repeat: Repeat::Once,
     reads_above_atmosphere: None,
+    reads_for_ground: &[],
 };
 
 /// The transmittance pass the table-based models share.
@@ -245,6 +265,7 @@ pub const TRANSMITTANCE_PASS: PassSpec = PassSpec {
     constants: &[],
     repeat: Repeat::Once,
     reads_above_atmosphere: None,
+    reads_for_ground: &[],
 };
 
 /// The entry point every sky pass ends with; the pass's own file defines `radiance(layer, dir)`.
@@ -367,7 +388,7 @@ mod tests {
                     row.id,
                     p.name
                 );
-                let above = p.reads_where(true);
+                let above = p.reads_where(true, true);
                 assert!(
                     above.iter().all(|r| p.reads.contains(r)),
                     "{}: {} reads from space what it does not declare",
