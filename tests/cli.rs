@@ -816,3 +816,58 @@ fn bench_gpu_reports_multiples_of_the_floor_pass() {
         assert!(f("sun_move_ms") > 0.0, "a sun move runs passes");
     }
 }
+
+#[test]
+fn stress_reports_every_model_and_replays_a_preset() {
+    let dir = std::env::temp_dir().join(format!("atmoscope-stress-{}", std::process::id()));
+    let o = atmoscope(&[
+        "stress",
+        "--cases",
+        "6",
+        "--per-atmosphere",
+        "6",
+        "--seed",
+        "3",
+        "--methods",
+        "hillaire,garcia-linan",
+        "--out",
+        dir.to_str().expect("utf-8 path"),
+    ]);
+    if skipped_without_gpu(&o) {
+        return;
+    }
+    assert!(o.status.success(), "{}{}", stdout(&o), stderr(&o));
+    let report: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("report.json")).expect("report.json"),
+    )
+    .expect("JSON");
+    let models = report["by_model"].as_array().expect("by_model");
+    assert_eq!(models.len(), 2);
+    for m in models {
+        assert_eq!(m["cases"], 3, "{m}");
+        assert_eq!(m["nan"], 0, "{m}");
+        assert!(m["worst_gpu_cpu"].as_f64().is_some_and(|w| w < 0.1), "{m}");
+    }
+    let markdown = std::fs::read_to_string(dir.join("report.md")).expect("report.md");
+    assert!(markdown.contains("By camera altitude"), "{markdown}");
+
+    let preset = concat!(env!("CARGO_MANIFEST_DIR"), "/../presets/clear-noon.ron");
+    let o = atmoscope(&["stress", "--replay", preset]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("passes"), "{}", stdout(&o));
+
+    let traced = temp_file(
+        "traced.ron",
+        &std::fs::read_to_string(preset).expect("preset").replace(
+            "    camera: (",
+            "    render: (method: PathTracer),\n    camera: (",
+        ),
+    );
+    let o = atmoscope(&["stress", "--replay", traced.to_str().expect("utf-8")]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("offline ground truth"),
+        "{}",
+        stderr(&o)
+    );
+}
