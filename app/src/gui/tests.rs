@@ -16,8 +16,9 @@ use std::sync::Arc;
 fn harness_with(layout: Layout, size: egui::Vec2) -> Harness<'static, ExplorerApp> {
     let mut h = Harness::builder()
         .with_size(size)
-        // Grids settle their column widths over a few frames.
-        .with_max_steps(12)
+        // Grids settle their column widths over a few frames, more when timing labels change
+        // width from frame to frame on a loaded machine (seen: 15 steps).
+        .with_max_steps(24)
         .wgpu()
         .build_eframe(move |cc| {
             assert!(
