@@ -484,7 +484,9 @@ impl Engine {
         // writes (from above the atmosphere a marching sky pass reads fewer tables, and a view
         // without ground none of those only the ground's pixels read).
         let above = viewpoint.h > params.thickness_m();
-        let ground = camera.shows_ground(params.bottom_radius_m, view.width, view.height);
+        // Whether the view shows the ground matters only to a frame with stale passes.
+        let stale = !changed.is_empty() || self.deferred.iter().any(|&d| d);
+        let ground = stale && camera.shows_ground(params.bottom_radius_m, view.width, view.height);
         let pipelines = &self.pipelines[0];
         let info = gpu.info();
         let specs: Vec<&PassSpec> = pipelines.specs().collect();
