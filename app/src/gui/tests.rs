@@ -669,3 +669,56 @@ fn a_corrupt_stored_layout_is_brought_into_range_and_every_tab_draws() {
         assert_eq!(h.state().layout.tab, tab);
     }
 }
+
+/// A stored layout and scene as the last session saved them, for the mutations below.
+fn saved_settings() -> (String, String) {
+    let mut storage = MemoryStorage::default();
+    eframe::set_value(&mut storage, super::SCENE_KEY, &Scene::default());
+    eframe::set_value(&mut storage, super::LAYOUT_KEY, &Layout::default());
+    let get = |key| eframe::Storage::get_string(&storage, key).expect("stored");
+    (get(super::SCENE_KEY), get(super::LAYOUT_KEY))
+}
+
+/// What `restore` makes of stored text: it never panics, and what it returns is valid.
+fn restores_valid_settings(scene: String, layout: String) -> Result<(), String> {
+    let mut storage = MemoryStorage::default();
+    eframe::Storage::set_string(&mut storage, super::SCENE_KEY, scene);
+    eframe::Storage::set_string(&mut storage, super::LAYOUT_KEY, layout);
+    let (scene, layout) = super::restore(Some(&storage), None);
+    scene.validate().map_err(|e| format!("{e:?}"))?;
+    if layout.clone().validated() != layout {
+        return Err(format!("{layout:?} is out of range"));
+    }
+    Ok(())
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(256))]
+
+    /// The settings file is untrusted too: any text in it restores valid settings.
+    #[test]
+    fn any_stored_text_restores_valid_settings(scene in "\\PC{0,200}", layout in "\\PC{0,200}") {
+        proptest::prop_assert_eq!(restores_valid_settings(scene, layout), Ok(()));
+    }
+
+    /// The last session's settings with a few bytes replaced (a number cut short, a field
+    /// renamed, binary noise) restore valid settings.
+    #[test]
+    fn mutated_stored_settings_restore_valid_settings(
+        at in proptest::prelude::any::<proptest::sample::Index>(),
+        cut in 0usize..12,
+        noise in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..12),
+        which in 0usize..2,
+    ) {
+        let (scene, layout) = saved_settings();
+        let mutate = |text: &str| {
+            let start = at.index(text.len());
+            let end = (start + cut).min(text.len());
+            let mut bytes = text.as_bytes().to_vec();
+            bytes.splice(start..end, noise.iter().copied());
+            String::from_utf8_lossy(&bytes).into_owned()
+        };
+        let (scene, layout) = if which == 0 { (mutate(&scene), layout) } else { (scene, mutate(&layout)) };
+        proptest::prop_assert_eq!(restores_valid_settings(scene, layout), Ok(()));
+    }
+}
