@@ -17,7 +17,6 @@ use atmoscope_model::camera::{Camera, Projection};
 use atmoscope_model::colour::linear_srgb_to_xyz;
 use atmoscope_model::constants::{AOD_REFERENCE_NM, MAX_LUMINOUS_EFFICACY_LM_PER_W};
 use atmoscope_model::geometry::direction_from_angles;
-use atmoscope_model::methods::shared::sun_disk;
 use atmoscope_model::methods::{self, SkyModel, render_with};
 use atmoscope_model::scene::{AerosolSettings, Method, Scene, SunSettings, WavelengthSet};
 use atmoscope_model::wavelengths::to_linear_srgb;
@@ -219,8 +218,8 @@ impl Stress {
             .collect())
     }
 
-    /// Luminance of the sky straight up from the camera of `scene` as the CPU twin sees it: the
-    /// single direction, so the sun's disk counts only when it is at the zenith.
+    /// Luminance of the sky straight up from the camera of `scene` as the CPU twin sees it (the
+    /// single direction, without the sun's disk).
     fn zenith_luminance(&mut self, scene: &Scene) -> f64 {
         let camera = Camera::new(
             &scene.camera,
@@ -234,7 +233,7 @@ impl Stress {
         let twin = self.twin(scene, &camera);
         let p = twin.params();
         let lanes: Vec<_> = (0..p.batches.len())
-            .map(|layer| twin.radiance(layer, at, up, sun, sun_disk(up, sun)))
+            .map(|layer| twin.radiance(layer, at, up, sun))
             .collect();
         let colours: Vec<_> = p.batches.iter().map(|b| b.colour.clone()).collect();
         linear_srgb_to_xyz(to_linear_srgb(&colours, &lanes)).y

@@ -1,6 +1,5 @@
-// Pass: the view with Bruneton (2017): the scattering tables times their phase functions, the
-// sun's disk through the transmittance table or the ground lit by the sun and the sky
-// irradiance; from above the atmosphere the look-up starts where the ray enters it (entry
+// Pass: the view with Bruneton (2017): the scattering tables times their phase functions and
+// the ground lit by the sun and the sky irradiance; from above the atmosphere the look-up starts where the ray enters it (entry
 // point: views/sky.wgsl). Twin of model::methods::bruneton::sky.
 
 fn ground_radiance(layer: u32, mu_s_g: f32) -> vec4<f32> {
@@ -9,12 +8,11 @@ fn ground_radiance(layer: u32, mu_s_g: f32) -> vec4<f32> {
         + read_irradiance(layer, 0.0, mu_s_g));
 }
 
-fn radiance(layer: u32, dir: vec3<f32>, sun_disk_sr: f32) -> vec4<f32> {
+fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     let b = batches[layer];
-    let disk = b.solar_irradiance * sun_disk_sr;
     let camera = camera_coords(dir);
     if !camera.hit {
-        return disk;
+        return vec4<f32>(0.0);
     }
     let c = camera.c;
     let t = scattering_taps(layer, scattering_texel(c));
@@ -25,5 +23,5 @@ fn radiance(layer: u32, dir: vec3<f32>, sun_disk_sr: f32) -> vec4<f32> {
         let mu_s_g = clamp(((bottom_radius() + c.h) * c.mu_s + d * c.nu) / bottom_radius(), -1.0, 1.0);
         return inscattered + transmittance_between(layer, c.h, c.mu, d) * ground_radiance(layer, mu_s_g);
     }
-    return inscattered + transmittance(layer, c.h, c.mu) * disk;
+    return inscattered;
 }

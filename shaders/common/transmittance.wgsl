@@ -44,6 +44,19 @@ fn sun_transmittance(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
     return transmittance(layer, h, mu_s) * visible;
 }
 
+// Transmittance to the sun seen from altitude h (anywhere up to space) with the sun at zenith
+// cosine mu_s, along the sun's own ray; twin of shared::transmittance::sun_seen_from.
+fn sun_seen_from(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
+    if h <= thickness() {
+        return sun_transmittance(layer, h, mu_s);
+    }
+    let entry = entry_into_atmosphere(h, mu_s, mu_s, 1.0);
+    if entry.z == 0.0 {
+        return vec4<f32>(1.0);
+    }
+    return sun_transmittance(layer, thickness(), entry.x);
+}
+
 // The Lambertian ground where the sun's zenith cosine is mu_s_g, lit by direct sunlight alone
 // (models with no skylight term for surfaces). Twin of shared::transmittance::sunlit_ground.
 fn sunlit_ground(layer: u32, mu_s_g: f32) -> vec4<f32> {

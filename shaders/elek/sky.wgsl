@@ -1,15 +1,14 @@
 // Pass: the view with Elek (2009): the azimuth-free tables at the camera's altitude and angles,
-// Rayleigh times the modified Rayleigh phase and Mie times the aerosol phase, the sun's disk
-// through the transmittance table or the ground lit by the sun alone; from above the
+// Rayleigh times the modified Rayleigh phase and Mie times the aerosol phase, and the ground lit
+// by the sun alone; from above the
 // atmosphere the look-up starts where the ray enters it (entry point: views/sky.wgsl). Twin of
 // model::methods::elek::sky.
 
-fn radiance(layer: u32, dir: vec3<f32>, sun_disk_sr: f32) -> vec4<f32> {
+fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     let b = batches[layer];
-    let disk = b.solar_irradiance * sun_disk_sr;
     let camera = camera_coords(dir);
     if !camera.hit {
-        return disk;
+        return vec4<f32>(0.0);
     }
     let c = camera.c;
     let t = elek_taps(layer, elek_texel(c.h, c.mu, c.mu_s));
@@ -20,5 +19,5 @@ fn radiance(layer: u32, dir: vec3<f32>, sun_disk_sr: f32) -> vec4<f32> {
         let mu_s_g = clamp(((bottom_radius() + c.h) * c.mu_s + d * c.nu) / bottom_radius(), -1.0, 1.0);
         return inscattered + transmittance_between(layer, c.h, c.mu, d) * sunlit_ground(layer, mu_s_g);
     }
-    return inscattered + transmittance(layer, c.h, c.mu) * disk;
+    return inscattered;
 }

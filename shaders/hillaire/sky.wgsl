@@ -40,7 +40,7 @@ fn aerial_perspective(layer: u32, h: f32, phi: f32, theta: f32, d: f32) -> Insca
 }
 
 // Twin of hillaire::radiance.
-fn radiance(layer: u32, dir: vec3<f32>, sun_disk_sr: f32) -> vec4<f32> {
+fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     let big_r = bottom_radius();
     let top = top_radius();
     let h = globals.camera_position.w;
@@ -51,7 +51,6 @@ fn radiance(layer: u32, dir: vec3<f32>, sun_disk_sr: f32) -> vec4<f32> {
     let mu = dot(dir, up);
     let mu_s = dot(sun, up);
     let nu = dot(dir, sun);
-    let disk = sun_disk_sr;
     if !ABOVE_ATMOSPHERE {
         let angles = sun_relative_angles(up, dir, sun);
         let phi = angles.x;
@@ -72,18 +71,12 @@ fn radiance(layer: u32, dir: vec3<f32>, sun_disk_sr: f32) -> vec4<f32> {
             }
             return s.radiance + s.transmittance * lg;
         }
-        let s = sky_view(layer, h, phi, theta, false);
-        // Only the sun's disk needs the transmittance lookup: skipping it elsewhere saves four
-        // gathers per pixel (the result is the same, the disk term being zero).
-        if disk > 0.0 {
-            return s + transmittance(layer, h, mu) * e * disk;
-        }
-        return s;
+        return sky_view(layer, h, phi, theta, false);
     }
     // Above the atmosphere: march from where the ray enters it.
     let entry = entry_into_atmosphere(h, mu, mu_s, nu);
     if entry.z == 0.0 {
-        return e * disk;
+        return vec4<f32>(0.0);
     }
     let mu_e = entry.x;
     let mu_s_e = entry.y;
@@ -98,7 +91,7 @@ fn radiance(layer: u32, dir: vec3<f32>, sun_disk_sr: f32) -> vec4<f32> {
     }
     let s = integrate_inscattering(layer,
         vec4<f32>(thickness(), mu_e, mu_s_e, nu), 0.0, t_max, globals.steps_b.y, spacing);
-    var behind = e * disk;
+    var behind = vec4<f32>(0.0);
     if ground {
         let mu_s_g = clamp((top * mu_s_e + t_max * nu) / big_r, -1.0, 1.0);
         behind = ground_radiance(layer, mu_s_g);

@@ -1,6 +1,7 @@
 // The entry point of every model's sky pass, appended after the pass's file, which defines
-// `radiance(layer, dir, disk)`: a batch's radiance along a world direction from the camera,
-// with the sun's disk averaged over the pixel (sr⁻¹ per unit irradiance). Sums the
+// `radiance(layer, dir)`: a batch's radiance of the sky and the ground along a world direction
+// from the camera. The sun's disk is added here, averaged over the pixel, through the
+// transmittance along the sun's own ray (twin of model::methods::render_with). Sums the
 // batches into linear sRGB (Y = ∫ȳL dλ) and writes coverage in alpha (0 outside the projection).
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
@@ -18,7 +19,11 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let disk = sun_in_pixel(x, y);
     var rgb = vec3<f32>(0.0);
     for (var layer = 0u; layer < batch_count(); layer++) {
-        let l = radiance(layer, ray.xyz, disk);
+        var l = radiance(layer, ray.xyz);
+        if disk > 0.0 {
+            let sun = sun_seen_from(layer, globals.camera_position.w, globals.sun.w);
+            l += batches[layer].solar_irradiance * sun * disk;
+        }
         rgb += vec3<f32>(dot(batches[layer].to_srgb_r, l), dot(batches[layer].to_srgb_g, l),
             dot(batches[layer].to_srgb_b, l));
     }

@@ -67,9 +67,9 @@ fn samples(
                 return None;
             }
             let at = (ray.origin, scene.camera.altitude_m);
-            let l4 = hillaire::radiance(&p4, &t4, 0, at, ray.direction, (sun, 0.0));
+            let l4 = hillaire::radiance(&p4, &t4, 0, at, ray.direction, sun);
             let ln: Vec<[f64; 4]> = (0..pn.batches.len())
-                .map(|b| hillaire::radiance(&pn, &tn, b, at, ray.direction, (sun, 0.0)))
+                .map(|b| hillaire::radiance(&pn, &tn, b, at, ray.direction, sun))
                 .collect();
             Some((l4, to_linear_srgb(&colours, &ln)))
         })

@@ -88,7 +88,7 @@ impl ViewSamples {
                             layer,
                             (origin, self.altitude_m),
                             dir,
-                            (self.sun, sun_disk(dir, self.sun)),
+                            self.sun,
                         )
                     })
                     .collect();

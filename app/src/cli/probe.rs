@@ -175,13 +175,11 @@ pub fn probe(scene: &Scene, args: &ProbeArgs) -> Probe {
             let (mean, se) = match args.method {
                 ProbeMethod::Model(_) => (
                     model.as_ref().map_or([f64::NAN; LANES], |m| {
-                        m.radiance(
-                            b,
-                            (camera.position, scene.camera.altitude_m),
-                            dir,
-                            sun,
-                            sun_disk(dir, sun),
-                        )
+                        let h = scene.camera.altitude_m;
+                        let sky = m.radiance(b, (camera.position, h), dir, sun);
+                        let mu_s = sun.dot(camera.position.normalize());
+                        let disk = m.sun(b, h, mu_s, sun_disk(dir, sun));
+                        std::array::from_fn(|i| sky[i] + disk[i])
                     }),
                     [0.0; LANES],
                 ),

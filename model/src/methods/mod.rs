@@ -140,15 +140,28 @@ pub trait SkyModel: Send + Sync {
     /// The optics the model was built for.
     fn params(&self) -> &Params;
 
-    /// Radiance of batch `layer` (W·m⁻²·sr⁻¹·nm⁻¹ per lane) seen from `position` (m from the
-    /// planet's centre, at altitude `h`, m) along the unit direction `dir`, with the sun in the
-    /// unit direction `sun`; the sun's disk included with radiance `disk` per unit solar
-    /// irradiance (sr⁻¹): `shared::sun_disk` in a single direction, `SunInView::disk_in_pixel`
-    /// averaged over a pixel.
-    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3, disk: f64) -> Lanes;
+    /// Radiance of batch `layer` (W·m⁻²·sr⁻¹·nm⁻¹ per lane) of the sky and the ground seen from
+    /// `position` (m from the planet's centre, at altitude `h`, m) along the unit direction
+    /// `dir`, with the sun in the unit direction `sun`; the sun's disk is [`SkyModel::sun`].
+    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes;
 
     /// One of the model's tables by its registry id.
     fn table(&self, id: &str) -> Option<&Lut>;
+
+    /// Radiance of the sun's disk for batch `layer` seen from altitude `h` (m) with the sun at
+    /// zenith cosine `mu_s`, where the disk's radiance per unit irradiance is `disk` (sr⁻¹:
+    /// `shared::sun_disk` in a single direction, `SunInView::disk_in_pixel` averaged over a
+    /// pixel): the solar irradiance through the model's transmittance table along the sun's
+    /// own ray, behind the planet's limb or not. The view adds it to every pixel the disk
+    /// covers, whatever the pixel's centre sees.
+    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: f64) -> Lanes {
+        let p = self.params();
+        let Some(t) = self.table("transmittance").filter(|_| disk > 0.0) else {
+            return [0.0; 4];
+        };
+        let tr = shared::transmittance::sun_seen_from(p, t, layer, h, mu_s);
+        std::array::from_fn(|i| p.batches[layer].solar_irradiance[i] * tr[i] * disk)
+    }
 }
 
 /// One row of the registry.
@@ -338,8 +351,14 @@ pub fn render_with(
                     let at = (ray.origin, scene.camera.altitude_m);
                     let disk = sun_in_view
                         .map_or(0.0, |s| s.disk_in_pixel(x as f64 + 0.5, y as f64 + 0.5));
+                    let mu_s = sun.dot(ray.origin.normalize());
                     let lanes: Vec<Lanes> = (0..p.batches.len())
-                        .map(|layer| model.radiance(layer, at, ray.direction, sun, disk))
+                        .map(|layer| {
+                            shared::add(
+                                model.radiance(layer, at, ray.direction, sun),
+                                model.sun(layer, at.1, mu_s, disk),
+                            )
+                        })
                         .collect();
                     to_linear_srgb(&colours, &lanes)
                 }
@@ -351,6 +370,28 @@ pub fn render_with(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The sun's disk goes through the transmittance along the sun's own ray, whatever the
+    /// pixel's centre sees: nothing once the sun is below the horizon (a pixel straddling it
+    /// used to let a set sun through the air above), all of it from space.
+    #[test]
+    fn the_sun_is_seen_along_its_own_ray() {
+        let mut scene = Scene::default();
+        scene.render.method = Method::Hillaire;
+        scene.render.wavelengths = crate::scene::WavelengthSet::Rgb3;
+        let camera = Camera::new(&scene.camera, 6_360_000.0, Projection::Perspective);
+        let model = build(&scene, &camera).expect("a real-time model");
+        let e = model.params().batches[0].solar_irradiance;
+        let sin = |deg: f64| deg.to_radians().sin();
+        let high = model.sun(0, 2.0, sin(30.0), 1.0);
+        assert!((0..3).all(|i| high[i] > 0.3 * e[i] && high[i] < e[i]), "{high:?} of {e:?}");
+        assert_eq!(model.sun(0, 2.0, sin(-2.0), 1.0), [0.0; 4]);
+        assert_eq!(model.sun(0, 2.0, sin(30.0), 0.0), [0.0; 4]);
+        // From 20 000 km: straight up through nothing, straight down behind the planet.
+        let space = model.sun(0, 2e7, 1.0, 1.0);
+        assert!((0..3).all(|i| (space[i] - e[i]).abs() < 1e-9 * e[i]), "{space:?}");
+        assert_eq!(model.sun(0, 2e7, -1.0, 1.0), [0.0; 4]);
+    }
 
     #[test]
     fn the_registry_has_unique_ids_and_tables() {

@@ -464,8 +464,8 @@ impl SkyModel for Tables {
         &self.params
     }
 
-    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3, disk: f64) -> Lanes {
-        sky::radiance(self, layer, at, dir, (sun, disk))
+    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
+        sky::radiance(self, layer, at, dir, sun)
     }
 
     fn table(&self, id: &str) -> Option<&Lut> {
@@ -498,7 +498,6 @@ mod tests {
     use crate::methods::path_tracer::{LaneOptics, PathTracer, PathTracerSettings};
     use crate::methods::rng::Rng;
     use crate::methods::shared::optics::tests::params;
-    use crate::methods::shared::sun_disk;
     use crate::scene::{Quality, Scene};
 
     #[test]
@@ -598,7 +597,7 @@ mod tests {
         .enumerate()
         {
             let dir = direction_from_angles(elevation, azimuth);
-            let model = tables.radiance(0, (position, 1.0), dir, sun, sun_disk(dir, sun));
+            let model = tables.radiance(0, (position, 1.0), dir, sun);
             let ray = Ray::new(position, dir);
             let (mut sum, mut sum2) = ([0.0; LANES], [0.0; LANES]);
             for s in 0..spp {
@@ -640,10 +639,7 @@ mod tests {
             let position = DVec3::new(0.0, 0.0, p.bottom_radius_m + 100.0);
             let dir = direction_from_angles(40.0, 90.0);
             let sun = direction_from_angles(20.0, 0.0);
-            (
-                t.radiance(0, (position, 100.0), dir, sun, sun_disk(dir, sun))[0],
-                t,
-            )
+            (t.radiance(0, (position, 100.0), dir, sun)[0], t)
         };
         let (one, t1) = radiance(1);
         let (two, _) = radiance(2);

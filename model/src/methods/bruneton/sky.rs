@@ -1,7 +1,6 @@
 //! The sky pass of Bruneton (2017): a pixel's radiance from the scattering tables (Rayleigh and
-//! higher orders times the Rayleigh phase, single Mie times the aerosol phase), plus the sun's
-//! disk through the transmittance table or the ground lit by the sun and the sky-irradiance
-//! table. A camera above the atmosphere looks up from where its ray enters it. Twin of
+//! higher orders times the Rayleigh phase, single Mie times the aerosol phase), plus the ground
+//! lit by the sun and the sky-irradiance table. A camera above the atmosphere looks up from where its ray enters it. Twin of
 //! `shaders/bruneton/sky.wgsl`.
 
 use super::{Lanes, Params, ScatteringTaps, Tables, aerosol_phase, irradiance, rayleigh_phase};
@@ -11,19 +10,12 @@ use glam::DVec3;
 use std::f64::consts::PI;
 
 /// The radiance of one batch seen from `at` (position from the planet's centre and altitude,
-/// m) along the unit direction `dir`, with the sun in direction `sun` and its disk averaged
-/// over a pixel (`disk`: the disk's radiance there per unit irradiance, sr⁻¹).
-pub fn radiance(
-    tables: &Tables,
-    layer: usize,
-    at: (DVec3, f64),
-    dir: DVec3,
-    (sun, disk): (DVec3, f64),
-) -> Lanes {
+/// m) along the unit direction `dir`, with the sun in direction `sun` (the sun's disk
+/// not included: `SkyModel::sun`).
+pub fn radiance(tables: &Tables, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
     let p: &Params = &tables.params;
-    let disk = p.batches[layer].solar_irradiance.map(|e| e * disk);
     let Some(c) = camera_coords(p, at, dir, sun) else {
-        return disk;
+        return [0.0; 4];
     };
     let taps = ScatteringTaps::new(p, layer, c);
     let (s, s_mie) = (taps.read(&tables.scattering), taps.read(&tables.single_mie));
@@ -31,10 +23,10 @@ pub fn radiance(
         rayleigh_phase(p, layer, c.nu),
         aerosol_phase(p, layer, c.nu),
     );
-    let (tr, behind) = behind(p, &tables.transmittance, layer, &c, disk, |mu_s_g| {
+    let behind = behind(p, &tables.transmittance, layer, &c, |mu_s_g| {
         ground_radiance(tables, layer, mu_s_g)
     });
-    std::array::from_fn(|i| s[i] * pr[i] + s_mie[i] * pm[i] + tr[i] * behind[i])
+    std::array::from_fn(|i| s[i] * pr[i] + s_mie[i] * pm[i] + behind[i])
 }
 
 /// The Lambertian ground where the sun's zenith cosine is `mu_s_g`: albedo/π times the direct

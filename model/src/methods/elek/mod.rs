@@ -231,8 +231,8 @@ impl SkyModel for Tables {
         &self.params
     }
 
-    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3, disk: f64) -> Lanes {
-        sky::radiance(self, layer, at, dir, (sun, disk))
+    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
+        sky::radiance(self, layer, at, dir, sun)
     }
 
     fn table(&self, id: &str) -> Option<&Lut> {
@@ -260,7 +260,6 @@ mod tests {
     use super::*;
     use crate::geometry::direction_from_angles;
     use crate::methods::shared::optics::tests::params;
-    use crate::methods::shared::sun_disk;
 
     #[test]
     fn the_mapping_round_trips_and_puts_nodes_on_the_ends() {
@@ -309,10 +308,7 @@ mod tests {
             let position = DVec3::new(0.0, 0.0, p.bottom_radius_m + 100.0);
             let dir = direction_from_angles(40.0, 90.0);
             let sun = direction_from_angles(20.0, 0.0);
-            (
-                t.radiance(0, (position, 100.0), dir, sun, sun_disk(dir, sun))[0],
-                t,
-            )
+            (t.radiance(0, (position, 100.0), dir, sun)[0], t)
         };
         let (one, t1) = radiance(1);
         let (two, _) = radiance(2);

@@ -1,7 +1,6 @@
 //! The sky pass of Elek (2009): a pixel's radiance from the two azimuth-free tables at the
 //! camera's altitude and angles, Rayleigh times the modified Rayleigh phase and Mie times the
-//! aerosol phase of the view–sun angle, plus the sun's disk through the transmittance table or
-//! the ground lit by the sun alone. A camera above the atmosphere looks up from where its ray
+//! aerosol phase of the view–sun angle, plus the ground lit by the sun alone. A camera above the atmosphere looks up from where its ray
 //! enters it. Twin of `shaders/elek/sky.wgsl`.
 
 use super::{Lanes, Tables, look_up, modified_rayleigh_phase};
@@ -11,26 +10,17 @@ use crate::methods::shared::transmittance::sunlit_ground;
 use glam::DVec3;
 
 /// The radiance of one batch seen from `at` (position from the planet's centre and altitude,
-/// m) along the unit direction `dir`, with the sun in direction `sun` and its disk averaged
-/// over a pixel (`disk`: the disk's radiance there per unit irradiance, sr⁻¹).
-pub fn radiance(
-    tables: &Tables,
-    layer: usize,
-    at: (DVec3, f64),
-    dir: DVec3,
-    (sun, disk): (DVec3, f64),
-) -> Lanes {
+/// m) along the unit direction `dir`, with the sun in direction `sun` (the sun's disk
+/// not included: `SkyModel::sun`).
+pub fn radiance(tables: &Tables, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
     let p = &tables.params;
     let t = &tables.transmittance;
-    let disk = p.batches[layer].solar_irradiance.map(|e| e * disk);
     let Some(c) = camera_coords(p, at, dir, sun) else {
-        return disk;
+        return [0.0; 4];
     };
     let rayleigh = look_up(p, &tables.rayleigh, layer, c.h, c.mu, c.mu_s);
     let mie = look_up(p, &tables.mie, layer, c.h, c.mu, c.mu_s);
     let (pr, pm) = (modified_rayleigh_phase(c.nu), aerosol_phase(p, layer, c.nu));
-    let (tr, behind) = behind(p, t, layer, &c, disk, |mu_s_g| {
-        sunlit_ground(p, t, layer, mu_s_g)
-    });
-    std::array::from_fn(|i| rayleigh[i] * pr + mie[i] * pm[i] + tr[i] * behind[i])
+    let behind = behind(p, t, layer, &c, |mu_s_g| sunlit_ground(p, t, layer, mu_s_g));
+    std::array::from_fn(|i| rayleigh[i] * pr + mie[i] * pm[i] + behind[i])
 }

@@ -205,8 +205,8 @@ impl SkyModel for Tables {
         &self.params
     }
 
-    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3, disk: f64) -> Lanes {
-        sky::radiance(self, layer, at, dir, (sun, disk))
+    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
+        sky::radiance(self, layer, at, dir, sun)
     }
 
     fn table(&self, id: &str) -> Option<&Lut> {

@@ -1,26 +1,20 @@
-//! The sky pass of García Liñán (2023): a pixel's radiance from the sky texture, the sun's disk
-//! through the transmittance table, and the sunlit ground behind the in-scattering; from above
+//! The sky pass of García Liñán (2023): a pixel's radiance from the sky texture and the
+//! sunlit ground behind the in-scattering through the transmittance table; from above
 //! the atmosphere each pixel is marched with the model's integrand from where it enters. Twin
 //! of `shaders/garcia_linan/sky.wgsl`.
 
 use super::sky_texture::sky_texture;
 use super::{Constants, Lanes, Lut, Params, Tables, integrate};
 use crate::geometry::{distance_to_boundary, distance_to_ground, hits_ground};
-use crate::methods::shared::transmittance::{sunlit_ground, transmittance, transmittance_between};
+use crate::methods::shared::transmittance::{sunlit_ground, transmittance_between};
 use crate::methods::shared::{entry_into_atmosphere, mul, sun_relative_angles};
 use glam::DVec3;
 use std::f64::consts::FRAC_PI_2;
 
 /// The radiance of one batch seen from `position` (m from the planet's centre, altitude `h`)
-/// along the unit direction `dir`, with the sun in direction `sun` and its disk averaged over a
-/// pixel (`disk`: the disk's radiance there per unit irradiance, sr⁻¹).
-pub fn radiance(
-    tables: &Tables,
-    layer: usize,
-    at: (DVec3, f64),
-    dir: DVec3,
-    sun: (DVec3, f64),
-) -> Lanes {
+/// along the unit direction `dir`, with the sun in direction `sun` (the sun's disk not included:
+/// `SkyModel::sun`).
+pub fn radiance(tables: &Tables, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
     let texture = |phi: f64, elevation: f64, _: (f64, f64, f64, f64)| {
         sky_texture(&tables.sky_texture, layer, phi, elevation)
     };
@@ -45,7 +39,7 @@ pub fn radiance_marched(
     layer: usize,
     at: (DVec3, f64),
     dir: DVec3,
-    sun: (DVec3, f64),
+    sun: DVec3,
 ) -> Lanes {
     let march = |_: f64, _: f64, (h, mu, mu_s, nu): (f64, f64, f64, f64)| {
         let h = h.min(p.thickness_m());
@@ -74,7 +68,7 @@ fn radiance_with(
     layer: usize,
     (position, h): (DVec3, f64),
     dir: DVec3,
-    (sun, disk): (DVec3, f64),
+    sun: DVec3,
     inscattering: impl Fn(f64, f64, (f64, f64, f64, f64)) -> Lanes,
 ) -> Lanes {
     let big_r = p.bottom_radius_m;
@@ -95,12 +89,11 @@ fn radiance_with(
             let tr = transmittance_between(p, t, layer, (h, mu), d);
             std::array::from_fn(|i| s[i] + tr[i] * lg[i])
         } else {
-            let tr = transmittance(p, t, layer, h, mu);
-            std::array::from_fn(|i| s[i] + tr[i] * e[i] * disk)
+            s
         }
     } else {
         let Some((mu_e, mu_s_e)) = entry_into_atmosphere(p, h, mu, mu_s, nu) else {
-            return e.map(|e| e * disk);
+            return [0.0; 4];
         };
         let t_max = distance_to_boundary(thickness, mu_e, big_r, top);
         let (s, tr) = integrate(
@@ -116,7 +109,7 @@ fn radiance_with(
             let mu_s_g = ((top * mu_s_e + t_max * nu) / big_r).clamp(-1.0, 1.0);
             sunlit_ground(p, t, layer, mu_s_g)
         } else {
-            e.map(|e| e * disk)
+            [0.0; 4]
         };
         std::array::from_fn(|i| s[i] * e[i] + tr[i] * behind[i])
     }
@@ -128,7 +121,6 @@ mod tests {
     use crate::atmosphere::Atmosphere;
     use crate::camera::{Camera, Projection};
     use crate::geometry::direction_from_angles;
-    use crate::methods::shared::sun_disk;
     use crate::methods::shared::viewpoint;
     use crate::scene::{Quality, Scene, WavelengthSet};
 
@@ -144,7 +136,7 @@ mod tests {
         let at = (camera.position, scene.camera.altitude_m);
         for (elevation, azimuth) in [(80.0, 0.0), (30.0, 90.0), (5.0, 200.0), (-20.0, 45.0)] {
             let dir = camera.local_to_world(direction_from_angles(elevation, azimuth));
-            let looked_up = radiance(&tables, 0, at, dir, (sun, sun_disk(dir, sun)));
+            let looked_up = radiance(&tables, 0, at, dir, sun);
             let marched = radiance_marched(
                 &p,
                 &tables.transmittance,
@@ -152,7 +144,7 @@ mod tests {
                 0,
                 at,
                 dir,
-                (sun, sun_disk(dir, sun)),
+                sun,
             );
             for (l, m) in looked_up.iter().zip(&marched) {
                 assert!(

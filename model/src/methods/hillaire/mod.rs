@@ -128,8 +128,8 @@ impl SkyModel for Tables {
         &self.params
     }
 
-    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3, disk: f64) -> Lanes {
-        sky::radiance(&self.params, self, layer, at, dir, (sun, disk))
+    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
+        sky::radiance(&self.params, self, layer, at, dir, sun)
     }
 
     fn table(&self, id: &str) -> Option<&Lut> {
@@ -177,7 +177,7 @@ mod tests {
                 0,
                 (camera.position, scene.camera.altitude_m),
                 dir.normalize(),
-                (sun, sun_disk(dir.normalize(), sun)),
+                sun,
             );
             to_linear_srgb(&colours, &[l])
         };
@@ -198,10 +198,10 @@ mod tests {
             0,
             (cam.position, 1.0e6),
             DVec3::new(0.3, 0.0, 1.0).normalize(),
-            (sun, 0.0),
+            sun,
         );
         assert_eq!(l, [0.0; 4]);
-        let earth = radiance(&p, &tables, 0, (cam.position, 1.0e6), -DVec3::Z, (sun, 0.0));
+        let earth = radiance(&p, &tables, 0, (cam.position, 1.0e6), -DVec3::Z, sun);
         assert!(earth.iter().all(|&v| v > 0.0 && v.is_finite()), "{earth:?}");
     }
 }

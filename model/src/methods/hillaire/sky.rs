@@ -24,15 +24,15 @@ fn ground_radiance(p: &Params, tables: &Tables, layer: usize, mu_s_g: f64) -> La
 }
 
 /// The radiance of one batch seen from `position` (m from the planet's centre, altitude `h`)
-/// along the unit direction `dir`, with the sun in direction `sun` and its disk averaged over a
-/// pixel (`disk`: the disk's radiance there per unit irradiance, sr⁻¹).
+/// along the unit direction `dir`, with the sun in direction `sun` (the sun's disk not included:
+/// `SkyModel::sun`).
 pub fn radiance(
     p: &Params,
     tables: &Tables,
     layer: usize,
     (position, h): (DVec3, f64),
     dir: DVec3,
-    (sun, disk): (DVec3, f64),
+    sun: DVec3,
 ) -> Lanes {
     let big_r = p.bottom_radius_m;
     let top = p.top_radius_m;
@@ -70,14 +70,12 @@ pub fn radiance(
             };
             add(s, mul(tr, lg))
         } else {
-            let s = sky_view(p, &tables.sky_view, layer, h, phi, theta, false);
-            let tr = transmittance(p, &tables.transmittance, layer, h, mu);
-            std::array::from_fn(|i| s[i] + tr[i] * e[i] * disk)
+            sky_view(p, &tables.sky_view, layer, h, phi, theta, false)
         }
     } else {
         // Above the atmosphere: march from where the ray enters it.
         let Some((mu_e, mu_s_e)) = entry_into_atmosphere(p, h, mu, mu_s, nu) else {
-            return e.map(|e| e * disk);
+            return [0.0; 4];
         };
         let ground = hits_ground(thickness, mu_e, big_r);
         let t_max = if ground {
@@ -103,7 +101,7 @@ pub fn radiance(
             let mu_s_g = ((top * mu_s_e + t_max * nu) / big_r).clamp(-1.0, 1.0);
             ground_radiance(p, tables, layer, mu_s_g)
         } else {
-            e.map(|e| e * disk)
+            [0.0; 4]
         };
         std::array::from_fn(|i| s[i] * e[i] + tr[i] * behind[i])
     }

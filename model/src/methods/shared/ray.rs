@@ -3,7 +3,7 @@
 //! weights of its samples, the local angles at a sample, and single scattering along it without
 //! phase functions. Twin of `shaders/common/ray.wgsl`.
 
-use super::transmittance::{sun_transmittance, transmittance, transmittance_between};
+use super::transmittance::{sun_transmittance, transmittance_between};
 use super::{Lanes, Lut, Params, entry_into_atmosphere};
 use crate::geometry::{altitude_along, distance_to_ground, distance_to_top, hits_ground};
 use crate::wavelengths::LANES;
@@ -47,28 +47,25 @@ pub fn camera_coords(
     })
 }
 
-/// What a looked-up ray `c` ends on, and the transmittance to it: the ground, whose radiance
-/// `ground(mu_s_g)` gives for the sun's zenith cosine where the ray meets it, or else `sky`
-/// (the sun's disk) through the whole atmosphere.
+/// What a looked-up ray `c` ends on, seen through the air: the ground, whose radiance
+/// `ground(mu_s_g)` gives for the sun's zenith cosine where the ray meets it, or nothing (the
+/// sun's disk is the view's to add, `SkyModel::sun`).
 pub fn behind(
     p: &Params,
     t: &Lut,
     layer: usize,
     c: &Coords,
-    sky: Lanes,
     ground: impl Fn(f64) -> Lanes,
-) -> (Lanes, Lanes) {
+) -> Lanes {
     let big_r = p.bottom_radius_m;
-    if c.ground {
-        let d = distance_to_ground(c.h, c.mu, big_r);
-        let mu_s_g = (((big_r + c.h) * c.mu_s + d * c.nu) / big_r).clamp(-1.0, 1.0);
-        (
-            transmittance_between(p, t, layer, (c.h, c.mu), d),
-            ground(mu_s_g),
-        )
-    } else {
-        (transmittance(p, t, layer, c.h, c.mu), sky)
+    if !c.ground {
+        return [0.0; 4];
     }
+    let d = distance_to_ground(c.h, c.mu, big_r);
+    let mu_s_g = (((big_r + c.h) * c.mu_s + d * c.nu) / big_r).clamp(-1.0, 1.0);
+    let tr = transmittance_between(p, t, layer, (c.h, c.mu), d);
+    let g = ground(mu_s_g);
+    std::array::from_fn(|i| tr[i] * g[i])
 }
 
 /// Length of the view ray of `c` to where it leaves the atmosphere (its ground flag decides).

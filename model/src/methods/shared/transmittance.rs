@@ -97,6 +97,19 @@ pub fn sun_transmittance(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -
     scale(transmittance(p, t, layer, h, mu_s), visible)
 }
 
+/// Transmittance to the sun seen from altitude `h` (m, anywhere up to space) with the sun at
+/// zenith cosine `mu_s`: along the sun's own ray, from where it enters the atmosphere when the
+/// point is above it (1 where the ray misses the atmosphere), behind the planet's limb or not.
+pub fn sun_seen_from(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -> Lanes {
+    if h <= p.thickness_m() {
+        return sun_transmittance(p, t, layer, h, mu_s);
+    }
+    match super::entry_into_atmosphere(p, h, mu_s, mu_s, 1.0) {
+        Some((mu_entry, _)) => sun_transmittance(p, t, layer, p.thickness_m(), mu_entry),
+        None => [1.0; LANES],
+    }
+}
+
 /// The radiance of the Lambertian ground where the sun's zenith cosine is `mu_s_g`, lit by
 /// direct sunlight alone (for models with no skylight term for surfaces), W·m⁻²·sr⁻¹·nm⁻¹.
 pub fn sunlit_ground(p: &Params, t: &Lut, layer: usize, mu_s_g: f64) -> Lanes {
