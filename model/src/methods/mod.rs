@@ -384,12 +384,18 @@ mod tests {
         let e = model.params().batches[0].solar_irradiance;
         let sin = |deg: f64| deg.to_radians().sin();
         let high = model.sun(0, 2.0, sin(30.0), 1.0);
-        assert!((0..3).all(|i| high[i] > 0.3 * e[i] && high[i] < e[i]), "{high:?} of {e:?}");
+        assert!(
+            (0..3).all(|i| high[i] > 0.3 * e[i] && high[i] < e[i]),
+            "{high:?} of {e:?}"
+        );
         assert_eq!(model.sun(0, 2.0, sin(-2.0), 1.0), [0.0; 4]);
         assert_eq!(model.sun(0, 2.0, sin(30.0), 0.0), [0.0; 4]);
         // From 20 000 km: straight up through nothing, straight down behind the planet.
         let space = model.sun(0, 2e7, 1.0, 1.0);
-        assert!((0..3).all(|i| (space[i] - e[i]).abs() < 1e-9 * e[i]), "{space:?}");
+        assert!(
+            (0..3).all(|i| (space[i] - e[i]).abs() < 1e-9 * e[i]),
+            "{space:?}"
+        );
         assert_eq!(model.sun(0, 2e7, -1.0, 1.0), [0.0; 4]);
     }
 
