@@ -12,7 +12,8 @@
 
 use crate::DisplayMode;
 use crate::methods::{Constant, Dispatch, GpuMethod, PassSpec, Repeat, gpu_method};
-use crate::passes::{Pipelines, TableBuffers};
+use crate::passes::{ORIGIN_SLOTS, Pipelines, TableBuffers, Variant};
+use crate::prelude::WORKGROUP_SIZE;
 use crate::readback::{ReadbackError, read_buffer_f32x4, read_texture, read_texture_f32x4};
 use crate::uniforms::{self, FrameInputs, Globals};
 use crate::views::View;
@@ -25,7 +26,9 @@ use atmoscope_model::scene::{
     AtmosphereSettings, CameraSettings, FittedConstants, Method, Quality, Scene, ToneMap,
     WavelengthSet,
 };
-use std::time::Instant;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
 
 /// Most passes a model may have (the size of the timestamp query set is twice this).
 pub const MAX_PASSES: usize = 64;
@@ -63,6 +66,18 @@ pub struct FrameStats {
     /// Milliseconds per pass run, when timing is on.
     pub timings_ms: Vec<(&'static str, f64)>,
     pub timing_source: Option<TimingSource>,
+    /// How far a rebuild in slices has come (`Engine::set_rebuild_slices`); the frame drew
+    /// the previous atmosphere.
+    pub rebuild: Option<RebuildProgress>,
+    /// The frame put on screen a rebuild finished in slices (new images, whatever it ran).
+    pub rebuild_done: bool,
+}
+
+/// Progress of a rebuild in slices, in units of work (rows of workgroups or layers of a pass).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RebuildProgress {
+    pub done: u64,
+    pub total: u64,
 }
 
 impl FrameStats {
@@ -166,6 +181,285 @@ impl Snapshot {
     }
 }
 
+/// What a frame draws, from the scene and the atmosphere on screen.
+struct FrameSetup {
+    snapshot: Snapshot,
+    globals: Globals,
+    camera: Camera,
+    bottom_radius_m: f64,
+    /// Whether the camera is above the top of the atmosphere.
+    above: bool,
+}
+
+impl FrameSetup {
+    fn new(scene: &Scene, view: &View, state: &AtmosphereState, gpu: &GpuMethod) -> FrameSetup {
+        let params = &state.params;
+        let camera = Camera::new(&scene.camera, params.bottom_radius_m, view.projection);
+        let a = scene.sun.angles();
+        let sun = direction_from_angles(a.elevation_deg, a.azimuth_deg);
+        let viewpoint = viewpoint(scene, &camera);
+        let size = [view.width.max(1), view.height.max(1)];
+        let snapshot = Snapshot {
+            atmosphere: state.key.clone(),
+            viewpoint: [viewpoint.h, viewpoint.mu_s],
+            sun: sun.to_array(),
+            camera: (scene.camera.clone(), view.projection),
+            size,
+            display: (scene.display.exposure_ev, scene.display.tone_map, view.mode),
+        };
+        let globals = Globals::from(&FrameInputs {
+            scene,
+            params,
+            camera: &camera,
+            sun,
+            viewpoint,
+            size,
+            mode: view.mode,
+            model: (gpu.constants)(params),
+        });
+        FrameSetup {
+            snapshot,
+            globals,
+            camera,
+            bottom_radius_m: params.bottom_radius_m,
+            above: viewpoint.h > params.thickness_m(),
+        }
+    }
+
+    fn shows_ground(&self, view: &View) -> bool {
+        self.camera
+            .shows_ground(self.bottom_radius_m, view.width, view.height)
+    }
+
+    /// Each pass's pipeline constants for this frame.
+    fn variants(&self, pipelines: &Pipelines, scene: &Scene, view: &View) -> Vec<Variant> {
+        let value = |c: Constant| match c {
+            Constant::Projection => uniforms::projection_code(view.projection),
+            Constant::AboveAtmosphere => u32::from(self.above),
+            Constant::DisplayMode => uniforms::display_code(view.mode),
+            Constant::ToneMap => uniforms::tone_map_code(scene.display.tone_map),
+        };
+        (0..pipelines.len())
+            .map(|i| pipelines.variant(i, value))
+            .collect()
+    }
+}
+
+/// The passes to run (indices in order) when `changed` inputs changed: a pass is stale when an
+/// input it reads changed, a table it reads was just rewritten or it was left stale before
+/// (`deferred`); it runs when the view needs what it writes (from above the atmosphere a
+/// marching sky pass reads fewer tables, and a view without ground none of those only the
+/// ground's pixels read), and otherwise stays marked in `deferred`.
+fn plan(
+    pipelines: &Pipelines,
+    changed: Inputs,
+    above: bool,
+    ground: bool,
+    deferred: &mut [bool],
+) -> Vec<usize> {
+    let info = pipelines.method.info();
+    let specs: Vec<&PassSpec> = pipelines.specs().collect();
+    let mut needed = vec![false; specs.len()];
+    let mut needed_resources: Vec<&str> = Vec::new();
+    for (i, spec) in specs.iter().enumerate().rev() {
+        if !spec.is_table() || spec.writes.iter().any(|w| needed_resources.contains(w)) {
+            needed[i] = true;
+            needed_resources.extend(spec.reads_where(above, ground));
+        }
+    }
+    let mut written: Vec<&str> = Vec::new();
+    let mut run = Vec::new();
+    for (i, spec) in specs.iter().enumerate() {
+        let stale = deferred[i]
+            || spec.direct_inputs(info).intersects(changed)
+            || spec.reads.iter().any(|r| written.contains(r));
+        if stale {
+            written.extend(spec.writes);
+            deferred[i] = !needed[i];
+            if needed[i] {
+                run.push(i);
+            }
+        }
+    }
+    run
+}
+
+/// Workgroups of the whole dispatch of pass `i`.
+fn grid(pipelines: &Pipelines, i: usize, layers: u32, size: [u32; 2]) -> [u32; 3] {
+    let Some(spec) = pipelines.specs().nth(i) else {
+        return [0; 3];
+    };
+    let info = pipelines.method.info();
+    match spec.dispatch {
+        Dispatch::View => [groups(size[0]), groups(size[1]), 1],
+        Dispatch::Table(id) => {
+            let [w, h, _] = info.table(id).map_or([1, 1, 1], |t| t.size);
+            [groups(w), groups(h), layers]
+        }
+        Dispatch::Volume(id) => {
+            let [w, h, d] = info.table(id).map_or([1, 1, 1], |t| t.size);
+            [groups(w), groups(h), d * layers]
+        }
+    }
+}
+
+/// The axis a pass is cut along when it runs in slices: rows of the view, layers of a table
+/// (a layer of a 3D table is one of its slices of one batch). Workgroups are one deep in z.
+fn slice_axis(pipelines: &Pipelines, i: usize) -> usize {
+    match pipelines.specs().nth(i).map(|s| s.dispatch) {
+        Some(Dispatch::View) => 1,
+        _ => 2,
+    }
+}
+
+/// How a rebuild runs in slices.
+#[derive(Debug, Clone, Copy)]
+struct Slicing {
+    /// GPU time each slice aims at (zero: the smallest slices).
+    target: Duration,
+}
+
+/// One dispatch of a pass: all of it, or `count` workgroups along its slice axis from `start`.
+#[derive(Debug, Clone, Copy)]
+struct Work {
+    pass: usize,
+    start: u32,
+    count: Option<u32>,
+}
+
+impl Work {
+    fn whole(pass: usize) -> Work {
+        Work {
+            pass,
+            start: 0,
+            count: None,
+        }
+    }
+}
+
+/// A new atmosphere built a slice per frame while the previous one stays on screen.
+struct Rebuild {
+    state: AtmosphereState,
+    target: Target,
+    /// The frame the rebuild draws, and the passes it left stale (as a frame's).
+    snapshot: Snapshot,
+    deferred: Vec<bool>,
+    variants: Vec<Variant>,
+    /// The passes to run, in order, the order loop unrolled.
+    run: Vec<usize>,
+    /// The next slice: index into `run`, and first workgroup along the pass's slice axis.
+    next: (usize, u32),
+    /// Workgroups per slice along the axis, steered towards the target time.
+    units: u32,
+    /// The slice on the GPU: when it was submitted, and whether it has finished.
+    in_flight: Option<(Instant, Arc<AtomicBool>)>,
+    done_units: u64,
+    total_units: u64,
+}
+
+impl Rebuild {
+    fn progress(&self) -> RebuildProgress {
+        RebuildProgress {
+            done: self.done_units,
+            total: self.total_units,
+        }
+    }
+}
+
+/// Encodes dispatches of one model over one atmosphere's tables and one view's images.
+struct Encoder<'a> {
+    device: &'a wgpu::Device,
+    queue: &'a wgpu::Queue,
+    pipelines: &'a Pipelines,
+    tables: &'a TableBuffers,
+    target: &'a Target,
+    layers: u32,
+    size: [u32; 2],
+}
+
+impl Encoder<'_> {
+    /// Encodes and submits `work` (each at its origin) and returns per-pass times when
+    /// `timer` is given: GPU timestamps, or fenced CPU time (one submission per pass).
+    fn submit(
+        &self,
+        work: &[Work],
+        variants: &[Variant],
+        timer: Option<&Timer>,
+    ) -> Vec<(usize, f64)> {
+        let gpu_timer = match timer {
+            Some(Timer::Gpu(t)) => Some(t),
+            _ => None,
+        };
+        let fenced = matches!(timer, Some(Timer::Cpu));
+        let work = &work[..work.len().min(MAX_PASSES).min(ORIGIN_SLOTS)];
+        let mut origins = vec![0u8; self.tables.origin_stride as usize * work.len()];
+        for (slot, w) in work.iter().enumerate() {
+            let axis = slice_axis(self.pipelines, w.pass);
+            let mut origin = [0u32; 4];
+            // Workgroups are WORKGROUP_SIZE invocations wide in x and y, one in z.
+            origin[axis] = if axis == 2 {
+                w.start
+            } else {
+                w.start * WORKGROUP_SIZE
+            };
+            let at = slot * self.tables.origin_stride as usize;
+            origins[at..at + 16].copy_from_slice(bytemuck::cast_slice(&origin));
+        }
+        self.queue.write_buffer(&self.tables.origins, 0, &origins);
+        let specs: Vec<_> = self.pipelines.specs().copied().collect();
+        let mut timings = Vec::new();
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        for (slot, w) in work.iter().enumerate() {
+            let i = w.pass;
+            let spec = &specs[i];
+            let start = Instant::now();
+            {
+                let timestamp_writes = gpu_timer.map(|t| t.writes(slot as u32));
+                let mut cpass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some(spec.name),
+                    timestamp_writes,
+                });
+                let group = match spec.dispatch {
+                    Dispatch::View => self.target.groups[i].as_ref(),
+                    _ => self.tables.group(i),
+                };
+                let mut dispatch = grid(self.pipelines, i, self.layers, self.size);
+                if let Some(count) = w.count {
+                    dispatch[slice_axis(self.pipelines, i)] = count;
+                }
+                let (Some(group), Some(pipeline)) =
+                    (group, self.pipelines.pipeline(i, variants[i]))
+                else {
+                    continue;
+                };
+                let offset = (slot as u64 * self.tables.origin_stride) as u32;
+                cpass.set_pipeline(pipeline);
+                cpass.set_bind_group(0, &self.tables.group0, &[offset]);
+                cpass.set_bind_group(1, group, &[]);
+                cpass.dispatch_workgroups(dispatch[0], dispatch[1], dispatch[2]);
+            }
+            if fenced {
+                self.queue.submit([encoder.finish()]);
+                let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
+                timings.push((i, start.elapsed().as_secs_f64() * 1e3));
+                encoder = self.device.create_command_encoder(&Default::default());
+            }
+        }
+        if let Some(t) = gpu_timer {
+            t.resolve(&mut encoder, work.len() as u32);
+            self.queue.submit([encoder.finish()]);
+            timings.extend(
+                work.iter()
+                    .map(|w| w.pass)
+                    .zip(t.read_ms(self.device, work.len())),
+            );
+        } else {
+            self.queue.submit([encoder.finish()]);
+        }
+        timings
+    }
+}
+
 struct AtmosphereState {
     key: AtmosphereKey,
     params: Params,
@@ -259,8 +553,10 @@ pub struct Engine {
     queue: wgpu::Queue,
     /// Compiled passes of every model used so far; the last one used is first.
     pipelines: Vec<Pipelines>,
-    globals: wgpu::Buffer,
     atmosphere: Option<AtmosphereState>,
+    /// A new atmosphere being built in slices while `atmosphere` stays on screen.
+    rebuild: Option<Rebuild>,
+    slicing: Option<Slicing>,
     target: Option<Target>,
     last: Option<Snapshot>,
     timer: Timer,
@@ -275,12 +571,6 @@ impl Engine {
     /// Compiles the passes on `device`. Timestamp queries are used when the device has the
     /// `TIMESTAMP_QUERY` feature; otherwise timing falls back to fenced CPU wall time.
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Engine {
-        let globals = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("globals"),
-            size: std::mem::size_of::<Globals>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
         let timer = if device.features().contains(wgpu::Features::TIMESTAMP_QUERY) {
             Timer::Gpu(Timestamps::new(device, queue, MAX_PASSES as u32))
         } else {
@@ -290,8 +580,9 @@ impl Engine {
             device: device.clone(),
             queue: queue.clone(),
             pipelines: Vec::new(),
-            globals,
             atmosphere: None,
+            rebuild: None,
+            slicing: None,
             target: None,
             last: None,
             timer,
@@ -304,6 +595,23 @@ impl Engine {
     /// Forgets the previous frame, so the next one runs every pass (a full rebuild).
     pub fn invalidate(&mut self) {
         self.last = None;
+    }
+
+    /// How a new atmosphere is built once one is on screen: `None` (the default) builds
+    /// everything in the frame that asks for it; `Some(t)` builds it in slices of about `t`
+    /// each, one slice in flight at a time, across as many frames as it takes, while the
+    /// previous atmosphere stays on screen and the view keeps responding (for a window).
+    /// `Duration::ZERO` makes every slice one layer or one row of workgroups.
+    pub fn set_rebuild_slices(&mut self, target: Option<Duration>) {
+        self.slicing = target.map(|target| Slicing { target });
+        if self.slicing.is_none() {
+            self.rebuild = None;
+        }
+    }
+
+    /// Whether a rebuild in slices is under way (the caller should keep drawing frames).
+    pub fn rebuilding(&self) -> bool {
+        self.rebuild.is_some()
     }
 
     /// Turns per-pass timing on or off. Timing waits for the GPU at the end of each frame.
@@ -347,19 +655,25 @@ impl Engine {
 
     /// Makes the pipelines of `method` the first, compiling them on first use.
     fn select(&mut self, method: &GpuMethod) {
+        let i = self.pipelines_of(method);
+        if i > 0 {
+            let p = self.pipelines.remove(i);
+            self.pipelines.insert(0, p);
+        }
+    }
+
+    /// Index of the pipelines of `method`, compiled on first use.
+    fn pipelines_of(&mut self, method: &GpuMethod) -> usize {
         match self
             .pipelines
             .iter()
             .position(|p| p.method.method == method.method)
         {
-            Some(0) => {}
-            Some(i) => {
-                let p = self.pipelines.remove(i);
-                self.pipelines.insert(0, p);
+            Some(i) => i,
+            None => {
+                self.pipelines.push(Pipelines::new(&self.device, method));
+                self.pipelines.len() - 1
             }
-            None => self
-                .pipelines
-                .insert(0, Pipelines::new(&self.device, method)),
         }
     }
 
@@ -376,6 +690,7 @@ impl Engine {
                 // Whatever the frame created may be invalid: start from nothing.
                 self.pipelines.clear();
                 self.atmosphere = None;
+                self.rebuild = None;
                 self.target = None;
                 self.last = None;
                 Err(fault)
@@ -391,7 +706,6 @@ impl Engine {
         let method = scene.render.method;
         let gpu = gpu_method(method)
             .ok_or_else(|| NotRealtime(methods::info(method).id, methods::realtime_ids()))?;
-        self.select(gpu);
         let key = AtmosphereKey {
             settings: scene.atmosphere.clone(),
             method,
@@ -400,61 +714,53 @@ impl Engine {
             scattering_orders: scene.render.scattering_orders,
             fitted_constants: scene.render.fitted_constants,
         };
-        let rebuilt = self.atmosphere.as_ref().is_none_or(|a| a.key != key);
-        if rebuilt {
-            let params = Params::new(
-                &Atmosphere::new(&scene.atmosphere),
-                key.wavelengths,
-                key.quality,
-            )
-            .with_render(&scene.render);
-            let tables = TableBuffers::new(
-                &self.device,
-                &self.pipelines[0],
-                gpu.info(),
-                &self.globals,
-                &params,
-            );
-            self.queue.write_buffer(
-                &tables.batches,
-                0,
-                bytemuck::cast_slice(
-                    &params
-                        .batches
-                        .iter()
-                        .map(uniforms::Batch::from)
-                        .collect::<Vec<_>>(),
-                ),
-            );
-            self.queue.write_buffer(
-                &tables.profile,
-                0,
-                bytemuck::cast_slice(&uniforms::profile(&params)),
-            );
-            self.atmosphere = Some(AtmosphereState {
-                key,
-                params,
-                tables,
-            });
+        let size = [view.width.max(1), view.height.max(1)];
+        let current = self.atmosphere.as_ref().is_some_and(|a| a.key == key);
+        let mut rebuilt = false;
+        let mut progress = None;
+        let mut rebuild_done = false;
+        if current {
+            // The scene went back to what is on screen: a rebuild under way is moot.
+            self.rebuild = None;
+        } else if let (Some(slice), Some(_), Some(_)) =
+            (self.slicing, &self.atmosphere, &self.target)
+        {
+            // Build the new tables and view a slice per frame; the old ones stay on screen.
+            if self.rebuild.as_ref().is_none_or(|r| r.state.key != key) {
+                self.rebuild = Some(self.start_rebuild(scene, view, gpu, key, size));
+            }
+            match self.advance_rebuild(slice) {
+                Some(p) => progress = Some(p),
+                None => {
+                    if let Some(r) = self.rebuild.take() {
+                        rebuild_done = true;
+                        self.atmosphere = Some(r.state);
+                        self.target = Some(r.target);
+                        self.last = Some(r.snapshot);
+                        self.deferred = r.deferred;
+                    }
+                }
+            }
+        } else {
+            self.rebuild = None;
+            self.select(gpu);
+            self.atmosphere = Some(self.build_state(scene, key));
+            rebuilt = true;
         }
+        // The model on screen: the scene's, or the previous one while a rebuild is under way.
+        let Some(gpu) = self
+            .atmosphere
+            .as_ref()
+            .and_then(|a| gpu_method(a.key.method))
+        else {
+            unreachable!("the atmosphere was just built, by a real-time model");
+        };
+        self.select(gpu);
         let Some(state) = self.atmosphere.as_ref() else {
             unreachable!("the atmosphere was just built");
         };
-        let params = &state.params;
-        let camera = Camera::new(&scene.camera, params.bottom_radius_m, view.projection);
-        let a = scene.sun.angles();
-        let sun = direction_from_angles(a.elevation_deg, a.azimuth_deg);
-        let viewpoint = viewpoint(scene, &camera);
-        let size = [view.width.max(1), view.height.max(1)];
-        let snapshot = Snapshot {
-            atmosphere: state.key.clone(),
-            viewpoint: [viewpoint.h, viewpoint.mu_s],
-            sun: sun.to_array(),
-            camera: (scene.camera.clone(), view.projection),
-            size,
-            display: (scene.display.exposure_ev, scene.display.tone_map, view.mode),
-        };
-        let mut changed = snapshot.changes_from(self.last.as_ref());
+        let frame = FrameSetup::new(scene, view, state, gpu);
+        let mut changed = frame.snapshot.changes_from(self.last.as_ref());
         if rebuilt || self.target.as_ref().is_none_or(|t| t.size != size) {
             // New images: every pass that writes them must run.
             changed = changed.union(Inputs::VIEW_SIZE);
@@ -465,80 +771,47 @@ impl Engine {
                 size,
             ));
         }
-        let globals = Globals::from(&FrameInputs {
-            scene,
-            params,
-            camera: &camera,
-            sun,
-            viewpoint,
-            size,
-            mode: view.mode,
-            model: (gpu.constants)(params),
-        });
         if !changed.is_empty() {
             self.queue
-                .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
+                .write_buffer(&state.tables.globals, 0, bytemuck::bytes_of(&frame.globals));
         }
-        // A pass is stale when an input it reads changed, a table it reads was just rewritten
-        // or it was left stale before; it runs when the view drawn this frame needs what it
-        // writes (from above the atmosphere a marching sky pass reads fewer tables, and a view
-        // without ground none of those only the ground's pixels read).
-        let above = viewpoint.h > params.thickness_m();
+        let pipelines = &self.pipelines[0];
+        if rebuilt || self.deferred.len() != pipelines.len() {
+            self.deferred = vec![false; pipelines.len()];
+        }
         // Whether the view shows the ground matters only to a frame with stale passes.
         let stale = !changed.is_empty() || self.deferred.iter().any(|&d| d);
-        let ground = stale && camera.shows_ground(params.bottom_radius_m, view.width, view.height);
-        let pipelines = &self.pipelines[0];
-        let info = gpu.info();
-        let specs: Vec<&PassSpec> = pipelines.specs().collect();
-        let mut needed = vec![false; specs.len()];
-        let mut needed_resources: Vec<&str> = Vec::new();
-        for (i, spec) in specs.iter().enumerate().rev() {
-            if !spec.is_table() || spec.writes.iter().any(|w| needed_resources.contains(w)) {
-                needed[i] = true;
-                needed_resources.extend(spec.reads_where(above, ground));
-            }
-        }
-        if rebuilt || self.deferred.len() != specs.len() {
-            self.deferred = vec![false; specs.len()];
-        }
-        let mut written: Vec<&str> = Vec::new();
-        let mut run = Vec::new();
-        for (i, spec) in specs.iter().enumerate() {
-            let stale = self.deferred[i]
-                || spec.direct_inputs(info).intersects(changed)
-                || spec.reads.iter().any(|r| written.contains(r));
-            if stale {
-                written.extend(spec.writes);
-                self.deferred[i] = !needed[i];
-                if needed[i] {
-                    run.push(i);
-                }
-            }
-        }
-        let run = with_order_loop(&run, &specs, params.scattering_orders);
-        let value = |c: Constant| match c {
-            Constant::Projection => uniforms::projection_code(view.projection),
-            Constant::AboveAtmosphere => u32::from(above),
-            Constant::DisplayMode => uniforms::display_code(view.mode),
-            Constant::ToneMap => uniforms::tone_map_code(scene.display.tone_map),
-        };
-        let variants: Vec<_> = (0..pipelines.len())
-            .map(|i| pipelines.variant(i, value))
-            .collect();
+        let ground = stale && frame.shows_ground(view);
+        let run = plan(pipelines, changed, frame.above, ground, &mut self.deferred);
+        let run = with_order_loop(&run, pipelines, state.params.scattering_orders);
+        let variants = frame.variants(pipelines, scene, view);
         for &i in &run {
             self.pipelines[0].ensure(&self.device, i, variants[i]);
         }
-        let layers = params.batches.len() as u32;
-        let timings_ms = if run.is_empty() {
-            Vec::new()
-        } else {
-            self.encode_and_submit(&run, &variants, layers, size)
+        let layers = state.params.batches.len() as u32;
+        let work: Vec<Work> = run.iter().map(|&i| Work::whole(i)).collect();
+        let timings_ms = match (&self.atmosphere, &self.target) {
+            (Some(state), Some(target)) if !work.is_empty() => {
+                let measure = self.measure.then_some(&self.timer);
+                let encoder = Encoder {
+                    device: &self.device,
+                    queue: &self.queue,
+                    pipelines: &self.pipelines[0],
+                    tables: &state.tables,
+                    target,
+                    layers,
+                    size,
+                };
+                encoder.submit(&work, &variants, measure)
+            }
+            _ => Vec::new(),
         };
-        let names: Vec<&'static str> = self.pipelines[0].specs().map(|s| s.name).collect();
-        let is_table: Vec<bool> = self.pipelines[0].specs().map(|s| s.is_table()).collect();
+        let pipelines = &self.pipelines[0];
+        let names: Vec<&'static str> = pipelines.specs().map(|s| s.name).collect();
+        let is_table: Vec<bool> = pipelines.specs().map(|s| s.is_table()).collect();
         // Each pass once, in order, however often the order loop ran it; its times summed.
         let ran: Vec<usize> = (0..names.len()).filter(|i| run.contains(i)).collect();
-        let timings_ms: Vec<(usize, f64)> = ran
+        let timings_ms: Vec<(&'static str, f64)> = ran
             .iter()
             .filter(|&&i| timings_ms.iter().any(|(j, _)| *j == i))
             .map(|&i| {
@@ -547,12 +820,12 @@ impl Engine {
                     .filter(|(j, _)| *j == i)
                     .map(|(_, ms)| ms)
                     .sum();
-                (i, total)
+                (names[i], total)
             })
             .collect();
-        self.last = Some(snapshot);
+        self.last = Some(frame.snapshot);
         self.stats = FrameStats {
-            method,
+            method: state.key.method,
             timing_source: (self.measure && !run.is_empty()).then(|| self.timing_source()),
             skipped: (0..names.len())
                 .filter(|i| !ran.contains(i))
@@ -566,12 +839,141 @@ impl Engine {
             run: ran.iter().map(|&i| names[i]).collect(),
             dispatched: run.len(),
             passes: names,
-            timings_ms: timings_ms
-                .into_iter()
-                .map(|(i, ms)| (self.pipelines[0].specs().nth(i).map_or("", |s| s.name), ms))
-                .collect(),
+            timings_ms,
+            rebuild: progress,
+            rebuild_done,
         };
         Ok(())
+    }
+
+    /// The tables' buffers of a new atmosphere for `key`, its inputs uploaded.
+    fn build_state(&mut self, scene: &Scene, key: AtmosphereKey) -> AtmosphereState {
+        let Some(gpu) = gpu_method(key.method) else {
+            unreachable!("the caller checked the model is a real-time one");
+        };
+        let params = Params::new(
+            &Atmosphere::new(&scene.atmosphere),
+            key.wavelengths,
+            key.quality,
+        )
+        .with_render(&scene.render);
+        let i = self.pipelines_of(gpu);
+        let tables = TableBuffers::new(&self.device, &self.pipelines[i], gpu.info(), &params);
+        let batches: Vec<uniforms::Batch> = params.batches.iter().map(Into::into).collect();
+        self.queue
+            .write_buffer(&tables.batches, 0, bytemuck::cast_slice(&batches));
+        self.queue.write_buffer(
+            &tables.profile,
+            0,
+            bytemuck::cast_slice(&uniforms::profile(&params)),
+        );
+        AtmosphereState {
+            key,
+            params,
+            tables,
+        }
+    }
+
+    /// A rebuild of everything `scene` draws with its new atmosphere `key`, to run in slices.
+    fn start_rebuild(
+        &mut self,
+        scene: &Scene,
+        view: &View,
+        gpu: &'static GpuMethod,
+        key: AtmosphereKey,
+        size: [u32; 2],
+    ) -> Rebuild {
+        let state = self.build_state(scene, key);
+        let frame = FrameSetup::new(scene, view, &state, gpu);
+        self.queue
+            .write_buffer(&state.tables.globals, 0, bytemuck::bytes_of(&frame.globals));
+        let p = self.pipelines_of(gpu);
+        let pipelines = &self.pipelines[p];
+        let target = Target::new(&self.device, pipelines, &state.tables, size);
+        let mut deferred = vec![false; pipelines.len()];
+        let ground = frame.shows_ground(view);
+        let run = plan(pipelines, Inputs::ALL, frame.above, ground, &mut deferred);
+        let run = with_order_loop(&run, pipelines, state.params.scattering_orders);
+        let variants = frame.variants(pipelines, scene, view);
+        let layers = state.params.batches.len() as u32;
+        let total_units = run
+            .iter()
+            .map(|&i| u64::from(grid(pipelines, i, layers, size)[slice_axis(pipelines, i)]))
+            .sum();
+        Rebuild {
+            state,
+            target,
+            snapshot: frame.snapshot,
+            deferred,
+            variants,
+            run,
+            next: (0, 0),
+            units: 1,
+            in_flight: None,
+            done_units: 0,
+            total_units,
+        }
+    }
+
+    /// Runs the next slice of the rebuild under way once the last one has finished. Returns
+    /// its progress, or None when every slice has finished.
+    fn advance_rebuild(&mut self, slicing: Slicing) -> Option<RebuildProgress> {
+        let _ = self.device.poll(wgpu::PollType::Poll);
+        let gpu = gpu_method(self.rebuild.as_ref()?.state.key.method)?;
+        let p = self.pipelines_of(gpu);
+        let r = self.rebuild.as_mut()?;
+        if let Some((started, done)) = &r.in_flight {
+            if !done.load(Ordering::Acquire) {
+                return Some(r.progress());
+            }
+            // Aim the next slice at the target time from how long this one took.
+            let took = started.elapsed().as_secs_f64();
+            let target = slicing.target.as_secs_f64();
+            r.units = if target <= 0.0 {
+                1
+            } else {
+                let scaled = f64::from(r.units) * target / took.max(1e-4);
+                scaled.clamp(1.0, f64::from(r.units) * 4.0) as u32
+            };
+            r.in_flight = None;
+        }
+        let (k, unit) = r.next;
+        let &pass = r.run.get(k)?;
+        self.pipelines[p].ensure(&self.device, pass, r.variants[pass]);
+        let layers = r.state.params.batches.len() as u32;
+        let pipelines = &self.pipelines[p];
+        let axis = slice_axis(pipelines, pass);
+        let extent = grid(pipelines, pass, layers, r.target.size)[axis];
+        let count = r.units.min(extent - unit);
+        let encoder = Encoder {
+            device: &self.device,
+            queue: &self.queue,
+            pipelines,
+            tables: &r.state.tables,
+            target: &r.target,
+            layers,
+            size: r.target.size,
+        };
+        let work = Work {
+            pass,
+            start: unit,
+            count: Some(count),
+        };
+        encoder.submit(&[work], &r.variants, None);
+        let done = Arc::new(AtomicBool::new(false));
+        let flag = done.clone();
+        self.queue
+            .on_submitted_work_done(move || flag.store(true, Ordering::Release));
+        r.in_flight = Some((Instant::now(), done));
+        r.done_units += u64::from(count);
+        r.next = if unit + count >= extent {
+            // The first slice of a new pass starts small: passes differ in cost per unit.
+            r.units = 1;
+            (k + 1, 0)
+        } else {
+            (k, unit + count)
+        };
+        Some(r.progress())
     }
 
     /// [`Engine::try_render`] for callers that have already checked the scene's model is a
@@ -584,73 +986,6 @@ impl Engine {
             };
         }
         &self.stats
-    }
-
-    fn encode_and_submit(
-        &self,
-        run: &[usize],
-        variants: &[[u32; 2]],
-        layers: u32,
-        size: [u32; 2],
-    ) -> Vec<(usize, f64)> {
-        let (Some(state), Some(target)) = (&self.atmosphere, &self.target) else {
-            return Vec::new();
-        };
-        let pipelines = &self.pipelines[0];
-        let info = pipelines.method.info();
-        let gpu_timer = match &self.timer {
-            Timer::Gpu(t) if self.measure => Some(t),
-            _ => None,
-        };
-        let fenced = self.measure && gpu_timer.is_none();
-        let specs: Vec<_> = pipelines.specs().copied().collect();
-        let mut timings = Vec::new();
-        let mut encoder = self.device.create_command_encoder(&Default::default());
-        for (slot, &i) in run.iter().enumerate().take(MAX_PASSES) {
-            let spec = &specs[i];
-            let start = Instant::now();
-            {
-                let timestamp_writes = gpu_timer.map(|t| t.writes(slot as u32));
-                let mut cpass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some(spec.name),
-                    timestamp_writes,
-                });
-                let (group, dispatch) = match spec.dispatch {
-                    Dispatch::View => (target.groups[i].as_ref(), view_dispatch(size)),
-                    Dispatch::Table(id) => {
-                        let [w, h, _] = info.table(id).map_or([1, 1, 1], |t| t.size);
-                        (state.tables.group(i), [groups(w), groups(h), layers])
-                    }
-                    Dispatch::Volume(id) => {
-                        let [w, h, d] = info.table(id).map_or([1, 1, 1], |t| t.size);
-                        (state.tables.group(i), [groups(w), groups(h), d * layers])
-                    }
-                };
-                let (Some(group), Some(pipeline)) = (group, pipelines.pipeline(i, variants[i]))
-                else {
-                    continue;
-                };
-                cpass.set_pipeline(pipeline);
-                cpass.set_bind_group(0, &state.tables.group0, &[]);
-                cpass.set_bind_group(1, group, &[]);
-                cpass.dispatch_workgroups(dispatch[0], dispatch[1], dispatch[2]);
-            }
-            if fenced {
-                self.queue.submit([encoder.finish()]);
-                let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
-                timings.push((i, start.elapsed().as_secs_f64() * 1e3));
-                encoder = self.device.create_command_encoder(&Default::default());
-            }
-        }
-        if let Some(t) = gpu_timer {
-            let passes = run.len().min(MAX_PASSES);
-            t.resolve(&mut encoder, passes as u32);
-            self.queue.submit([encoder.finish()]);
-            timings.extend(run.iter().copied().zip(t.read_ms(&self.device, passes)));
-        } else {
-            self.queue.submit([encoder.finish()]);
-        }
-        timings
     }
 
     /// Blocks until the GPU has finished all submitted work.
@@ -731,7 +1066,8 @@ fn map_u64(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Option<Vec<u64>> {
 
 /// The passes to encode: `run` (pass indices in order) with each stretch of consecutive
 /// order-loop passes repeated once per scattering order from 2 to `orders`.
-fn with_order_loop(run: &[usize], specs: &[&PassSpec], orders: u32) -> Vec<usize> {
+fn with_order_loop(run: &[usize], pipelines: &Pipelines, orders: u32) -> Vec<usize> {
+    let specs: Vec<&PassSpec> = pipelines.specs().collect();
     let mut out = Vec::with_capacity(run.len());
     let mut group: Vec<usize> = Vec::new();
     let flush = |group: &mut Vec<usize>, out: &mut Vec<usize>| {
@@ -754,10 +1090,6 @@ fn with_order_loop(run: &[usize], specs: &[&PassSpec], orders: u32) -> Vec<usize
 
 fn groups(n: u32) -> u32 {
     n.div_ceil(crate::prelude::WORKGROUP_SIZE)
-}
-
-fn view_dispatch(size: [u32; 2]) -> [u32; 3] {
-    [groups(size[0]), groups(size[1]), 1]
 }
 
 impl Target {

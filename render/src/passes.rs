@@ -6,7 +6,7 @@ use crate::methods::{
     COMMON, Constant, DISPLAY, DISPLAY_PASS, GpuMethod, PassSpec, RADIANCE, SKY_ENTRY_POINT,
 };
 use crate::prelude::wgsl_prelude;
-use crate::uniforms::Batch;
+use crate::uniforms::{Batch, Globals};
 use atmoscope_model::methods::shared::{PROFILE_SAMPLES, Params};
 use atmoscope_model::methods::{ModelInfo, shared::TableSpec};
 
@@ -116,11 +116,19 @@ pub struct Pipelines {
 impl Pipelines {
     pub fn new(device: &wgpu::Device, method: &GpuMethod) -> Pipelines {
         let group0 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("group 0: globals, batches, profile"),
+            label: Some("group 0: globals, batches, profile, origin"),
             entries: &[
                 buffer_entry(0, wgpu::BufferBindingType::Uniform),
                 buffer_entry(1, wgpu::BufferBindingType::Storage { read_only: true }),
                 buffer_entry(2, wgpu::BufferBindingType::Storage { read_only: true }),
+                entry(
+                    3,
+                    wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: true,
+                        min_binding_size: wgpu::BufferSize::new(ORIGIN_BYTES),
+                    },
+                ),
             ],
         });
         let passes = method
@@ -249,8 +257,19 @@ impl Pipelines {
     }
 }
 
+/// Bytes of one dispatch origin (`origin` in `shaders/common/bindings.wgsl`: vec4<u32>).
+const ORIGIN_BYTES: u64 = 16;
+
+/// Dispatches one frame may place at their own origin (slots of the origins buffer).
+pub const ORIGIN_SLOTS: usize = 256;
+
 /// The tables of one atmosphere and wavelength set and the buffers they are computed from.
 pub struct TableBuffers {
+    pub globals: wgpu::Buffer,
+    /// One origin per dispatch of a frame, `origin_stride` bytes apart (the device's uniform
+    /// offset alignment), bound with a dynamic offset.
+    pub origins: wgpu::Buffer,
+    pub origin_stride: u64,
     pub batches: wgpu::Buffer,
     pub profile: wgpu::Buffer,
     pub group0: wgpu::BindGroup,
@@ -264,7 +283,6 @@ impl TableBuffers {
         device: &wgpu::Device,
         pipelines: &Pipelines,
         model: &ModelInfo,
-        globals: &wgpu::Buffer,
         params: &Params,
     ) -> TableBuffers {
         let layers = params.batches.len();
@@ -283,6 +301,11 @@ impl TableBuffers {
             input,
         );
         let profile = buffer("profile", 16 * u64::from(PROFILE_SAMPLES), input);
+        let uniform = wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST;
+        let globals = buffer("globals", std::mem::size_of::<Globals>() as u64, uniform);
+        let origin_stride =
+            u64::from(device.limits().min_uniform_buffer_offset_alignment).max(ORIGIN_BYTES);
+        let origins = buffer("origins", origin_stride * ORIGIN_SLOTS as u64, uniform);
         let group0 = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("group 0"),
             layout: &pipelines.group0,
@@ -299,6 +322,14 @@ impl TableBuffers {
                     binding: 2,
                     resource: profile.as_entire_binding(),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &origins,
+                        offset: 0,
+                        size: wgpu::BufferSize::new(ORIGIN_BYTES),
+                    }),
+                },
             ],
         });
         let tables = model
@@ -310,6 +341,9 @@ impl TableBuffers {
             })
             .collect();
         let mut b = TableBuffers {
+            globals,
+            origins,
+            origin_stride,
             batches,
             profile,
             group0,

@@ -691,3 +691,64 @@ fn no_aerosol_skips_the_aerosol_terms_and_matches_the_twin() {
         );
     }
 }
+
+/// A rebuild run in slices across frames (the smallest slices: one layer of a table or one row
+/// of workgroups at a time, a frame each) keeps the previous image on screen until it is done,
+/// and then gives every table and the image exactly as a rebuild in one frame does.
+#[test]
+fn a_rebuild_in_slices_gives_the_same_tables_as_a_whole_one() {
+    let Some(gpu) = context() else { return };
+    let view = View::new(Projection::Perspective, 24, 16);
+    for model in methods::realtime() {
+        let mut before = with(model, &Scene::default());
+        before.render.quality = Quality::Low;
+        before.render.wavelengths = WavelengthSet::SpectralN(8);
+        let mut after = before.clone();
+        after.atmosphere.ground_albedo = 0.6;
+        after.atmosphere.aerosol.aod550 = 0.3;
+        let mut sliced = Engine::new(&gpu.device, &gpu.queue);
+        sliced.render(&before, &view);
+        let old_image = radiance_image(&sliced);
+        sliced.set_rebuild_slices(Some(std::time::Duration::ZERO));
+        let mut frames = 0;
+        loop {
+            let stats = sliced.render(&after, &view).clone();
+            sliced.wait();
+            if !sliced.rebuilding() {
+                break;
+            }
+            let progress = stats.rebuild.expect("progress while rebuilding");
+            assert!(progress.done <= progress.total, "{}", model.id);
+            assert_eq!(
+                radiance_image(&sliced),
+                old_image,
+                "{}: the old image stays",
+                model.id
+            );
+            frames += 1;
+        }
+        let passes = gpu_method(model.method).expect("real-time").passes.len();
+        assert!(frames > passes, "{}: {frames} slices", model.id);
+        let mut whole = Engine::new(&gpu.device, &gpu.queue);
+        whole.render(&after, &view);
+        for table in model.tables {
+            let a = sliced.read_table(table.id).expect("sliced");
+            let b = whole.read_table(table.id).expect("whole");
+            let differ = a.iter().zip(&b).filter(|(x, y)| x != y).count();
+            assert_eq!(
+                (a.len(), differ),
+                (b.len(), 0),
+                "{}: {}",
+                model.id,
+                table.id
+            );
+        }
+        assert_eq!(
+            radiance_image(&sliced),
+            radiance_image(&whole),
+            "{}",
+            model.id
+        );
+        assert_ne!(radiance_image(&sliced), old_image, "{}", model.id);
+    }
+}

@@ -14,7 +14,8 @@ fn cosine_factor(mu_s: f32) -> f32 {
 }
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
+    let id = dispatched(invocation);
     if any(id.xy >= IRRADIANCE_SIZE) || id.z >= batch_count() {
         return;
     }

@@ -4,7 +4,8 @@
 // model::methods::bruneton::multiple_scattering.
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
+    let id = dispatched(invocation);
     let v = volume_texel(id);
     if any(v.xy >= SCATTERING_SIZE.xy) || v.w >= batch_count() {
         return;

@@ -54,6 +54,13 @@ struct Batch {
 // relative air, relative ozone, aerosol (1/m) at h = H·(i/(n−1))², and 0
 @group(0) @binding(2) var<storage, read> profile: array<vec4<f32>>;
 
+// Where this dispatch starts in its pass's grid (x, y, z; w unused): a pass run in slices across
+// frames is several dispatches, each over part of its rows or layers (render::engine).
+@group(0) @binding(3) var<uniform> origin: vec4<u32>;
+
+// The invocation's place in the pass's whole grid.
+fn dispatched(invocation: vec3<u32>) -> vec3<u32> { return invocation + origin.xyz; }
+
 fn bottom_radius() -> f32 { return globals.planet.x; }
 fn top_radius() -> f32 { return globals.planet.y; }
 fn thickness() -> f32 { return globals.planet.z; }

@@ -2,7 +2,8 @@
 // scattering plus L_g and L_ms, marched to the top or the ground.
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
+    let id = dispatched(invocation);
     if any(id.xy >= SKY_TEXTURE_SIZE) || id.z >= batch_count() {
         return;
     }

@@ -2,7 +2,8 @@
 // sun-aligned frame and writes (in-scattered radiance, transmittance) at the end of every slice.
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
+    let id = dispatched(invocation);
     if any(id.xy >= AERIAL_PERSPECTIVE_SIZE.xy) || id.z >= batch_count() {
         return;
     }

@@ -2,7 +2,8 @@
 // cosine-weighted stratified directions of the upper hemisphere.
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
+    let id = dispatched(invocation);
     if id.x >= GROUND_IRRADIANCE_SIZE || id.y >= 1u || id.z >= batch_count() {
         return;
     }

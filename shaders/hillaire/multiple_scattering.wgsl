@@ -9,7 +9,8 @@ fn sphere_direction(i: u32, n: u32) -> vec3<f32> {
 }
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
+    let id = dispatched(invocation);
     if any(id.xy >= MULTIPLE_SCATTERING_SIZE) || id.z >= batch_count() {
         return;
     }

@@ -2,7 +2,8 @@
 // radiance to the top or the ground (Hillaire 2020 §5.3).
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
+    let id = dispatched(invocation);
     if any(id.xy >= SKY_VIEW_SIZE) || id.z >= batch_count() {
         return;
     }

@@ -1,7 +1,8 @@
 // Pass: transmittance table, exp(−∫ extinction) from (h, mu) to the top of the atmosphere.
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
+    let id = dispatched(invocation);
     if any(id.xy >= TRANSMITTANCE_SIZE) || id.z >= batch_count() {
         return;
     }

@@ -31,7 +31,8 @@ fn false_colour(t: f32) -> vec3<f32> {
 }
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
+    let id = dispatched(invocation);
     if any(id.xy >= globals.view.xy) {
         return;
     }

@@ -5,7 +5,8 @@
 // batches into linear sRGB (Y = ∫ȳL dλ) and writes coverage in alpha (0 outside the projection).
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
+    let id = dispatched(invocation);
     if any(id.xy >= globals.view.xy) {
         return;
     }

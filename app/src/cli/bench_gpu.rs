@@ -66,6 +66,54 @@ struct GpuRow {
     frame_floors: f64,
     sun_move_floors: f64,
     tables_floors: f64,
+    /// A change of the atmosphere as the explorer runs it: the wall time of the one frame
+    /// that rebuilds everything at once, and, built in slices across frames (one floor pass
+    /// standing for the UI's own drawing in each, and a wait for the GPU as a window's
+    /// present does), the longest and mean frame interval and the time until the new image.
+    rebuild_whole_ms: f64,
+    rebuild_ui_max_ms: f64,
+    rebuild_ui_mean_ms: f64,
+    rebuild_sliced_ms: f64,
+}
+
+/// GPU time a slice of a rebuild aims at, as in the explorer.
+const REBUILD_SLICE: std::time::Duration = std::time::Duration::from_millis(30);
+
+/// Frame intervals while `engine` builds `scene`'s new atmosphere in slices, each frame also
+/// drawing the floor pass (the UI) and waiting for the GPU (a window's present): (longest,
+/// mean, total) ms.
+fn sliced_rebuild_ms(
+    engine: &mut Engine,
+    scene: &Scene,
+    view: &View,
+    ui: &atmoscope_render::floor::FloorPass,
+    context: &atmoscope_render::gpu::GpuContext,
+) -> anyhow::Result<(f64, f64, f64)> {
+    engine.set_timing(false);
+    engine.set_rebuild_slices(Some(REBUILD_SLICE));
+    let start = Instant::now();
+    let mut intervals = Vec::new();
+    loop {
+        let frame = Instant::now();
+        engine.try_render(scene, view)?;
+        // The UI's drawing, submitted behind the frame; it returns once the GPU is idle.
+        ui.time_ms(
+            &context.device,
+            &context.queue,
+            [view.width, view.height],
+            atmoscope_render::engine::TimingSource::CpuFenced,
+            1,
+        );
+        intervals.push(frame.elapsed().as_secs_f64() * 1e3);
+        if !engine.rebuilding() {
+            break;
+        }
+    }
+    engine.set_rebuild_slices(None);
+    engine.set_timing(true);
+    let longest = intervals.iter().copied().fold(0.0, f64::max);
+    let mean = intervals.iter().sum::<f64>() / intervals.len() as f64;
+    Ok((longest, mean, start.elapsed().as_secs_f64() * 1e3))
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -137,6 +185,17 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             let stats = engine.render(&scene, &view).clone();
             sun_moves.push(stats.timings_ms.iter().map(|(_, ms)| ms).sum::<f64>());
         }
+        // A change of the atmosphere: in one frame, then in slices.
+        let mut changed = scene.clone();
+        changed.atmosphere.ground_albedo = (base.atmosphere.ground_albedo + 0.05) % 1.0;
+        let whole = Instant::now();
+        engine.try_render(&changed, &view)?;
+        engine.wait();
+        let rebuild_whole_ms = whole.elapsed().as_secs_f64() * 1e3;
+        engine.try_render(&scene, &view)?;
+        engine.wait();
+        let (rebuild_ui_max_ms, rebuild_ui_mean_ms, rebuild_sliced_ms) =
+            sliced_rebuild_ms(&mut engine, &changed, &view, &floor, &context)?;
         let floor_ms = median(floor.time_ms(
             &context.device,
             &context.queue,
@@ -167,6 +226,10 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             frame_floors: (sky_ms + display_ms) / floor_ms,
             sun_move_floors: sun_move_ms / floor_ms,
             tables_floors: lut_total_ms / floor_ms,
+            rebuild_whole_ms,
+            rebuild_ui_max_ms,
+            rebuild_ui_mean_ms,
+            rebuild_sliced_ms,
         });
     }
     if args.json {
@@ -178,7 +241,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         rows.first().map_or("", |r| r.timing.as_str())
     );
     println!(
-        "{:14} {:12} {:>10} {:>8} {:>8} {:>12} {:>12} {:>9} {:>8}   ×floor: {:>6} {:>6} {:>7}   table passes",
+        "{:14} {:12} {:>10} {:>8} {:>8} {:>12} {:>12} {:>9} {:>8}   ×floor: {:>6} {:>6} {:>7}   rebuild: {:>9} {:>16} {:>9}   table passes",
         "method",
         "set",
         "tables",
@@ -190,7 +253,10 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         "floor",
         "frame",
         "sun",
-        "tables"
+        "tables",
+        "one frame",
+        "sliced: UI max/mean",
+        "done in"
     );
     for r in &rows {
         let passes: Vec<String> = r
@@ -199,7 +265,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             .map(|(name, ms)| format!("{name} {ms:.2}"))
             .collect();
         println!(
-            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms {:>6.2} ms {:>5.2} ms          {:>6.1} {:>6.1} {:>7.1}   {}",
+            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms {:>6.2} ms {:>5.2} ms          {:>6.1} {:>6.1} {:>7.1}            {:>6.0} ms {:>6.0}/{:>5.0} ms {:>6.0} ms   {}",
             r.method,
             r.wavelengths,
             r.lut_total_ms,
@@ -212,6 +278,10 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             r.frame_floors,
             r.sun_move_floors,
             r.tables_floors,
+            r.rebuild_whole_ms,
+            r.rebuild_ui_max_ms,
+            r.rebuild_ui_mean_ms,
+            r.rebuild_sliced_ms,
             passes.join(", ")
         );
     }

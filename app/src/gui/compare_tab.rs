@@ -84,6 +84,18 @@ fn mean(v: &[f64]) -> f64 {
 }
 
 impl CompareTab {
+    #[cfg(test)]
+    pub fn set_rebuild_slices(&mut self, slice: Option<std::time::Duration>) {
+        for v in &mut self.views {
+            v.set_rebuild_slices(slice);
+        }
+    }
+
+    /// Whether any of the three views is building a new atmosphere across frames.
+    pub fn rebuilding(&self) -> bool {
+        self.views.iter().any(GpuView::rebuilding)
+    }
+
     pub fn new(gpu: &Gpu) -> CompareTab {
         CompareTab {
             views: std::array::from_fn(|_| GpuView::new(gpu)),

@@ -7,7 +7,7 @@ use atmoscope_render::{Engine, EngineError, FrameStats, View};
 use eframe::egui;
 use eframe::egui_wgpu::{self, wgpu};
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// The device egui renders with, shared by every engine of the window.
 #[derive(Clone)]
@@ -19,6 +19,10 @@ pub struct Gpu {
     /// A CPU implementation (lavapipe): its timestamps are taken at recording, so per-pass
     /// times come from fenced wall time instead.
     pub software: bool,
+    /// How the views' engines build a new atmosphere (`Engine::set_rebuild_slices`): in
+    /// slices across frames in the window, at once where frames are stepped without waiting
+    /// for the GPU (the UI tests).
+    pub rebuild_slice: Option<Duration>,
 }
 
 impl Gpu {
@@ -30,6 +34,7 @@ impl Gpu {
             renderer: rs.renderer.clone(),
             adapter: format!("{} ({:?}, {:?})", info.name, info.backend, info.device_type),
             software: info.device_type == wgpu::DeviceType::Cpu,
+            rebuild_slice: Some(REBUILD_SLICE),
         }
     }
 }
@@ -57,6 +62,10 @@ impl Radiance {
     }
 }
 
+/// GPU time a slice of a rebuild aims at: well inside the 100 ms a window may take per frame
+/// and still feel live, with room for the frame's own work.
+const REBUILD_SLICE: Duration = Duration::from_millis(30);
+
 pub struct GpuView {
     engine: Engine,
     gpu: Gpu,
@@ -75,6 +84,7 @@ impl GpuView {
     pub fn new(gpu: &Gpu) -> GpuView {
         let mut engine = Engine::new(&gpu.device, &gpu.queue);
         engine.set_timing(true);
+        engine.set_rebuild_slices(gpu.rebuild_slice);
         if gpu.software {
             engine.force_cpu_timing();
         }
@@ -94,7 +104,7 @@ impl GpuView {
     pub fn render(&mut self, scene: &Scene, view: &View) -> &FrameStats {
         let start = Instant::now();
         let drew = match self.engine.try_render(scene, view) {
-            Ok(stats) => !stats.run.is_empty(),
+            Ok(stats) => !stats.run.is_empty() || stats.rebuild_done,
             // A path-tracer scene draws nothing here; a GPU fault is shown to the user.
             Err(EngineError::NotRealtime(_)) => false,
             Err(e) => {
@@ -131,6 +141,26 @@ impl GpuView {
                 ))
             }
         }
+    }
+
+    /// Renders like `render`, but finishes a rebuild under way in this frame (for exports,
+    /// which must show the scene as it is now).
+    pub fn render_complete(&mut self, scene: &Scene, view: &View) -> &FrameStats {
+        self.engine.set_rebuild_slices(None);
+        self.render(scene, view);
+        self.engine.set_rebuild_slices(self.gpu.rebuild_slice);
+        self.engine.stats()
+    }
+
+    /// Sets how this view builds a new atmosphere (see [`Gpu::rebuild_slice`]).
+    pub fn set_rebuild_slices(&mut self, slice: Option<Duration>) {
+        self.gpu.rebuild_slice = slice;
+        self.engine.set_rebuild_slices(slice);
+    }
+
+    /// Whether a new atmosphere is being built across frames (keep drawing frames).
+    pub fn rebuilding(&self) -> bool {
+        self.engine.rebuilding()
     }
 
     /// The last GPU fault not yet shown, if any.

@@ -47,6 +47,23 @@ struct Views {
     reference: Option<ReferenceTab>,
 }
 
+impl Views {
+    #[cfg(test)]
+    /// Sets how every view, and those created later, build a new atmosphere.
+    fn set_rebuild_slices(&mut self, slice: Option<std::time::Duration>) {
+        self.gpu.rebuild_slice = slice;
+        self.main.set_rebuild_slices(slice);
+        if let Some(c) = &mut self.compare {
+            c.set_rebuild_slices(slice);
+        }
+    }
+
+    /// Whether any view is building a new atmosphere across frames.
+    fn rebuilding(&self) -> bool {
+        self.main.rebuilding() || self.compare.as_ref().is_some_and(CompareTab::rebuilding)
+    }
+}
+
 pub struct ExplorerApp {
     scene: Scene,
     layout: Layout,
@@ -94,6 +111,15 @@ impl ExplorerApp {
             last_frame: None,
             ui_frame_ms: 0.0,
             frame_log: std::env::var_os("ATMOSCOPE_FRAME_LOG").is_some(),
+        }
+    }
+
+    #[cfg(test)]
+    /// Sets how the views build a new atmosphere: in slices across frames (the default in a
+    /// window), or at once (`None`: tests that step frames without waiting for the GPU).
+    pub fn set_rebuild_slices(&mut self, slice: Option<std::time::Duration>) {
+        if let Some(v) = &mut self.views {
+            v.set_rebuild_slices(slice);
         }
     }
 
@@ -152,7 +178,7 @@ impl ExplorerApp {
             .main
             .view()
             .unwrap_or_else(|| sky_tab::view_for(Tab::Sky, &self.layout, [1280, 720]));
-        views.main.render(&self.scene, &view);
+        views.main.render_complete(&self.scene, &view);
         let (w, h) = (view.width, view.height);
         let label = format!("exporting {}", path.display());
         let job = match kind {
@@ -412,8 +438,11 @@ impl ExplorerApp {
         } else {
             views.main.last_frame_ms
         };
+        let rebuild = s.rebuild.map_or(String::new(), |p| {
+            format!(", rebuilding {}/{}", p.done, p.total)
+        });
         eprintln!(
-            "frame: tab {:?}, view {:?}, passes run [{}], skipped {}, frame wall {wall:.1} ms, UI interval {:.1} ms",
+            "frame: tab {:?}, view {:?}, passes run [{}], skipped {}, frame wall {wall:.1} ms, UI interval {:.1} ms{rebuild}",
             self.layout.tab,
             views.main.view().map(|v| (v.width, v.height)),
             passes.join(", "),
@@ -518,6 +547,10 @@ impl eframe::App for ExplorerApp {
         }
         if self.busy() {
             ctx.request_repaint_after(std::time::Duration::from_millis(250));
+        }
+        if self.views.as_ref().is_some_and(Views::rebuilding) {
+            // The next slice of the tables goes with the next frame.
+            ctx.request_repaint();
         }
     }
 

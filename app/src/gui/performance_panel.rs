@@ -34,8 +34,16 @@ pub fn show(ui: &mut egui::Ui, views: &[(&str, &GpuView)], ui_frame_ms: f64, ada
             }
             ui.label(format!("{:.1} ms", v.last_frame_ms))
                 .on_hover_text("Wall time of the last frame that ran any pass, from submission until the GPU was idle.");
-            ui.label(format!("{} run, {} skipped", stats.run.len(), stats.skipped.len()))
-                .on_hover_text(stats.timing_source.map_or("", |s| s.label()));
+            let ran = format!("{} run, {} skipped", stats.run.len(), stats.skipped.len());
+            match stats.rebuild {
+                Some(p) => ui.label(format!(
+                    "{ran}; rebuilding tables {:.0} %",
+                    100.0 * p.done as f64 / p.total.max(1) as f64
+                ))
+                .on_hover_text("A new atmosphere is being built a slice per frame; the view shows the last one until it is done."),
+                None => ui.label(ran),
+            }
+            .on_hover_text(stats.timing_source.map_or("", |s| s.label()));
             ui.end_row();
         });
     }

@@ -52,9 +52,13 @@ pub struct ReferenceTab {
 
 impl ReferenceTab {
     pub fn new(gpu: &Gpu) -> ReferenceTab {
+        // The real-time render is compared with the path tracer's as soon as it is drawn: it
+        // must be of the scene as it is, never the previous atmosphere.
+        let mut realtime = GpuView::new(gpu);
+        realtime.set_rebuild_slices(None);
         ReferenceTab {
             run: None,
-            realtime: GpuView::new(gpu),
+            realtime,
             shown: None,
             textures: None,
             delta_e_mean: None,

@@ -25,11 +25,14 @@ fn harness_with(layout: Layout, size: egui::Vec2) -> Harness<'static, ExplorerAp
                 cc.wgpu_render_state.is_some(),
                 "the explorer's tests need the wgpu renderer (install mesa-vulkan-drivers)"
             );
-            ExplorerApp::new(
+            let mut app = ExplorerApp::new(
                 Scene::default(),
                 layout.clone(),
                 cc.wgpu_render_state.as_ref(),
-            )
+            );
+            // Steps do not wait for the GPU: build each atmosphere in the frame that asks.
+            app.set_rebuild_slices(None);
+            app
         });
     h.run();
     h
@@ -721,4 +724,34 @@ proptest::proptest! {
         let (scene, layout) = if which == 0 { (mutate(&scene), layout) } else { (scene, mutate(&layout)) };
         proptest::prop_assert_eq!(restores_valid_settings(scene, layout), Ok(()));
     }
+}
+
+/// In the window a new atmosphere is built in slices: the frames after a change keep drawing
+/// the previous image (the Performance panel says how far the rebuild is) until the new one
+/// is complete, and then show it.
+#[test]
+fn a_new_atmosphere_is_built_across_frames_while_the_last_one_shows() {
+    let mut h = harness();
+    h.state_mut()
+        .set_rebuild_slices(Some(std::time::Duration::from_millis(30)));
+    let generation = |h: &Harness<'static, ExplorerApp>| views(h).main.generation();
+    let (before, drawn) = (radiance(&mut h), generation(&h));
+    h.state_mut().scene.render.wavelengths = atmoscope_model::scene::WavelengthSet::SpectralN(32);
+    h.step();
+    assert!(
+        views(&h).main.rebuilding(),
+        "the rebuild runs across frames"
+    );
+    assert_eq!(generation(&h), drawn, "the last image stays");
+    let mut frames = 1;
+    while views(&h).main.rebuilding() {
+        assert!(frames < 100_000, "the rebuild finishes");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.step();
+        frames += 1;
+    }
+    h.run();
+    assert!(frames > 2, "{frames} frames");
+    assert!(generation(&h) > drawn, "the new image is shown");
+    assert_ne!(radiance(&mut h), before);
 }
