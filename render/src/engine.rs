@@ -303,12 +303,24 @@ fn grid(pipelines: &Pipelines, i: usize, layers: u32, size: [u32; 2]) -> [u32; 3
     }
 }
 
-/// The axis a pass is cut along when it runs in slices: rows of the view, layers of a table
-/// (a layer of a 3D table is one of its slices of one batch). Workgroups are one deep in z.
-fn slice_axis(pipelines: &Pipelines, i: usize) -> usize {
-    match pipelines.specs().nth(i).map(|s| s.dispatch) {
-        Some(Dispatch::View) => 1,
-        _ => 2,
+/// Units of work a pass is cut into when it runs in slices: one row of workgroups of one layer
+/// (a layer of a 3D table being one of its slices of one batch; workgroups are one deep in z).
+fn units(grid: [u32; 3]) -> u32 {
+    grid[1] * grid[2]
+}
+
+/// Where a slice of `count` units from unit `start` of a pass's `grid` lies: its origin
+/// (invocations), its workgroups and the units it covers. A slice stays within one layer when
+/// it starts inside one or is smaller than one; otherwise it covers whole layers.
+fn slice(grid: [u32; 3], start: u32, count: u32) -> ([u32; 3], [u32; 3], u32) {
+    let rows = grid[1].max(1);
+    let (z, y) = (start / rows, start % rows);
+    if y != 0 || count < rows {
+        let n = count.clamp(1, rows - y);
+        ([0, y * WORKGROUP_SIZE, z], [grid[0], n, 1], n)
+    } else {
+        let layers = (count / rows).clamp(1, grid[2] - z);
+        ([0, 0, z], [grid[0], rows, layers], layers * rows)
     }
 }
 
@@ -319,7 +331,7 @@ struct Slicing {
     target: Duration,
 }
 
-/// One dispatch of a pass: all of it, or `count` workgroups along its slice axis from `start`.
+/// One dispatch of a pass: all of it, or `count` units of it from unit `start` (see `slice`).
 #[derive(Debug, Clone, Copy)]
 struct Work {
     pass: usize,
@@ -349,10 +361,12 @@ struct Rebuild {
     run: Vec<usize>,
     /// The next slice: index into `run`, and first workgroup along the pass's slice axis.
     next: (usize, u32),
-    /// Workgroups per slice along the axis, steered towards the target time.
-    units: u32,
-    /// The slice on the GPU: when it was submitted, and whether it has finished.
-    in_flight: Option<(Instant, Arc<AtomicBool>)>,
+    /// Units per slice of each pass, steered towards the target time (passes differ in cost
+    /// per unit; the engine keeps what it learnt for the model's next rebuild).
+    units: Vec<u32>,
+    /// The slice on the GPU: when it was submitted, whether it has finished, its pass and
+    /// units.
+    in_flight: Option<(Instant, Arc<AtomicBool>, usize, u32)>,
     done_units: u64,
     total_units: u64,
 }
@@ -393,15 +407,21 @@ impl Encoder<'_> {
         let fenced = matches!(timer, Some(Timer::Cpu));
         let work = &work[..work.len().min(MAX_PASSES).min(ORIGIN_SLOTS)];
         let mut origins = vec![0u8; self.tables.origin_stride as usize * work.len()];
-        for (slot, w) in work.iter().enumerate() {
-            let axis = slice_axis(self.pipelines, w.pass);
-            let mut origin = [0u32; 4];
-            // Workgroups are WORKGROUP_SIZE invocations wide in x and y, one in z.
-            origin[axis] = if axis == 2 {
-                w.start
-            } else {
-                w.start * WORKGROUP_SIZE
-            };
+        let dispatches: Vec<([u32; 3], [u32; 3])> = work
+            .iter()
+            .map(|w| {
+                let grid = grid(self.pipelines, w.pass, self.layers, self.size);
+                match w.count {
+                    Some(count) => {
+                        let (origin, groups, _) = slice(grid, w.start, count);
+                        (origin, groups)
+                    }
+                    None => ([0; 3], grid),
+                }
+            })
+            .collect();
+        for (slot, (at, _)) in dispatches.iter().enumerate() {
+            let origin = [at[0], at[1], at[2], 0];
             let at = slot * self.tables.origin_stride as usize;
             origins[at..at + 16].copy_from_slice(bytemuck::cast_slice(&origin));
         }
@@ -423,10 +443,7 @@ impl Encoder<'_> {
                     Dispatch::View => self.target.groups[i].as_ref(),
                     _ => self.tables.group(i),
                 };
-                let mut dispatch = grid(self.pipelines, i, self.layers, self.size);
-                if let Some(count) = w.count {
-                    dispatch[slice_axis(self.pipelines, i)] = count;
-                }
+                let dispatch = dispatches[slot].1;
                 let (Some(group), Some(pipeline)) =
                     (group, self.pipelines.pipeline(i, variants[i]))
                 else {
@@ -557,6 +574,8 @@ pub struct Engine {
     /// A new atmosphere being built in slices while `atmosphere` stays on screen.
     rebuild: Option<Rebuild>,
     slicing: Option<Slicing>,
+    /// Units per slice each pass of a model reached in its last rebuild in slices.
+    slice_units: Vec<(Method, Vec<u32>)>,
     target: Option<Target>,
     last: Option<Snapshot>,
     timer: Timer,
@@ -583,6 +602,7 @@ impl Engine {
             atmosphere: None,
             rebuild: None,
             slicing: None,
+            slice_units: Vec::new(),
             target: None,
             last: None,
             timer,
@@ -734,6 +754,8 @@ impl Engine {
                 None => {
                     if let Some(r) = self.rebuild.take() {
                         rebuild_done = true;
+                        self.slice_units.retain(|(m, _)| *m != r.state.key.method);
+                        self.slice_units.push((r.state.key.method, r.units));
                         self.atmosphere = Some(r.state);
                         self.target = Some(r.target);
                         self.last = Some(r.snapshot);
@@ -883,6 +905,7 @@ impl Engine {
         key: AtmosphereKey,
         size: [u32; 2],
     ) -> Rebuild {
+        let method = key.method;
         let state = self.build_state(scene, key);
         let frame = FrameSetup::new(scene, view, &state, gpu);
         self.queue
@@ -898,7 +921,7 @@ impl Engine {
         let layers = state.params.batches.len() as u32;
         let total_units = run
             .iter()
-            .map(|&i| u64::from(grid(pipelines, i, layers, size)[slice_axis(pipelines, i)]))
+            .map(|&i| u64::from(units(grid(pipelines, i, layers, size))))
             .sum();
         Rebuild {
             state,
@@ -908,7 +931,11 @@ impl Engine {
             variants,
             run,
             next: (0, 0),
-            units: 1,
+            units: self
+                .slice_units
+                .iter()
+                .find(|(m, u)| *m == method && u.len() == pipelines.len())
+                .map_or_else(|| vec![1; pipelines.len()], |(_, u)| u.clone()),
             in_flight: None,
             done_units: 0,
             total_units,
@@ -922,18 +949,18 @@ impl Engine {
         let gpu = gpu_method(self.rebuild.as_ref()?.state.key.method)?;
         let p = self.pipelines_of(gpu);
         let r = self.rebuild.as_mut()?;
-        if let Some((started, done)) = &r.in_flight {
+        if let Some((started, done, pass, count)) = &r.in_flight {
             if !done.load(Ordering::Acquire) {
                 return Some(r.progress());
             }
-            // Aim the next slice at the target time from how long this one took.
+            // Aim the pass's next slice at the target time from how long this one took.
             let took = started.elapsed().as_secs_f64();
             let target = slicing.target.as_secs_f64();
-            r.units = if target <= 0.0 {
+            r.units[*pass] = if target <= 0.0 {
                 1
             } else {
-                let scaled = f64::from(r.units) * target / took.max(1e-4);
-                scaled.clamp(1.0, f64::from(r.units) * 4.0) as u32
+                let scaled = f64::from(*count) * target / took.max(1e-4);
+                scaled.clamp(1.0, f64::from(*count) * 4.0) as u32
             };
             r.in_flight = None;
         }
@@ -942,9 +969,8 @@ impl Engine {
         self.pipelines[p].ensure(&self.device, pass, r.variants[pass]);
         let layers = r.state.params.batches.len() as u32;
         let pipelines = &self.pipelines[p];
-        let axis = slice_axis(pipelines, pass);
-        let extent = grid(pipelines, pass, layers, r.target.size)[axis];
-        let count = r.units.min(extent - unit);
+        let grid = grid(pipelines, pass, layers, r.target.size);
+        let (_, _, count) = slice(grid, unit, r.units[pass]);
         let encoder = Encoder {
             device: &self.device,
             queue: &self.queue,
@@ -964,11 +990,9 @@ impl Engine {
         let flag = done.clone();
         self.queue
             .on_submitted_work_done(move || flag.store(true, Ordering::Release));
-        r.in_flight = Some((Instant::now(), done));
+        r.in_flight = Some((Instant::now(), done, pass, count));
         r.done_units += u64::from(count);
-        r.next = if unit + count >= extent {
-            // The first slice of a new pass starts small: passes differ in cost per unit.
-            r.units = 1;
+        r.next = if unit + count >= units(grid) {
             (k + 1, 0)
         } else {
             (k, unit + count)
@@ -1149,6 +1173,38 @@ impl Target {
             radiance,
             display,
             groups,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{WORKGROUP_SIZE, slice, units};
+
+    /// Slices of any size, taken one after another, cover every workgroup of a pass exactly
+    /// once, each slice a box inside the grid.
+    #[test]
+    fn slices_tile_the_grid_exactly_once() {
+        for grid in [[3, 4, 5], [1, 1, 1], [16, 8, 16], [2, 7, 1]] {
+            for size in [1, 2, 3, 4, 7, 8, 9, 30, 1000] {
+                let mut hits = vec![0u32; (grid[0] * grid[1] * grid[2]) as usize];
+                let mut start = 0;
+                while start < units(grid) {
+                    let (origin, groups, n) = slice(grid, start, size);
+                    assert!(n >= 1 && n <= size.max(grid[1]), "{grid:?} {size}: {n}");
+                    assert_eq!(n, groups[1] * groups[2]);
+                    let (y0, z0) = (origin[1] / WORKGROUP_SIZE, origin[2]);
+                    for z in z0..z0 + groups[2] {
+                        for y in y0..y0 + groups[1] {
+                            for x in 0..groups[0] {
+                                hits[((z * grid[1] + y) * grid[0] + x) as usize] += 1;
+                            }
+                        }
+                    }
+                    start += n;
+                }
+                assert!(hits.iter().all(|&h| h == 1), "{grid:?} in slices of {size}");
+            }
         }
     }
 }
