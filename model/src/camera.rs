@@ -37,6 +37,14 @@ pub struct Camera {
     pub projection: Projection,
 }
 
+/// What the rays of a pixel row end on (`Camera::rows_see`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Sees {
+    Sky,
+    Ground,
+    Both,
+}
+
 impl Camera {
     /// Places the camera of `settings` over a planet of radius `planet_radius_m`.
     pub fn new(settings: &CameraSettings, planet_radius_m: f64, projection: Projection) -> Camera {
@@ -75,10 +83,9 @@ impl Camera {
                 let tan_half = (self.fov_deg.to_radians() * 0.5).tan();
                 let sx = (2.0 * x / w - 1.0) * tan_half * w / h;
                 let sy = (1.0 - 2.0 * y / h) * tan_half;
-                let forward = direction_from_angles(self.pitch_deg, self.heading_deg);
-                let right = direction_from_angles(0.0, self.heading_deg + 90.0);
-                let up = right.cross(forward);
-                (forward + right * sx + up * sy).normalize()
+                let [forward, right, up] = self.perspective_axes();
+                let dir = (forward + right * sx + up * sy).normalize();
+                return Some(Ray::new(self.position, dir));
             }
             Projection::Fisheye => {
                 let size = w.min(h);
@@ -99,6 +106,16 @@ impl Camera {
             }
         };
         Some(Ray::new(self.position, self.frame * local))
+    }
+
+    /// The perspective view's forward, right and up directions in world coordinates: a
+    /// pixel's ray is forward + right·sx + up·sy, normalised (sx, sy: the pixel's offset from
+    /// the centre in units of the focal length). Computed once per frame for the GPU too.
+    pub fn perspective_axes(&self) -> [DVec3; 3] {
+        let forward = direction_from_angles(self.pitch_deg, self.heading_deg);
+        let right = direction_from_angles(0.0, self.heading_deg + 90.0);
+        let up = right.cross(forward);
+        [forward, right, up].map(|v| self.frame * v)
     }
 
     /// Where the world direction `dir` falls in a view of `width` × `height`: pixel
@@ -165,6 +182,48 @@ impl Camera {
         };
         (0..=width).any(|i| below(f64::from(i), 0.0) || below(f64::from(i), h))
             || (0..=height).any(|j| below(0.0, f64::from(j)) || below(w, f64::from(j)))
+    }
+
+    /// What each pixel row of a view of `width` × `height` sees of a planet of radius
+    /// `planet_radius_m`: sky alone, ground alone or both (a margin wide of the horizon, for
+    /// the GPU's f32 rays), so that a renderer can draw rows of sky without the ground's
+    /// work and rows of ground without the sky's. Along a row of a perspective view the
+    /// zenith cosine is extreme at its middle and its ends (the right axis is level), and a
+    /// panorama's rows are level, so three rays settle each row; a fisheye's rows, when the
+    /// view shows the ground at all, are taken to see both.
+    pub fn rows_see(&self, planet_radius_m: f64, width: u32, height: u32) -> Vec<Sees> {
+        let rows = height as usize;
+        if !self.shows_ground(planet_radius_m, width, height) {
+            return vec![Sees::Sky; rows];
+        }
+        if self.projection == Projection::Fisheye {
+            return vec![Sees::Both; rows];
+        }
+        let up = self.position.normalize();
+        let sin_horizon = (planet_radius_m / self.position.length()).min(1.0);
+        let mu_horizon = -(1.0 - sin_horizon * sin_horizon).sqrt();
+        const MARGIN: f64 = 1e-3;
+        let w = f64::from(width);
+        (0..height)
+            .map(|j| {
+                let y = f64::from(j) + 0.5;
+                let mus = [0.0, 0.5 * w, w]
+                    .map(|x| self.ray(x, y, width, height).map(|r| r.direction.dot(up)));
+                let (lo, hi) = mus
+                    .iter()
+                    .flatten()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &m| {
+                        (lo.min(m), hi.max(m))
+                    });
+                if lo > mu_horizon + MARGIN {
+                    Sees::Sky
+                } else if hi < mu_horizon - MARGIN {
+                    Sees::Ground
+                } else {
+                    Sees::Both
+                }
+            })
+            .collect()
     }
 
     /// Where the sun's centre falls in a view and how wide a pixel is there: what every
@@ -248,6 +307,60 @@ mod tests {
             fov_deg: 60.0,
             back_km: 0.0,
         }
+    }
+
+    /// Every pixel of a row that `rows_see` calls sky sees the sky and every pixel of a row
+    /// it calls ground sees the ground, over altitudes, pitches, fields of view and the
+    /// projections; views with a horizon have rows of both and rows of one alone.
+    #[test]
+    fn rows_see_what_each_of_their_pixels_sees() {
+        let (w, h) = (96u32, 54u32);
+        let mut split = 0;
+        for projection in [
+            Projection::Perspective,
+            Projection::Panorama,
+            Projection::Fisheye,
+        ] {
+            for alt in [0.0, 1.0, 2000.0, 80_000.0, 400_000.0, 4e7] {
+                for pitch in [-90.0, -60.0, -10.0, -0.2, 0.0, 5.0, 45.0, 90.0] {
+                    for fov in [1.0, 60.0, 150.0] {
+                        let mut s = settings(alt);
+                        (s.pitch_deg, s.fov_deg, s.heading_deg) = (pitch, fov, 30.0);
+                        let c = Camera::new(&s, R, projection);
+                        let rows = c.rows_see(R, w, h);
+                        assert_eq!(rows.len(), h as usize);
+                        let altitude = c.position.length() - R;
+                        let up = c.position.normalize();
+                        for (j, seen) in rows.iter().enumerate() {
+                            for i in 0..w {
+                                let (x, y) = (f64::from(i) + 0.5, j as f64 + 0.5);
+                                let Some(ray) = c.ray(x, y, w, h) else {
+                                    continue;
+                                };
+                                let ground = crate::geometry::hits_ground(
+                                    altitude,
+                                    ray.direction.dot(up),
+                                    R,
+                                );
+                                let ok = match seen {
+                                    Sees::Sky => !ground,
+                                    Sees::Ground => ground,
+                                    Sees::Both => true,
+                                };
+                                assert!(
+                                    ok,
+                                    "{projection:?} {alt} m pitch {pitch} fov {fov}: row {j} ({seen:?}) pixel {i}"
+                                );
+                            }
+                        }
+                        if rows.contains(&Sees::Sky) && rows.contains(&Sees::Ground) {
+                            split += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(split > 20, "{split} views split into sky and ground rows");
     }
 
     /// The pixels' solid angles add up to what the projection covers.

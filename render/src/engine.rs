@@ -18,7 +18,7 @@ use crate::readback::{ReadbackError, read_buffer_f32x4, read_texture, read_textu
 use crate::uniforms::{self, FrameInputs, Globals};
 use crate::views::View;
 use atmoscope_model::Atmosphere;
-use atmoscope_model::camera::{Camera, Projection};
+use atmoscope_model::camera::{Camera, Projection, Sees};
 use atmoscope_model::geometry::direction_from_angles;
 use atmoscope_model::methods::shared::{Params, viewpoint};
 use atmoscope_model::methods::{self, Inputs, NotRealtime};
@@ -26,6 +26,7 @@ use atmoscope_model::scene::{
     AtmosphereSettings, CameraSettings, FittedConstants, Method, Quality, Scene, ToneMap,
     WavelengthSet,
 };
+use glam::DVec3;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -185,6 +186,8 @@ impl Snapshot {
 struct FrameSetup {
     snapshot: Snapshot,
     globals: Globals,
+    sun: DVec3,
+    size: [u32; 2],
     camera: Camera,
     bottom_radius_m: f64,
     /// Whether the camera is above the top of the atmosphere.
@@ -220,6 +223,8 @@ impl FrameSetup {
         FrameSetup {
             snapshot,
             globals,
+            sun,
+            size,
             camera,
             bottom_radius_m: params.bottom_radius_m,
             above: viewpoint.h > params.thickness_m(),
@@ -231,17 +236,94 @@ impl FrameSetup {
             .shows_ground(self.bottom_radius_m, view.width, view.height)
     }
 
-    /// Each pass's pipeline constants for this frame.
-    fn variants(&self, pipelines: &Pipelines, scene: &Scene, view: &View) -> Vec<Variant> {
-        let value = |c: Constant| match c {
+    /// A pipeline constant's value in this frame; a dispatch over the whole view draws the
+    /// sun's disk and decides sky or ground per pixel.
+    fn value(&self, c: Constant, scene: &Scene, view: &View) -> u32 {
+        match c {
             Constant::Projection => uniforms::projection_code(view.projection),
             Constant::AboveAtmosphere => u32::from(self.above),
             Constant::DisplayMode => uniforms::display_code(view.mode),
             Constant::ToneMap => uniforms::tone_map_code(scene.display.tone_map),
-        };
+            Constant::SunDisk => 1,
+            Constant::ViewRegion => uniforms::region_code(Sees::Both),
+        }
+    }
+
+    /// Each pass's pipeline constants for a dispatch over all of it.
+    fn variants(&self, pipelines: &Pipelines, scene: &Scene, view: &View) -> Vec<Variant> {
         (0..pipelines.len())
-            .map(|i| pipelines.variant(i, value))
+            .map(|i| pipelines.variant(i, |c| self.value(c, scene, view)))
             .collect()
+    }
+
+    /// The dispatches of pass `i` this frame. A view pass that takes the region runs in bands
+    /// of rows that see sky alone, ground alone or both (`Camera::rows_see`), and one that
+    /// takes the sun's disk draws it in one more dispatch over the pixels the disk reaches
+    /// (`SunInView::pixel_box`), so that no pixel runs the code of what it cannot see (a
+    /// software GPU runs both sides of every branch). Any other pass is one dispatch.
+    fn work(
+        &self,
+        pipelines: &Pipelines,
+        i: usize,
+        layers: u32,
+        scene: &Scene,
+        view: &View,
+    ) -> Vec<Work> {
+        let grid = grid(pipelines, i, layers, self.size);
+        let constants = pipelines.specs().nth(i).map_or(&[][..], |s| s.constants);
+        let variant = |region: Sees, sun: bool| {
+            pipelines.variant(i, |c| match c {
+                Constant::SunDisk => u32::from(sun),
+                Constant::ViewRegion => uniforms::region_code(region),
+                other => self.value(other, scene, view),
+            })
+        };
+        let takes = |c: Constant| constants.contains(&c);
+        if !takes(Constant::ViewRegion) && !takes(Constant::SunDisk) {
+            return vec![Work::whole(i, variant(Sees::Both, true), grid)];
+        }
+        let [w, h] = self.size;
+        let mut work = Vec::new();
+        if takes(Constant::ViewRegion) && !self.above {
+            let rows = self.camera.rows_see(self.bottom_radius_m, w, h);
+            let group_rows: Vec<Sees> = rows
+                .chunks(WORKGROUP_SIZE as usize)
+                .map(|c| {
+                    if c.iter().all(|&s| s == c[0]) {
+                        c[0]
+                    } else {
+                        Sees::Both
+                    }
+                })
+                .collect();
+            let mut start = 0;
+            for (g, &seen) in group_rows.iter().enumerate() {
+                if group_rows.get(g + 1) != Some(&seen) {
+                    work.push(Work {
+                        pass: i,
+                        variant: variant(seen, false),
+                        origin: [0, start as u32 * WORKGROUP_SIZE, 0],
+                        groups: [grid[0], (g + 1 - start) as u32, 1],
+                    });
+                    start = g + 1;
+                }
+            }
+        } else {
+            work.push(Work::whole(i, variant(Sees::Both, false), grid));
+        }
+        let sun_box = self
+            .camera
+            .sun_in_view(self.sun, w, h)
+            .and_then(|s| s.pixel_box(w, h));
+        if let (true, Some([x0, y0, x1, y1])) = (takes(Constant::SunDisk), sun_box) {
+            work.push(Work {
+                pass: i,
+                variant: variant(Sees::Both, true),
+                origin: [x0, y0, 0],
+                groups: [groups(x1 - x0), groups(y1 - y0), 1],
+            });
+        }
+        work
     }
 }
 
@@ -331,20 +413,23 @@ struct Slicing {
     target: Duration,
 }
 
-/// One dispatch of a pass: all of it, or `count` units of it from unit `start` (see `slice`).
+/// One dispatch of a pass: its pipeline constants, where it starts in the pass's grid
+/// (invocations) and its workgroups.
 #[derive(Debug, Clone, Copy)]
 struct Work {
     pass: usize,
-    start: u32,
-    count: Option<u32>,
+    variant: Variant,
+    origin: [u32; 3],
+    groups: [u32; 3],
 }
 
 impl Work {
-    fn whole(pass: usize) -> Work {
+    fn whole(pass: usize, variant: Variant, grid: [u32; 3]) -> Work {
         Work {
             pass,
-            start: 0,
-            count: None,
+            variant,
+            origin: [0; 3],
+            groups: grid,
         }
     }
 }
@@ -387,19 +472,12 @@ struct Encoder<'a> {
     pipelines: &'a Pipelines,
     tables: &'a TableBuffers,
     target: &'a Target,
-    layers: u32,
-    size: [u32; 2],
 }
 
 impl Encoder<'_> {
     /// Encodes and submits `work` (each at its origin) and returns per-pass times when
     /// `timer` is given: GPU timestamps, or fenced CPU time (one submission per pass).
-    fn submit(
-        &self,
-        work: &[Work],
-        variants: &[Variant],
-        timer: Option<&Timer>,
-    ) -> Vec<(usize, f64)> {
+    fn submit(&self, work: &[Work], timer: Option<&Timer>) -> Vec<(usize, f64)> {
         let gpu_timer = match timer {
             Some(Timer::Gpu(t)) => Some(t),
             _ => None,
@@ -407,21 +485,8 @@ impl Encoder<'_> {
         let fenced = matches!(timer, Some(Timer::Cpu));
         let work = &work[..work.len().min(MAX_PASSES).min(ORIGIN_SLOTS)];
         let mut origins = vec![0u8; self.tables.origin_stride as usize * work.len()];
-        let dispatches: Vec<([u32; 3], [u32; 3])> = work
-            .iter()
-            .map(|w| {
-                let grid = grid(self.pipelines, w.pass, self.layers, self.size);
-                match w.count {
-                    Some(count) => {
-                        let (origin, groups, _) = slice(grid, w.start, count);
-                        (origin, groups)
-                    }
-                    None => ([0; 3], grid),
-                }
-            })
-            .collect();
-        for (slot, (at, _)) in dispatches.iter().enumerate() {
-            let origin = [at[0], at[1], at[2], 0];
+        for (slot, w) in work.iter().enumerate() {
+            let origin = [w.origin[0], w.origin[1], w.origin[2], 0];
             let at = slot * self.tables.origin_stride as usize;
             origins[at..at + 16].copy_from_slice(bytemuck::cast_slice(&origin));
         }
@@ -443,9 +508,8 @@ impl Encoder<'_> {
                     Dispatch::View => self.target.groups[i].as_ref(),
                     _ => self.tables.group(i),
                 };
-                let dispatch = dispatches[slot].1;
-                let (Some(group), Some(pipeline)) =
-                    (group, self.pipelines.pipeline(i, variants[i]))
+                let dispatch = w.groups;
+                let (Some(group), Some(pipeline)) = (group, self.pipelines.pipeline(i, w.variant))
                 else {
                     continue;
                 };
@@ -806,12 +870,14 @@ impl Engine {
         let ground = stale && frame.shows_ground(view);
         let run = plan(pipelines, changed, frame.above, ground, &mut self.deferred);
         let run = with_order_loop(&run, pipelines, state.params.scattering_orders);
-        let variants = frame.variants(pipelines, scene, view);
-        for &i in &run {
-            self.pipelines[0].ensure(&self.device, i, variants[i]);
-        }
         let layers = state.params.batches.len() as u32;
-        let work: Vec<Work> = run.iter().map(|&i| Work::whole(i)).collect();
+        let work: Vec<Work> = run
+            .iter()
+            .flat_map(|&i| frame.work(pipelines, i, layers, scene, view))
+            .collect();
+        for w in &work {
+            self.pipelines[0].ensure(&self.device, w.pass, w.variant);
+        }
         let timings_ms = match (&self.atmosphere, &self.target) {
             (Some(state), Some(target)) if !work.is_empty() => {
                 let measure = self.measure.then_some(&self.timer);
@@ -821,10 +887,8 @@ impl Engine {
                     pipelines: &self.pipelines[0],
                     tables: &state.tables,
                     target,
-                    layers,
-                    size,
                 };
-                encoder.submit(&work, &variants, measure)
+                encoder.submit(&work, measure)
             }
             _ => Vec::new(),
         };
@@ -977,15 +1041,15 @@ impl Engine {
             pipelines,
             tables: &r.state.tables,
             target: &r.target,
-            layers,
-            size: r.target.size,
         };
+        let (origin, groups, _) = slice(grid, unit, count);
         let work = Work {
             pass,
-            start: unit,
-            count: Some(count),
+            variant: r.variants[pass],
+            origin,
+            groups,
         };
-        encoder.submit(&[work], &r.variants, None);
+        encoder.submit(&[work], None);
         let done = Arc::new(AtomicBool::new(false));
         let flag = done.clone();
         self.queue

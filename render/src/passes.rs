@@ -11,7 +11,7 @@ use atmoscope_model::methods::shared::{PROFILE_SAMPLES, Params};
 use atmoscope_model::methods::{ModelInfo, shared::TableSpec};
 
 /// Values of a pass's pipeline constants, in the order of its `constants`.
-pub type Variant = [u32; 2];
+pub type Variant = [u32; 4];
 
 fn entry(binding: u32, ty: wgpu::BindingType) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
@@ -166,7 +166,7 @@ impl Pipelines {
         };
         for i in 0..p.passes.len() {
             if p.passes[i].spec.constants.is_empty() {
-                p.ensure(device, i, [0, 0]);
+                p.ensure(device, i, [0; 4]);
             }
         }
         p
@@ -223,7 +223,7 @@ impl Pipelines {
 
     /// The values of pass `i`'s constants for a frame, from every constant's value.
     pub fn variant(&self, i: usize, value: impl Fn(Constant) -> u32) -> Variant {
-        let mut v = [0, 0];
+        let mut v = [0; 4];
         for (slot, &c) in v.iter_mut().zip(self.passes[i].spec.constants) {
             *slot = value(c);
         }

@@ -4,10 +4,11 @@
 //! model's own and one pass's entry file.
 
 use crate::uniforms::{
-    DisplayMode, display_code, phase_code, projection_code, spacing_code, tone_map_code,
+    DisplayMode, display_code, phase_code, projection_code, region_code, spacing_code,
+    tone_map_code,
 };
 use crate::views::FALSE_COLOUR_STOPS;
-use atmoscope_model::camera::Projection;
+use atmoscope_model::camera::{Projection, Sees};
 use atmoscope_model::colour::linear_srgb_to_xyz;
 use atmoscope_model::constants::{
     MAX_LUMINOUS_EFFICACY_LM_PER_W, SUN_ANGULAR_RADIUS_RAD, SUN_LIMB_DARKENING_U,
@@ -168,6 +169,9 @@ pub fn wgsl_prelude() -> String {
         ),
         ("PROJECTION_FISHEYE", projection_code(Projection::Fisheye)),
         ("PROJECTION_PANORAMA", projection_code(Projection::Panorama)),
+        ("REGION_SKY", region_code(Sees::Sky)),
+        ("REGION_GROUND", region_code(Sees::Ground)),
+        ("REGION_BOTH", region_code(Sees::Both)),
         ("TONE_MAP_EXPONENTIAL", tone_map_code(ToneMap::Exponential)),
         ("TONE_MAP_FILMIC", tone_map_code(ToneMap::Filmic)),
         ("TONE_MAP_LINEAR", tone_map_code(ToneMap::Linear)),

@@ -2,7 +2,7 @@
 //! codes of the enums the shaders switch on. `shaders/common/bindings.wgsl` declares the same
 //! layouts; a test checks the sizes with naga.
 
-use atmoscope_model::camera::{Camera, Projection};
+use atmoscope_model::camera::{Camera, Projection, Sees};
 use atmoscope_model::display::{EXPOSURE_SCALE, LUMINANCE_LOG10_RANGE};
 use atmoscope_model::geometry::horizon_beta;
 use atmoscope_model::methods::shared::{BatchOptics, Params, Spacing, Viewpoint};
@@ -32,6 +32,15 @@ pub fn projection_code(p: Projection) -> u32 {
         Projection::Perspective => 0,
         Projection::Fisheye => 1,
         Projection::Panorama => 2,
+    }
+}
+
+/// `VIEW_REGION` of a band of rows of the view (`Camera::rows_see`).
+pub fn region_code(s: Sees) -> u32 {
+    match s {
+        Sees::Sky => 0,
+        Sees::Ground => 1,
+        Sees::Both => 2,
     }
 }
 
@@ -75,6 +84,9 @@ pub struct Globals {
     pub camera_north: [f32; 4],
     pub camera_up: [f32; 4],
     pub camera: [f32; 4],
+    pub view_forward: [f32; 4],
+    pub view_right: [f32; 4],
+    pub view_up: [f32; 4],
     pub sun: [f32; 4],
     pub sun_view: [f32; 4],
     pub view: [u32; 4],
@@ -106,6 +118,7 @@ impl From<&FrameInputs<'_>> for Globals {
     fn from(f: &FrameInputs<'_>) -> Globals {
         let p = f.params;
         let c = f.camera;
+        let axes = c.perspective_axes();
         let (log10_min, log10_max) = match f.mode {
             DisplayMode::Luminance {
                 log10_min,
@@ -130,6 +143,9 @@ impl From<&FrameInputs<'_>> for Globals {
                 (c.fov_deg.to_radians() * 0.5).tan() as f32,
                 horizon_beta(f.viewpoint.h, p.bottom_radius_m) as f32,
             ],
+            view_forward: v4(axes[0], 0.0),
+            view_right: v4(axes[1], 0.0),
+            view_up: v4(axes[2], 0.0),
             sun: v4(f.sun, f.viewpoint.mu_s),
             sun_view: c
                 .sun_in_view(f.sun, f.size[0], f.size[1])

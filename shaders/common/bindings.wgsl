@@ -12,6 +12,10 @@ struct Globals {
     camera_up: vec4<f32>,
     // heading (rad), pitch (rad), tan(fov / 2), horizon angle β from the nadir at the camera (rad)
     camera: vec4<f32>,
+    // the perspective view's forward, right and up directions in world coordinates
+    view_forward: vec4<f32>,
+    view_right: vec4<f32>,
+    view_up: vec4<f32>,
     // world direction to the sun; w: mu_s at the camera (the viewpoint of the view tables)
     sun: vec4<f32>,
     // where the sun's centre falls in the view (pixels: x, y) and a pixel's angular width and

@@ -96,6 +96,6 @@ fn camera_coords(dir: vec3<f32>) -> CameraCoords {
         r.c.mu = entry.x;
         r.c.mu_s = entry.y;
     }
-    r.c.ground = hits_ground(r.c.h, r.c.mu);
+    r.c.ground = sees_ground(r.c.h, r.c.mu);
     return r;
 }

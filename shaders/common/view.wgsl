@@ -6,6 +6,25 @@
 // drivers run both sides of a branch).
 override PROJECTION: u32 = PROJECTION_PERSPECTIVE;
 override ABOVE_ATMOSPHERE: bool = false;
+// A dispatch over rows that see only sky or only ground says so, and the other side's work
+// is compiled away; over the pixels the sun's disk reaches the disk is drawn, elsewhere not.
+override VIEW_REGION: u32 = REGION_BOTH;
+override SUN_DISK: bool = true;
+
+// Whether the camera's ray (h, mu) ends on the ground (hits_ground where the rows see both).
+fn sees_ground(h: f32, mu: f32) -> bool {
+    switch VIEW_REGION {
+        case REGION_SKY: {
+            return false;
+        }
+        case REGION_GROUND: {
+            return true;
+        }
+        default: {
+            return hits_ground(h, mu);
+        }
+    }
+}
 
 // The ray through pixel (x, y) in world coordinates; w = 0 where the projection shows nothing.
 // Twin of model::camera::Camera::ray.
@@ -13,7 +32,6 @@ fn camera_ray(x: f32, y: f32) -> vec4<f32> {
     let w = f32(globals.view.x);
     let h = f32(globals.view.y);
     let heading = globals.camera.x;
-    let pitch = globals.camera.y;
     var local: vec3<f32>;
     switch PROJECTION {
         case PROJECTION_FISHEYE: {
@@ -33,10 +51,8 @@ fn camera_ray(x: f32, y: f32) -> vec4<f32> {
             let tan_half = globals.camera.z;
             let sx = (2.0 * x / w - 1.0) * tan_half * w / h;
             let sy = (1.0 - 2.0 * y / h) * tan_half;
-            let forward = direction_from_angles(pitch, heading);
-            let right = direction_from_angles(0.0, heading + 0.5 * PI);
-            let up = cross(right, forward);
-            local = normalize(forward + right * sx + up * sy);
+            let dir = globals.view_forward.xyz + globals.view_right.xyz * sx + globals.view_up.xyz * sy;
+            return vec4<f32>(normalize(dir), 1.0);
         }
     }
     let world = globals.camera_east.xyz * local.x + globals.camera_north.xyz * local.y

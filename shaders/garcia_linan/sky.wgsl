@@ -19,7 +19,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
         let phi = angles.x;
         let elevation = 0.5 * PI - angles.y;
         let s = sky_texture(layer, phi, elevation);
-        if hits_ground(h, mu) {
+        if sees_ground(h, mu) {
             let d = distance_to_ground(h, mu);
             let mu_s_g = clamp((r * mu_s + d * nu) / big_r, -1.0, 1.0);
             let tr = transmittance_between(layer, h, mu, d);

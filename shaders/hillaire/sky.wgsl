@@ -55,7 +55,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
         let angles = sun_relative_angles(up, dir, sun);
         let phi = angles.x;
         let theta = angles.y;
-        if hits_ground(h, mu) {
+        if sees_ground(h, mu) {
             let d = distance_to_ground(h, mu);
             let mu_s_g = clamp((r * mu_s + d * nu) / big_r, -1.0, 1.0);
             let lg = ground_radiance(layer, mu_s_g);

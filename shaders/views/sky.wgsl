@@ -17,11 +17,14 @@ fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
         textureStore(radiance_out, id.xy, vec4<f32>(0.0));
         return;
     }
-    let disk = sun_in_pixel(x, y);
+    var disk = 0.0;
+    if SUN_DISK {
+        disk = sun_in_pixel(x, y);
+    }
     var rgb = vec3<f32>(0.0);
     for (var layer = 0u; layer < batch_count(); layer++) {
         var l = radiance(layer, ray.xyz);
-        if disk > 0.0 {
+        if SUN_DISK && disk > 0.0 {
             let sun = sun_seen_from(layer, globals.camera_position.w, globals.sun.w);
             l += batches[layer].solar_irradiance * sun * disk;
         }

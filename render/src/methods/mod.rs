@@ -45,6 +45,11 @@ pub enum Constant {
     DisplayMode,
     /// The tone map (`TONE_MAP_*`).
     ToneMap,
+    /// Whether the dispatch draws the sun's disk (only the pixels it reaches do).
+    SunDisk,
+    /// What the dispatch's rows see (`REGION_*`): sky or ground alone, decided per row on
+    /// the CPU, or both, decided per pixel.
+    ViewRegion,
 }
 
 impl Constant {
@@ -55,6 +60,8 @@ impl Constant {
             Constant::AboveAtmosphere => "ABOVE_ATMOSPHERE",
             Constant::DisplayMode => "DISPLAY_MODE",
             Constant::ToneMap => "TONE_MAP",
+            Constant::SunDisk => "SUN_DISK",
+            Constant::ViewRegion => "VIEW_REGION",
         }
     }
 }
@@ -150,7 +157,12 @@ impl PassSpec {
             writes: &[RADIANCE],
             inputs: SKY_INPUTS,
             dispatch: Dispatch::View,
-            constants: &[Constant::Projection, Constant::AboveAtmosphere],
+            constants: &[
+                Constant::Projection,
+                Constant::AboveAtmosphere,
+                Constant::SunDisk,
+                Constant::ViewRegion,
+            ],
             repeat: Repeat::Once,
             reads_above_atmosphere: None,
             reads_for_ground: &[],

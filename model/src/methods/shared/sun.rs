@@ -83,6 +83,33 @@ impl SunInView {
         };
         resolved + (unresolved - resolved) * blend
     }
+
+    /// The pixels of a `width` × `height` view the disk can reach: columns x0..x1 and rows
+    /// y0..y1 (ends excluded) holding every pixel whose `disk_in_pixel` is not zero, so that a
+    /// renderer can draw the disk over those alone. A box that wraps around a panorama's edge
+    /// spans the whole width. None when no pixel of the view is reached.
+    pub fn pixel_box(&self, width: u32, height: u32) -> Option<[u32; 4]> {
+        let (wx, wy) = (self.pixel_width_rad, self.pixel_height_rad);
+        let reach = SUN_ANGULAR_RADIUS_RAD + wx + wy;
+        // One pixel more each way: the box is on pixel edges, the test on pixel centres.
+        let (hx, hy) = (reach / wx + 1.0, reach / wy + 1.0);
+        let (w, h) = (f64::from(width), f64::from(height));
+        let (y0, y1) = ((self.y - hy).floor().max(0.0), (self.y + hy).ceil().min(h));
+        let (mut x0, mut x1) = ((self.x - hx).floor(), (self.x + hx).ceil());
+        if self.wrap_width > 0.0 {
+            let centre = self.x - w * (self.x / w).floor();
+            (x0, x1) = (centre - hx, centre + hx);
+            if x0.floor() < 0.0 || x1.ceil() > w {
+                (x0, x1) = (0.0, w);
+            }
+        }
+        let (x0, x1) = (x0.floor().max(0.0), x1.ceil().min(w));
+        // Outside the view: no pixel to draw over.
+        if !(x0 < x1 && y0 < y1) {
+            return None;
+        }
+        Some([x0 as u32, y0 as u32, x1 as u32, y1 as u32])
+    }
 }
 
 /// How far inside the pixel's centre (in pixel radii) limb darkening is read: the overlap lies
@@ -126,6 +153,44 @@ fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// No pixel outside `pixel_box` gets any of the disk, over pixel sizes from a twentieth of
+    /// the sun's radius to a hundred radii, suns inside, at the edges and outside of the
+    /// view, and panoramas whose sun wraps around.
+    #[test]
+    fn the_disk_reaches_no_pixel_outside_its_box() {
+        let (width, height) = (40u32, 30u32);
+        for size in [0.05, 0.3, 1.0, 2.5, 10.0, 100.0] {
+            let p = size * SUN_ANGULAR_RADIUS_RAD;
+            for (x, y) in [
+                (20.3, 15.7),
+                (0.2, 3.0),
+                (39.9, 29.5),
+                (-3.0, 10.0),
+                (45.0, -2.0),
+            ] {
+                for wrap in [0.0, f64::from(width)] {
+                    let sun = SunInView {
+                        x,
+                        y,
+                        pixel_width_rad: p,
+                        pixel_height_rad: 0.7 * p,
+                        wrap_width: wrap,
+                    };
+                    let b = sun.pixel_box(width, height);
+                    for j in 0..height {
+                        for i in 0..width {
+                            let inside = b.is_some_and(|[x0, y0, x1, y1]| {
+                                (x0..x1).contains(&i) && (y0..y1).contains(&j)
+                            });
+                            let d = sun.disk_in_pixel(f64::from(i) + 0.5, f64::from(j) + 0.5);
+                            assert!(inside || d == 0.0, "{size} ({x}, {y}) wrap {wrap}: {i} {j}");
+                        }
+                    }
+                }
+            }
+        }
+    }
 
     #[test]
     fn the_sun_disk_integrates_to_one() {
