@@ -75,6 +75,22 @@ fn single_scattering(layer: u32, c: Coords) -> RayleighMie {
 // The camera's ray along `dir` as the models that look a whole ray up in their tables see it:
 // at the camera, or where the ray enters the atmosphere when the camera is above it; `hit` is
 // false when it misses. Twin of model::methods::shared::ray::camera_coords.
+// Where a looked-up ray `c` that ends on the ground meets it: the transmittance to it and the
+// sun's zenith cosine there; twin of shared::ray::behind, which the caller finishes with its
+// ground's radiance.
+struct GroundHit {
+    transmittance: vec4<f32>,
+    mu_s: f32,
+}
+
+fn ground_hit(layer: u32, c: Coords) -> GroundHit {
+    let d = distance_to_ground(c.h, c.mu);
+    var g: GroundHit;
+    g.mu_s = clamp(((bottom_radius() + c.h) * c.mu_s + d * c.nu) / bottom_radius(), -1.0, 1.0);
+    g.transmittance = transmittance_between(layer, c.h, c.mu, d);
+    return g;
+}
+
 struct CameraCoords {
     c: Coords,
     hit: bool,

@@ -15,9 +15,8 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     let inscattered = read_rayleigh_scattering(t) * modified_rayleigh_phase(c.nu)
         + read_mie_scattering(t) * aerosol_phase(c.nu, b.aerosol_g);
     if c.ground {
-        let d = distance_to_ground(c.h, c.mu);
-        let mu_s_g = clamp(((bottom_radius() + c.h) * c.mu_s + d * c.nu) / bottom_radius(), -1.0, 1.0);
-        return inscattered + transmittance_between(layer, c.h, c.mu, d) * sunlit_ground(layer, mu_s_g);
+        let g = ground_hit(layer, c);
+        return inscattered + g.transmittance * sunlit_ground(layer, g.mu_s);
     }
     return inscattered;
 }
