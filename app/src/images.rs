@@ -1,8 +1,8 @@
 //! Writing images: linear radiance as OpenEXR, display-referred previews and error maps as PNG.
 
 use anyhow::Context;
-use atmoscope_model::display::{display, to_u8};
-use atmoscope_model::scene::ToneMap;
+use atmoscope_model::display::{display, to_u8, to_u8_dithered};
+use atmoscope_model::scene::DisplaySettings;
 use image::{ImageBuffer, Rgb};
 use std::path::Path;
 
@@ -50,18 +50,24 @@ pub fn read_exr(path: &Path) -> anyhow::Result<(Vec<[f64; 3]>, u32, u32)> {
     Ok((img.pixels().map(|p| p.0.map(f64::from)).collect(), w, h))
 }
 
-/// Display-referred PNG with the given exposure and tone map.
+/// Display-referred PNG with the given exposure, tone map and dithering.
 pub fn write_png(
     path: &Path,
     rgb: &[[f64; 3]],
     width: u32,
     height: u32,
-    exposure_ev: f64,
-    tone_map: ToneMap,
+    d: &DisplaySettings,
 ) -> anyhow::Result<()> {
     let data: Vec<u8> = rgb
         .iter()
-        .flat_map(|&c| display(c, exposure_ev, tone_map).map(to_u8))
+        .enumerate()
+        .flat_map(|(i, &c)| {
+            let (x, y) = (i as u32 % width.max(1), i as u32 / width.max(1));
+            display(c, d.exposure_ev, d.tone_map).map(|v| match d.dither {
+                true => to_u8_dithered(v, x, y),
+                false => to_u8(v),
+            })
+        })
         .collect();
     save_rgb8(path, data, width, height)
 }

@@ -1,8 +1,11 @@
-//! Display transform: linear sRGB radiance → exposure → tone map → sRGB-encoded 8-bit.
+//! Display transform: linear sRGB radiance → exposure → tone map → sRGB-encoded 8-bit, with
+//! dithering so that smooth skies do not band.
 //!
 //! Exposure 0 EV maps a luminance of 20 W·m⁻²·sr⁻¹ in Y (≈ 14 000 cd/m², a bright daylight sky)
-//! to 1 before tone mapping; +1 EV doubles it. The exponential curve 1 − e^(−x) is the papers'
-//! (Bruneton 2008, Hillaire 2020); the filmic one is Narkowicz's ACES fit.
+//! to 1 before tone mapping; +1 EV doubles it. The curves: the papers' exponential 1 − e^(−x)
+//! (Bruneton 2008, Hillaire 2020), Narkowicz's (2015) fit of the ACES film curve, Sobotka's
+//! AgX in its common sixth-order polynomial fit, Khronos PBR Neutral (2024), and a plain clip.
+//! The GPU's display pass (`shaders/views/display.wgsl`) is the f32 twin of this module.
 
 use crate::colour::srgb_encode;
 use crate::scene::ToneMap;
@@ -14,23 +17,102 @@ pub const EXPOSURE_SCALE: f64 = 1.0 / 20.0;
 /// sky near the sun).
 pub const LUMINANCE_LOG10_RANGE: [f64; 2] = [-2.0, 5.0];
 
-/// One linear sRGB radiance → display sRGB in [0, 1].
-pub fn display(rgb: [f64; 3], exposure_ev: f64, tone_map: ToneMap) -> [f64; 3] {
-    let k = EXPOSURE_SCALE * exposure_ev.exp2();
-    rgb.map(|c| {
-        let x = (c * k).max(0.0);
-        let mapped = match tone_map {
-            ToneMap::Exponential => 1.0 - (-x).exp(),
-            ToneMap::Filmic => (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14),
-            ToneMap::Linear => x,
-        };
-        srgb_encode(mapped)
+/// AgX: linear sRGB into its working space (rows), and back out.
+pub const AGX_INSET: [[f64; 3]; 3] = [
+    [0.842479062253094, 0.0784335999999992, 0.0792237451477643],
+    [0.0423282422610123, 0.878468636469772, 0.0791661274605434],
+    [0.0423756549057051, 0.0784336, 0.879142973793104],
+];
+pub const AGX_OUTSET: [[f64; 3]; 3] = [
+    [1.19687900512017, -0.0980208811401368, -0.0990297440797205],
+    [-0.0528968517574562, 1.15190312990417, -0.0989611768448433],
+    [-0.0529716355144438, -0.0980434501171241, 1.15107367264116],
+];
+/// AgX's log2 range (stops around 0.18) mapped onto the sigmoid's [0, 1].
+pub const AGX_LOG2_RANGE: [f64; 2] = [-12.47393, 4.026069];
+/// AgX's sigmoid, a polynomial in x from the sixth power down to the constant.
+pub const AGX_SIGMOID: [f64; 7] = [15.5, -40.14, 31.96, -6.868, 0.4298, 0.1191, -0.00232];
+/// Khronos PBR Neutral: where compression starts and how much highlights desaturate.
+pub const NEUTRAL_START: f64 = 0.76;
+pub const NEUTRAL_DESATURATION: f64 = 0.15;
+
+fn times(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
+    m.map(|row| row[0] * v[0] + row[1] * v[1] + row[2] * v[2])
+}
+
+/// AgX: linear in, linear out (the sigmoid's output is display-encoded with a 2.2 power).
+pub fn agx(rgb: [f64; 3]) -> [f64; 3] {
+    let [lo, hi] = AGX_LOG2_RANGE;
+    let encoded = times(&AGX_INSET, rgb).map(|c| {
+        let x = (c.max(1e-10).log2().clamp(lo, hi) - lo) / (hi - lo);
+        AGX_SIGMOID.iter().fold(0.0, |acc, k| acc * x + k)
+    });
+    times(&AGX_OUTSET, encoded).map(|c| c.max(0.0).powf(2.2))
+}
+
+/// Khronos PBR Neutral: an offset that keeps blacks black, identity up to `NEUTRAL_START`,
+/// then the peak channel compressed towards 1 and the colour mixed towards white.
+pub fn pbr_neutral(rgb: [f64; 3]) -> [f64; 3] {
+    let x = rgb[0].min(rgb[1]).min(rgb[2]);
+    let offset = if x < 0.08 { x - 6.25 * x * x } else { 0.04 };
+    let c = rgb.map(|v| v - offset);
+    let peak = c[0].max(c[1]).max(c[2]);
+    if peak < NEUTRAL_START {
+        return c;
+    }
+    let d = 1.0 - NEUTRAL_START;
+    let new_peak = 1.0 - d * d / (peak + d - NEUTRAL_START);
+    let g = 1.0 - 1.0 / (NEUTRAL_DESATURATION * (peak - new_peak) + 1.0);
+    c.map(|v| {
+        let scaled = v * new_peak / peak;
+        scaled + (new_peak - scaled) * g
     })
+}
+
+/// The tone map of exposed linear sRGB (≥ 0), before the sRGB encoding.
+pub fn tone_map(x: [f64; 3], t: ToneMap) -> [f64; 3] {
+    match t {
+        ToneMap::Exponential => x.map(|c| 1.0 - (-c).exp()),
+        ToneMap::Filmic => x.map(|c| (c * (2.51 * c + 0.03)) / (c * (2.43 * c + 0.59) + 0.14)),
+        ToneMap::AgX => agx(x),
+        ToneMap::PbrNeutral => pbr_neutral(x),
+        ToneMap::Linear => x,
+    }
+}
+
+/// One linear sRGB radiance → display sRGB in [0, 1].
+pub fn display(rgb: [f64; 3], exposure_ev: f64, tone_map_kind: ToneMap) -> [f64; 3] {
+    let k = EXPOSURE_SCALE * exposure_ev.exp2();
+    tone_map(rgb.map(|c| (c * k).max(0.0)), tone_map_kind).map(srgb_encode)
 }
 
 /// 8-bit display value.
 pub fn to_u8(v: f64) -> u8 {
     (v.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+/// A 32-bit integer hash (Wellons' "lowbias32"), the same in WGSL.
+pub fn hash32(mut x: u32) -> u32 {
+    x ^= x >> 16;
+    x = x.wrapping_mul(0x7feb_352d);
+    x ^= x >> 15;
+    x = x.wrapping_mul(0x846c_a68b);
+    x ^ (x >> 16)
+}
+
+/// The dither added to pixel (x, y) before quantising to 8 bits, in units of one step (1/255):
+/// triangular noise in (−1, 1), the sum of two uniform values from a hash of the pixel, so its
+/// error neither depends on the signal nor shows a pattern. Exact in f32 (24-bit values).
+pub fn dither(x: u32, y: u32) -> f64 {
+    let a = hash32(x ^ hash32(y));
+    let b = hash32(a);
+    let unit = |h: u32| f64::from(h >> 8) / f64::from(1u32 << 24);
+    unit(a) + unit(b) - 1.0
+}
+
+/// 8-bit display value of pixel (x, y), dithered.
+pub fn to_u8_dithered(v: f64, x: u32, y: u32) -> u8 {
+    to_u8(v + dither(x, y) / 255.0)
 }
 
 #[cfg(test)]
@@ -39,16 +121,81 @@ mod tests {
 
     #[test]
     fn black_stays_black_and_bright_saturates() {
-        for t in [ToneMap::Exponential, ToneMap::Filmic, ToneMap::Linear] {
-            assert_eq!(display([0.0; 3], 0.0, t), [0.0; 3]);
-            assert!(display([1e6; 3], 0.0, t)[0] > 0.99);
+        for t in ToneMap::ALL {
+            let black = display([0.0; 3], 0.0, t);
+            assert!(black.iter().all(|&c| c < 0.01), "{t:?}: {black:?}");
+            assert!(display([1e6; 3], 0.0, t)[0] > 0.99, "{t:?}");
         }
     }
 
     #[test]
     fn one_stop_brighter_is_brighter() {
-        let a = display([5.0, 5.0, 5.0], 0.0, ToneMap::Exponential)[0];
-        let b = display([5.0, 5.0, 5.0], 1.0, ToneMap::Exponential)[0];
-        assert!(b > a);
+        for t in ToneMap::ALL {
+            let a = display([5.0, 5.0, 5.0], 0.0, t)[0];
+            let b = display([5.0, 5.0, 5.0], 1.0, t)[0];
+            assert!(b > a, "{t:?}");
+        }
+    }
+
+    /// Each curve against values worked out by hand from its definition.
+    #[test]
+    fn each_tone_map_gives_its_reference_values() {
+        let grey = |t, x: f64| tone_map([x; 3], t)[0];
+        // 1 − e^(−1).
+        assert!((grey(ToneMap::Exponential, 1.0) - 0.632_121).abs() < 1e-6);
+        // (2.51 + 0.03) / (2.43 + 0.59 + 0.14).
+        assert!((grey(ToneMap::Filmic, 1.0) - 2.54 / 3.16).abs() < 1e-12);
+        // Mid grey: log2(0.18) sits at 0.60606 of AgX's range, the sigmoid gives 0.49681,
+        // and 0.49681^2.2 = 0.21457 (the matrices' rows sum to 1 within 2e-4).
+        assert!(
+            (grey(ToneMap::AgX, 0.18) - 0.21457).abs() < 1e-3,
+            "{}",
+            grey(ToneMap::AgX, 0.18)
+        );
+        // Neutral: 0.5 − 0.04 below the knee; 1 → 0.96 compressed to 1 − 0.24²/0.44; a
+        // dark 0.04 less its offset 0.04 − 6.25·0.04².
+        assert!((grey(ToneMap::PbrNeutral, 0.5) - 0.46).abs() < 1e-12);
+        assert!((grey(ToneMap::PbrNeutral, 1.0) - (1.0 - 0.0576 / 0.44)).abs() < 1e-12);
+        assert!((grey(ToneMap::PbrNeutral, 0.04) - 0.01).abs() < 1e-12);
+        assert_eq!(grey(ToneMap::Linear, 0.3), 0.3);
+        // Neutral keeps a colour below the knee as it is, bar the offset; AgX bleaches a
+        // bright saturated red towards white where the per-channel curves keep it pure.
+        let red = [0.6, 0.2, 0.1];
+        let n = tone_map(red, ToneMap::PbrNeutral);
+        assert!((n[0] - 0.56).abs() < 1e-12 && (n[2] - 0.06).abs() < 1e-12);
+        let bright = [40.0, 0.5, 0.2];
+        let (a, e) = (
+            tone_map(bright, ToneMap::AgX),
+            tone_map(bright, ToneMap::Exponential),
+        );
+        assert!(a[2] / a[0] > 2.0 * e[2] / e[0], "{a:?} {e:?}");
+    }
+
+    /// A smooth ramp quantised with dithering has row means within a tenth of a step of the
+    /// exact ones; without, they are off by up to half a step in bands.
+    #[test]
+    fn dithering_removes_banding_from_a_smooth_ramp() {
+        let (w, h) = (256u32, 64u32);
+        let exact = |y: u32| 0.4 + 0.02 * f64::from(y) / f64::from(h);
+        let worst = |quantise: &dyn Fn(f64, u32, u32) -> u8| {
+            (0..h)
+                .map(|y| {
+                    let mean = (0..w)
+                        .map(|x| f64::from(quantise(exact(y), x, y)))
+                        .sum::<f64>()
+                        / f64::from(w);
+                    (mean - 255.0 * exact(y)).abs()
+                })
+                .fold(0.0, f64::max)
+        };
+        let with = worst(&to_u8_dithered);
+        let without = worst(&|v, _, _| to_u8(v));
+        assert!(with < 0.1 && without > 0.4, "{with} {without}");
+        let noise: Vec<f64> = (0..10_000).map(|i| dither(i % 100, i / 100)).collect();
+        let mean = noise.iter().sum::<f64>() / noise.len() as f64;
+        assert!(
+            mean.abs() < 0.02 && noise.iter().all(|n| n.abs() <= 1.0),
+            "{mean}"
+        );
     }
 }

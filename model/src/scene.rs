@@ -347,10 +347,61 @@ pub enum ToneMap {
     /// 1 − exp(−k·L), as in the papers.
     #[default]
     Exponential,
-    /// A filmic curve (ACES fit).
+    /// The ACES filmic curve as fitted by Narkowicz (2015), per channel.
     Filmic,
+    /// AgX (Sobotka), in its widely used polynomial fit: bright colours bleach towards white
+    /// the way film does instead of skewing in hue.
+    AgX,
+    /// Khronos PBR Neutral (2024): colours pass unchanged up to 0.76, only highlights are
+    /// compressed and desaturated.
+    PbrNeutral,
     /// Exposure only, clipped.
     Linear,
+}
+
+impl ToneMap {
+    pub const ALL: [ToneMap; 5] = [
+        ToneMap::Exponential,
+        ToneMap::Filmic,
+        ToneMap::AgX,
+        ToneMap::PbrNeutral,
+        ToneMap::Linear,
+    ];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            ToneMap::Exponential => "Exponential (papers)",
+            ToneMap::Filmic => "ACES (fitted)",
+            ToneMap::AgX => "AgX",
+            ToneMap::PbrNeutral => "Khronos PBR Neutral",
+            ToneMap::Linear => "Linear (clip)",
+        }
+    }
+
+    /// What the curve does to colour, for a tooltip.
+    pub fn describe(self) -> &'static str {
+        match self {
+            ToneMap::Exponential => {
+                "1 − e^(−x) per channel, as Bruneton and Hillaire display their skies: soft highlights, \
+                 bright colours drift towards the hue of their strongest channel."
+            }
+            ToneMap::Filmic => {
+                "Narkowicz's fit of the ACES film curve per channel: more contrast and a toe in the \
+                 shadows; saturated highlights shift in hue (a red sun turns orange-yellow)."
+            }
+            ToneMap::AgX => {
+                "Sobotka's AgX: a log encoding and a sigmoid in a slightly desaturated space, so \
+                 bright colours fade to white as on film while hues hold; lower contrast."
+            }
+            ToneMap::PbrNeutral => {
+                "Khronos PBR Neutral: below 0.76 colours are shown as they are (only a small black \
+                 offset); brighter ones are compressed and desaturated towards white."
+            }
+            ToneMap::Linear => {
+                "No curve: exposure, then clipped at 1. What a measurement wants; highlights burn out."
+            }
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -359,6 +410,9 @@ pub struct DisplaySettings {
     /// Exposure in stops (−20–20).
     pub exposure_ev: f64,
     pub tone_map: ToneMap,
+    /// Dither the 8-bit image (triangular noise of up to one step per pixel) so that smooth
+    /// gradients do not band; off for byte-exact comparisons.
+    pub dither: bool,
 }
 
 impl Default for DisplaySettings {
@@ -366,6 +420,7 @@ impl Default for DisplaySettings {
         DisplaySettings {
             exposure_ev: 0.0,
             tone_map: ToneMap::default(),
+            dither: true,
         }
     }
 }

@@ -158,7 +158,7 @@ struct Snapshot {
     sun: [f64; 3],
     camera: (CameraSettings, Projection),
     size: [u32; 2],
-    display: (f64, ToneMap, DisplayMode),
+    display: (f64, ToneMap, DisplayMode, bool),
 }
 
 impl Snapshot {
@@ -208,7 +208,12 @@ impl FrameSetup {
             sun: sun.to_array(),
             camera: (scene.camera.clone(), view.projection),
             size,
-            display: (scene.display.exposure_ev, scene.display.tone_map, view.mode),
+            display: (
+                scene.display.exposure_ev,
+                scene.display.tone_map,
+                view.mode,
+                scene.display.dither,
+            ),
         };
         let globals = Globals::from(&FrameInputs {
             scene,

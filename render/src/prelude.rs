@@ -13,6 +13,7 @@ use atmoscope_model::colour::linear_srgb_to_xyz;
 use atmoscope_model::constants::{
     MAX_LUMINOUS_EFFICACY_LM_PER_W, SUN_ANGULAR_RADIUS_RAD, SUN_LIMB_DARKENING_U,
 };
+use atmoscope_model::display;
 use atmoscope_model::methods::hillaire as h;
 use atmoscope_model::methods::shared::{self, Spacing};
 use atmoscope_model::methods::{bruneton, elek};
@@ -144,6 +145,31 @@ pub fn wgsl_prelude() -> String {
         "f32",
         f(MAX_LUMINOUS_EFFICACY_LM_PER_W),
     );
+    // WGSL matrices are built from columns: M·v with M's rows as the model writes them.
+    let mat3 = |m: [[f64; 3]; 3]| {
+        let col = |j: usize| format!("vec3<f32>({}, {}, {})", f(m[0][j]), f(m[1][j]), f(m[2][j]));
+        format!("mat3x3<f32>({}, {}, {})", col(0), col(1), col(2))
+    };
+    c("AGX_INSET", "mat3x3<f32>", mat3(display::AGX_INSET));
+    c("AGX_OUTSET", "mat3x3<f32>", mat3(display::AGX_OUTSET));
+    let [lo, hi] = display::AGX_LOG2_RANGE;
+    c(
+        "AGX_LOG2_RANGE",
+        "vec2<f32>",
+        format!("vec2<f32>({}, {})", f(lo), f(hi)),
+    );
+    let k: Vec<String> = display::AGX_SIGMOID.iter().map(|&v| f(v)).collect();
+    c(
+        "AGX_SIGMOID",
+        "array<f32, 7>",
+        format!("array<f32, 7>({})", k.join(", ")),
+    );
+    c("NEUTRAL_START", "f32", f(display::NEUTRAL_START));
+    c(
+        "NEUTRAL_DESATURATION",
+        "f32",
+        f(display::NEUTRAL_DESATURATION),
+    );
     let y_row =
         [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].map(|e| linear_srgb_to_xyz(e).y);
     c(
@@ -175,6 +201,8 @@ pub fn wgsl_prelude() -> String {
         ("TONE_MAP_EXPONENTIAL", tone_map_code(ToneMap::Exponential)),
         ("TONE_MAP_FILMIC", tone_map_code(ToneMap::Filmic)),
         ("TONE_MAP_LINEAR", tone_map_code(ToneMap::Linear)),
+        ("TONE_MAP_AGX", tone_map_code(ToneMap::AgX)),
+        ("TONE_MAP_PBR_NEUTRAL", tone_map_code(ToneMap::PbrNeutral)),
         (
             "PHASE_HENYEY_GREENSTEIN",
             phase_code(AerosolPhase::HenyeyGreenstein),

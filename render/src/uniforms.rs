@@ -49,6 +49,8 @@ pub fn tone_map_code(t: ToneMap) -> u32 {
         ToneMap::Exponential => 0,
         ToneMap::Filmic => 1,
         ToneMap::Linear => 2,
+        ToneMap::AgX => 3,
+        ToneMap::PbrNeutral => 4,
     }
 }
 
@@ -175,7 +177,7 @@ impl From<&FrameInputs<'_>> for Globals {
                 (EXPOSURE_SCALE * f.scene.display.exposure_ev.exp2()) as f32,
                 log10_min as f32,
                 log10_max as f32,
-                0.0,
+                f32::from(u8::from(f.scene.display.dither)),
             ],
             model: f4(f.model),
         }

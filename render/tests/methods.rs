@@ -752,3 +752,60 @@ fn a_rebuild_in_slices_gives_the_same_tables_as_a_whole_one() {
         assert_ne!(radiance_image(&sliced), old_image, "{}", model.id);
     }
 }
+
+/// The display pass is the twin of `model::display`: every tone map, with and without
+/// dithering, gives the bytes the CPU gives from the same radiance, within one step (f32
+/// against f64 at rounding edges, in a fiftieth of the bytes at most); dithering changes bytes and keeps their mean.
+#[test]
+fn the_display_pass_matches_its_cpu_twin_for_every_tone_map() {
+    use atmoscope_model::display::{display, to_u8, to_u8_dithered};
+    use atmoscope_model::scene::ToneMap;
+    let Some(gpu) = context() else { return };
+    let (w, h) = (48u32, 27u32);
+    let view = View::new(Projection::Perspective, w, h);
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    let mut scene = Scene::default();
+    scene.display.exposure_ev = 1.5;
+    for tone_map in ToneMap::ALL {
+        let mut bytes = Vec::new();
+        for dither in [false, true] {
+            scene.display.tone_map = tone_map;
+            scene.display.dither = dither;
+            engine.render(&scene, &view);
+            let radiance = engine.read_radiance().expect("radiance");
+            let gpu_bytes = engine.read_display().expect("display");
+            let (mut worst, mut differ) = (0, 0);
+            for (i, p) in radiance.iter().enumerate() {
+                let (x, y) = (i as u32 % w, i as u32 / w);
+                let shown = display(
+                    [p[0], p[1], p[2]].map(f64::from),
+                    scene.display.exposure_ev,
+                    tone_map,
+                );
+                for c in 0..3 {
+                    let cpu = if dither {
+                        to_u8_dithered(shown[c], x, y)
+                    } else {
+                        to_u8(shown[c])
+                    };
+                    let d = cpu.abs_diff(gpu_bytes[4 * i + c]);
+                    worst = worst.max(d);
+                    differ += usize::from(d > 0);
+                }
+            }
+            // Off by a step only where f32 and f64 round a value on either side of an edge.
+            let n = radiance.len() * 3;
+            assert!(
+                worst <= 1 && differ * 50 <= n,
+                "{tone_map:?} dither {dither}: {worst} steps, {differ} of {n} bytes"
+            );
+            bytes.push(gpu_bytes);
+        }
+        let mean = |b: &[u8]| b.iter().map(|&v| f64::from(v)).sum::<f64>() / b.len() as f64;
+        assert_ne!(bytes[0], bytes[1], "{tone_map:?}: dithering changes bytes");
+        assert!(
+            (mean(&bytes[0]) - mean(&bytes[1])).abs() < 0.3,
+            "{tone_map:?}"
+        );
+    }
+}

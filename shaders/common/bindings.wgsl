@@ -30,7 +30,7 @@ struct Globals {
     // steps: aerial perspective per slice, ray march from space, trapezoid intervals along a
     // texel's ray (Bruneton, Elek), sphere zenith samples (Bruneton, Elek)
     steps_b: vec4<u32>,
-    // exposure scale, log10 luminance min and max (cd/m²), 0
+    // exposure scale, log10 luminance min and max (cd/m²), 1 to dither the 8-bit image (else 0)
     display: vec4<f32>,
     // constants of the model on screen (render::methods::GpuMethod::constants)
     model: vec4<f32>,

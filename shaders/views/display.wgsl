@@ -10,10 +10,45 @@ fn srgb_encode(linear: vec3<f32>) -> vec3<f32> {
     return select(1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055, 12.92 * c, c <= vec3<f32>(0.0031308));
 }
 
+// AgX: linear in, linear out; twin of model::display::agx.
+fn agx(rgb: vec3<f32>) -> vec3<f32> {
+    let lo = AGX_LOG2_RANGE.x;
+    let hi = AGX_LOG2_RANGE.y;
+    let x = (clamp(log2(max(AGX_INSET * rgb, vec3<f32>(1e-10))), vec3<f32>(lo), vec3<f32>(hi)) - lo) / (hi - lo);
+    var s = vec3<f32>(0.0);
+    for (var i = 0u; i < 7u; i++) {
+        s = s * x + AGX_SIGMOID[i];
+    }
+    return pow(max(AGX_OUTSET * s, vec3<f32>(0.0)), vec3<f32>(2.2));
+}
+
+// Khronos PBR Neutral; twin of model::display::pbr_neutral.
+fn pbr_neutral(rgb: vec3<f32>) -> vec3<f32> {
+    let x = min(rgb.r, min(rgb.g, rgb.b));
+    let offset = select(0.04, x - 6.25 * x * x, x < 0.08);
+    let c = rgb - offset;
+    let peak = max(c.r, max(c.g, c.b));
+    if peak < NEUTRAL_START {
+        return c;
+    }
+    let d = 1.0 - NEUTRAL_START;
+    let new_peak = 1.0 - d * d / (peak + d - NEUTRAL_START);
+    let g = 1.0 - 1.0 / (NEUTRAL_DESATURATION * (peak - new_peak) + 1.0);
+    let scaled = c * (new_peak / peak);
+    return scaled + (vec3<f32>(new_peak) - scaled) * g;
+}
+
+// Twin of model::display::tone_map.
 fn tone_map(x: vec3<f32>) -> vec3<f32> {
     switch TONE_MAP {
         case TONE_MAP_FILMIC: {
             return (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
+        }
+        case TONE_MAP_AGX: {
+            return agx(x);
+        }
+        case TONE_MAP_PBR_NEUTRAL: {
+            return pbr_neutral(x);
         }
         case TONE_MAP_LINEAR: {
             return x;
@@ -22,6 +57,23 @@ fn tone_map(x: vec3<f32>) -> vec3<f32> {
             return 1.0 - exp(-x);
         }
     }
+}
+
+// Twin of model::display::hash32.
+fn hash32(v: u32) -> u32 {
+    var x = v;
+    x ^= x >> 16u;
+    x *= 0x7feb352du;
+    x ^= x >> 15u;
+    x *= 0x846ca68bu;
+    return x ^ (x >> 16u);
+}
+
+// Triangular noise in (−1, 1) steps of 1/255 for pixel p; twin of model::display::dither.
+fn dither(p: vec2<u32>) -> f32 {
+    let a = hash32(p.x ^ hash32(p.y));
+    let b = hash32(a);
+    return f32(a >> 8u) / 16777216.0 + f32(b >> 8u) / 16777216.0 - 1.0;
 }
 
 fn false_colour(t: f32) -> vec3<f32> {
@@ -46,6 +98,9 @@ fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
         } else {
             out = srgb_encode(tone_map(max(l.rgb * globals.display.x, vec3<f32>(0.0))));
         }
+    }
+    if globals.display.w > 0.0 {
+        out += dither(id.xy) / 255.0;
     }
     textureStore(display_out, id.xy, vec4<f32>(out, 1.0));
 }

@@ -494,14 +494,18 @@ fn render(ui: &mut egui::Ui, s: &mut Scene) {
         "Brightness of the display in photographic stops: +1 doubles it. Twilight needs +5 to +10.",
     );
     ComboBox::from_label("Tone map")
-        .selected_text(format!("{:?}", d.tone_map))
+        .selected_text(d.tone_map.label())
         .show_ui(ui, |ui| {
-            for t in [ToneMap::Exponential, ToneMap::Filmic, ToneMap::Linear] {
-                ui.selectable_value(&mut d.tone_map, t, format!("{t:?}"));
+            for t in ToneMap::ALL {
+                ui.selectable_value(&mut d.tone_map, t, t.label())
+                    .on_hover_text(t.describe());
             }
         })
         .response
-        .on_hover_text(
-            "How the sky's huge range of brightness is squeezed into what a screen can show.",
-        );
+        .on_hover_text(format!(
+            "How the sky's huge range of brightness is squeezed into what a screen can show. {}",
+            d.tone_map.describe()
+        ));
+    ui.checkbox(&mut d.dither, "Dither")
+        .on_hover_text("Adds up to one step of noise per pixel to the 8-bit image so that smooth skies do not band. Off for byte-exact comparisons.");
 }
