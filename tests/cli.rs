@@ -454,6 +454,44 @@ fn render_writes_png_luminance_map_and_exr_and_refuses_bad_input() {
         "outside the fisheye circle"
     );
 
+    // Automatic exposure meters the view: civil twilight comes out at a mid grey level.
+    let grey = |path: &std::path::Path| {
+        let img = image::open(path).expect("PNG written").to_luma8();
+        img.pixels().map(|p| f64::from(p.0[0])).sum::<f64>() / f64::from(img.width() * img.height())
+    };
+    let twilight = dir.join("twilight.png");
+    let args = [
+        "render",
+        "--preset",
+        "civil-twilight",
+        "--size",
+        "64x36",
+        "--out",
+    ];
+    let o = atmoscope(&[&args[..], &[twilight.to_str().unwrap()]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let fixed = grey(&twilight);
+    let auto = [
+        &args[..],
+        &[
+            twilight.to_str().unwrap(),
+            "--set",
+            "display.auto_exposure=true",
+        ],
+    ]
+    .concat();
+    let o = atmoscope(&auto);
+    assert!(
+        o.status.success() && stderr(&o).contains("EV100"),
+        "{}",
+        stderr(&o)
+    );
+    let metered = grey(&twilight);
+    assert!(
+        (50.0..200.0).contains(&metered) && metered > fixed + 10.0,
+        "{fixed} → {metered}"
+    );
+
     let o = atmoscope(&["render", "--out", dir.join("sky.jpg").to_str().unwrap()]);
     assert!(!o.status.success());
     assert!(
@@ -814,6 +852,9 @@ fn bench_gpu_reports_multiples_of_the_floor_pass() {
         assert!((f("frame_floors") - frame / f("floor_ms")).abs() < 1e-9 * f("frame_floors"));
         assert!((f("tables_floors") - f("lut_total_ms") / f("floor_ms")).abs() < 1e-6);
         assert!(f("sun_move_ms") > 0.0, "a sun move runs passes");
+        // A rebuild in slices keeps every frame shorter than the one-frame rebuild and ends.
+        assert!(f("rebuild_ui_max_ms") > 0.0 && f("rebuild_ui_mean_ms") <= f("rebuild_ui_max_ms"));
+        assert!(f("rebuild_sliced_ms") >= f("rebuild_ui_max_ms") && f("rebuild_whole_ms") > 0.0);
     }
 }
 

@@ -115,6 +115,71 @@ pub fn to_u8_dithered(v: f64, x: u32, y: u32) -> u8 {
     to_u8(v + dither(x, y) / 255.0)
 }
 
+/// Luminance histogram range, log10 cd/m² (a moonless night to the sun's disk), and bins.
+pub const HISTOGRAM_LOG10_RANGE: [f64; 2] = [-4.0, 8.0];
+pub const HISTOGRAM_BINS: usize = 96;
+
+/// The mid-grey an automatic exposure puts the view's log-average luminance at.
+pub const METER_MID_GREY: f64 = 0.18;
+
+/// The bin of a luminance (cd/m²); below and above the range count in the end bins.
+pub fn histogram_bin(luminance_cd_m2: f64) -> usize {
+    let [lo, hi] = HISTOGRAM_LOG10_RANGE;
+    let t = (luminance_cd_m2.max(1e-30).log10() - lo) / (hi - lo);
+    ((t * HISTOGRAM_BINS as f64).floor().max(0.0) as usize).min(HISTOGRAM_BINS - 1)
+}
+
+/// How many pixels of a view fall in each luminance bin (`HISTOGRAM_LOG10_RANGE`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Histogram {
+    pub counts: Vec<u32>,
+}
+
+impl Histogram {
+    /// The histogram of luminances (cd/m²).
+    pub fn of(luminances: impl IntoIterator<Item = f64>) -> Histogram {
+        let mut counts = vec![0; HISTOGRAM_BINS];
+        for l in luminances {
+            counts[histogram_bin(l)] += 1;
+        }
+        Histogram { counts }
+    }
+
+    /// log10 cd/m² at the centre of bin `i`.
+    pub fn bin_centre_log10(i: usize) -> f64 {
+        let [lo, hi] = HISTOGRAM_LOG10_RANGE;
+        lo + (i as f64 + 0.5) * (hi - lo) / HISTOGRAM_BINS as f64
+    }
+
+    /// The geometric mean of the luminances (cd/m²) from the bins' centres (within half a bin,
+    /// 0.06 decades); None for an empty view.
+    pub fn log_average_cd_m2(&self) -> Option<f64> {
+        let n: u64 = self.counts.iter().map(|&c| u64::from(c)).sum();
+        (n > 0).then(|| {
+            let sum: f64 = self
+                .counts
+                .iter()
+                .enumerate()
+                .map(|(i, &c)| f64::from(c) * Self::bin_centre_log10(i))
+                .sum();
+            10f64.powf(sum / n as f64)
+        })
+    }
+}
+
+/// The exposure value at ISO 100 a reflected-light meter gives for a scene of average
+/// luminance `l_cd_m2` (K = 12.5 cd·s/m²).
+pub fn ev100(l_cd_m2: f64) -> f64 {
+    (l_cd_m2 * 100.0 / 12.5).log2()
+}
+
+/// The exposure (EV, in `display`'s sense) that shows a view of log-average luminance
+/// `l_cd_m2` at mid-grey, plus `compensation_ev`, within the exposure range (−20 to 20).
+pub fn metered_exposure_ev(l_cd_m2: f64, compensation_ev: f64) -> f64 {
+    let y = l_cd_m2.max(1e-12) / crate::constants::MAX_LUMINOUS_EFFICACY_LM_PER_W;
+    ((METER_MID_GREY / (EXPOSURE_SCALE * y)).log2() + compensation_ev).clamp(-20.0, 20.0)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -169,6 +234,32 @@ mod tests {
             tone_map(bright, ToneMap::Exponential),
         );
         assert!(a[2] / a[0] > 2.0 * e[2] / e[0], "{a:?} {e:?}");
+    }
+
+    /// A view of one luminance metered to mid-grey: exposed by the metered EV it comes out at
+    /// 0.18 before the tone map (2^c · 0.18 with compensation c); the histogram's average is
+    /// within half a bin; a sunlit scene averaging 4 000 cd/m² meters EV100 15 (the "sunny 16"
+    /// rule: f/16 at 1/100 s and ISO 100).
+    #[test]
+    fn metering_puts_the_log_average_at_mid_grey() {
+        for l in [0.01, 3.0, 4000.0, 2e5] {
+            let h = Histogram::of(std::iter::repeat_n(l, 50).chain([l * 2.0, l / 2.0]));
+            let avg = h.log_average_cd_m2().expect("pixels");
+            assert!((avg.log10() - l.log10()).abs() < 0.07, "{l}: {avg}");
+            for c in [0.0, -1.5] {
+                let ev = metered_exposure_ev(l, c);
+                let y = l / crate::constants::MAX_LUMINOUS_EFFICACY_LM_PER_W;
+                let exposed = EXPOSURE_SCALE * ev.exp2() * y;
+                assert!(
+                    (exposed - 0.18 * c.exp2()).abs() < 1e-9,
+                    "{l} {c}: {exposed}"
+                );
+            }
+        }
+        assert!((ev100(4_000.0) - 15.0).abs() < 0.05);
+        assert_eq!(Histogram::of([]).log_average_cd_m2(), None);
+        let h = Histogram::of([1e-9, 1e12]);
+        assert_eq!((h.counts[0], h.counts[HISTOGRAM_BINS - 1]), (1, 1));
     }
 
     /// A smooth ramp quantised with dithering has row means within a tenth of a step of the

@@ -407,8 +407,13 @@ impl ToneMap {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct DisplaySettings {
-    /// Exposure in stops (−20–20).
+    /// Exposure in stops (−20–20). With `auto_exposure` the explorer sets it from the view.
     pub exposure_ev: f64,
+    /// Meter the view: the exposure that puts its log-average luminance at mid-grey, plus
+    /// `compensation_ev`, adapting over about half a second in the explorer.
+    pub auto_exposure: bool,
+    /// Added to the metered exposure, stops (−10–10).
+    pub compensation_ev: f64,
     pub tone_map: ToneMap,
     /// Dither the 8-bit image (triangular noise of up to one step per pixel) so that smooth
     /// gradients do not band; off for byte-exact comparisons.
@@ -419,6 +424,8 @@ impl Default for DisplaySettings {
     fn default() -> Self {
         DisplaySettings {
             exposure_ev: 0.0,
+            auto_exposure: false,
+            compensation_ev: 0.0,
             tone_map: ToneMap::default(),
             dither: true,
         }
@@ -662,6 +669,12 @@ pub mod limits {
         max: 20.0,
         unit: " EV",
     };
+    /// `display.compensation_ev`.
+    pub const COMPENSATION_EV: Limit = Limit {
+        min: -10.0,
+        max: 10.0,
+        unit: " EV",
+    };
     /// `render.scattering_orders`.
     pub const SCATTERING_ORDERS: Limit = Limit {
         min: 1.0,
@@ -856,6 +869,11 @@ impl Scene {
             "display.exposure_ev",
             self.display.exposure_ev,
             limits::EXPOSURE_EV,
+        );
+        c.limit(
+            "display.compensation_ev",
+            self.display.compensation_ev,
+            limits::COMPENSATION_EV,
         );
         if c.errors.is_empty() {
             Ok(())

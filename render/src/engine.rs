@@ -11,14 +11,19 @@
 //! loop) are encoded once per scattering order from 2 to the scene's count.
 
 use crate::DisplayMode;
-use crate::methods::{Constant, Dispatch, GpuMethod, PassSpec, Repeat, gpu_method};
+use crate::methods::{
+    Constant, Dispatch, GpuMethod, HISTOGRAM, METER_PASS, PassSpec, Repeat, gpu_method,
+};
 use crate::passes::{ORIGIN_SLOTS, Pipelines, TableBuffers, Variant};
 use crate::prelude::WORKGROUP_SIZE;
-use crate::readback::{ReadbackError, read_buffer_f32x4, read_texture, read_texture_f32x4};
+use crate::readback::{
+    ReadbackError, read_buffer_f32x4, read_buffer_u32, read_texture, read_texture_f32x4,
+};
 use crate::uniforms::{self, FrameInputs, Globals};
 use crate::views::View;
 use atmoscope_model::Atmosphere;
 use atmoscope_model::camera::{Camera, Projection, Sees};
+use atmoscope_model::display::{HISTOGRAM_BINS, Histogram};
 use atmoscope_model::geometry::direction_from_angles;
 use atmoscope_model::methods::shared::{Params, viewpoint};
 use atmoscope_model::methods::{self, Inputs, NotRealtime};
@@ -56,7 +61,7 @@ impl TimingSource {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct FrameStats {
     pub method: Method,
-    /// Every pass of the model on screen, the display pass last.
+    /// Every pass of the model on screen the engine runs, the view passes last.
     pub passes: Vec<&'static str>,
     pub run: Vec<&'static str>,
     pub skipped: Vec<&'static str>,
@@ -342,6 +347,7 @@ fn plan(
     changed: Inputs,
     above: bool,
     ground: bool,
+    unwanted: &[&str],
     deferred: &mut [bool],
 ) -> Vec<usize> {
     let info = pipelines.method.info();
@@ -349,7 +355,8 @@ fn plan(
     let mut needed = vec![false; specs.len()];
     let mut needed_resources: Vec<&str> = Vec::new();
     for (i, spec) in specs.iter().enumerate().rev() {
-        if !spec.is_table() || spec.writes.iter().any(|w| needed_resources.contains(w)) {
+        let wanted = !spec.is_table() && !unwanted.contains(&spec.name);
+        if wanted || spec.writes.iter().any(|w| needed_resources.contains(w)) {
             needed[i] = true;
             needed_resources.extend(spec.reads_where(above, ground));
         }
@@ -503,6 +510,11 @@ impl Encoder<'_> {
             let i = w.pass;
             let spec = &specs[i];
             let start = Instant::now();
+            if spec.writes.contains(&HISTOGRAM) && w.origin == [0; 3] {
+                // Counts start from zero with the dispatch (or the first slice) that covers
+                // the view's first pixel.
+                encoder.clear_buffer(&self.target.histogram, 0, None);
+            }
             {
                 let timestamp_writes = gpu_timer.map(|t| t.writes(slot as u32));
                 let mut cpass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -556,6 +568,8 @@ struct Target {
     size: [u32; 2],
     radiance: wgpu::Texture,
     display: wgpu::Texture,
+    /// The view's luminance histogram (`METER_PASS`).
+    histogram: wgpu::Buffer,
     /// Group 1 of each view pass, by pass index (None for table passes).
     groups: Vec<Option<wgpu::BindGroup>>,
 }
@@ -643,6 +657,7 @@ pub struct Engine {
     /// A new atmosphere being built in slices while `atmosphere` stays on screen.
     rebuild: Option<Rebuild>,
     slicing: Option<Slicing>,
+    metering: bool,
     /// Units per slice each pass of a model reached in its last rebuild in slices.
     slice_units: Vec<(Method, Vec<u32>)>,
     target: Option<Target>,
@@ -671,6 +686,7 @@ impl Engine {
             atmosphere: None,
             rebuild: None,
             slicing: None,
+            metering: false,
             slice_units: Vec::new(),
             target: None,
             last: None,
@@ -696,6 +712,31 @@ impl Engine {
         if self.slicing.is_none() {
             self.rebuild = None;
         }
+    }
+
+    /// Turns the luminance histogram of the view on or off (`METER_PASS`; off by default, as
+    /// no frame should count what nobody reads). While on, every frame that redraws the view
+    /// counts it; `histogram` reads the last count.
+    pub fn set_metering(&mut self, on: bool) {
+        self.metering = on;
+    }
+
+    /// View passes this engine leaves out.
+    fn unwanted(&self) -> &'static [&'static str] {
+        if self.metering {
+            &[]
+        } else {
+            &[METER_PASS.name]
+        }
+    }
+
+    /// The luminance histogram of the last view drawn while metering.
+    pub fn histogram(&self) -> Result<Histogram, EngineError> {
+        let target = self.target.as_ref().ok_or(EngineError::NotRendered)?;
+        let words = capture(&self.device, || {
+            read_buffer_u32(&self.device, &self.queue, &target.histogram)
+        })??;
+        Ok(Histogram { counts: words })
     }
 
     /// Whether a rebuild in slices is under way (the caller should keep drawing frames).
@@ -873,7 +914,14 @@ impl Engine {
         // Whether the view shows the ground matters only to a frame with stale passes.
         let stale = !changed.is_empty() || self.deferred.iter().any(|&d| d);
         let ground = stale && frame.shows_ground(view);
-        let run = plan(pipelines, changed, frame.above, ground, &mut self.deferred);
+        let run = plan(
+            pipelines,
+            changed,
+            frame.above,
+            ground,
+            self.unwanted(),
+            &mut self.deferred,
+        );
         let run = with_order_loop(&run, pipelines, state.params.scattering_orders);
         let layers = state.params.batches.len() as u32;
         let work: Vec<Work> = run
@@ -899,6 +947,7 @@ impl Engine {
         };
         let pipelines = &self.pipelines[0];
         let names: Vec<&'static str> = pipelines.specs().map(|s| s.name).collect();
+        let unwanted = self.unwanted();
         let is_table: Vec<bool> = pipelines.specs().map(|s| s.is_table()).collect();
         // Each pass once, in order, however often the order loop ran it; its times summed.
         let ran: Vec<usize> = (0..names.len()).filter(|i| run.contains(i)).collect();
@@ -919,7 +968,7 @@ impl Engine {
             method: state.key.method,
             timing_source: (self.measure && !run.is_empty()).then(|| self.timing_source()),
             skipped: (0..names.len())
-                .filter(|i| !ran.contains(i))
+                .filter(|i| !ran.contains(i) && !unwanted.contains(&names[*i]))
                 .map(|i| names[i])
                 .collect(),
             tables_run: ran
@@ -929,7 +978,11 @@ impl Engine {
                 .collect(),
             run: ran.iter().map(|&i| names[i]).collect(),
             dispatched: run.len(),
-            passes: names,
+            passes: names
+                .iter()
+                .copied()
+                .filter(|n| !unwanted.contains(n))
+                .collect(),
             timings_ms,
             rebuild: progress,
             rebuild_done,
@@ -984,7 +1037,14 @@ impl Engine {
         let target = Target::new(&self.device, pipelines, &state.tables, size);
         let mut deferred = vec![false; pipelines.len()];
         let ground = frame.shows_ground(view);
-        let run = plan(pipelines, Inputs::ALL, frame.above, ground, &mut deferred);
+        let run = plan(
+            pipelines,
+            Inputs::ALL,
+            frame.above,
+            ground,
+            self.unwanted(),
+            &mut deferred,
+        );
         let run = with_order_loop(&run, pipelines, state.params.scattering_orders);
         let variants = frame.variants(pipelines, scene, view);
         let layers = state.params.batches.len() as u32;
@@ -1219,6 +1279,14 @@ impl Target {
         );
         let radiance_view = radiance.create_view(&Default::default());
         let display_view = display.create_view(&Default::default());
+        let histogram = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("histogram"),
+            size: 4 * HISTOGRAM_BINS as u64,
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_SRC
+                | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         let groups = pipelines
             .specs()
             .enumerate()
@@ -1233,6 +1301,7 @@ impl Target {
                     crate::methods::DISPLAY => {
                         Some(wgpu::BindingResource::TextureView(&display_view))
                     }
+                    crate::methods::HISTOGRAM => Some(histogram.as_entire_binding()),
                     table => tables.buffer(table).map(|b| b.as_entire_binding()),
                 })
             })
@@ -1241,6 +1310,7 @@ impl Target {
             size,
             radiance,
             display,
+            histogram,
             groups,
         }
     }

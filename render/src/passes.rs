@@ -3,7 +3,7 @@
 //! the model's tables (vec4 texels in the order of `model::methods::shared::Lut`).
 
 use crate::methods::{
-    COMMON, Constant, DISPLAY, DISPLAY_PASS, GpuMethod, PassSpec, RADIANCE, SKY_ENTRY_POINT,
+    COMMON, Constant, DISPLAY, GpuMethod, PassSpec, RADIANCE, SKY_ENTRY_POINT, VIEW_PASSES,
 };
 use crate::prelude::wgsl_prelude;
 use crate::uniforms::{Batch, Globals};
@@ -86,7 +86,7 @@ pub fn shader_source(method: &GpuMethod, pass: &PassSpec) -> String {
     for part in COMMON {
         s.push_str(part.source);
     }
-    if *pass != DISPLAY_PASS {
+    if !VIEW_PASSES.contains(pass) {
         for part in method.common {
             s.push_str(part.source);
         }
@@ -134,7 +134,7 @@ impl Pipelines {
         let passes = method
             .passes
             .iter()
-            .chain([&DISPLAY_PASS])
+            .chain(&VIEW_PASSES)
             .map(|&spec| {
                 let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                     label: Some(spec.name),

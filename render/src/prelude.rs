@@ -166,6 +166,17 @@ pub fn wgsl_prelude() -> String {
     );
     c("NEUTRAL_START", "f32", f(display::NEUTRAL_START));
     c(
+        "HISTOGRAM_BINS",
+        "u32",
+        format!("{}u", display::HISTOGRAM_BINS),
+    );
+    let [lo, hi] = display::HISTOGRAM_LOG10_RANGE;
+    c(
+        "HISTOGRAM_LOG10_RANGE",
+        "vec2<f32>",
+        format!("vec2<f32>({}, {})", f(lo), f(hi)),
+    );
+    c(
         "NEUTRAL_DESATURATION",
         "f32",
         f(display::NEUTRAL_DESATURATION),

@@ -112,6 +112,27 @@ pub fn read_buffer_f32x4(
     queue: &wgpu::Queue,
     source: &wgpu::Buffer,
 ) -> Result<Vec<[f32; 4]>, ReadbackError> {
+    Ok(bytemuck::pod_collect_to_vec(&read_buffer(
+        device, queue, source,
+    )?))
+}
+
+/// Reads a buffer of u32 back.
+pub fn read_buffer_u32(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    source: &wgpu::Buffer,
+) -> Result<Vec<u32>, ReadbackError> {
+    Ok(bytemuck::pod_collect_to_vec(&read_buffer(
+        device, queue, source,
+    )?))
+}
+
+fn read_buffer(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    source: &wgpu::Buffer,
+) -> Result<Vec<u8>, ReadbackError> {
     let buffer = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("read-back"),
         size: source.size(),
@@ -121,8 +142,7 @@ pub fn read_buffer_f32x4(
     let mut encoder = device.create_command_encoder(&Default::default());
     encoder.copy_buffer_to_buffer(source, 0, &buffer, 0, source.size());
     queue.submit([encoder.finish()]);
-    let bytes = map(device, &buffer)?;
-    Ok(bytemuck::pod_collect_to_vec(&bytes))
+    map(device, &buffer)
 }
 
 fn map(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>, ReadbackError> {

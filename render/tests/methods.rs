@@ -809,3 +809,51 @@ fn the_display_pass_matches_its_cpu_twin_for_every_tone_map() {
         );
     }
 }
+
+/// The meter pass counts the view's pixels per luminance bin as the CPU does from the same
+/// radiance (a pixel may land in the neighbouring bin where f32 and f64 logarithms straddle
+/// an edge); it runs only while the engine meters, and turning metering on runs it alone.
+#[test]
+fn the_meter_pass_counts_the_luminance_histogram_like_its_cpu_twin() {
+    use atmoscope_model::colour::linear_srgb_to_xyz;
+    use atmoscope_model::constants::MAX_LUMINOUS_EFFICACY_LM_PER_W;
+    use atmoscope_model::display::Histogram;
+    let Some(gpu) = context() else { return };
+    let (w, h) = (40u32, 30u32);
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    let scene = Scene::default();
+    for projection in [Projection::Perspective, Projection::Fisheye] {
+        let view = View::new(projection, w, h);
+        engine.set_metering(false);
+        let first = engine.render(&scene, &view).clone();
+        assert!(!first.passes.contains(&"meter") && !first.run.contains(&"meter"));
+        engine.set_metering(true);
+        assert_eq!(
+            engine.render(&scene, &view).run,
+            vec!["meter"],
+            "{projection:?}"
+        );
+        let counts = engine.histogram().expect("histogram").counts;
+        let radiance = engine.read_radiance().expect("radiance");
+        let cpu = Histogram::of(radiance.iter().filter(|p| p[3] > 0.0).map(|p| {
+            let rgb = [p[0], p[1], p[2]].map(f64::from);
+            linear_srgb_to_xyz(rgb).y * MAX_LUMINOUS_EFFICACY_LM_PER_W
+        }));
+        let total: u32 = counts.iter().sum();
+        assert_eq!(
+            total,
+            cpu.counts.iter().sum::<u32>(),
+            "{projection:?}: every pixel shown"
+        );
+        let moved: u32 = counts
+            .iter()
+            .zip(&cpu.counts)
+            .map(|(a, b)| a.abs_diff(*b))
+            .sum();
+        assert!(
+            moved * 100 <= total,
+            "{projection:?}: {moved} of {total} in other bins"
+        );
+        assert!(counts.iter().filter(|&&c| c > 0).count() > 3, "{counts:?}");
+    }
+}

@@ -97,3 +97,5 @@ fn has_aerosol() -> bool { return globals.options.z != 0u; }
 @group(1) @binding(6) var radiance_out: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(7) var radiance_in: texture_2d<f32>;
 @group(1) @binding(8) var display_out: texture_storage_2d<rgba8unorm, write>;
+// Pixels of the view per bin of log10 luminance (model::display::HISTOGRAM_LOG10_RANGE).
+@group(1) @binding(21) var<storage, read_write> histogram: array<atomic<u32>>;

@@ -3,6 +3,7 @@
 //! egui texture is rebound only when a frame actually drew something.
 
 use atmoscope_model::Scene;
+use atmoscope_model::display::Histogram;
 use atmoscope_render::{Engine, EngineError, FrameStats, View};
 use eframe::egui;
 use eframe::egui_wgpu::{self, wgpu};
@@ -74,6 +75,7 @@ pub struct GpuView {
     /// Counts frames that drew something; keys the caches of read-backs.
     generation: u64,
     radiance: Option<(u64, Arc<Radiance>)>,
+    histogram: Option<(u64, Arc<Histogram>)>,
     /// Wall time of the last frame that ran a pass, from `render` until the GPU was idle, ms.
     pub last_frame_ms: f64,
     /// The last frame's GPU fault, until the app shows it.
@@ -95,6 +97,7 @@ impl GpuView {
             view: None,
             generation: 0,
             radiance: None,
+            histogram: None,
             last_frame_ms: 0.0,
             fault: None,
         }
@@ -204,6 +207,24 @@ impl GpuView {
         });
         self.radiance = Some((self.generation, r.clone()));
         Ok(r)
+    }
+
+    /// Counts the view's luminance histogram in every frame that redraws it.
+    pub fn set_metering(&mut self, on: bool) {
+        self.engine.set_metering(on);
+    }
+
+    /// The luminance histogram of the frame on screen, while metering (read back at most
+    /// once per frame drawn).
+    pub fn histogram(&mut self) -> Option<Arc<Histogram>> {
+        if let Some((g, h)) = &self.histogram
+            && *g == self.generation
+        {
+            return Some(h.clone());
+        }
+        let h = Arc::new(self.engine.histogram().ok()?);
+        self.histogram = Some((self.generation, h.clone()));
+        Some(h)
     }
 
     /// The frame as displayed, RGBA8.

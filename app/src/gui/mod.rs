@@ -4,6 +4,7 @@
 //! while background work (path tracing, inspection, exports) is in progress.
 
 mod compare_tab;
+mod exposure;
 mod files;
 mod gpu_view;
 mod inspector;
@@ -79,6 +80,8 @@ pub struct ExplorerApp {
     exports: Vec<Job<anyhow::Result<Option<String>>>>,
     last_frame: Option<Instant>,
     ui_frame_ms: f64,
+    /// The automatic exposure's last reading of the main view.
+    meter: Option<exposure::Reading>,
     /// Print each frame's passes and times to stderr (ATMOSCOPE_FRAME_LOG=1).
     frame_log: bool,
 }
@@ -110,6 +113,7 @@ impl ExplorerApp {
             exports: Vec::new(),
             last_frame: None,
             ui_frame_ms: 0.0,
+            meter: None,
             frame_log: std::env::var_os("ATMOSCOPE_FRAME_LOG").is_some(),
         }
     }
@@ -422,6 +426,25 @@ impl ExplorerApp {
         }
     }
 
+    /// Automatic exposure: reads the main view's histogram and moves the exposure towards
+    /// the metered one (a frame at a time, asking for frames until it arrives).
+    fn expose(&mut self, ctx: &egui::Context) {
+        let d = &self.scene.display;
+        let histogram = self.views.as_mut().and_then(|v| v.main.histogram());
+        self.meter = match (d.auto_exposure, histogram) {
+            (true, Some(h)) => exposure::Reading::new(h, d.compensation_ev),
+            _ => None,
+        };
+        if let Some(m) = &self.meter {
+            let dt = f64::from(ctx.input(|i| i.stable_dt)).min(0.1);
+            let next = exposure::adapt(d.exposure_ev, m.target_ev, dt);
+            if next != d.exposure_ev {
+                self.scene.display.exposure_ev = next;
+                ctx.request_repaint();
+            }
+        }
+    }
+
     fn log_frame(&self) {
         let Some(views) = &self.views else { return };
         let s = views.main.stats();
@@ -461,6 +484,9 @@ impl eframe::App for ExplorerApp {
         }
         self.last_frame = Some(now);
         self.poll_jobs();
+        if let Some(v) = &mut self.views {
+            v.main.set_metering(self.scene.display.auto_exposure);
+        }
         let mut commands = self.shortcuts(&ctx);
         egui::Panel::top("menu").show(ui, |ui| commands.extend(self.menu(ui)));
         let full = self.layout.full_view;
@@ -513,7 +539,7 @@ impl eframe::App for ExplorerApp {
                 .default_size(330.0)
                 .show(ui, |ui| {
                     egui::ScrollArea::vertical().show(ui, |ui| {
-                        commands.extend(scene_panel::show(ui, &self.scene));
+                        commands.extend(scene_panel::show(ui, &self.scene, self.meter.as_ref()));
                     });
                 });
         }
@@ -539,6 +565,7 @@ impl eframe::App for ExplorerApp {
         for c in commands {
             self.apply(&ctx, c);
         }
+        self.expose(&ctx);
         if let Some(fault) = self.views.as_mut().and_then(|v| v.main.take_fault()) {
             self.message = Some(fault);
         }

@@ -1,6 +1,7 @@
 //! The Scene panel: every field of the scene as a control with its unit and a tooltip that
 //! explains the physics in a sentence or two.
 
+use super::exposure;
 use super::state::Command;
 use crate::presets::SHIPPED;
 use atmoscope_model::Scene;
@@ -32,7 +33,7 @@ const MONTHS: [&str; 12] = [
 ];
 
 /// Draws the panel; returns the commands its controls produced this frame.
-pub fn show(ui: &mut egui::Ui, current: &Scene) -> Vec<Command> {
+pub fn show(ui: &mut egui::Ui, current: &Scene, meter: Option<&exposure::Reading>) -> Vec<Command> {
     let mut commands = Vec::new();
     let mut s = current.clone();
     ui.heading("Scene");
@@ -68,7 +69,7 @@ pub fn show(ui: &mut egui::Ui, current: &Scene) -> Vec<Command> {
         .show(ui, |ui| camera(ui, &mut s));
     egui::CollapsingHeader::new("Rendering and display")
         .default_open(false)
-        .show(ui, |ui| render(ui, &mut s));
+        .show(ui, |ui| render(ui, &mut s, meter));
 
     if s != *current {
         commands.push(Command::SetScene(Box::new(s)));
@@ -407,7 +408,7 @@ fn model_tooltip(m: &methods::ModelInfo) -> String {
     )
 }
 
-fn render(ui: &mut egui::Ui, s: &mut Scene) {
+fn render(ui: &mut egui::Ui, s: &mut Scene, meter: Option<&exposure::Reading>) {
     let r = &mut s.render;
     let current = methods::info(r.method);
     ComboBox::from_label("Method")
@@ -485,7 +486,11 @@ fn render(ui: &mut egui::Ui, s: &mut Scene) {
             "Ray-marching sample counts of the model's passes (×1, ×2, ×4 from Low to High): higher is more accurate and slower. Table sizes stay the same.",
         );
     let d = &mut s.display;
-    ui.add(
+    ui.checkbox(&mut d.auto_exposure, "Automatic exposure").on_hover_text(
+        "Meter the view like a camera: the exposure that shows its average (log) luminance as mid-grey, reached over about half a second. Off: the exposure below, fixed (what comparisons and teaching want).",
+    );
+    ui.add_enabled(
+        !d.auto_exposure,
         Slider::new(&mut d.exposure_ev, limits::EXPOSURE_EV.range())
             .suffix(" EV")
             .text("exposure"),
@@ -493,6 +498,22 @@ fn render(ui: &mut egui::Ui, s: &mut Scene) {
     .on_hover_text(
         "Brightness of the display in photographic stops: +1 doubles it. Twilight needs +5 to +10.",
     );
+    if d.auto_exposure {
+        ui.add(
+            Slider::new(&mut d.compensation_ev, limits::COMPENSATION_EV.range())
+                .suffix(" EV")
+                .text("compensation"),
+        )
+        .on_hover_text("Brighter (+) or darker (−) than the metered exposure, in stops.");
+        if let Some(m) = meter {
+            ui.label(format!(
+                "metered: {:.3} cd/m² (log-average), EV100 {:.1}",
+                m.log_average_cd_m2, m.ev100
+            ))
+            .on_hover_text("EV100: the exposure value a reflected-light meter at ISO 100 gives for this view (15 is a sunlit scene, about 2 deep dusk).");
+            exposure::show_histogram(ui, &m.histogram);
+        }
+    }
     ComboBox::from_label("Tone map")
         .selected_text(d.tone_map.label())
         .show_ui(ui, |ui| {

@@ -755,3 +755,43 @@ fn a_new_atmosphere_is_built_across_frames_while_the_last_one_shows() {
     assert!(generation(&h) > drawn, "the new image is shown");
     assert_ne!(radiance(&mut h), before);
 }
+
+/// Automatic exposure meters the view and adapts to it over frames; a compensation moves the
+/// result by as many stops; the panel shows the metered EV100 and the histogram.
+#[test]
+fn automatic_exposure_meters_the_view_and_adapts() {
+    let mut h = harness();
+    h.state_mut().layout.tab = Tab::Sky;
+    h.run();
+    let settle = |h: &mut Harness<'static, ExplorerApp>| {
+        for _ in 0..1000 {
+            h.step();
+            let m = h.state().meter.as_ref().map(|m| m.target_ev);
+            if m == Some(h.state().scene.display.exposure_ev) {
+                return m.unwrap_or_default();
+            }
+        }
+        panic!("the exposure did not settle");
+    };
+    {
+        let d = &mut h.state_mut().scene.display;
+        (d.auto_exposure, d.exposure_ev) = (true, -10.0);
+    }
+    h.step();
+    let metered = settle(&mut h);
+    let m = h.state().meter.clone().expect("a reading");
+    let expected = atmoscope_model::display::metered_exposure_ev(m.log_average_cd_m2, 0.0);
+    assert!(
+        (metered - expected).abs() < 1e-9 && metered > -9.0,
+        "{metered}"
+    );
+    h.state_mut().scene.display.compensation_ev = -1.0;
+    let darker = settle(&mut h);
+    assert!(
+        (darker - (metered - 1.0)).abs() < 1e-9,
+        "{darker} {metered}"
+    );
+    h.get_by_label("Rendering and display").click();
+    h.run_steps(2);
+    h.get_by_label_contains("EV100");
+}

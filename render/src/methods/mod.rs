@@ -95,6 +95,8 @@ pub const MAX_TABLES_PER_PASS: usize = 6;
 /// Resources that are not tables: the view's images, written and read by the view passes.
 pub const RADIANCE: &str = "radiance";
 pub const DISPLAY: &str = "display";
+/// The view's luminance histogram (a storage buffer of `HISTOGRAM_BINS` counts).
+pub const HISTOGRAM: &str = "histogram";
 
 /// One pass.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -266,6 +268,24 @@ pub const DISPLAY_PASS: PassSpec = PassSpec {
     reads_for_ground: &[],
 };
 
+/// The pass that counts the view's pixels per luminance bin, after every model's view; it
+/// runs only while the engine meters (`Engine::set_metering`).
+pub const METER_PASS: PassSpec = PassSpec {
+    name: "meter",
+    shader: shader!("views/meter.wgsl"),
+    reads: &[RADIANCE],
+    writes: &[HISTOGRAM],
+    inputs: Inputs::VIEW_SIZE,
+    dispatch: Dispatch::View,
+    constants: &[],
+    repeat: Repeat::Once,
+    reads_above_atmosphere: None,
+    reads_for_ground: &[],
+};
+
+/// The passes after every model's sky pass: they read the view, not the tables.
+pub const VIEW_PASSES: [PassSpec; 2] = [DISPLAY_PASS, METER_PASS];
+
 /// The transmittance pass the table-based models share.
 pub const TRANSMITTANCE_PASS: PassSpec = PassSpec {
     name: "transmittance",
@@ -320,6 +340,7 @@ pub fn binding(id: &str) -> Option<u32> {
     let name = match id {
         RADIANCE => "radiance_out".to_string(),
         DISPLAY => "display_out".to_string(),
+        HISTOGRAM => "histogram".to_string(),
         table => format!("{}_lut", table.replace('-', "_")),
     };
     binding_of(&name)
