@@ -454,11 +454,9 @@ fn render_writes_png_luminance_map_and_exr_and_refuses_bad_input() {
         "outside the fisheye circle"
     );
 
-    // Automatic exposure meters the view: civil twilight comes out at a mid grey level.
-    let grey = |path: &std::path::Path| {
-        let img = image::open(path).expect("PNG written").to_luma8();
-        img.pixels().map(|p| f64::from(p.0[0])).sum::<f64>() / f64::from(img.width() * img.height())
-    };
+    // Automatic exposure meters the view: civil twilight, murky at a fixed 0 EV, comes out
+    // at a mid grey level.
+    let grey = mean_grey;
     let twilight = dir.join("twilight.png");
     let args = [
         "render",
@@ -468,7 +466,13 @@ fn render_writes_png_luminance_map_and_exr_and_refuses_bad_input() {
         "64x36",
         "--out",
     ];
-    let o = atmoscope(&[&args[..], &[twilight.to_str().unwrap()]].concat());
+    let manual = [
+        "--set",
+        "display.auto_exposure=false",
+        "--set",
+        "display.exposure_ev=0",
+    ];
+    let o = atmoscope(&[&args[..], &[twilight.to_str().unwrap()], &manual[..]].concat());
     assert!(o.status.success(), "{}", stderr(&o));
     let fixed = grey(&twilight);
     let auto = [
@@ -821,6 +825,54 @@ fn reference_checks_its_output_first_and_survives_a_truncated_cache_entry() {
 
 /// `bench gpu` times the floor pass in the same run and reports every model's frame, sun move
 /// and table rebuild as multiples of it.
+/// Mean grey level (0–255) of a PNG.
+fn mean_grey(path: &std::path::Path) -> f64 {
+    let img = image::open(path).expect("PNG written").to_luma8();
+    img.pixels().map(|p| f64::from(p.0[0])).sum::<f64>() / f64::from(img.width() * img.height())
+}
+
+/// Every shipped preset, rendered with its own settings, is neither murky nor washed out: its
+/// mean grey level lies between 50 and 200.
+#[test]
+fn every_shipped_preset_renders_at_a_mean_grey_between_50_and_200() {
+    let dir = std::env::temp_dir().join(format!("atmoscope-presets-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let mut names: Vec<String> =
+        std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../presets"))
+            .expect("presets/")
+            .filter_map(|e| {
+                e.ok()?
+                    .file_name()
+                    .to_str()?
+                    .strip_suffix(".ron")
+                    .map(String::from)
+            })
+            .collect();
+    names.sort();
+    assert!(names.len() >= 10, "{names:?}");
+    for name in &names {
+        let png = dir.join(format!("{name}.png"));
+        let o = atmoscope(&[
+            "render",
+            "--preset",
+            name,
+            "--size",
+            "96x54",
+            "--out",
+            png.to_str().unwrap(),
+        ]);
+        if skipped_without_gpu(&o) {
+            return;
+        }
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        let grey = mean_grey(&png);
+        assert!(
+            (50.0..=200.0).contains(&grey),
+            "{name}: mean grey {grey:.0}"
+        );
+    }
+}
+
 #[test]
 fn bench_gpu_reports_multiples_of_the_floor_pass() {
     let o = atmoscope(&[

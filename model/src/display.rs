@@ -152,14 +152,13 @@ impl Histogram {
     }
 
     /// The geometric mean of the luminances (cd/m²) from the bins' centres (within half a bin,
-    /// 0.06 decades); None for an empty view.
+    /// 0.06 decades), leaving out the first bin (below 10⁻⁴ cd/m²: black space, not a sky to
+    /// expose for); None when no pixel is lit.
     pub fn log_average_cd_m2(&self) -> Option<f64> {
-        let n: u64 = self.counts.iter().map(|&c| u64::from(c)).sum();
+        let lit = || self.counts.iter().enumerate().skip(1);
+        let n: u64 = lit().map(|(_, &c)| u64::from(c)).sum();
         (n > 0).then(|| {
-            let sum: f64 = self
-                .counts
-                .iter()
-                .enumerate()
+            let sum: f64 = lit()
                 .map(|(i, &c)| f64::from(c) * Self::bin_centre_log10(i))
                 .sum();
             10f64.powf(sum / n as f64)
@@ -260,6 +259,10 @@ mod tests {
         assert_eq!(Histogram::of([]).log_average_cd_m2(), None);
         let h = Histogram::of([1e-9, 1e12]);
         assert_eq!((h.counts[0], h.counts[HISTOGRAM_BINS - 1]), (1, 1));
+        // Black space around a lit planet does not count.
+        let planet = Histogram::of([0.0; 1000].into_iter().chain([50.0; 10]));
+        let avg = planet.log_average_cd_m2().expect("lit");
+        assert!((avg.log10() - 50f64.log10()).abs() < 0.07, "{avg}");
     }
 
     /// A smooth ramp quantised with dithering has row means within a tenth of a step of the
