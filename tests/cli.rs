@@ -453,6 +453,24 @@ fn render_writes_png_luminance_map_and_exr_and_refuses_bad_input() {
         [0.0; 3],
         "outside the fisheye circle"
     );
+    // The EXR says what its numbers are: linear sRGB primaries, D65 white, radiance.
+    let meta = exr::meta::MetaData::read_from_file(&exr, false).expect("EXR header");
+    let attributes = &meta.headers[0].shared_attributes;
+    let c = attributes.chromaticities.expect("chromaticities");
+    let near =
+        |v: exr::math::Vec2<f32>, x: f32, y: f32| (v.0 - x).abs() < 1e-3 && (v.1 - y).abs() < 1e-3;
+    assert!(near(c.red, 0.64, 0.33) && near(c.blue, 0.15, 0.06) && near(c.white, 0.3127, 0.329));
+    let layer = &meta.headers[0].own_attributes;
+    let unit = layer
+        .other
+        .iter()
+        .find(|(k, _)| k.to_string() == "radianceUnit")
+        .map(|(_, v)| format!("{v:?}"));
+    assert!(
+        unit.is_some_and(|u| u.contains("W m^-2 sr^-1")),
+        "{:?}",
+        layer.other
+    );
 
     // Automatic exposure meters the view: civil twilight, murky at a fixed 0 EV, comes out
     // at a mid grey level.

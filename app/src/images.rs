@@ -1,6 +1,7 @@
 //! Writing images: linear radiance as OpenEXR, display-referred previews and error maps as PNG.
 
 use anyhow::Context;
+use atmoscope_model::colour::linear_srgb_to_xyz;
 use atmoscope_model::display::{display, to_u8, to_u8_dithered};
 use atmoscope_model::scene::DisplaySettings;
 use image::{ImageBuffer, Rgb};
@@ -8,10 +9,41 @@ use std::path::Path;
 
 /// Linear sRGB radiance (W·m⁻²·sr⁻¹) as 32-bit float EXR.
 pub fn write_exr(path: &Path, rgb: &[[f64; 3]], width: u32, height: u32) -> anyhow::Result<()> {
-    let data: Vec<f32> = rgb.iter().flat_map(|c| c.map(|v| v as f32)).collect();
-    let img = ImageBuffer::<Rgb<f32>, _>::from_raw(width, height, data).context("image size")?;
-    save_atomic(path, &img.into(), image::ImageFormat::OpenExr)
+    use exr::prelude::{AttributeValue, Image, SpecificChannels, Text, Vec2, WritableImage};
+    let (w, h) = (width as usize, height as usize);
+    anyhow::ensure!(rgb.len() == w * h, "image size");
+    let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
+        let c = rgb[y * w + x];
+        (c[0] as f32, c[1] as f32, c[2] as f32)
+    });
+    let mut image = Image::from_channels((w, h), channels);
+    // Linear sRGB: its primaries and D65 white, from the conversion the renderer uses.
+    let xy = |c: [f64; 3]| {
+        let v = linear_srgb_to_xyz(c);
+        let sum = v.x + v.y + v.z;
+        Vec2((v.x / sum) as f32, (v.y / sum) as f32)
+    };
+    image.attributes.chromaticities = Some(exr::meta::attribute::Chromaticities {
+        red: xy([1.0, 0.0, 0.0]),
+        green: xy([0.0, 1.0, 0.0]),
+        blue: xy([0.0, 0.0, 1.0]),
+        white: xy([1.0, 1.0, 1.0]),
+    });
+    image.layer_data.attributes.other.insert(
+        Text::from(EXR_UNIT_ATTRIBUTE),
+        AttributeValue::Text(Text::from(EXR_UNIT)),
+    );
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image
+        .write()
+        .to_buffered(&mut bytes)
+        .with_context(|| format!("cannot encode {}", path.display()))?;
+    crate::cli::write_atomic(path, bytes.get_ref())
 }
+
+/// The EXR attribute naming the unit of the pixel values, and the unit.
+pub const EXR_UNIT_ATTRIBUTE: &str = "radianceUnit";
+pub const EXR_UNIT: &str = "W m^-2 sr^-1 (linear sRGB, Y = integral of ybar(lambda) L(lambda))";
 
 /// Encodes `img` in memory and writes it atomically: a full disk or a cancelled export never
 /// leaves a truncated image.
