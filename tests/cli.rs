@@ -891,6 +891,52 @@ fn every_shipped_preset_renders_at_a_mean_grey_between_50_and_200() {
     }
 }
 
+/// A time-lapse writes every frame and an animated PNG of them all; a sweep through the hours
+/// of a sun placed by angles is refused with a message.
+#[test]
+fn timelapse_writes_frames_and_an_animated_png() {
+    let dir = std::env::temp_dir().join(format!("atmoscope-timelapse-{}", std::process::id()));
+    let out = dir.to_str().unwrap();
+    let args = [
+        "timelapse",
+        "--elevations",
+        "8,-4",
+        "--frames",
+        "3",
+        "--size",
+        "32x18",
+    ];
+    let o = atmoscope(&[&args[..], &["--out", out]].concat());
+    if skipped_without_gpu(&o) {
+        return;
+    }
+    assert!(o.status.success(), "{}", stderr(&o));
+    let frames: Vec<f64> = (0..3)
+        .map(|i| mean_grey(&dir.join(format!("frame_{i:04}.png"))))
+        .collect();
+    assert!(frames[0] > frames[2], "the sun sets: {frames:?}");
+    let file = std::fs::File::open(dir.join("timelapse.png")).expect("animation");
+    let reader = png::Decoder::new(std::io::BufReader::new(file))
+        .read_info()
+        .expect("PNG");
+    let control = reader.info().animation_control().expect("an APNG");
+    assert_eq!(control.num_frames, 3);
+    let o = atmoscope(&[
+        "timelapse",
+        "--hours",
+        "4,20",
+        "--frames",
+        "2",
+        "--out",
+        out,
+    ]);
+    assert!(
+        !o.status.success() && stderr(&o).contains("date"),
+        "{}",
+        stderr(&o)
+    );
+}
+
 #[test]
 fn bench_gpu_reports_multiples_of_the_floor_pass() {
     let o = atmoscope(&[

@@ -6,6 +6,7 @@ mod gui;
 mod images;
 mod presets;
 mod summary;
+mod timelapse;
 
 use clap::Parser;
 

@@ -14,6 +14,7 @@ mod reference;
 mod render;
 mod scene_args;
 mod stress;
+mod timelapse;
 
 pub use scene_args::SceneArgs;
 
@@ -51,6 +52,9 @@ pub enum Command {
     Reference(reference::ReferenceArgs),
     /// Render one view with the real-time GPU engine to PNG (as displayed) or EXR (linear).
     Render(render::RenderArgs),
+    /// A sweep of the sun (its elevation, or the hours of a day) as a PNG sequence and an
+    /// animated PNG.
+    Timelapse(timelapse::TimelapseArgs),
     /// Error metrics of an image against a reference (RMSE, ΔE2000, FLIP), with error maps.
     Compare(compare::CompareArgs),
     /// Refit the Spectral4 matrix against SpectralN renders over the view suite.
@@ -92,6 +96,7 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Probe(args) => probe::run(&args),
         Command::Reference(args) => reference::run(&args),
         Command::Render(args) => render::run(&args),
+        Command::Timelapse(args) => timelapse::run(&args),
         Command::Compare(args) => compare::run(&args),
         Command::FitWavelengths(args) => fit::run(&args),
         Command::FitGarciaLinan(args) => fit_garcia_linan::run(&args),

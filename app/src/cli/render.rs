@@ -21,6 +21,18 @@ pub enum ViewArg {
     Luminance,
 }
 
+impl ViewArg {
+    /// The projection and display mode the argument asks for.
+    pub fn projection_and_mode(self) -> (Projection, DisplayMode) {
+        match self {
+            ViewArg::Perspective => (Projection::Perspective, DisplayMode::Colour),
+            ViewArg::Fisheye => (Projection::Fisheye, DisplayMode::Colour),
+            ViewArg::Panorama => (Projection::Panorama, DisplayMode::Colour),
+            ViewArg::Luminance => (Projection::Fisheye, DisplayMode::LUMINANCE),
+        }
+    }
+}
+
 #[derive(Args, Debug)]
 pub struct RenderArgs {
     #[command(flatten)]
@@ -70,7 +82,7 @@ pub fn parse_wavelengths(s: &str) -> Result<WavelengthSet, String> {
     }
 }
 
-fn parse_range(s: &str) -> Result<(f64, f64), String> {
+pub(crate) fn parse_range(s: &str) -> Result<(f64, f64), String> {
     let (a, b) = s.split_once(',').ok_or("expected MIN,MAX, e.g. -2,5")?;
     let a: f64 = a.trim().parse().map_err(|_| format!("bad minimum {a:?}"))?;
     let b: f64 = b.trim().parse().map_err(|_| format!("bad maximum {b:?}"))?;
@@ -131,15 +143,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     }
     let mut mode = DisplayMode::Colour;
     if let Some(p) = args.projection {
-        projection = match p {
-            ViewArg::Perspective => Projection::Perspective,
-            ViewArg::Fisheye => Projection::Fisheye,
-            ViewArg::Panorama => Projection::Panorama,
-            ViewArg::Luminance => {
-                mode = DisplayMode::LUMINANCE;
-                Projection::Fisheye
-            }
-        };
+        (projection, mode) = p.projection_and_mode();
     }
     if let (Some((log10_min, log10_max)), DisplayMode::Luminance { .. }) =
         (args.luminance_range, mode)

@@ -5,6 +5,7 @@
 use super::gpu_view::Gpu;
 use super::jobs::Progress;
 use crate::images::{save_rgb8, write_exr};
+use crate::timelapse;
 use atmoscope_model::Scene;
 use atmoscope_model::camera::Projection;
 use atmoscope_render::{Engine, View};
@@ -21,12 +22,14 @@ pub enum ExportKind {
     Exr,
     /// A 360° × 180° panorama of linear radiance from the camera.
     PanoramaExr,
+    /// A sunset (or the scene's day) as an animated PNG, its frames beside it.
+    Timelapse,
 }
 
 impl ExportKind {
     pub fn extension(self) -> &'static str {
         match self {
-            ExportKind::Png => "png",
+            ExportKind::Png | ExportKind::Timelapse => "png",
             ExportKind::Exr | ExportKind::PanoramaExr => "exr",
         }
     }
@@ -36,6 +39,7 @@ impl ExportKind {
             ExportKind::Png => "Export the view as PNG",
             ExportKind::Exr => "Export the view's radiance as EXR",
             ExportKind::PanoramaExr => "Export a panorama EXR",
+            ExportKind::Timelapse => "Export a time-lapse (animated PNG)",
         }
     }
 }
@@ -95,6 +99,53 @@ pub fn write_radiance_exr(
         .map(|p| [p[0], p[1], p[2]].map(f64::from))
         .collect();
     write_exr(path, &rgb, width, height)
+}
+
+/// Frames of the explorer's time-lapse, a second at 24 frames a second.
+pub const TIMELAPSE_FRAMES: u32 = 48;
+pub const TIMELAPSE_FPS: u16 = 24;
+pub const TIMELAPSE_SIZE: (u32, u32) = (640, 360);
+
+/// Renders a time-lapse of a sunset from the scene's sun (or of the scene's day, when the sun is
+/// placed by date) with the view's projection: the animation at `path`, the frames in the
+/// folder `<name>_frames` beside it. None when cancelled.
+pub fn export_timelapse(
+    gpu: &Gpu,
+    scene: &Scene,
+    projection: Projection,
+    path: &Path,
+    progress: &Progress,
+) -> anyhow::Result<Option<String>> {
+    let (w, h) = TIMELAPSE_SIZE;
+    let stem = path
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("timelapse");
+    let dir = path.with_file_name(format!("{stem}_frames"));
+    let sweep = timelapse::Sweep::sunset_or_day(scene);
+    let written = timelapse::render(
+        &gpu.device,
+        &gpu.queue,
+        scene,
+        sweep,
+        TIMELAPSE_FRAMES,
+        View::new(projection, w, h),
+        TIMELAPSE_FPS,
+        &dir,
+        path,
+        &|f| {
+            progress.set(f);
+            !progress.cancelled()
+        },
+    )?;
+    Ok(written.map(|written| {
+        format!(
+            "wrote {} ({} frames, {w}×{h}; the frames are in {})",
+            path.display(),
+            written.frames.len(),
+            dir.display()
+        )
+    }))
 }
 
 /// Renders and writes a panorama; None when cancelled.

@@ -210,6 +210,12 @@ impl ExplorerApp {
                     files::export_panorama(&gpu, &scene, &path, p)
                 })
             }
+            ExportKind::Timelapse => {
+                let (gpu, scene) = (views.gpu.clone(), self.scene.clone());
+                Job::spawn(label, ctx, move |p| {
+                    files::export_timelapse(&gpu, &scene, view.projection, &path, p)
+                })
+            }
         };
         self.exports.push(job);
     }
@@ -344,6 +350,7 @@ impl ExplorerApp {
                     (ExportKind::Png, "  (Ctrl+E)"),
                     (ExportKind::Exr, "  (Ctrl+Shift+E)"),
                     (ExportKind::PanoramaExr, ""),
+                    (ExportKind::Timelapse, ""),
                 ] {
                     if ui.button(format!("{}…{key}", kind.title())).clicked() {
                         commands.extend(files::pick_export(kind).map(|p| Command::Export(kind, p)));

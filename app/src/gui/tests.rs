@@ -574,6 +574,44 @@ fn a_panorama_exports_in_the_background_and_can_be_cancelled() {
     assert!(hi - lo <= 0.01 * hi, "zenith row spreads {lo}..{hi}");
 }
 
+/// File → Export a time-lapse renders a sunset off the UI thread: an animated PNG of every
+/// frame and the frames beside it; cancelled, it writes no animation.
+#[test]
+fn a_timelapse_exports_in_the_background_and_can_be_cancelled() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness();
+    let ctx = h.ctx.clone();
+    let cancelled = dir.path().join("cancelled.png");
+    h.state_mut().apply(
+        &ctx,
+        Command::Export(ExportKind::Timelapse, cancelled.clone()),
+    );
+    h.state().exports[0].cancel();
+    wait_for_exports(&mut h);
+    assert_eq!(h.state().notice.as_deref(), Some("export cancelled"));
+    assert!(!cancelled.exists());
+
+    let path = dir.path().join("sunset.png");
+    h.state_mut()
+        .apply(&ctx, Command::Export(ExportKind::Timelapse, path.clone()));
+    wait_for_exports(&mut h);
+    assert!(h.state().message.is_none(), "{:?}", h.state().message);
+    let file = std::fs::File::open(&path).expect("animation");
+    let reader = png::Decoder::new(std::io::BufReader::new(file))
+        .read_info()
+        .expect("PNG");
+    let frames = reader
+        .info()
+        .animation_control()
+        .expect("an APNG")
+        .num_frames;
+    assert_eq!(frames, super::files::TIMELAPSE_FRAMES);
+    let written = std::fs::read_dir(dir.path().join("sunset_frames"))
+        .expect("frames")
+        .count();
+    assert_eq!(written as u32, frames);
+}
+
 #[test]
 fn the_luminance_tab_reads_out_the_pixel_under_the_pointer() {
     let mut h = harness();
