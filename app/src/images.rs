@@ -1,9 +1,9 @@
 //! Writing images: linear radiance as OpenEXR, display-referred previews and error maps as PNG.
 
 use anyhow::Context;
+use atmoscope_model::Scene;
 use atmoscope_model::colour::linear_srgb_to_xyz;
-use atmoscope_model::display::{display, to_u8, to_u8_dithered};
-use atmoscope_model::scene::DisplaySettings;
+use atmoscope_model::display::{display_balanced, to_u8, to_u8_dithered};
 use image::{ImageBuffer, Rgb};
 use std::path::Path;
 
@@ -82,20 +82,22 @@ pub fn read_exr(path: &Path) -> anyhow::Result<(Vec<[f64; 3]>, u32, u32)> {
     Ok((img.pixels().map(|p| p.0.map(f64::from)).collect(), w, h))
 }
 
-/// Display-referred PNG with the given exposure, tone map and dithering.
+/// Display-referred PNG of `scene`'s display: white balance, exposure, tone map, dithering.
 pub fn write_png(
     path: &Path,
     rgb: &[[f64; 3]],
     width: u32,
     height: u32,
-    d: &DisplaySettings,
+    scene: &Scene,
 ) -> anyhow::Result<()> {
+    let d = &scene.display;
+    let balance = atmoscope_model::white_balance::matrix(scene);
     let data: Vec<u8> = rgb
         .iter()
         .enumerate()
         .flat_map(|(i, &c)| {
             let (x, y) = (i as u32 % width.max(1), i as u32 / width.max(1));
-            display(c, d.exposure_ev, d.tone_map).map(|v| match d.dither {
+            display_balanced(c, &balance, d.exposure_ev, d.tone_map).map(|v| match d.dither {
                 true => to_u8_dithered(v, x, y),
                 false => to_u8(v),
             })

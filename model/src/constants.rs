@@ -3,6 +3,10 @@
 
 /// Boltzmann constant, J/K (CODATA 2018, exact).
 pub const BOLTZMANN_J_PER_K: f64 = 1.380649e-23;
+/// Planck constant, J·s (CODATA 2018, exact).
+pub const PLANCK_J_S: f64 = 6.626_070_15e-34;
+/// Speed of light in vacuum, m/s (exact).
+pub const SPEED_OF_LIGHT_M_PER_S: f64 = 299_792_458.0;
 /// One Dobson unit as a column number density, molecules·m⁻² (2.6867e16 cm⁻²).
 pub const DOBSON_UNIT_PER_M2: f64 = 2.6867e20;
 /// Number density of standard air (288.15 K, 1013.25 hPa), m⁻³ (Bodhaine et al. 1999, eq. 2).

@@ -86,6 +86,20 @@ pub fn display(rgb: [f64; 3], exposure_ev: f64, tone_map_kind: ToneMap) -> [f64;
     tone_map(rgb.map(|c| (c * k).max(0.0)), tone_map_kind).map(srgb_encode)
 }
 
+/// `display` of linear sRGB balanced first by `balance` (`white_balance::matrix`).
+pub fn display_balanced(
+    rgb: [f64; 3],
+    balance: &[[f64; 3]; 3],
+    exposure_ev: f64,
+    tone_map_kind: ToneMap,
+) -> [f64; 3] {
+    display(
+        crate::white_balance::apply(balance, rgb),
+        exposure_ev,
+        tone_map_kind,
+    )
+}
+
 /// 8-bit display value.
 pub fn to_u8(v: f64) -> u8 {
     (v.clamp(0.0, 1.0) * 255.0).round() as u8

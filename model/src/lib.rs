@@ -29,6 +29,7 @@ pub mod sun;
 pub mod table;
 pub mod views;
 pub mod wavelengths;
+pub mod white_balance;
 
 pub use atmosphere::{Atmosphere, OpticalDepth, Optics};
 pub use scene::{Scene, SceneError};

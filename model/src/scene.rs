@@ -418,6 +418,20 @@ pub struct DisplaySettings {
     /// Dither the 8-bit image (triangular noise of up to one step per pixel) so that smooth
     /// gradients do not band; off for byte-exact comparisons.
     pub dither: bool,
+    /// Which light the display shows as white (`model::white_balance`).
+    pub white_balance: WhiteBalance,
+}
+
+/// The light a display shows as white.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
+pub enum WhiteBalance {
+    /// D65, the sRGB white: colours as measured.
+    #[default]
+    None,
+    /// The sun's direct light at the ground when overhead, through the scene's atmosphere.
+    SunAtNoon,
+    /// A blackbody at this colour temperature, K (1000–40 000).
+    Temperature { kelvin: f64 },
 }
 
 impl Default for DisplaySettings {
@@ -428,6 +442,7 @@ impl Default for DisplaySettings {
             compensation_ev: 0.0,
             tone_map: ToneMap::default(),
             dither: true,
+            white_balance: WhiteBalance::default(),
         }
     }
 }
@@ -669,6 +684,12 @@ pub mod limits {
         max: 20.0,
         unit: " EV",
     };
+    /// `display.white_balance`'s colour temperature.
+    pub const WHITE_BALANCE_KELVIN: Limit = Limit {
+        min: 1000.0,
+        max: 40000.0,
+        unit: " K",
+    };
     /// `display.compensation_ev`.
     pub const COMPENSATION_EV: Limit = Limit {
         min: -10.0,
@@ -870,6 +891,13 @@ impl Scene {
             self.display.exposure_ev,
             limits::EXPOSURE_EV,
         );
+        if let WhiteBalance::Temperature { kelvin } = self.display.white_balance {
+            c.limit(
+                "display.white_balance.kelvin",
+                kelvin,
+                limits::WHITE_BALANCE_KELVIN,
+            );
+        }
         c.limit(
             "display.compensation_ev",
             self.display.compensation_ev,

@@ -23,14 +23,16 @@ use crate::uniforms::{self, FrameInputs, Globals};
 use crate::views::View;
 use atmoscope_model::Atmosphere;
 use atmoscope_model::camera::{Camera, Projection, Sees};
+use atmoscope_model::colour::Xyz;
 use atmoscope_model::display::{HISTOGRAM_BINS, Histogram};
 use atmoscope_model::geometry::direction_from_angles;
 use atmoscope_model::methods::shared::{Params, viewpoint};
 use atmoscope_model::methods::{self, Inputs, NotRealtime};
 use atmoscope_model::scene::{
     AtmosphereSettings, CameraSettings, FittedConstants, Method, Quality, Scene, ToneMap,
-    WavelengthSet,
+    WavelengthSet, WhiteBalance,
 };
+use atmoscope_model::white_balance;
 use glam::DVec3;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -163,7 +165,7 @@ struct Snapshot {
     sun: [f64; 3],
     camera: (CameraSettings, Projection),
     size: [u32; 2],
-    display: (f64, ToneMap, DisplayMode, bool),
+    display: (f64, ToneMap, DisplayMode, bool, WhiteBalance),
 }
 
 impl Snapshot {
@@ -218,6 +220,7 @@ impl FrameSetup {
                 scene.display.tone_map,
                 view.mode,
                 scene.display.dither,
+                scene.display.white_balance,
             ),
         };
         let globals = Globals::from(&FrameInputs {
@@ -229,6 +232,11 @@ impl FrameSetup {
             size,
             mode: view.mode,
             model: (gpu.constants)(params),
+            balance: white_balance::matrix_with(scene, || {
+                *state.noon_white.get_or_init(|| {
+                    white_balance::noon_sun_white(&Atmosphere::new(&state.key.settings))
+                })
+            }),
         });
         FrameSetup {
             snapshot,
@@ -562,6 +570,8 @@ struct AtmosphereState {
     key: AtmosphereKey,
     params: Params,
     tables: TableBuffers,
+    /// The white of the noon sun through this atmosphere, once a white balance asks for it.
+    noon_white: std::sync::OnceLock<Xyz>,
 }
 
 struct Target {
@@ -1015,6 +1025,7 @@ impl Engine {
             key,
             params,
             tables,
+            noon_white: std::sync::OnceLock::new(),
         }
     }
 

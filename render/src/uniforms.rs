@@ -96,6 +96,7 @@ pub struct Globals {
     pub steps_a: [u32; 4],
     pub steps_b: [u32; 4],
     pub display: [f32; 4],
+    pub white_balance: [[f32; 4]; 3],
     pub model: [f32; 4],
 }
 
@@ -114,6 +115,8 @@ pub struct FrameInputs<'a> {
     pub mode: DisplayMode,
     /// The constants of the model on screen.
     pub model: [f64; 4],
+    /// The display's white balance (rows, on linear sRGB).
+    pub balance: [[f64; 3]; 3],
 }
 
 impl From<&FrameInputs<'_>> for Globals {
@@ -179,6 +182,9 @@ impl From<&FrameInputs<'_>> for Globals {
                 log10_max as f32,
                 f32::from(u8::from(f.scene.display.dither)),
             ],
+            white_balance: f
+                .balance
+                .map(|r| [r[0] as f32, r[1] as f32, r[2] as f32, 0.0]),
             model: f4(f.model),
         }
     }

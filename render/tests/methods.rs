@@ -754,20 +754,27 @@ fn a_rebuild_in_slices_gives_the_same_tables_as_a_whole_one() {
 }
 
 /// The display pass is the twin of `model::display`: every tone map, with and without
-/// dithering, gives the bytes the CPU gives from the same radiance, within one step (f32
+/// dithering, under each white balance, gives the bytes the CPU gives from the same radiance, within one step (f32
 /// against f64 at rounding edges, in a fiftieth of the bytes at most); dithering changes bytes and keeps their mean.
 #[test]
 fn the_display_pass_matches_its_cpu_twin_for_every_tone_map() {
-    use atmoscope_model::display::{display, to_u8, to_u8_dithered};
-    use atmoscope_model::scene::ToneMap;
+    use atmoscope_model::display::{display_balanced, to_u8, to_u8_dithered};
+    use atmoscope_model::scene::{ToneMap, WhiteBalance};
     let Some(gpu) = context() else { return };
     let (w, h) = (48u32, 27u32);
     let view = View::new(Projection::Perspective, w, h);
     let mut engine = Engine::new(&gpu.device, &gpu.queue);
     let mut scene = Scene::default();
     scene.display.exposure_ev = 1.5;
-    for tone_map in ToneMap::ALL {
+    let balances = [
+        WhiteBalance::None,
+        WhiteBalance::SunAtNoon,
+        WhiteBalance::Temperature { kelvin: 3200.0 },
+    ];
+    for (k, tone_map) in ToneMap::ALL.into_iter().enumerate() {
         let mut bytes = Vec::new();
+        scene.display.white_balance = balances[k % balances.len()];
+        let balance = atmoscope_model::white_balance::matrix(&scene);
         for dither in [false, true] {
             scene.display.tone_map = tone_map;
             scene.display.dither = dither;
@@ -777,8 +784,9 @@ fn the_display_pass_matches_its_cpu_twin_for_every_tone_map() {
             let (mut worst, mut differ) = (0, 0);
             for (i, p) in radiance.iter().enumerate() {
                 let (x, y) = (i as u32 % w, i as u32 / w);
-                let shown = display(
+                let shown = display_balanced(
                     [p[0], p[1], p[2]].map(f64::from),
+                    &balance,
                     scene.display.exposure_ev,
                     tone_map,
                 );

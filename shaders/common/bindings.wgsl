@@ -32,6 +32,8 @@ struct Globals {
     steps_b: vec4<u32>,
     // exposure scale, log10 luminance min and max (cd/m²), 1 to dither the 8-bit image (else 0)
     display: vec4<f32>,
+    // white balance matrix rows on linear sRGB (model::white_balance), w unused
+    white_balance: array<vec4<f32>, 3>,
     // constants of the model on screen (render::methods::GpuMethod::constants)
     model: vec4<f32>,
 }

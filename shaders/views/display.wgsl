@@ -96,7 +96,9 @@ fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
             let t = (log(max(y, 1e-30)) / log(10.0) - globals.display.y) / (globals.display.z - globals.display.y);
             out = false_colour(t);
         } else {
-            out = srgb_encode(tone_map(max(l.rgb * globals.display.x, vec3<f32>(0.0))));
+            let wb = globals.white_balance;
+            let balanced = vec3<f32>(dot(wb[0].xyz, l.rgb), dot(wb[1].xyz, l.rgb), dot(wb[2].xyz, l.rgb));
+            out = srgb_encode(tone_map(max(balanced * globals.display.x, vec3<f32>(0.0))));
         }
     }
     if globals.display.w > 0.0 {

@@ -221,7 +221,7 @@ fn render_job(job: &Job, args: &ReferenceArgs) -> anyhow::Result<()> {
         });
     if let Some((rgb, cw, ch)) = hit {
         write_exr(&job.out, &rgb, cw, ch)?;
-        write_png(&png, &rgb, cw, ch, &job.scene.display)?;
+        write_png(&png, &rgb, cw, ch, &job.scene)?;
         eprintln!(
             "{}: from the cache ({})",
             job.out.display(),
@@ -274,7 +274,7 @@ fn render_job(job: &Job, args: &ReferenceArgs) -> anyhow::Result<()> {
     bar.finish();
     let rgb = render.linear_srgb();
     write_exr(&job.out, &rgb, w, h)?;
-    write_png(&png, &rgb, w, h, &job.scene.display)?;
+    write_png(&png, &rgb, w, h, &job.scene)?;
     if let Some(dir) = cached.parent()
         && std::fs::create_dir_all(dir).is_ok()
     {

@@ -10,7 +10,7 @@ use super::jobs::{Job, Progress};
 use atmoscope_model::atmosphere::Atmosphere;
 use atmoscope_model::colour::{cie1931, linear_srgb_to_xyz};
 use atmoscope_model::constants::MAX_LUMINOUS_EFFICACY_LM_PER_W;
-use atmoscope_model::display::{display, to_u8};
+use atmoscope_model::display::{display_balanced, to_u8};
 use atmoscope_model::geometry::{Ray, direction_from_angles};
 use atmoscope_model::methods::path_tracer::{LANES, LaneOptics, PathTracer, PathTracerSettings};
 use atmoscope_model::methods::rng::Rng;
@@ -258,7 +258,8 @@ impl Inspector {
         if let Some(rgb) = a.probe.displayed {
             let xyz = linear_srgb_to_xyz(rgb);
             let d = &a.probe.scene.display;
-            let shown = display(rgb, d.exposure_ev, d.tone_map).map(to_u8);
+            let balance = atmoscope_model::white_balance::matrix(&a.probe.scene);
+            let shown = display_balanced(rgb, &balance, d.exposure_ev, d.tone_map).map(to_u8);
             ui.label(format!(
                 "as rendered: XYZ ({:.4}, {:.4}, {:.4}) W/(m² sr) · luminance {:.4e} cd/m²",
                 xyz.x,

@@ -6,7 +6,7 @@ use super::gpu_view::{Gpu, GpuView};
 use super::jobs::Job;
 use atmoscope_model::Scene;
 use atmoscope_model::camera::Projection;
-use atmoscope_model::display::{display, to_u8};
+use atmoscope_model::display::{display_balanced, to_u8};
 use atmoscope_model::methods::path_tracer::PathTracerSettings;
 use atmoscope_model::metrics::{DisplaySetup, delta_e2000_map};
 use atmoscope_model::reference::ReferenceRender;
@@ -237,6 +237,7 @@ impl ReferenceTab {
         (w, h): (u32, u32),
     ) {
         let d = &scene.display;
+        let balance = atmoscope_model::white_balance::matrix(scene);
         let image =
             |pixels: Vec<egui::Color32>| egui::ColorImage::new([w as usize, h as usize], pixels);
         let reference = image(
@@ -244,7 +245,7 @@ impl ReferenceTab {
                 .rgb
                 .iter()
                 .map(|&c| {
-                    let e = display(c, d.exposure_ev, d.tone_map).map(to_u8);
+                    let e = display_balanced(c, &balance, d.exposure_ev, d.tone_map).map(to_u8);
                     egui::Color32::from_rgb(e[0], e[1], e[2])
                 })
                 .collect(),

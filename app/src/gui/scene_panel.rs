@@ -12,6 +12,7 @@ use atmoscope_model::profiles::{AirProfile, OzoneProfile};
 use atmoscope_model::scene::limits;
 use atmoscope_model::scene::{
     AerosolPhase, FittedConstants, OzoneColumn, Quality, SunSettings, ToneMap, WavelengthSet,
+    WhiteBalance,
 };
 use atmoscope_model::solar::SolarSpectrum;
 use atmoscope_model::sun::DateTime;
@@ -527,6 +528,40 @@ fn render(ui: &mut egui::Ui, s: &mut Scene, meter: Option<&exposure::Reading>) {
             "How the sky's huge range of brightness is squeezed into what a screen can show. {}",
             d.tone_map.describe()
         ));
+    let kelvin = match d.white_balance {
+        WhiteBalance::Temperature { kelvin } => kelvin,
+        _ => 5000.0,
+    };
+    let label = |w: WhiteBalance| match w {
+        WhiteBalance::None => "None (D65)".to_string(),
+        WhiteBalance::SunAtNoon => "The sun at noon".to_string(),
+        WhiteBalance::Temperature { kelvin } => format!("{kelvin:.0} K"),
+    };
+    ComboBox::from_label("White balance")
+        .selected_text(label(d.white_balance))
+        .show_ui(ui, |ui| {
+            ui.selectable_value(&mut d.white_balance, WhiteBalance::None, "None (D65)")
+                .on_hover_text("Colours as measured: the sRGB white, D65, is white.");
+            ui.selectable_value(&mut d.white_balance, WhiteBalance::SunAtNoon, "The sun at noon")
+                .on_hover_text("The sun's direct light at the ground when overhead, through this atmosphere, is white, as a camera set to daylight sees.");
+            ui.selectable_value(
+                &mut d.white_balance,
+                WhiteBalance::Temperature { kelvin },
+                "Colour temperature",
+            )
+            .on_hover_text("A blackbody at the chosen temperature is white: lower makes the picture bluer, higher warmer.");
+        })
+        .response
+        .on_hover_text("Which light the display shows as white, by a chromatic adaptation transform (Bradford).");
+    if let WhiteBalance::Temperature { kelvin } = &mut d.white_balance {
+        let k = limits::WHITE_BALANCE_KELVIN;
+        ui.add(
+            Slider::new(kelvin, k.min..=k.max)
+                .logarithmic(true)
+                .suffix(" K")
+                .text("colour temperature"),
+        );
+    }
     ui.checkbox(&mut d.dither, "Dither")
         .on_hover_text("Adds up to one step of noise per pixel to the 8-bit image so that smooth skies do not band. Off for byte-exact comparisons.");
 }
