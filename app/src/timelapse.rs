@@ -7,7 +7,6 @@
 use crate::cli::write_atomic;
 use anyhow::Context;
 use atmoscope_model::Scene;
-use atmoscope_model::display::metered_exposure_ev;
 use atmoscope_model::scene::SunSettings;
 use atmoscope_render::wgpu;
 use atmoscope_render::{Engine, View};
@@ -128,15 +127,7 @@ pub fn render(
     let mut images = Vec::new();
     let mut written = Vec::new();
     for i in 0..frames {
-        let mut scene = sweep.scene(base, i, frames)?;
-        engine.set_metering(scene.display.auto_exposure);
-        engine.try_render(&scene, &view)?;
-        if scene.display.auto_exposure
-            && let Some(l) = engine.histogram()?.log_average_cd_m2()
-        {
-            scene.display.exposure_ev = metered_exposure_ev(l, scene.display.compensation_ev);
-            engine.try_render(&scene, &view)?;
-        }
+        engine.render_still(&sweep.scene(base, i, frames)?, &view)?;
         let rgba = engine.read_display()?;
         let path = dir.join(format!("frame_{i:04}.png"));
         write_atomic(&path, &encode_png(&[&rgba], view.width, view.height, fps)?)?;

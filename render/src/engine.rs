@@ -1140,6 +1140,33 @@ impl Engine {
         Some(r.progress())
     }
 
+    /// Renders `scene` as a still: with automatic exposure (`display.auto_exposure`) the view is
+    /// metered and shown at once at the metered exposure (a window adapts over frames
+    /// instead). Returns the scene as shown (its exposure the one used) and the metered
+    /// log-average luminance, cd/m².
+    pub fn render_still(
+        &mut self,
+        scene: &Scene,
+        view: &View,
+    ) -> Result<(Scene, Option<f64>), EngineError> {
+        let auto = scene.display.auto_exposure;
+        self.set_metering(auto);
+        self.try_render(scene, view)?;
+        let mut shown = scene.clone();
+        let metered = if auto {
+            self.histogram()?.log_average_cd_m2()
+        } else {
+            None
+        };
+        if let Some(l) = metered {
+            shown.display.exposure_ev =
+                atmoscope_model::display::metered_exposure_ev(l, scene.display.compensation_ev);
+            // Only the display pass runs again.
+            self.try_render(&shown, view)?;
+        }
+        Ok((shown, metered))
+    }
+
     /// [`Engine::try_render`] for callers that have already checked the scene's model is a
     /// real-time one; a path-tracer scene renders nothing and reports no pass.
     pub fn render(&mut self, scene: &Scene, view: &View) -> &FrameStats {

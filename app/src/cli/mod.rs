@@ -81,6 +81,16 @@ pub enum PresetsAction {
     },
     /// List the shipped presets.
     List,
+    /// Render every shipped preset with its own settings into DIR (one PNG each) and write
+    /// DIR/README.md, the gallery the project's README shows.
+    Gallery {
+        /// Output folder.
+        #[arg(long, value_name = "DIR", default_value = "docs/gallery")]
+        out: std::path::PathBuf,
+        /// Image size WxH.
+        #[arg(long, value_name = "WxH", value_parser = reference::parse_size, default_value = "480x270")]
+        size: (u32, u32),
+    },
 }
 
 pub fn run(command: Command) -> anyhow::Result<ExitCode> {
@@ -91,6 +101,9 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Presets {
             action: PresetsAction::List,
         } => presets_cmd::list(),
+        Command::Presets {
+            action: PresetsAction::Gallery { out, size },
+        } => presets_cmd::gallery(&out, size),
         Command::Info(args) => info::run(&args),
         Command::Aerosols(args) => aerosols::run(&args),
         Command::Probe(args) => probe::run(&args),

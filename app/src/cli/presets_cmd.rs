@@ -1,8 +1,14 @@
-//! `atmoscope presets validate|list`.
+//! `atmoscope presets validate|list|gallery`.
 
+use super::render::gpu;
+use crate::images::save_rgb8;
 use crate::presets::{SHIPPED, load_shipped};
+use anyhow::Context;
 use atmoscope_model::Scene;
-use std::path::PathBuf;
+use atmoscope_model::camera::Projection;
+use atmoscope_render::{Engine, View};
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 pub fn validate(files: &[PathBuf]) -> anyhow::Result<ExitCode> {
@@ -37,6 +43,56 @@ pub fn validate(files: &[PathBuf]) -> anyhow::Result<ExitCode> {
     } else {
         ExitCode::FAILURE
     })
+}
+
+/// Renders every shipped preset with its own settings (exposure metered where the preset asks)
+/// to `<out>/<preset>.png` and writes `<out>/README.md` with each image, name and description.
+pub fn gallery(out: &Path, (width, height): (u32, u32)) -> anyhow::Result<ExitCode> {
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let gpu = gpu()?;
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    let view = View::new(Projection::Perspective, width, height);
+    let mut page = String::from(
+        "# Gallery\n\nEvery shipped preset rendered with its own settings by the real-time engine \
+         (`atmoscope presets gallery`, which writes this page).\n\n",
+    );
+    for (name, _) in SHIPPED {
+        let scene = load_shipped(name)
+            .unwrap_or_else(|| unreachable!("name comes from the list"))
+            .with_context(|| format!("presets/{name}"))?;
+        let (shown, _) = engine.render_still(&scene, &view)?;
+        let rgb = engine
+            .read_display()?
+            .chunks_exact(4)
+            .flat_map(|p| [p[0], p[1], p[2]])
+            .collect();
+        let stem = name.trim_end_matches(".ron");
+        save_rgb8(&out.join(format!("{stem}.png")), rgb, width, height)?;
+        let info = atmoscope_model::methods::info(scene.render.method);
+        writeln!(
+            page,
+            "## {}\n\n![{}]({stem}.png)\n\n{} — `{stem}`, {}, {:?}, exposure {:+.1} EV{}.\n",
+            scene.name,
+            scene.name,
+            scene.description,
+            info.label,
+            scene.display.tone_map,
+            shown.display.exposure_ev,
+            if scene.display.auto_exposure {
+                " (metered)"
+            } else {
+                ""
+            },
+        )?;
+        eprintln!("{stem}");
+    }
+    super::write_atomic(&out.join("README.md"), page.as_bytes())?;
+    eprintln!(
+        "wrote {} images and {}",
+        SHIPPED.len(),
+        out.join("README.md").display()
+    );
+    Ok(ExitCode::SUCCESS)
 }
 
 pub fn list() -> anyhow::Result<ExitCode> {

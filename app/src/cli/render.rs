@@ -162,25 +162,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         width,
         height,
     };
-    engine.set_metering(scene.display.auto_exposure);
-    engine.try_render(&scene, &view)?;
-    if let Some(l) = scene
-        .display
-        .auto_exposure
-        .then(|| engine.histogram())
-        .transpose()?
-        .and_then(|h| h.log_average_cd_m2())
-    {
-        // Automatic exposure: the metered exposure at once (no adaptation in one frame);
-        // only the display pass runs again.
-        let mut metered = scene.clone();
-        metered.display.exposure_ev =
-            atmoscope_model::display::metered_exposure_ev(l, scene.display.compensation_ev);
-        engine.try_render(&metered, &view)?;
+    if let (shown, Some(l)) = engine.render_still(&scene, &view)? {
         eprintln!(
             "metered: {l:.3} cd/m² log-average, EV100 {:.1}, exposure {:+.2} EV",
             atmoscope_model::display::ev100(l),
-            metered.display.exposure_ev
+            shown.display.exposure_ev
         );
     }
     match format {
