@@ -36,6 +36,10 @@ pub struct Comparison {
     pub relative_rmse: f64,
     pub luminance_rmse_cd_m2: f64,
     pub luminance_relative_rmse: f64,
+    /// Median over the pixels of test/reference luminance (pixels with a black reference left
+    /// out; NaN if all are): above 1, most of the image is too bright. The median, so that the
+    /// sun's few pixels and a noisy reference's outliers do not sway it.
+    pub luminance_ratio: f64,
     pub delta_e2000_mean: f64,
     pub delta_e2000_p95: f64,
     pub ldr_flip_mean: f64,
@@ -131,6 +135,18 @@ pub fn compare(
             .zip(reference)
             .map(|(t, r)| (luminance_cd_m2(*t), luminance_cd_m2(*r))),
     );
+    let ratios: Vec<f64> = test
+        .iter()
+        .zip(reference)
+        .map(|(t, r)| (luminance_cd_m2(*t), luminance_cd_m2(*r)))
+        .filter(|&(_, r)| r > 0.0)
+        .map(|(t, r)| t / r)
+        .collect();
+    let luminance_ratio = if ratios.is_empty() {
+        f64::NAN
+    } else {
+        percentile(&ratios, 0.5)
+    };
     let t8 = to_rgb8(test, setup.exposure_ev, setup.tone_map);
     let r8 = to_rgb8(reference, setup.exposure_ev, setup.tone_map);
     let delta_e = delta_e2000_of_rgb8(&t8, &r8);
@@ -142,6 +158,7 @@ pub fn compare(
         relative_rmse: rel_rgb,
         luminance_rmse_cd_m2: rmse_l,
         luminance_relative_rmse: rel_l,
+        luminance_ratio,
         delta_e2000_mean: mean(&delta_e),
         delta_e2000_p95: percentile(&delta_e, 0.95),
         ldr_flip_mean: mean(&flip),
@@ -228,6 +245,11 @@ mod tests {
         let (c, _) = compare(&b, &a, 16, 8, DisplaySetup::default());
         assert!((c.relative_rmse - 0.1).abs() < 0.03, "{}", c.relative_rmse);
         assert!((c.luminance_relative_rmse - 0.1).abs() < 0.03);
+        assert!(
+            (c.luminance_ratio - 1.1).abs() < 1e-9,
+            "{}",
+            c.luminance_ratio
+        );
         assert!(
             c.delta_e2000_mean > 0.3 && c.ldr_flip_mean > 0.0 && c.hdr_flip_mean > 0.0,
             "{c:?}"

@@ -59,6 +59,13 @@ pub fn wgsl_prelude() -> String {
         "u32",
         format!("{}u", h::GROUND_IRRADIANCE_SIZE),
     );
+    for (name, v) in [
+        ("MU_S_AXIS_U", h::MU_S_AXIS_U),
+        ("MU_S_AXIS_MU_S", h::MU_S_AXIS_MU_S),
+    ] {
+        let [a, b, cc, d] = v.map(f);
+        c(name, "vec4<f32>", format!("vec4<f32>({a}, {b}, {cc}, {d})"));
+    }
     let [sw, sh] = h::SKY_VIEW_SIZE;
     c(
         "SKY_VIEW_SIZE",

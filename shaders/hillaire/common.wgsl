@@ -1,15 +1,31 @@
 // Hillaire (2020): the functions every pass of the method shares. Twins of
 // model::methods::hillaire (same mappings, same step placement, same arithmetic in f32).
 
+// ---- the sun-zenith axis of the Ψ_ms and ground-irradiance tables: piecewise linear ----
+
+fn mu_s_axis_map(knots: vec4<f32>, onto: vec4<f32>, x_in: f32) -> f32 {
+    let x = clamp(x_in, knots.x, knots.w);
+    let k = select(select(2u, 1u, x < knots.z), 0u, x < knots.y);
+    return onto[k] + (x - knots[k]) / (knots[k + 1u] - knots[k]) * (onto[k + 1u] - onto[k]);
+}
+
+fn mu_s_axis_coordinate(mu_s: f32) -> f32 {
+    return mu_s_axis_map(MU_S_AXIS_MU_S, MU_S_AXIS_U, mu_s);
+}
+
+fn mu_s_axis_mu_s(u: f32) -> f32 {
+    return mu_s_axis_map(MU_S_AXIS_U, MU_S_AXIS_MU_S, u);
+}
+
 // ---- multiple scattering ----
 
 fn multiple_scattering_texel_from_h_mu_s(h: f32, mu_s: f32) -> vec2<f32> {
-    return vec2<f32>(mu_s * 0.5 + 0.5, h / thickness()) * vec2<f32>(MULTIPLE_SCATTERING_SIZE - 1u);
+    return vec2<f32>(mu_s_axis_coordinate(mu_s), h / thickness()) * vec2<f32>(MULTIPLE_SCATTERING_SIZE - 1u);
 }
 
 fn multiple_scattering_h_mu_s_from_texel(f: vec2<f32>) -> vec2<f32> {
     let x = f / vec2<f32>(MULTIPLE_SCATTERING_SIZE - 1u);
-    return vec2<f32>(x.y * thickness(), clamp(x.x * 2.0 - 1.0, -1.0, 1.0));
+    return vec2<f32>(x.y * thickness(), mu_s_axis_mu_s(x.x));
 }
 
 fn multiple_scattering(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
@@ -21,11 +37,11 @@ fn multiple_scattering(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
 // ---- ground irradiance ----
 
 fn ground_irradiance_texel_from_mu_s(mu_s: f32) -> f32 {
-    return (mu_s * 0.5 + 0.5) * f32(GROUND_IRRADIANCE_SIZE - 1u);
+    return mu_s_axis_coordinate(mu_s) * f32(GROUND_IRRADIANCE_SIZE - 1u);
 }
 
 fn ground_irradiance_mu_s_from_texel(f: f32) -> f32 {
-    return clamp(f / f32(GROUND_IRRADIANCE_SIZE - 1u) * 2.0 - 1.0, -1.0, 1.0);
+    return mu_s_axis_mu_s(f / f32(GROUND_IRRADIANCE_SIZE - 1u));
 }
 
 fn ground_irradiance(layer: u32, mu_s: f32) -> vec4<f32> {

@@ -71,8 +71,8 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
             c.rmse, c.relative_rmse
         );
         println!(
-            "luminance RMSE {:.4e} cd/m² (relative {:.4})",
-            c.luminance_rmse_cd_m2, c.luminance_relative_rmse
+            "luminance RMSE {:.4e} cd/m² (relative {:.4}); median pixel {:.4}× the reference's luminance",
+            c.luminance_rmse_cd_m2, c.luminance_relative_rmse, c.luminance_ratio
         );
         println!(
             "ΔE2000 mean {:.3}, 95th percentile {:.3}  (display: exposure {} EV, exponential tone map, sRGB)",

@@ -1,7 +1,10 @@
 //! Sky irradiance on the ground per unit solar irradiance, E(mu_s): our addition to Hillaire
 //! (2020), whose ground is lit by the sun alone. Twin of `shaders/hillaire/ground_irradiance.wgsl`.
 
-use super::{Lanes, Lut, Params, Spacing, TableSpec, integrate_inscattering};
+use super::{
+    Lanes, Lut, Params, Spacing, TableSpec, integrate_inscattering, mu_s_axis_coordinate,
+    mu_s_axis_mu_s,
+};
 use crate::geometry::distance_to_top;
 use crate::methods::Inputs;
 use crate::methods::shared::{add, local_sun, scale};
@@ -9,7 +12,7 @@ use crate::wavelengths::LANES;
 use glam::DVec3;
 use std::f64::consts::PI;
 
-/// Ground irradiance table size (mu_s).
+/// Ground irradiance table size (mu_s), on the twilight-dense axis of [`super::MU_S_AXIS_U`].
 pub const GROUND_IRRADIANCE_SIZE: u32 = 64;
 /// Directions of the ground irradiance integral: 8 (cosine-weighted zenith) × 16 (azimuth).
 pub const GROUND_IRRADIANCE_DIRECTIONS: [u32; 2] = [8, 16];
@@ -19,7 +22,7 @@ pub const TABLE: TableSpec = TableSpec {
     label: "ground irradiance",
     size: [GROUND_IRRADIANCE_SIZE, 1, 1],
     axes: [
-        "x: sun zenith cosine μ_s, −1 (left) to 1 (right)",
+        "x: sun zenith cosine μ_s, −1 (left) to 1 (right), dense from −0.3 to 0.1",
         "one row",
         "",
     ],
@@ -30,12 +33,12 @@ pub const TABLE: TableSpec = TableSpec {
 
 /// Fractional texel coordinate of mu_s in the ground irradiance table.
 pub fn ground_irradiance_texel_from_mu_s(mu_s: f64) -> f64 {
-    (mu_s * 0.5 + 0.5) * (GROUND_IRRADIANCE_SIZE - 1) as f64
+    mu_s_axis_coordinate(mu_s) * (GROUND_IRRADIANCE_SIZE - 1) as f64
 }
 
 /// mu_s of the ground irradiance texel at fractional coordinate fx.
 pub fn ground_irradiance_mu_s_from_texel(fx: f64) -> f64 {
-    (fx / (GROUND_IRRADIANCE_SIZE - 1) as f64 * 2.0 - 1.0).clamp(-1.0, 1.0)
+    mu_s_axis_mu_s(fx / (GROUND_IRRADIANCE_SIZE - 1) as f64)
 }
 
 /// Sky irradiance on horizontal ground per unit solar irradiance, by cosine-weighted
@@ -47,7 +50,13 @@ pub fn compute_ground_irradiance_lut(p: &Params, t: &Lut, ms: &Lut) -> Lut {
     })
 }
 
-fn compute_ground_irradiance(p: &Params, t: &Lut, ms: &Lut, layer: usize, mu_s: f64) -> Lanes {
+pub(crate) fn compute_ground_irradiance(
+    p: &Params,
+    t: &Lut,
+    ms: &Lut,
+    layer: usize,
+    mu_s: f64,
+) -> Lanes {
     let [n_theta, n_phi] = GROUND_IRRADIANCE_DIRECTIONS;
     let sun = local_sun(mu_s);
     let mut sum = [0.0; LANES];

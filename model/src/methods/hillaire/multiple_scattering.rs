@@ -2,7 +2,9 @@
 //! isotropic phase summed as the geometric series 1/(1 − f_ms), ground bounce included. Twin of
 //! `shaders/hillaire/multiple_scattering.wgsl`.
 
-use super::{Lanes, Lut, Params, Spacing, TableSpec, sun_transmittance};
+use super::{
+    Lanes, Lut, Params, Spacing, TableSpec, mu_s_axis_coordinate, mu_s_axis_mu_s, sun_transmittance,
+};
 use crate::geometry::{altitude_along, distance_to_ground, distance_to_top, hits_ground};
 use crate::methods::Inputs;
 use crate::methods::shared::{add, local_sun, mul, segment_weight};
@@ -10,8 +12,9 @@ use crate::wavelengths::LANES;
 use glam::DVec3;
 use std::f64::consts::PI;
 
-/// Multiple-scattering table size (mu_s, h): 32 × 32 as in the paper.
-pub const MULTIPLE_SCATTERING_SIZE: [u32; 2] = [32, 32];
+/// Multiple-scattering table size (mu_s, h): 64 × 32, twice the paper's 32 texels of mu_s, most
+/// of them in twilight (see [`super::MU_S_AXIS_U`]).
+pub const MULTIPLE_SCATTERING_SIZE: [u32; 2] = [64, 32];
 /// Directions of the multiple-scattering integral: an 8 × 8 stratified sphere (paper: 64).
 pub const MULTIPLE_SCATTERING_DIRECTIONS_SQRT: u32 = 8;
 
@@ -20,7 +23,7 @@ pub const TABLE: TableSpec = TableSpec {
     label: "multiple scattering",
     size: [MULTIPLE_SCATTERING_SIZE[0], MULTIPLE_SCATTERING_SIZE[1], 1],
     axes: [
-        "x: sun zenith cosine μ_s, −1 (left) to 1 (right)",
+        "x: sun zenith cosine μ_s, −1 (left) to 1 (right), dense from −0.3 to 0.1",
         "y: altitude h, ground (top row) to the top (bottom row)",
         "",
     ],
@@ -36,7 +39,7 @@ pub const TABLE: TableSpec = TableSpec {
 pub fn multiple_scattering_texel_from_h_mu_s(p: &Params, h: f64, mu_s: f64) -> (f64, f64) {
     let [w, hh] = MULTIPLE_SCATTERING_SIZE;
     (
-        (mu_s * 0.5 + 0.5) * (w - 1) as f64,
+        mu_s_axis_coordinate(mu_s) * (w - 1) as f64,
         (h / p.thickness_m()) * (hh - 1) as f64,
     )
 }
@@ -46,7 +49,7 @@ pub fn multiple_scattering_h_mu_s_from_texel(p: &Params, fx: f64, fy: f64) -> (f
     let [w, hh] = MULTIPLE_SCATTERING_SIZE;
     (
         fy / (hh - 1) as f64 * p.thickness_m(),
-        (fx / (w - 1) as f64 * 2.0 - 1.0).clamp(-1.0, 1.0),
+        mu_s_axis_mu_s(fx / (w - 1) as f64),
     )
 }
 
@@ -128,12 +131,71 @@ mod tests {
     #[test]
     fn multiple_scattering_and_ground_mappings_round_trip() {
         let p = params();
-        for &(h, mu_s) in &[(0.0, -1.0), (1234.0, 0.2), (100_000.0, 1.0)] {
+        for &(h, mu_s) in &[
+            (0.0, -1.0),
+            (10.0, -0.5),
+            (500.0, -0.12),
+            (1234.0, 0.2),
+            (100_000.0, 1.0),
+        ] {
             let (fx, fy) = multiple_scattering_texel_from_h_mu_s(&p, h, mu_s);
             let (h2, mu_s2) = multiple_scattering_h_mu_s_from_texel(&p, fx, fy);
             assert!((h2 - h).abs() < 1e-6 && (mu_s2 - mu_s).abs() < 1e-12);
             let mu_s3 = ground_irradiance_mu_s_from_texel(ground_irradiance_texel_from_mu_s(mu_s));
             assert!((mu_s3 - mu_s).abs() < 1e-12);
+        }
+        // The axis's knots sit on texel centres of both tables, so each texel interval lies
+        // within one linear piece.
+        for size in [MULTIPLE_SCATTERING_SIZE[0], GROUND_IRRADIANCE_SIZE] {
+            for u in crate::methods::hillaire::MU_S_AXIS_U {
+                let texel = u * (size - 1) as f64;
+                assert!((texel - texel.round()).abs() < 1e-9, "{u} on {size} texels");
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod twilight {
+    use super::*;
+    use crate::methods::hillaire::compute_transmittance_lut;
+    use crate::methods::hillaire::ground_irradiance::*;
+    use crate::methods::shared::optics::tests::params;
+
+    /// Ψ_ms and the ground irradiance fall by orders of magnitude between sunset and −12°; looked
+    /// up between texels they stay within 30 % of the value computed at that very μ_s (the
+    /// paper's uniform 32-texel axis gave 12–22 times too much at −12°).
+    #[test]
+    fn twilight_lookups_follow_the_exact_fall_of_multiple_scattering() {
+        let p = params();
+        let t = compute_transmittance_lut(&p);
+        let ms = compute_multiple_scattering_lut(&p, &t);
+        let gi = compute_ground_irradiance_lut(&p, &t, &ms);
+        let within = |what: &str, table: Lanes, exact: Lanes| {
+            for i in 0..LANES {
+                let ratio = table[i] / exact[i];
+                assert!(
+                    (0.8..1.3).contains(&ratio),
+                    "{what}, lane {i}: table/exact = {ratio:.3} ({:.3e} / {:.3e})",
+                    table[i],
+                    exact[i]
+                );
+            }
+        };
+        for deg in [30.0f64, 10.0, 2.0, -3.0, -6.0, -7.4, -9.0, -12.0] {
+            let mu_s = deg.to_radians().sin();
+            for h in [0.0, 5000.0, 20_000.0] {
+                within(
+                    &format!("Ψ_ms at {h} m, sun {deg}°"),
+                    multiple_scattering(&p, &ms, 0, h, mu_s),
+                    compute_multiple_scattering(&p, &t, 0, h, mu_s),
+                );
+            }
+            within(
+                &format!("ground irradiance, sun {deg}°"),
+                ground_irradiance(&gi, 0, mu_s),
+                compute_ground_irradiance(&p, &t, &ms, 0, mu_s),
+            );
         }
     }
 }
