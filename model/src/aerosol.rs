@@ -8,7 +8,14 @@
 //! component from a Mie average over its log-normal size distribution at 50 % relative humidity
 //! (the humidity of libRadtran's OPAC files). Only the spectral shape, the single-scattering
 //! albedo and g come from the mixture: the amount is set by the user as optical depth at 550 nm.
-//! The vertical profile N(h) ∝ exp(−h/H_p) + N_b/N₀ and its parameters are Guimera's.
+//!
+//! The vertical structure is OPAC's, as libRadtran's standard profiles lay it out: each type's
+//! own aerosol lives in a mixing layer up to 2 km (Guimera's scale height H_p within it; the polar
+//! types, whose H_p of 30 km would put two thirds of their AOD above 12 km, take OPAC's Antarctic
+//! layer instead), above which every type shares OPAC's free-tropospheric aerosol (2–12 km) and
+//! stratospheric sulfate layer (12–35 km), their extinction from our Mie code and the profiles'
+//! mass concentrations. Nothing lies above 35 km. Guimera's Background type is those shared
+//! layers alone.
 
 use crate::constants::AOD_REFERENCE_NM;
 use crate::mie::{self, BulkOptics, LogNormal};
@@ -243,15 +250,115 @@ impl AerosolType {
         }
     }
 
-    /// Guimera's vertical profile parameters: (scale height H_p in m, N_b/N₀); H_p = 0 means
-    /// constant with height.
-    pub fn guimera_profile(self) -> Option<(f64, f64)> {
+    /// Guimera's scale height H_p of the type, m (0: constant with height, Background).
+    pub fn guimera_scale_height_m(self) -> Option<f64> {
         let info = self.info()?;
         let t = tables::guimera_aerosol_types().filter("type", info.guimera_key);
-        let h = *t.numbers("H_p_km").first()? * 1000.0;
-        let ratio = t.numbers("N_background_km3").first()? / t.numbers("N_base_km3").first()?;
-        Some((h, ratio))
+        Some(*t.numbers("H_p_km").first()? * 1000.0)
     }
+
+    /// Scale height of the type's own aerosol in the mixing layer (0 to [`MIXING_LAYER_TOP_M`]),
+    /// m: Guimera's H_p where it fits in the layer, OPAC's Antarctic mixing layer for the polar
+    /// types; `None` for Background, which has no mixing layer of its own, and for the types
+    /// that are not mixtures.
+    pub fn mixing_layer_scale_height_m(self) -> Option<f64> {
+        match self.guimera_scale_height_m()? {
+            h if h <= 0.0 => None,
+            h if h <= MIXING_LAYER_TOP_M => Some(h),
+            _ => Some(shared_layers().antarctic_mixing_scale_height_m),
+        }
+    }
+}
+
+/// Top of the mixing layer that holds each type's own aerosol, m: OPAC's standard profiles give
+/// the type's composition at 0 and 1 km and the free troposphere from 2 km.
+pub const MIXING_LAYER_TOP_M: f64 = 2000.0;
+/// Top of OPAC's free troposphere, where its stratospheric sulfate layer begins, m.
+pub const FREE_TROPOSPHERE_TOP_M: f64 = 12_000.0;
+/// Top of OPAC's stratospheric sulfate layer, m; its extinction falls linearly to nil there.
+pub const STRATOSPHERE_TOP_M: f64 = 35_000.0;
+
+/// The aerosol every type shares above its mixing layer (OPAC's free troposphere and
+/// stratosphere), as extinction at 550 nm from our Mie code and the mass concentrations of
+/// libRadtran's OPAC profiles.
+#[derive(Debug, Clone, Copy)]
+pub struct SharedLayers {
+    /// Free-tropospheric extinction at [`MIXING_LAYER_TOP_M`], m⁻¹.
+    pub free_troposphere_per_m: f64,
+    /// Its scale height (fitted between 2 and 11 km), m.
+    pub free_troposphere_scale_height_m: f64,
+    /// Stratospheric extinction at [`FREE_TROPOSPHERE_TOP_M`], m⁻¹, falling linearly to nil at
+    /// [`STRATOSPHERE_TOP_M`].
+    pub stratosphere_per_m: f64,
+    /// Scale height of the extinction of OPAC's Antarctic mixing layer (0 to 1 km), m.
+    pub antarctic_mixing_scale_height_m: f64,
+}
+
+impl SharedLayers {
+    /// Extinction at 550 nm at altitude `h_m`, m⁻¹.
+    pub fn extinction_per_m(&self, h_m: f64) -> f64 {
+        if h_m < MIXING_LAYER_TOP_M {
+            0.0
+        } else if h_m < FREE_TROPOSPHERE_TOP_M {
+            self.free_troposphere_per_m
+                * (-(h_m - MIXING_LAYER_TOP_M) / self.free_troposphere_scale_height_m).exp()
+        } else if h_m < STRATOSPHERE_TOP_M {
+            self.stratosphere_per_m * (STRATOSPHERE_TOP_M - h_m)
+                / (STRATOSPHERE_TOP_M - FREE_TROPOSPHERE_TOP_M)
+        } else {
+            0.0
+        }
+    }
+
+    /// Optical depth at 550 nm from the ground to `top_m`.
+    pub fn optical_depth_to(&self, top_m: f64) -> f64 {
+        let h = self.free_troposphere_scale_height_m;
+        let ft_top = top_m.min(FREE_TROPOSPHERE_TOP_M);
+        let ft = if ft_top > MIXING_LAYER_TOP_M {
+            self.free_troposphere_per_m * h * (1.0 - (-(ft_top - MIXING_LAYER_TOP_M) / h).exp())
+        } else {
+            0.0
+        };
+        let depth = STRATOSPHERE_TOP_M - FREE_TROPOSPHERE_TOP_M;
+        let st_top = (top_m.min(STRATOSPHERE_TOP_M) - FREE_TROPOSPHERE_TOP_M).max(0.0);
+        let st = self.stratosphere_per_m * st_top * (1.0 - st_top / (2.0 * depth));
+        ft + st
+    }
+}
+
+/// The shared layers (computed once).
+pub fn shared_layers() -> &'static SharedLayers {
+    static LAYERS: OnceLock<SharedLayers> = OnceLock::new();
+    LAYERS.get_or_init(|| {
+        let profiles = tables::opac_type_profiles();
+        let mut mass_extinction: HashMap<String, f64> = HashMap::new();
+        // Extinction at 550 nm of one OPAC type's components at `z_km`, m⁻¹.
+        let mut extinction = |kind: &str, z_km: &str| -> f64 {
+            let rows = profiles.filter("type", kind).filter("z_km", z_km);
+            rows.text("component")
+                .iter()
+                .zip(rows.numbers("mass_g_m3"))
+                .map(|(&c, mass)| {
+                    let k = *mass_extinction.entry(c.to_string()).or_insert_with(|| {
+                        Component::load(c, RELATIVE_HUMIDITY_PERCENT)
+                            .mass_extinction_m2_per_g(AOD_REFERENCE_NM)
+                    });
+                    mass * k
+                })
+                .sum()
+        };
+        // Above the mixing layer every OPAC type is the same; continental average is one.
+        let ft_bottom = extinction("continental_average", "2");
+        let ft_high = extinction("continental_average", "11");
+        let stratosphere = extinction("continental_average", "12");
+        let antarctic = (extinction("antarctic", "0"), extinction("antarctic", "1"));
+        SharedLayers {
+            free_troposphere_per_m: ft_bottom,
+            free_troposphere_scale_height_m: 9000.0 / (ft_bottom / ft_high).ln(),
+            stratosphere_per_m: stratosphere,
+            antarctic_mixing_scale_height_m: 1000.0 / (antarctic.0 / antarctic.1).ln(),
+        }
+    })
 }
 
 /// Spectral optics of a type, tabulated on a wavelength grid and interpolated linearly.
@@ -357,6 +464,8 @@ fn compute_mixture(mixture: Mixture) -> TypeOptics {
 /// An OPAC component at one humidity: size distribution and refractive index table.
 struct Component {
     size: LogNormal,
+    /// Particle density, g cm⁻³.
+    rho_g_cm3: f64,
     wavelengths_nm: Vec<f64>,
     n: Vec<f64>,
     k: Vec<f64>,
@@ -390,6 +499,7 @@ impl Component {
             .filter("rh_percent", &rh);
         Component {
             size,
+            rho_g_cm3: first("rho_g_cm3"),
             wavelengths_nm: idx.numbers("wavelength_nm"),
             n: idx.numbers("n"),
             k: idx.numbers("k"),
@@ -406,6 +516,12 @@ impl Component {
             self.n[i - 1] + t * (self.n[i] - self.n[i - 1]),
             self.k[i - 1] + t * (self.k[i] - self.k[i - 1]),
         )
+    }
+
+    /// Extinction per gram of particles, m² g⁻¹ (µm² over g cm⁻³ · µm³).
+    fn mass_extinction_m2_per_g(&self, wavelength_nm: f64) -> f64 {
+        self.optics(wavelength_nm).ext_um2
+            / (self.rho_g_cm3 * self.size.mean_volume_um3(MIE_POINTS))
     }
 
     fn optics(&self, wavelength_nm: f64) -> BulkOptics {
@@ -477,8 +593,41 @@ mod tests {
             assert_eq!(AerosolType::from_cli_name(t.cli_name()), Some(t));
         }
         for t in AerosolType::MIXTURES {
-            let (h, ratio) = t.guimera_profile().unwrap();
-            assert!(h >= 0.0 && ratio >= 0.0 && ratio < 1e-6, "{t:?}");
+            let h = t.guimera_scale_height_m().unwrap();
+            assert!(h >= 0.0, "{t:?}");
+            let mixing = t.mixing_layer_scale_height_m();
+            assert_eq!(mixing.is_none(), t == AerosolType::Background, "{t:?}");
+            assert!(
+                mixing.is_none_or(|h| h > 0.0 && h < 20_000.0),
+                "{t:?}: {mixing:?}"
+            );
         }
+    }
+
+    /// OPAC's shared layers: a free troposphere thinning upwards with a scale height of a few
+    /// km, a stratospheric layer far thinner, and together an optical depth of a few hundredths
+    /// (OPAC's free troposphere and stratosphere: 0.01 to 0.05 at 550 nm).
+    #[test]
+    fn the_shared_layers_are_thin_and_fall_with_height() {
+        let s = shared_layers();
+        assert!(
+            (3000.0..15_000.0).contains(&s.free_troposphere_scale_height_m),
+            "{s:?}"
+        );
+        assert!(
+            s.stratosphere_per_m < 0.2 * s.free_troposphere_per_m,
+            "{s:?}"
+        );
+        let tau = s.optical_depth_to(100_000.0);
+        assert!((0.005..0.06).contains(&tau), "{tau}");
+        assert_eq!(s.extinction_per_m(1000.0), 0.0);
+        assert_eq!(s.extinction_per_m(40_000.0), 0.0);
+        // The analytic column agrees with a quadrature of the profile.
+        let n = 100_000;
+        let dz = 40_000.0 / n as f64;
+        let sum: f64 = (0..n)
+            .map(|i| s.extinction_per_m((i as f64 + 0.5) * dz) * dz)
+            .sum();
+        assert!((sum - tau).abs() < 1e-4 * tau, "{sum} vs {tau}");
     }
 }

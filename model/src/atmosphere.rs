@@ -6,7 +6,10 @@
 //! it), splitting the ray where it crosses a profile's table level, where the interpolated
 //! density has a kink, and at the ray's lowest point.
 
-use crate::aerosol::{self, AerosolType, TypeOptics};
+use crate::aerosol::{
+    self, AerosolType, FREE_TROPOSPHERE_TOP_M, MIXING_LAYER_TOP_M, STRATOSPHERE_TOP_M,
+    SharedLayers, TypeOptics, shared_layers,
+};
 use crate::constants::AOD_REFERENCE_NM;
 use crate::geometry::{self, Ray};
 use crate::ozone::OzoneCrossSection;
@@ -21,40 +24,69 @@ use glam::DVec3;
 /// Relative tolerance of optical-depth integrals.
 pub const OPTICAL_DEPTH_REL_TOL: f64 = 1e-7;
 
-/// The aerosol's vertical profile shape exp(−h/H) + c, normalised to unit column.
-#[derive(Debug, Clone, Copy)]
+/// Aerosol extinction at 550 nm per unit of its optical depth, by altitude (integrates to 1
+/// from the ground to the top): the type's own mixing layer plus the layers every type shares.
+#[derive(Debug, Clone)]
 struct AerosolProfile {
-    /// Scale height, m; 0 means constant with height.
-    scale_height_m: f64,
-    /// Constant background relative to the ground value of the exponential.
-    background: f64,
-    /// 1 / ∫₀^top shape dh, m⁻¹.
-    normalisation: f64,
+    /// Scale height of the type's own aerosol, m, and the top of its layer, m.
+    mixing: Option<(f64, f64)>,
+    /// Extinction of the type's own aerosol at the ground per unit AOD, m⁻¹.
+    mixing_per_m: f64,
+    /// The shared layers' part, scaled per unit AOD (`None`: no shared layers).
+    shared: Option<(&'static SharedLayers, f64)>,
 }
 
 impl AerosolProfile {
-    fn new(scale_height_m: f64, background: f64, top_m: f64) -> AerosolProfile {
-        let column = if scale_height_m > 0.0 {
-            scale_height_m * (1.0 - (-top_m / scale_height_m).exp()) + background * top_m
-        } else {
-            top_m
-        };
+    /// An exponential with `scale_height_m` from the ground to the top and nothing else (the
+    /// custom aerosol).
+    fn exponential(scale_height_m: f64, top_m: f64) -> AerosolProfile {
+        let column = scale_height_m * (1.0 - (-top_m / scale_height_m).exp());
         AerosolProfile {
-            scale_height_m,
-            background,
-            normalisation: 1.0 / column,
+            mixing: Some((scale_height_m, f64::INFINITY)),
+            mixing_per_m: 1.0 / column,
+            shared: None,
         }
     }
 
-    /// Shape at altitude `h_m` per metre of column: integrates to 1 from ground to top.
+    /// OPAC's structure for `aod550`: the shared layers keep their own optical depth and the
+    /// mixing layer (scale height `mixing_scale_height_m`, up to [`MIXING_LAYER_TOP_M`]) takes
+    /// the rest; an AOD below the shared layers' thins them, and a type without a mixing layer
+    /// (`None`) is the shared layers alone.
+    fn opac(mixing_scale_height_m: Option<f64>, aod550: f64, top_m: f64) -> AerosolProfile {
+        let layers = shared_layers();
+        let shared_tau = layers.optical_depth_to(top_m);
+        let Some(h) = mixing_scale_height_m else {
+            return AerosolProfile {
+                mixing: None,
+                mixing_per_m: 0.0,
+                shared: Some((layers, 1.0 / shared_tau)),
+            };
+        };
+        let top = MIXING_LAYER_TOP_M.min(top_m);
+        let column = h * (1.0 - (-top / h).exp());
+        let (mixing_per_m, shared) = if aod550 > shared_tau {
+            ((aod550 - shared_tau) / aod550 / column, 1.0 / aod550)
+        } else {
+            (0.0, 1.0 / shared_tau)
+        };
+        AerosolProfile {
+            mixing: Some((h, top)),
+            mixing_per_m,
+            shared: Some((layers, shared)),
+        }
+    }
+
+    /// Extinction at 550 nm at altitude `h_m` per unit AOD, m⁻¹.
     fn density_per_m(&self, h_m: f64) -> f64 {
         let h = h_m.max(0.0);
-        let shape = if self.scale_height_m > 0.0 {
-            (-h / self.scale_height_m).exp() + self.background
-        } else {
-            1.0
+        let mixing = match self.mixing {
+            Some((scale, top)) if h < top => self.mixing_per_m * (-h / scale).exp(),
+            _ => 0.0,
         };
-        shape * self.normalisation
+        let shared = self.shared.map_or(0.0, |(layers, per_tau)| {
+            layers.extinction_per_m(h) * per_tau
+        });
+        mixing + shared
     }
 }
 
@@ -176,7 +208,7 @@ impl Atmosphere {
         let (aerosol_spectral, aerosol_profile) = match kind {
             AerosolType::None => (
                 AerosolSpectral::None,
-                AerosolProfile::new(1000.0, 0.0, top_m),
+                AerosolProfile::exponential(1000.0, top_m),
             ),
             AerosolType::Custom => {
                 let c = &s.aerosol.custom;
@@ -186,14 +218,15 @@ impl Atmosphere {
                         g: c.asymmetry_g,
                         angstrom: c.angstrom_exponent,
                     },
-                    AerosolProfile::new(c.scale_height_km * 1000.0, 0.0, top_m),
+                    AerosolProfile::exponential(c.scale_height_km * 1000.0, top_m),
                 )
             }
             t => {
-                let (h, background) = t.guimera_profile().unwrap_or((1000.0, 0.0));
                 let optics =
                     aerosol::type_optics(t).map_or(AerosolSpectral::None, AerosolSpectral::Mie);
-                (optics, AerosolProfile::new(h, background, top_m))
+                let profile =
+                    AerosolProfile::opac(t.mixing_layer_scale_height_m(), s.aerosol.aod550, top_m);
+                (optics, profile)
             }
         };
         let aod550 = if matches!(aerosol_spectral, AerosolSpectral::None) {
@@ -203,6 +236,11 @@ impl Atmosphere {
         };
         let mut breakpoints_m: Vec<f64> = s.air_profile.breakpoints_m().to_vec();
         breakpoints_m.extend_from_slice(ozone.breakpoints_m());
+        breakpoints_m.extend_from_slice(&[
+            MIXING_LAYER_TOP_M,
+            FREE_TROPOSPHERE_TOP_M,
+            STRATOSPHERE_TOP_M,
+        ]);
         breakpoints_m.retain(|&z| z > 0.0 && z < top_m);
         breakpoints_m.sort_by(f64::total_cmp);
         breakpoints_m.dedup();
@@ -423,6 +461,50 @@ mod tests {
         let mut s = Scene::default().atmosphere;
         s.aerosol.kind = AerosolType::None;
         s
+    }
+
+    /// Every type's aerosol stays where such aerosol lives: nothing at 50 km (Guimera's
+    /// constant Background made it 20 times Rayleigh there), the stratosphere well below
+    /// Rayleigh, above 12 km only the stratospheric layer and at most a tenth of the optical depth
+    /// (a fifth for Background, which is OPAC's free troposphere and stratosphere alone; the
+    /// polar types' 30 km scale height put two thirds there), and the column still the AOD.
+    #[test]
+    fn aerosol_stays_in_the_troposphere_and_a_thin_stratospheric_layer() {
+        for kind in AerosolType::MIXTURES {
+            for aod in [0.005, 0.02, kind.default_aod550(), 1.0] {
+                let mut s = Scene::default().atmosphere;
+                s.aerosol.kind = kind;
+                s.aerosol.aod550 = aod;
+                let atm = Atmosphere::new(&s);
+                let optics = atm.optics(550.0);
+                let aerosol = |h: f64| aod * atm.aerosol_density_per_m(h);
+                let rayleigh = |h: f64| optics.rayleigh_cross_section_m2 * atm.air_density_m3(h);
+                let what = format!("{kind:?} at AOD {aod}");
+                assert_eq!(aerosol(50_000.0), 0.0, "{what}");
+                // Background is the upper layers alone: at an AOD of 1 it is a volcanic
+                // stratosphere by construction.
+                if kind != AerosolType::Background || aod <= 0.05 {
+                    assert!(aerosol(20_000.0) < 0.5 * rayleigh(20_000.0), "{what}");
+                }
+                let column = atm.vertical_optical_depth(&optics, 0.0).aerosol;
+                assert!((column / aod - 1.0).abs() < 1e-6, "{what}: column {column}");
+                let above = atm
+                    .vertical_optical_depth(&optics, FREE_TROPOSPHERE_TOP_M)
+                    .aerosol;
+                let layers = shared_layers();
+                let stratosphere = layers.optical_depth_to(STRATOSPHERE_TOP_M)
+                    - layers.optical_depth_to(FREE_TROPOSPHERE_TOP_M);
+                let share = if kind == AerosolType::Background {
+                    0.2
+                } else {
+                    0.1
+                };
+                assert!(
+                    above < share * aod + stratosphere,
+                    "{what}: {above} above 12 km"
+                );
+            }
+        }
     }
 
     #[test]

@@ -155,6 +155,7 @@ pub mod tables {
         "opac_component_size_distributions.csv"
     );
     embedded_table!(opac_refractive_indices, "opac_refractive_indices.csv");
+    embedded_table!(opac_type_profiles, "opac_type_profiles_libradtran.csv");
     embedded_table!(guimera_aerosol_types, "aerosol_guimera2018_type_params.csv");
     embedded_table!(garcia_linan_constants, "garcia_linan_2023_constants.csv");
     embedded_table!(garcia_linan_refit, "garcia_linan_refit.csv");
@@ -184,6 +185,7 @@ mod tests {
             tables::afgl1986(),
             tables::opac_size_distributions(),
             tables::opac_refractive_indices(),
+            tables::opac_type_profiles(),
             tables::guimera_aerosol_types(),
             tables::garcia_linan_constants(),
         ];

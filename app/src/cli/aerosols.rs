@@ -28,8 +28,8 @@ pub fn run(args: &AerosolsArgs) -> anyhow::Result<ExitCode> {
     let rows: Vec<Row> = AerosolType::MIXTURES
         .iter()
         .filter_map(|&t| {
-            let (info, optics, (h, _)) =
-                (t.info()?, aerosol::type_optics(t)?, t.guimera_profile()?);
+            let (info, optics) = (t.info()?, aerosol::type_optics(t)?);
+            let h = t.mixing_layer_scale_height_m().unwrap_or(0.0);
             Some(Row {
                 name: t.cli_name(),
                 label: info.label,
@@ -46,12 +46,12 @@ pub fn run(args: &AerosolsArgs) -> anyhow::Result<ExitCode> {
         println!("{}", serde_json::to_string_pretty(&rows)?);
         return Ok(ExitCode::SUCCESS);
     }
-    println!("type                 SSA(550)  g(550)  Ångström  AOD550  H_p (km)  mixture");
+    println!("type                 SSA(550)  g(550)  Ångström  AOD550  H (km)    mixture");
     for r in rows {
         let h = if r.scale_height_km > 0.0 {
             format!("{:8.2}", r.scale_height_km)
         } else {
-            "constant".into()
+            "upper only".into()
         };
         println!(
             "{:20} {:8.4}  {:6.4}  {:8.3}  {:6.3}  {h}  {}",
