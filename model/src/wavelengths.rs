@@ -20,6 +20,11 @@ use crate::table::tables;
 /// Lanes per batch (one `vec4<f32>` on the GPU).
 pub const LANES: usize = 4;
 
+/// Band over which RGB3 and Spectral4 average the solar spectrum at each of their wavelengths,
+/// nm: a point sample can land on a Fraunhofer line (430 nm, Spectral4's blue, lies 22 % below
+/// its 10 nm mean), which would tint the whole sky.
+pub const POINT_SET_SOLAR_BAND_NM: f64 = 10.0;
+
 /// RGB3's wavelengths, nm (R, G, B).
 pub const RGB3_NM: [f64; 3] = [680.0, 550.0, 440.0];
 
@@ -28,7 +33,9 @@ pub const RGB3_NM: [f64; 3] = [680.0, 550.0, 440.0];
 pub struct WavelengthBatch {
     /// Lane wavelengths, nm (a padding lane repeats a real wavelength with zero weight).
     pub wavelengths_nm: [f64; LANES],
-    /// Band each lane stands for, nm; `None` for point samples (RGB3, Spectral4).
+    /// Band over which each lane averages the solar spectrum, nm: the band each lane stands
+    /// for in the spectral sets, [`POINT_SET_SOLAR_BAND_NM`] for RGB3 and Spectral4; `None` for
+    /// a monochromatic probe.
     pub bandwidth_nm: Option<f64>,
     /// Rows R, G, B: linear sRGB = Σ_lane to_srgb[row][lane] · L_lane, with L in
     /// W·m⁻²·sr⁻¹·nm⁻¹.
@@ -150,7 +157,7 @@ pub fn batches(set: WavelengthSet) -> Vec<WavelengthBatch> {
             let w = y_bar_integral_nm();
             vec![WavelengthBatch {
                 wavelengths_nm: [RGB3_NM[0], RGB3_NM[1], RGB3_NM[2], RGB3_NM[1]],
-                bandwidth_nm: None,
+                bandwidth_nm: Some(POINT_SET_SOLAR_BAND_NM),
                 to_srgb: [[w, 0.0, 0.0, 0.0], [0.0, w, 0.0, 0.0], [0.0, 0.0, w, 0.0]],
             }]
         }
@@ -158,7 +165,7 @@ pub fn batches(set: WavelengthSet) -> Vec<WavelengthBatch> {
             let (wavelengths_nm, _) = garcia_linan_spectral4();
             vec![WavelengthBatch {
                 wavelengths_nm,
-                bandwidth_nm: None,
+                bandwidth_nm: Some(POINT_SET_SOLAR_BAND_NM),
                 to_srgb: spectral4_fitted_matrix(),
             }]
         }

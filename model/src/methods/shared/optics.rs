@@ -295,6 +295,27 @@ pub(crate) mod tests {
         assert!(!of(None, 0.1));
     }
 
+    #[test]
+    fn the_narrow_sets_see_the_band_mean_of_the_sun_not_a_fraunhofer_line() {
+        let atm = Atmosphere::new(&Scene::default().atmosphere);
+        let solar = atm.solar_spectrum;
+        for set in [WavelengthSet::Spectral4, WavelengthSet::Rgb3] {
+            let batch = &Params::new(&atm, set, Quality::Low).batches[0];
+            for (i, &w) in batch.colour.wavelengths_nm.iter().enumerate() {
+                let band = solar.irradiance(w, crate::wavelengths::POINT_SET_SOLAR_BAND_NM);
+                let e = batch.solar_irradiance[i];
+                assert!(
+                    (e / band - 1.0).abs() < 1e-9,
+                    "{set:?} {w} nm: {e} vs band {band}"
+                );
+            }
+        }
+        // Spectral4's blue lane: the point value sits on the Fraunhofer G band, far below the
+        // mean the lane stands for.
+        let point = solar.spectrum().sample(430.0);
+        assert!(point < 0.85 * solar.irradiance(430.0, 10.0), "{point}");
+    }
+
     /// The default scene's optics at Spectral4, medium quality.
     pub(crate) fn params() -> Params {
         let scene = Scene::default();
