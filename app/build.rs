@@ -1,37 +1,48 @@
-//! Embeds the shipped presets (`presets/*.ron` at the workspace root) into the binary, so the
-//! explorer and `atmoscope presets validate` work from any directory.
+//! Embeds the shipped presets (`presets/*.ron` at the workspace root) and the Learn menu's
+//! lessons (`presets/learn/*.ron`) into the binary, so the explorer and the commands that list
+//! them work from any directory.
 
 use std::fmt::Write;
 use std::path::Path;
 
-fn main() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../presets");
+/// Writes `OUT_DIR/<out>` declaring `name`: every `.ron` file of `dir` as (file name, text).
+fn embed(dir: &Path, name: &str, doc: &str, out: &str) {
     println!("cargo:rerun-if-changed={}", dir.display());
-    let mut files: Vec<_> = std::fs::read_dir(&dir)
-        .expect("presets/ directory beside app/")
+    let mut files: Vec<_> = std::fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .filter_map(Result::ok)
         .map(|e| e.path())
         .filter(|p| p.extension().is_some_and(|x| x == "ron"))
         .collect();
     files.sort();
-    let mut out = String::from(
-        "/// Shipped presets: (file name, RON text).\npub static SHIPPED: &[(&str, &str)] = &[\n",
-    );
+    let mut code =
+        format!("/// {doc}: (file name, RON text).\npub static {name}: &[(&str, &str)] = &[\n");
     for f in &files {
         println!("cargo:rerun-if-changed={}", f.display());
-        let name = f
+        let file = f
             .file_name()
             .and_then(|n| n.to_str())
-            .expect("UTF-8 preset name");
-        let abs = f.canonicalize().expect("preset path");
+            .expect("UTF-8 file name");
+        let abs = f.canonicalize().expect("file path");
         writeln!(
-            out,
-            "    ({name:?}, include_str!({:?})),",
+            code,
+            "    ({file:?}, include_str!({:?})),",
             abs.display().to_string()
         )
         .expect("write to string");
     }
-    out.push_str("];\n");
-    let dest = Path::new(&std::env::var("OUT_DIR").expect("OUT_DIR")).join("presets.rs");
-    std::fs::write(dest, out).expect("write presets.rs");
+    code.push_str("];\n");
+    let dest = Path::new(&std::env::var("OUT_DIR").expect("OUT_DIR")).join(out);
+    std::fs::write(dest, code).expect("write embedded file list");
+}
+
+fn main() {
+    let presets = Path::new(env!("CARGO_MANIFEST_DIR")).join("../presets");
+    embed(&presets, "SHIPPED", "Shipped presets", "presets.rs");
+    embed(
+        &presets.join("learn"),
+        "LESSONS",
+        "The Learn menu's lessons",
+        "lessons.rs",
+    );
 }

@@ -1028,3 +1028,35 @@ fn stress_reports_every_model_and_replays_a_preset() {
         stderr(&o)
     );
 }
+
+#[test]
+fn learn_lists_the_lessons_and_prints_one_with_the_models_numbers() {
+    let o = atmoscope(&["learn"]);
+    assert!(o.status.success(), "{}", stdout(&o));
+    let list = stdout(&o);
+    assert!(list.lines().count() >= 6, "{list}");
+    assert!(list.contains("Why the sky is blue"), "{list}");
+
+    let o = atmoscope(&["learn", "1-why-the-sky-is-blue"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(!text.contains('{'), "{text}");
+    // The air's optical depth at 450 nm is the one `info` reports for the lesson's preset.
+    let info = info_json(&["--preset", "clear-noon", "--wavelengths-nm", "450"]);
+    let tau = info["wavelengths"][0]["optical_depth"]["rayleigh"]
+        .as_f64()
+        .expect("τ Rayleigh");
+    assert!((0.1..1.0).contains(&tau), "{tau}");
+    assert!(
+        text.contains(&format!("{tau:.3} at 450 nm")),
+        "{tau:.3} in {text}"
+    );
+
+    let o = atmoscope(&["learn", "why-the-sea-is-blue"]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("no lesson why-the-sea-is-blue"),
+        "{}",
+        stderr(&o)
+    );
+}

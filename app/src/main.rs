@@ -4,6 +4,7 @@
 mod cli;
 mod gui;
 mod images;
+mod lessons;
 mod presets;
 mod summary;
 mod timelapse;

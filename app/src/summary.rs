@@ -4,12 +4,12 @@
 //! `atmoscope info` and by the explorer.
 
 use atmoscope_model::aerosol::AerosolType;
-use atmoscope_model::geometry::direction_from_angles;
+use atmoscope_model::geometry::{Ray, direction_from_angles};
 use atmoscope_model::{Atmosphere, Scene};
 use glam::DVec3;
 use serde::Serialize;
 
-#[derive(Serialize, Debug)]
+#[derive(Serialize, Debug, Clone, Copy)]
 pub struct OpticalDepthRow {
     pub rayleigh: f64,
     pub ozone: f64,
@@ -26,6 +26,11 @@ pub struct WavelengthRow {
     pub aerosol_g: f64,
     /// Direct transmittance from the top of the atmosphere to the camera along the sun direction.
     pub direct_transmittance: f64,
+    /// Direct transmittance from the camera along the horizontal out of the atmosphere: what
+    /// a ray skimming the ground keeps.
+    pub horizontal_transmittance: f64,
+    /// Extinction coefficient of each constituent at the camera, m⁻¹.
+    pub extinction_at_camera_per_m: OpticalDepthRow,
 }
 
 #[derive(Serialize, Debug)]
@@ -64,6 +69,20 @@ pub fn compute(scene: &Scene, wavelengths_nm: &[f64]) -> Info {
                 aerosol_ssa: optics.aerosol_ssa,
                 aerosol_g: optics.aerosol_g,
                 direct_transmittance: atm.transmittance_to_sun(&optics, camera, sun_dir),
+                extinction_at_camera_per_m: {
+                    let c = atm.coefficients(&optics, scene.camera.altitude_m);
+                    let aerosol = c.aerosol_scattering + c.aerosol_absorption;
+                    OpticalDepthRow {
+                        rayleigh: c.rayleigh_scattering,
+                        ozone: c.ozone_absorption,
+                        aerosol,
+                        total: c.extinction(),
+                    }
+                },
+                horizontal_transmittance: (-atm
+                    .optical_depth(&optics, &Ray::new(camera, DVec3::X))
+                    .total())
+                .exp(),
             }
         })
         .collect();

@@ -49,12 +49,12 @@ fn table(i: &Info) -> String {
         i.air_profile
     );
     s.push_str(
-        "  λ (nm)   τ Rayleigh    τ ozone   τ aerosol    τ total   aer. SSA   aer. g   T sun\n",
+        "  λ (nm)   τ Rayleigh    τ ozone   τ aerosol    τ total   aer. SSA   aer. g   T sun   T horiz.\n",
     );
     for r in &i.wavelengths {
         let d = &r.optical_depth;
         s.push_str(&format!(
-            "  {:6.1}   {:10.5}  {:9.5}   {:9.5}  {:9.5}   {:8.4}  {:7.4}  {:6.4}\n",
+            "  {:6.1}   {:10.5}  {:9.5}   {:9.5}  {:9.5}   {:8.4}  {:7.4}  {:6.4}  {:9.4}\n",
             r.wavelength_nm,
             d.rayleigh,
             d.ozone,
@@ -62,9 +62,10 @@ fn table(i: &Info) -> String {
             d.total,
             r.aerosol_ssa,
             r.aerosol_g,
-            r.direct_transmittance
+            r.direct_transmittance,
+            r.horizontal_transmittance
         ));
     }
-    s.push_str("τ: vertical optical depth from the camera to space; T sun: direct transmittance, top of atmosphere → camera.\n");
+    s.push_str("τ: vertical optical depth from the camera to space; T sun: direct transmittance, top of atmosphere → camera; T horiz.: along the horizontal, camera → space.\n");
     s
 }

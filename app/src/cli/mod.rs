@@ -8,6 +8,7 @@ mod compare;
 mod fit;
 mod fit_garcia_linan;
 mod info;
+mod learn;
 mod presets_cmd;
 mod probe;
 mod reference;
@@ -44,6 +45,8 @@ pub enum Command {
     },
     /// Optical depths, aerosol optics and sun transmittance of a scene, per wavelength.
     Info(info::InfoArgs),
+    /// The Learn menu's guided scenes: the list, or one lesson's text with its numbers.
+    Learn(learn::LearnArgs),
     /// The aerosol types: single-scattering albedo, asymmetry and Ångström exponent from Mie theory.
     Aerosols(aerosols::AerosolsArgs),
     /// Diffuse sky radiance in given directions, by the path tracer or exact single scattering.
@@ -105,6 +108,7 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
             action: PresetsAction::Gallery { out, size },
         } => presets_cmd::gallery(&out, size),
         Command::Info(args) => info::run(&args),
+        Command::Learn(args) => learn::run(&args),
         Command::Aerosols(args) => aerosols::run(&args),
         Command::Probe(args) => probe::run(&args),
         Command::Reference(args) => reference::run(&args),

@@ -218,6 +218,14 @@ impl Inspector {
         self.job = Some(Job::spawn(label, ctx, move |p| analyse(probe, p)));
     }
 
+    /// Cancels any analysis and forgets the last: the scene it was made for is gone.
+    pub fn clear(&mut self) {
+        if let Some(job) = self.job.take() {
+            job.cancel();
+        }
+        self.result = None;
+    }
+
     pub fn job(&self) -> Option<&Job<Option<Analysis>>> {
         self.job.as_ref().filter(|j| j.is_running())
     }

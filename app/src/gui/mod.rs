@@ -18,6 +18,7 @@ mod state;
 mod summary_panel;
 
 use crate::cli::SceneArgs;
+use crate::lessons::{self, Lesson, LessonError};
 use crate::presets::load_shipped;
 use atmoscope_model::Scene;
 use compare_tab::CompareTab;
@@ -84,6 +85,19 @@ pub struct ExplorerApp {
     meter: Option<exposure::Reading>,
     /// Print each frame's passes and times to stderr (ATMOSCOPE_FRAME_LOG=1).
     frame_log: bool,
+    /// The Learn menu's lessons, parsed once (a broken one is listed with its error).
+    lessons: Vec<(&'static str, Result<Lesson, LessonError>)>,
+    /// The lesson on screen.
+    lesson: Option<ActiveLesson>,
+}
+
+/// A lesson the user started: its window stays until closed and its numbers follow the scene.
+struct ActiveLesson {
+    lesson: Lesson,
+    /// The view point to inspect once the lesson's tab has drawn its view (fractions, 0–1).
+    pending_inspect: Option<[f64; 2]>,
+    /// The text for the scene it was computed for.
+    text: Option<(Scene, String)>,
 }
 
 impl ExplorerApp {
@@ -115,6 +129,8 @@ impl ExplorerApp {
             ui_frame_ms: 0.0,
             meter: None,
             frame_log: std::env::var_os("ATMOSCOPE_FRAME_LOG").is_some(),
+            lessons: lessons::shipped(),
+            lesson: None,
         }
     }
 
@@ -168,6 +184,87 @@ impl ExplorerApp {
             }
             Command::Export(kind, path) => self.export(ctx, kind, path),
             Command::Inspect { tab, x, y } => self.inspect(ctx, tab, x, y),
+            Command::StartLesson(i) => self.start_lesson(i),
+        }
+    }
+
+    /// Sets the lesson's scene, opens its tab (and the Inspector on its pixel once the view
+    /// is drawn) and shows its text.
+    fn start_lesson(&mut self, index: usize) {
+        let Some((file, Ok(lesson))) = self.lessons.get(index) else {
+            self.message = Some(match self.lessons.get(index) {
+                Some((_, Err(e))) => e.to_string(),
+                _ => format!("no lesson {index}"),
+            });
+            return;
+        };
+        match lesson.scene(file) {
+            Ok(scene) => {
+                self.scene = scene;
+                self.layout.tab = lesson.tab;
+                self.layout.full_view = false;
+                self.layout.show_inspector |= lesson.inspect.is_some();
+                self.inspector.clear();
+                self.message = None;
+                self.lesson = Some(ActiveLesson {
+                    lesson: lesson.clone(),
+                    pending_inspect: lesson.inspect,
+                    text: None,
+                });
+            }
+            Err(e) => self.message = Some(e.to_string()),
+        }
+    }
+
+    /// Inspects the lesson's pixel once its tab's view exists.
+    fn inspect_lesson_pixel(&mut self, ctx: &egui::Context) {
+        let Some(active) = &mut self.lesson else {
+            return;
+        };
+        let Some([fx, fy]) = active.pending_inspect else {
+            return;
+        };
+        let tab = self.layout.tab;
+        if tab != active.lesson.tab {
+            active.pending_inspect = None;
+            return;
+        }
+        let Some(view) = self.views.as_ref().and_then(|v| v.main.view()) else {
+            return;
+        };
+        if view.projection != state::projection(tab) {
+            return;
+        }
+        active.pending_inspect = None;
+        let at = |f: f64, n: u32| ((f * f64::from(n)) as u32).min(n.saturating_sub(1));
+        self.inspect(ctx, tab, at(fx, view.width), at(fy, view.height));
+    }
+
+    /// The lesson's window: its text with numbers for the scene on screen, and what to try.
+    fn lesson_window(&mut self, ctx: &egui::Context) {
+        let Some(active) = &mut self.lesson else {
+            return;
+        };
+        if active.text.as_ref().is_none_or(|(s, _)| *s != self.scene) {
+            let text = active.lesson.text_for(&self.scene);
+            active.text = Some((self.scene.clone(), text));
+        }
+        let text = active.text.as_ref().map_or("", |(_, t)| t.as_str());
+        let mut open = true;
+        egui::Window::new(format!("Learn: {}", active.lesson.title))
+            .open(&mut open)
+            .default_width(380.0)
+            .default_pos(ctx.content_rect().center_bottom() - egui::vec2(190.0, 260.0))
+            .show(ctx, |ui| {
+                ui.label(text);
+                ui.add_space(6.0);
+                ui.horizontal_wrapped(|ui| {
+                    ui.strong(format!("Try ({}):", active.lesson.section.title()));
+                    ui.label(&active.lesson.try_this);
+                });
+            });
+        if !open {
+            self.lesson = None;
         }
     }
 
@@ -383,6 +480,21 @@ impl ExplorerApp {
                     .on_hover_text(tip);
                 }
             });
+            ui.menu_button("Learn", |ui| {
+                for (i, (file, lesson)) in self.lessons.iter().enumerate() {
+                    match lesson {
+                        Ok(l) => {
+                            if ui.button(&l.title).clicked() {
+                                commands.push(Command::StartLesson(i));
+                            }
+                        }
+                        Err(e) => {
+                            ui.add_enabled(false, egui::Button::new(*file))
+                                .on_disabled_hover_text(e.to_string());
+                        }
+                    }
+                }
+            });
             ui.separator();
             for tab in Tab::ALL {
                 ui.selectable_value(&mut self.layout.tab, tab, tab.label())
@@ -546,7 +658,12 @@ impl eframe::App for ExplorerApp {
                 .default_size(330.0)
                 .show(ui, |ui| {
                     egui::ScrollArea::vertical().show(ui, |ui| {
-                        commands.extend(scene_panel::show(ui, &self.scene, self.meter.as_ref()));
+                        commands.extend(scene_panel::show(
+                            ui,
+                            &self.scene,
+                            self.meter.as_ref(),
+                            self.lesson.as_ref().map(|l| l.lesson.section),
+                        ));
                     });
                 });
         }
@@ -569,9 +686,11 @@ impl eframe::App for ExplorerApp {
             egui::CentralPanel::default()
         };
         centre.show(ui, |ui| commands.extend(self.centre(ui)));
+        self.lesson_window(&ctx);
         for c in commands {
             self.apply(&ctx, c);
         }
+        self.inspect_lesson_pixel(&ctx);
         self.expose(&ctx);
         if let Some(fault) = self.views.as_mut().and_then(|v| v.main.take_fault()) {
             self.message = Some(fault);

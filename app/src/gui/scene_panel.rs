@@ -3,6 +3,7 @@
 
 use super::exposure;
 use super::state::Command;
+use crate::lessons::Section;
 use crate::presets::SHIPPED;
 use atmoscope_model::Scene;
 use atmoscope_model::aerosol::AerosolType;
@@ -33,8 +34,14 @@ const MONTHS: [&str; 12] = [
     "December",
 ];
 
-/// Draws the panel; returns the commands its controls produced this frame.
-pub fn show(ui: &mut egui::Ui, current: &Scene, meter: Option<&exposure::Reading>) -> Vec<Command> {
+/// Draws the panel, framing the section `highlight` (a lesson's invitation to try it);
+/// returns the commands its controls produced this frame.
+pub fn show(
+    ui: &mut egui::Ui,
+    current: &Scene,
+    meter: Option<&exposure::Reading>,
+    highlight: Option<Section>,
+) -> Vec<Command> {
     let mut commands = Vec::new();
     let mut s = current.clone();
     ui.heading("Scene");
@@ -53,24 +60,29 @@ pub fn show(ui: &mut egui::Ui, current: &Scene, meter: Option<&exposure::Reading
         .response
         .on_hover_text("Scenes shipped with Atmoscope, each named for what it shows.");
 
-    egui::CollapsingHeader::new("Aerosols")
-        .default_open(true)
-        .show(ui, |ui| aerosol(ui, &mut s));
-    egui::CollapsingHeader::new("Ozone")
-        .default_open(true)
-        .show(ui, |ui| ozone(ui, &mut s));
-    egui::CollapsingHeader::new("Ground and air")
-        .default_open(true)
-        .show(ui, |ui| ground_and_air(ui, &mut s));
-    egui::CollapsingHeader::new("Sun")
-        .default_open(true)
-        .show(ui, |ui| sun(ui, &mut s));
-    egui::CollapsingHeader::new("Camera")
-        .default_open(true)
-        .show(ui, |ui| camera(ui, &mut s));
-    egui::CollapsingHeader::new("Rendering and display")
-        .default_open(false)
-        .show(ui, |ui| render(ui, &mut s, meter));
+    let section = |ui: &mut egui::Ui, which: Section, body: &mut dyn FnMut(&mut egui::Ui)| {
+        let header =
+            egui::CollapsingHeader::new(which.title()).default_open(which != Section::Rendering);
+        if highlight == Some(which) {
+            // The section a lesson invites the user to try: framed, and open.
+            egui::Frame::group(ui.style())
+                .stroke(egui::Stroke::new(2.0, ui.visuals().selection.bg_fill))
+                .show(ui, |ui| {
+                    ui.colored_label(ui.visuals().selection.bg_fill, "Try this section");
+                    header.open(Some(true)).show(ui, |ui| body(ui));
+                });
+        } else {
+            header.show(ui, |ui| body(ui));
+        }
+    };
+    section(ui, Section::Aerosols, &mut |ui| aerosol(ui, &mut s));
+    section(ui, Section::Ozone, &mut |ui| ozone(ui, &mut s));
+    section(ui, Section::GroundAndAir, &mut |ui| {
+        ground_and_air(ui, &mut s)
+    });
+    section(ui, Section::Sun, &mut |ui| sun(ui, &mut s));
+    section(ui, Section::Camera, &mut |ui| camera(ui, &mut s));
+    section(ui, Section::Rendering, &mut |ui| render(ui, &mut s, meter));
 
     if s != *current {
         commands.push(Command::SetScene(Box::new(s)));

@@ -216,6 +216,8 @@ pub enum Command {
         x: u32,
         y: u32,
     },
+    /// Start the Learn menu's lesson of this index.
+    StartLesson(usize),
 }
 
 /// ΔE2000 at the top of the heat map's colour scale.

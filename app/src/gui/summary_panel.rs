@@ -42,7 +42,7 @@ impl SummaryPanel {
         ui.strong("Vertical optical depth from the camera to space, and direct sunlight reaching the camera");
         egui::Grid::new("summary")
             .striped(true)
-            .num_columns(8)
+            .num_columns(9)
             .show(ui, |ui| {
                 for h in [
                     "λ (nm)",
@@ -53,6 +53,7 @@ impl SummaryPanel {
                     "aerosol SSA",
                     "aerosol g",
                     "T sun",
+                    "T horizontal",
                 ] {
                     ui.strong(h);
                 }
@@ -66,6 +67,7 @@ impl SummaryPanel {
                     ui.monospace(format!("{:.4}", r.aerosol_ssa));
                     ui.monospace(format!("{:.4}", r.aerosol_g));
                     ui.monospace(format!("{:.4}", r.direct_transmittance));
+                    ui.monospace(format!("{:.4}", r.horizontal_transmittance));
                     ui.end_row();
                 }
             });
@@ -73,7 +75,8 @@ impl SummaryPanel {
         ui.small(
             "τ is the optical depth: light crossing it is dimmed by e^−τ. SSA is the share of the aerosol's \
              extinction that is scattering rather than absorption; g is the mean cosine of its scattering angle. \
-             T sun is zero when the sun is below the horizon or the camera is in the planet's shadow.",
+             T sun is zero when the sun is below the horizon or the camera is in the planet's shadow; \
+             T horizontal is what a ray skimming the ground from the camera keeps.",
         );
     }
 }

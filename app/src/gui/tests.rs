@@ -520,6 +520,77 @@ fn the_last_scene_and_layout_are_restored_and_options_win() {
 }
 
 #[test]
+fn every_lesson_of_the_learn_menu_sets_its_scene_tab_and_pixel_and_shows_computed_numbers() {
+    let mut h = harness();
+    let lessons: Vec<_> = crate::lessons::shipped()
+        .into_iter()
+        .map(|(file, l)| (file, l.unwrap_or_else(|e| panic!("{e}"))))
+        .collect();
+    for (file, lesson) in &lessons {
+        h.get_by_label("Learn").click();
+        h.run();
+        h.get_by_label(&lesson.title).click();
+        // A metered preset's exposure keeps adapting for many frames: a few are enough here.
+        h.run_steps(4);
+        // The scene up to its exposure, which a metered preset adapts frame by frame.
+        let metered = |s: &Scene| {
+            let mut s = s.clone();
+            s.display.exposure_ev = 0.0;
+            s
+        };
+        let app = h.state();
+        assert_eq!(app.layout.tab, lesson.tab, "{file}");
+        assert_eq!(
+            metered(&app.scene),
+            metered(&lesson.scene(file).expect("scene")),
+            "{file}"
+        );
+        assert!(app.message.is_none(), "{file}: {:?}", app.message);
+        h.get_by_label(&format!("Learn: {}", lesson.title));
+        // The text on screen is the lesson's, with the scene's own numbers in it.
+        let text = lesson.text_for(&h.state().scene);
+        assert!(!text.contains('{'), "{file}: {text}");
+        h.get_by_label(&text);
+        h.get_by_label_contains(&format!("Try ({}):", lesson.section.title()));
+        if lesson.inspect.is_some() {
+            if let Some(job) = h.state().inspector.job() {
+                super::jobs::wait(job);
+            }
+            h.run_steps(2);
+            let a = h
+                .state()
+                .inspector
+                .result
+                .as_ref()
+                .expect("the lesson's pixel is analysed");
+            assert!(
+                a.probe.label.starts_with(lesson.tab.label()),
+                "{}",
+                a.probe.label
+            );
+            assert_eq!(metered(&a.probe.scene), metered(&h.state().scene));
+        }
+    }
+    // The numbers follow the scene: the sunset lesson's change with the sun.
+    let (file, sunset) = lessons
+        .iter()
+        .find(|(f, _)| f.contains("sunset"))
+        .expect("a sunset lesson");
+    h.get_by_label("Learn").click();
+    h.run();
+    h.get_by_label(&sunset.title).click();
+    h.run_steps(4);
+    let before = sunset.text_for(&h.state().scene);
+    h.get_by_role_and_label(Role::Slider, "elevation")
+        .set_value_accesskit(10.0);
+    // The metered exposure keeps adapting over many frames: a few are enough for the text.
+    h.run_steps(3);
+    let after = sunset.text_for(&h.state().scene);
+    assert_ne!(before, after, "{file}");
+    h.get_by_label(&after);
+}
+
+#[test]
 fn copy_scene_as_ron_from_the_file_menu() {
     let mut h = harness();
     h.get_by_label("File").click();
