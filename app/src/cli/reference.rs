@@ -175,23 +175,6 @@ pub fn run(args: &ReferenceArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-fn fnv1a(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
-        (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
-    })
-}
-
-fn cache_dir() -> PathBuf {
-    if let Some(d) = std::env::var_os("ATMOSCOPE_CACHE_DIR") {
-        return PathBuf::from(d);
-    }
-    let base = std::env::var_os("XDG_CACHE_HOME")
-        .map(PathBuf::from)
-        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
-        .unwrap_or_else(std::env::temp_dir);
-    base.join("atmoscope").join("references")
-}
-
 fn render_job(job: &Job, args: &ReferenceArgs) -> anyhow::Result<()> {
     let (w, h) = job.size;
     let key = format!(
@@ -203,7 +186,8 @@ fn render_job(job: &Job, args: &ReferenceArgs) -> anyhow::Result<()> {
         args.max_order,
         args.seed
     );
-    let cached = cache_dir().join(format!("{:016x}.exr", fnv1a(key.as_bytes())));
+    let cached = crate::cache::dir("references")
+        .join(format!("{:016x}.exr", crate::cache::key(key.as_bytes())));
     let png = job.out.with_extension("png");
     // A cache entry that does not read back whole (cut short, corrupted, another size) is
     // ignored and replaced.

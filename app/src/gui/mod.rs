@@ -16,6 +16,7 @@ mod scene_panel;
 mod sky_tab;
 mod state;
 mod summary_panel;
+mod thumbnails;
 
 use crate::cli::SceneArgs;
 use crate::lessons::{self, Lesson, LessonError};
@@ -89,6 +90,9 @@ pub struct ExplorerApp {
     lessons: Vec<(&'static str, Result<Lesson, LessonError>)>,
     /// The lesson on screen.
     lesson: Option<ActiveLesson>,
+    /// The preset menu's pictures, and where they are cached.
+    thumbnails: thumbnails::Thumbnails,
+    thumbnail_dir: PathBuf,
 }
 
 /// A lesson the user started: its window stays until closed and its numbers follow the scene.
@@ -131,6 +135,8 @@ impl ExplorerApp {
             frame_log: std::env::var_os("ATMOSCOPE_FRAME_LOG").is_some(),
             lessons: lessons::shipped(),
             lesson: None,
+            thumbnails: thumbnails::Thumbnails::default(),
+            thumbnail_dir: crate::cache::dir("thumbnails"),
         }
     }
 
@@ -185,6 +191,12 @@ impl ExplorerApp {
             Command::Export(kind, path) => self.export(ctx, kind, path),
             Command::Inspect { tab, x, y } => self.inspect(ctx, tab, x, y),
             Command::StartLesson(i) => self.start_lesson(i),
+            Command::WantThumbnails => {
+                if let Some(views) = &self.views {
+                    self.thumbnails
+                        .request(ctx, &views.gpu, self.thumbnail_dir.clone());
+                }
+            }
         }
     }
 
@@ -371,7 +383,10 @@ impl ExplorerApp {
                 .as_ref()
                 .and_then(|v| v.reference.as_ref())
                 .is_some_and(|r| r.job().is_some());
-        !self.exports.is_empty() || self.inspector.job().is_some() || tracing
+        !self.exports.is_empty()
+            || self.inspector.job().is_some()
+            || tracing
+            || self.thumbnails.loading()
     }
 
     fn shortcuts(&mut self, ctx: &egui::Context) -> Vec<Command> {
@@ -603,6 +618,7 @@ impl eframe::App for ExplorerApp {
         }
         self.last_frame = Some(now);
         self.poll_jobs();
+        self.thumbnails.poll(&ctx);
         if let Some(v) = &mut self.views {
             v.main.set_metering(self.scene.display.auto_exposure);
         }
@@ -663,6 +679,7 @@ impl eframe::App for ExplorerApp {
                             &self.scene,
                             self.meter.as_ref(),
                             self.lesson.as_ref().map(|l| l.lesson.section),
+                            &self.thumbnails,
                         ));
                     });
                 });

@@ -3,6 +3,7 @@
 
 use super::exposure;
 use super::state::Command;
+use super::thumbnails::{SIZE as THUMBNAIL_SIZE, Thumbnails};
 use crate::lessons::Section;
 use crate::presets::SHIPPED;
 use atmoscope_model::Scene;
@@ -34,26 +35,45 @@ const MONTHS: [&str; 12] = [
     "December",
 ];
 
-/// Draws the panel, framing the section `highlight` (a lesson's invitation to try it);
-/// returns the commands its controls produced this frame.
+/// Draws the panel, framing the section `highlight` (a lesson's invitation to try it) and
+/// showing the presets with their thumbnails once loaded; returns the commands its controls
+/// produced this frame.
 pub fn show(
     ui: &mut egui::Ui,
     current: &Scene,
     meter: Option<&exposure::Reading>,
     highlight: Option<Section>,
+    thumbnails: &Thumbnails,
 ) -> Vec<Command> {
     let mut commands = Vec::new();
     let mut s = current.clone();
     ui.heading("Scene");
     ComboBox::from_label("Preset")
         .selected_text("Load a preset…")
+        .height(560.0)
         .show_ui(ui, |ui| {
+            commands.push(Command::WantThumbnails);
+            if thumbnails.loading() {
+                ui.weak("drawing the thumbnails…");
+            }
+            if let Some(e) = &thumbnails.error {
+                ui.colored_label(ui.visuals().error_fg_color, format!("no thumbnails: {e}"));
+            }
             for (name, _) in SHIPPED {
-                if ui
-                    .selectable_label(false, name.trim_end_matches(".ron"))
-                    .clicked()
-                {
+                let label = name.trim_end_matches(".ron");
+                let button = match thumbnails.get(name) {
+                    Some(t) => egui::Button::image_and_text(
+                        egui::Image::from_texture(egui::load::SizedTexture::new(
+                            t.id(),
+                            egui::vec2(THUMBNAIL_SIZE[0] as f32, THUMBNAIL_SIZE[1] as f32),
+                        )),
+                        label,
+                    ),
+                    None => egui::Button::new(label),
+                };
+                if ui.add(button.frame(false)).clicked() {
                     commands.push(Command::LoadPreset(name));
+                    ui.close();
                 }
             }
         })

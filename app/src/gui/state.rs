@@ -218,6 +218,8 @@ pub enum Command {
     },
     /// Start the Learn menu's lesson of this index.
     StartLesson(usize),
+    /// The preset menu is open: load its thumbnails unless they are loaded or loading.
+    WantThumbnails,
 }
 
 /// ΔE2000 at the top of the heat map's colour scale.

@@ -32,6 +32,9 @@ fn harness_with(layout: Layout, size: egui::Vec2) -> Harness<'static, ExplorerAp
             );
             // Steps do not wait for the GPU: build each atmosphere in the frame that asks.
             app.set_rebuild_slices(None);
+            // Thumbnails go to a cache of the tests' own, not the user's.
+            app.thumbnail_dir = std::env::temp_dir()
+                .join(format!("atmoscope-test-thumbnails-{}", std::process::id()));
             app
         });
     h.run();
@@ -127,13 +130,89 @@ fn month_slider_sets_the_ozone_column_and_redraws() {
 #[test]
 fn loading_a_preset_replaces_the_scene() {
     let mut h = harness();
-    h.get_by_role_and_label(Role::ComboBox, "Preset").click();
+    // With the thumbnails in, the entry lies below the fold.
+    let dir = tempfile::tempdir().expect("temp dir");
+    open_the_preset_menu_with_thumbnails_in(&mut h, dir.path());
+    h.get_by_label("orbit-400km").scroll_to_me();
     h.run();
     h.get_by_label("orbit-400km").click();
     h.run();
     assert_eq!(h.state().scene.camera.altitude_m, 400_000.0);
     assert_eq!(h.state().scene.name, "Orbit at 400 km");
     assert!(h.state().message.is_none());
+}
+
+/// Opens the preset menu and waits until its thumbnails are drawn or read from `dir`.
+fn open_the_preset_menu_with_thumbnails_in(h: &mut Harness<'static, ExplorerApp>, dir: &Path) {
+    h.state_mut().thumbnail_dir = dir.to_path_buf();
+    h.get_by_role_and_label(Role::ComboBox, "Preset").click();
+    h.run_steps(2);
+    let start = std::time::Instant::now();
+    while h.state().thumbnails.loading() {
+        assert!(start.elapsed().as_secs() < 120, "the thumbnails never came");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        h.step();
+    }
+    h.run_steps(2);
+    assert!(
+        h.state().thumbnails.error.is_none(),
+        "{:?}",
+        h.state().thumbnails.error
+    );
+}
+
+#[test]
+fn the_preset_menu_shows_every_preset_with_a_thumbnail_drawn_once_then_cached() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness();
+    open_the_preset_menu_with_thumbnails_in(&mut h, dir.path());
+    let shipped = crate::presets::SHIPPED;
+    for (name, _) in shipped {
+        assert!(
+            h.state().thumbnails.get(name).is_some(),
+            "{name} has no thumbnail"
+        );
+    }
+    let files = || {
+        let mut f: Vec<(PathBuf, Vec<u8>)> = std::fs::read_dir(dir.path())
+            .expect("cache dir")
+            .map(|e| {
+                let p = e.expect("entry").path();
+                let bytes = std::fs::read(&p).expect("read");
+                (p, bytes)
+            })
+            .collect();
+        f.sort();
+        f
+    };
+    let cached = files();
+    assert_eq!(cached.len(), shipped.len());
+    let distinct: std::collections::HashSet<&Vec<u8>> = cached.iter().map(|(_, b)| b).collect();
+    assert_eq!(
+        distinct.len(),
+        shipped.len(),
+        "every preset looks different"
+    );
+    // A corrupt entry is drawn anew; the others are read back as they are.
+    std::fs::write(&cached[0].0, b"not a png").expect("corrupt");
+    let mut again = harness();
+    open_the_preset_menu_with_thumbnails_in(&mut again, dir.path());
+    assert!(again.state().thumbnails.get(shipped[0].0).is_some());
+    let redrawn = files();
+    assert_eq!(redrawn.len(), shipped.len());
+    assert!(
+        image::load_from_memory(&redrawn[0].1).is_ok(),
+        "the corrupt entry was redrawn"
+    );
+    assert_eq!(redrawn[1..], cached[1..]);
+    // Choosing a picture loads its preset (the first: the list scrolls below the window).
+    let (first, _) = shipped[0];
+    again.get_by_label(first.trim_end_matches(".ron")).click();
+    again.run();
+    let expected = crate::presets::load_shipped(first)
+        .expect("listed")
+        .expect("valid");
+    assert_eq!(again.state().scene.name, expected.name);
 }
 
 #[derive(Debug)]

@@ -1,0 +1,25 @@
+//! Atmoscope's cache on disk (path-traced references, preset thumbnails): where it lives and
+//! how entries are keyed. Entries are untrusted on read: each user checks what it reads back
+//! and renders anew when an entry is cut short, corrupt or of another size.
+
+use std::path::PathBuf;
+
+/// The cache folder for one kind of entry: `$ATMOSCOPE_CACHE_DIR/<kind>`, else
+/// `$XDG_CACHE_HOME/atmoscope/<kind>`, else `~/.cache/atmoscope/<kind>`.
+pub fn dir(kind: &str) -> PathBuf {
+    if let Some(d) = std::env::var_os("ATMOSCOPE_CACHE_DIR") {
+        return PathBuf::from(d).join(kind);
+    }
+    let base = std::env::var_os("XDG_CACHE_HOME")
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
+        .unwrap_or_else(std::env::temp_dir);
+    base.join("atmoscope").join(kind)
+}
+
+/// A stable 64-bit key of `bytes` (FNV-1a): names a cache entry after everything it depends on.
+pub fn key(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}
