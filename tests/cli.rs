@@ -817,7 +817,7 @@ fn reference_checks_its_output_first_and_survives_a_truncated_cache_entry() {
 
     let out = dir.join("x.exr");
     assert!(run(&out).status.success());
-    let entry = std::fs::read_dir(&cache)
+    let entry = std::fs::read_dir(cache.join("references"))
         .expect("a cache entry")
         .filter_map(|e| e.ok())
         .map(|e| e.path())
