@@ -49,7 +49,7 @@ pub struct Info {
 
 /// Computes the report for a scene.
 pub fn compute(scene: &Scene, wavelengths_nm: &[f64]) -> Info {
-    let atm = Atmosphere::new(&scene.atmosphere);
+    let atm = Atmosphere::for_scene(&scene);
     let sun = scene.sun.angles();
     let camera = DVec3::new(0.0, 0.0, atm.bottom_radius_m + scene.camera.altitude_m);
     let sun_dir = direction_from_angles(sun.elevation_deg, sun.azimuth_deg);

@@ -182,6 +182,9 @@ pub struct Atmosphere {
     pub top_radius_m: f64,
     pub ground_albedo: f64,
     pub solar_spectrum: SolarSpectrum,
+    /// The Earth–Sun distance, AU (0.98–1.02; 1 unless built by [`Atmosphere::for_scene`]
+    /// from a sun placed by date): sunlight scales as its inverse square.
+    pub sun_distance_au: f64,
     pub aerosol_type: AerosolType,
     pub aerosol_phase: AerosolPhase,
     /// Total ozone column actually used, DU.
@@ -249,6 +252,7 @@ impl Atmosphere {
             top_radius_m: bottom + top_m,
             ground_albedo: s.ground_albedo,
             solar_spectrum: s.solar_spectrum,
+            sun_distance_au: 1.0,
             aerosol_type: kind,
             aerosol_phase: s.aerosol.phase,
             ozone_column_du,
@@ -262,6 +266,25 @@ impl Atmosphere {
             aerosol_spectral,
             breakpoints_m,
         }
+    }
+
+    /// The atmosphere of a scene, lit by a sun at the scene's Earth–Sun distance.
+    pub fn for_scene(scene: &crate::Scene) -> Atmosphere {
+        Atmosphere {
+            sun_distance_au: scene.sun.distance_au(),
+            ..Atmosphere::new(&scene.atmosphere)
+        }
+    }
+
+    /// Extraterrestrial solar irradiance at the sun's distance, W·m⁻²·nm⁻¹: the spectrum's
+    /// mean over `band_nm` around `wavelength_nm` (nm, 360–830), or its value there when
+    /// `None`, times 1/d² for the distance d in AU.
+    pub fn solar_irradiance(&self, wavelength_nm: f64, band_nm: Option<f64>) -> f64 {
+        let at_1_au = match band_nm {
+            Some(width) => self.solar_spectrum.irradiance(wavelength_nm, width),
+            None => self.solar_spectrum.spectrum().sample(wavelength_nm),
+        };
+        at_1_au * self.sun_distance_au.powi(-2)
     }
 
     /// Height of the atmosphere above the ground, m.
@@ -456,6 +479,45 @@ mod tests {
     use super::*;
     use crate::constants::DOBSON_UNIT_PER_M2;
     use crate::scene::{OzoneColumn, Scene};
+
+    #[test]
+    fn sunlight_follows_the_earth_sun_distance_of_the_date_into_every_model() {
+        use crate::methods::path_tracer::LaneOptics;
+        use crate::methods::shared::optics::Params;
+        use crate::scene::{Quality, SunSettings, WavelengthSet};
+        use crate::sun::DateTime;
+        let on = |month| {
+            let mut s = Scene::default();
+            s.sun = SunSettings::Date {
+                time: DateTime {
+                    year: 2026,
+                    month,
+                    day: 4,
+                    hour: 12.0,
+                    utc_offset_h: 0.0,
+                },
+                latitude_deg: 45.0,
+                longitude_deg: 0.0,
+            };
+            Atmosphere::for_scene(&s)
+        };
+        let (january, july) = (on(1), on(7));
+        // (1.0167 / 0.9833)² = 1.069: January's sun is 6.9 % stronger than July's.
+        let ratio = |f: &dyn Fn(&Atmosphere) -> f64| f(&january) / f(&july);
+        let tables = |a: &Atmosphere| {
+            Params::new(a, WavelengthSet::Spectral4, Quality::Low).batches[0].solar_irradiance[1]
+        };
+        let traced = |a: &Atmosphere| LaneOptics::new(a, [550.0; 4]).solar_irradiance[0];
+        for r in [ratio(&tables), ratio(&traced)] {
+            assert!((r - 1.069).abs() < 0.002, "{r}");
+        }
+        // A sun placed by angles stands at the mean distance of the tabulated spectra.
+        let by_angles = Atmosphere::for_scene(&Scene::default());
+        assert_eq!(
+            by_angles.solar_irradiance(550.0, None),
+            Atmosphere::new(&Scene::default().atmosphere).solar_irradiance(550.0, None)
+        );
+    }
 
     fn clear_air() -> AtmosphereSettings {
         let mut s = Scene::default().atmosphere;

@@ -134,7 +134,7 @@ impl ReferenceRender {
         seed: u64,
         settings: PathTracerSettings,
     ) -> Self {
-        let atmosphere = Atmosphere::new(&scene.atmosphere);
+        let atmosphere = Atmosphere::for_scene(&scene);
         let camera = Camera::new(&scene.camera, atmosphere.bottom_radius_m, projection);
         let sun_angles = scene.sun.angles();
         let sun = direction_from_angles(sun_angles.elevation_deg, sun_angles.azimuth_deg);

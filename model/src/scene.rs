@@ -226,6 +226,15 @@ impl SunSettings {
             } => sun::position(&time, latitude_deg, longitude_deg),
         }
     }
+
+    /// The Earth–Sun distance, AU: from the date when the sun is placed by date, else the
+    /// mean distance (1 AU), at which the solar spectra are tabulated.
+    pub fn distance_au(&self) -> f64 {
+        match self {
+            SunSettings::Angles { .. } => 1.0,
+            SunSettings::Date { time, .. } => sun::distance_au(time.julian_day()),
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -54,6 +54,8 @@ struct SolarTerms {
     mean_longitude_deg: f64,
     mean_anomaly_deg: f64,
     eccentricity: f64,
+    /// The equation of the centre C: true anomaly ν = M + C.
+    equation_of_centre_deg: f64,
     apparent_longitude_deg: f64,
     obliquity_deg: f64,
 }
@@ -64,20 +66,31 @@ fn solar_terms(jd: f64) -> SolarTerms {
     let m = 357.52911 + t * (35_999.05029 - t * 0.0001537);
     let e = 0.016708634 - t * (0.000042037 + t * 0.0000001267);
     let mr = m.to_radians();
-    let c = mr.sin() * (1.914602 - t * (0.004817 + t * 0.000014))
+    let c_deg = mr.sin() * (1.914602 - t * (0.004817 + t * 0.000014))
         + (2.0 * mr).sin() * (0.019993 - t * 0.000101)
         + (3.0 * mr).sin() * 0.000289;
     let omega = (125.04 - 1934.136 * t).to_radians();
-    let apparent = l0 + c - 0.00569 - 0.00478 * omega.sin();
+    let apparent = l0 + c_deg - 0.00569 - 0.00478 * omega.sin();
     let eps0 =
         23.0 + (26.0 + (21.448 - t * (46.8150 + t * (0.00059 - t * 0.001813))) / 60.0) / 60.0;
     SolarTerms {
         mean_longitude_deg: l0,
         mean_anomaly_deg: m,
         eccentricity: e,
+        equation_of_centre_deg: c_deg,
         apparent_longitude_deg: apparent,
         obliquity_deg: eps0 + 0.00256 * omega.cos(),
     }
+}
+
+/// The Earth–Sun distance at Julian day `jd`, astronomical units (Meeus 1998, eq. 25.5): 0.983
+/// in early January to 1.017 in early July, so sunlight is 3.4 % stronger than at the mean
+/// distance in January and 3.3 % weaker in July.
+pub fn distance_au(jd: f64) -> f64 {
+    let s = solar_terms(jd);
+    let nu = (s.mean_anomaly_deg + s.equation_of_centre_deg).to_radians();
+    let e = s.eccentricity;
+    1.000001018 * (1.0 - e * e) / (1.0 + e * nu.cos())
 }
 
 /// Where the sun stands for an observer.
@@ -142,6 +155,28 @@ mod tests {
         let (ra, dec) = equatorial_deg(t.julian_day());
         assert!((ra - 198.38083).abs() < 0.001, "α = {ra}");
         assert!((dec + 7.78507).abs() < 0.001, "δ = {dec}");
+        // Same example: R = 0.99766 AU.
+        let r = distance_au(t.julian_day());
+        assert!((r - 0.99766).abs() < 2e-5, "R = {r}");
+    }
+
+    #[test]
+    fn the_earth_is_nearest_the_sun_in_january_and_farthest_in_july() {
+        let on = |month, day| {
+            distance_au(
+                DateTime {
+                    year: 2026,
+                    month,
+                    day,
+                    hour: 12.0,
+                    utc_offset_h: 0.0,
+                }
+                .julian_day(),
+            )
+        };
+        let (perihelion, aphelion) = (on(1, 3), on(7, 6));
+        assert!((perihelion - 0.9833).abs() < 5e-4, "{perihelion}");
+        assert!((aphelion - 1.0167).abs() < 5e-4, "{aphelion}");
     }
 
     #[test]

@@ -151,6 +151,8 @@ pub fn capture<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> Result<T, Eng
 #[derive(Debug, Clone, PartialEq)]
 struct AtmosphereKey {
     settings: AtmosphereSettings,
+    /// Sunlight scales with the Earth–Sun distance, which a sun placed by date sets.
+    sun_distance_au: f64,
     method: Method,
     wavelengths: WavelengthSet,
     quality: Quality,
@@ -848,6 +850,7 @@ impl Engine {
             .ok_or_else(|| NotRealtime(methods::info(method).id, methods::realtime_ids()))?;
         let key = AtmosphereKey {
             settings: scene.atmosphere.clone(),
+            sun_distance_au: scene.sun.distance_au(),
             method,
             wavelengths: scene.render.wavelengths,
             quality: scene.render.quality,
@@ -1005,12 +1008,8 @@ impl Engine {
         let Some(gpu) = gpu_method(key.method) else {
             unreachable!("the caller checked the model is a real-time one");
         };
-        let params = Params::new(
-            &Atmosphere::new(&scene.atmosphere),
-            key.wavelengths,
-            key.quality,
-        )
-        .with_render(&scene.render);
+        let params = Params::new(&Atmosphere::for_scene(&scene), key.wavelengths, key.quality)
+            .with_render(&scene.render);
         let i = self.pipelines_of(gpu);
         let tables = TableBuffers::new(&self.device, &self.pipelines[i], gpu.info(), &params);
         let batches: Vec<uniforms::Batch> = params.batches.iter().map(Into::into).collect();

@@ -44,7 +44,7 @@ fn samples(
     grid: u32,
     set: WavelengthSet,
 ) -> Vec<Sample> {
-    let atm = Atmosphere::new(&scene.atmosphere);
+    let atm = Atmosphere::for_scene(&scene);
     let p4 = Params::new(&atm, WavelengthSet::Spectral4, scene.render.quality);
     let pn = Params::new(&atm, set, scene.render.quality);
     let camera = Camera::new(&scene.camera, atm.bottom_radius_m, projection);

@@ -136,7 +136,7 @@ fn load(args: &FitGarciaLinanArgs) -> anyhow::Result<Vec<ViewSamples>> {
         }
         let (reference, w, h) =
             read_exr(&path).with_context(|| format!("reference of {}", v.name))?;
-        let atm = Atmosphere::new(&scene.atmosphere);
+        let atm = Atmosphere::for_scene(&scene);
         let params = Params::new(&atm, args.wavelengths, scene.render.quality);
         let transmittance = compute_transmittance_lut(&params);
         let camera = Camera::new(&scene.camera, atm.bottom_radius_m, v.projection);

@@ -130,11 +130,10 @@ pub struct Probe {
 
 /// Runs the probe.
 pub fn probe(scene: &Scene, args: &ProbeArgs) -> Probe {
-    let atm = Atmosphere::new(&scene.atmosphere);
+    let atm = Atmosphere::for_scene(&scene);
     let sun_angles = scene.sun.angles();
     let sun = direction_from_angles(sun_angles.elevation_deg, sun_angles.azimuth_deg);
     let camera = Camera::new(&scene.camera, atm.bottom_radius_m, Projection::Perspective);
-    let solar = atm.solar_spectrum.spectrum();
     let directions: Vec<(f64, f64)> = args
         .view_zenith_deg
         .iter()
@@ -210,7 +209,7 @@ pub fn probe(scene: &Scene, args: &ProbeArgs) -> Probe {
                 .iter()
                 .enumerate()
                 .map(|(i, &w)| {
-                    let e = solar.sample(w);
+                    let e = atm.solar_irradiance(w, None);
                     Sample {
                         view_zenith_deg: zenith,
                         view_azimuth_deg: azimuth,

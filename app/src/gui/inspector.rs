@@ -61,7 +61,7 @@ pub const SHARE_NAMES: [&str; 4] = [
 
 /// Traces the probe's ray. Returns None when cancelled.
 pub fn analyse(probe: Probe, progress: &Progress) -> Option<Analysis> {
-    let atm = Atmosphere::new(&probe.scene.atmosphere);
+    let atm = Atmosphere::for_scene(&probe.scene);
     let angles = probe.scene.sun.angles();
     let sun = direction_from_angles(angles.elevation_deg, angles.azimuth_deg);
     let wavelengths_nm: Vec<f64> = INSPECT_NM.step_by(INSPECT_STEP_NM).map(f64::from).collect();

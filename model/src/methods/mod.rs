@@ -305,7 +305,7 @@ pub fn build(scene: &Scene, camera: &Camera) -> Result<Box<dyn SkyModel>, NotRea
     let build = row
         .build
         .ok_or_else(|| NotRealtime(row.id, realtime_ids()))?;
-    let atm = Atmosphere::new(&scene.atmosphere);
+    let atm = Atmosphere::for_scene(&scene);
     let p = Params::new(&atm, scene.render.wavelengths, scene.render.quality)
         .with_render(&scene.render);
     Ok(build(&p, shared::viewpoint(scene, camera)))

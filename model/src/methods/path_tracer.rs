@@ -122,18 +122,17 @@ pub struct PathTracer<'a> {
 pub struct LaneOptics {
     pub wavelengths_nm: Lanes,
     optics: [Optics; LANES],
-    /// Extraterrestrial solar irradiance, W·m⁻²·nm⁻¹.
+    /// Extraterrestrial solar irradiance at the sun's distance, W·m⁻²·nm⁻¹.
     pub solar_irradiance: Lanes,
 }
 
 impl LaneOptics {
     /// Optics of the atmosphere at four wavelengths.
     pub fn new(atmosphere: &Atmosphere, wavelengths_nm: Lanes) -> LaneOptics {
-        let solar = atmosphere.solar_spectrum.spectrum();
         LaneOptics {
             wavelengths_nm,
             optics: wavelengths_nm.map(|w| atmosphere.optics(w)),
-            solar_irradiance: wavelengths_nm.map(|w| solar.sample(w)),
+            solar_irradiance: wavelengths_nm.map(|w| atmosphere.solar_irradiance(w, None)),
         }
     }
 }

@@ -43,7 +43,7 @@ pub fn radiance(atm: &Atmosphere, ray: &Ray, sun: DVec3, wavelength_nm: f64) -> 
 /// [`radiance`] split into its Rayleigh, aerosol and ground parts.
 pub fn radiance_parts(atm: &Atmosphere, ray: &Ray, sun: DVec3, wavelength_nm: f64) -> Parts {
     let optics = atm.optics(wavelength_nm);
-    let e_sun = atm.solar_spectrum.spectrum().sample(wavelength_nm);
+    let e_sun = atm.solar_irradiance(wavelength_nm, None);
     let (r, mu) = ray.r_mu();
     let Some((t0, t1)) = segment(atm, r, mu) else {
         return Parts::default();

@@ -570,7 +570,7 @@ mod tests {
         let mut scene = Scene::default();
         scene.atmosphere.aerosol.kind = AerosolType::None;
         scene.atmosphere.aerosol.aod550 = 0.0;
-        let atm = Atmosphere::new(&scene.atmosphere);
+        let atm = Atmosphere::for_scene(&scene);
         let wavelengths = [450.0, 550.0, 650.0, 650.0];
         let p = Params::at_wavelengths(&atm, &wavelengths, Quality::High).with_scattering_orders(4);
         let tables = Tables::compute(&p);

@@ -127,7 +127,7 @@ mod tests {
     #[test]
     fn the_sky_texture_agrees_with_the_march_it_samples() {
         let scene = Scene::default();
-        let atm = Atmosphere::new(&scene.atmosphere);
+        let atm = Atmosphere::for_scene(&scene);
         let p = Params::new(&atm, WavelengthSet::Spectral4, Quality::Low);
         let camera = Camera::new(&scene.camera, atm.bottom_radius_m, Projection::Perspective);
         let tables = Tables::compute(&p, Constants::published(), viewpoint(&scene, &camera));

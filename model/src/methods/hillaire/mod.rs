@@ -203,7 +203,7 @@ mod tests {
     fn the_clear_sky_is_blue_the_ground_is_lit_and_space_is_black() {
         let mut scene = Scene::default();
         scene.render.quality = Quality::Low;
-        let atm = Atmosphere::new(&scene.atmosphere);
+        let atm = Atmosphere::for_scene(&scene);
         let p = Params::new(&atm, WavelengthSet::Spectral4, Quality::Low);
         let camera = Camera::new(&scene.camera, atm.bottom_radius_m, Projection::Perspective);
         let tables = Tables::compute(&p, viewpoint(&scene, &camera));

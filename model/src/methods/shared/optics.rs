@@ -154,16 +154,13 @@ impl Params {
                 ]
             })
             .collect();
-        let solar = atm.solar_spectrum;
         let batches = colours
             .into_iter()
             .map(|colour| {
                 let optics = colour.wavelengths_nm.map(|w| atm.optics(w));
                 let lanes = |f: &dyn Fn(usize) -> f64| -> Lanes { std::array::from_fn(f) };
-                let solar_irradiance = lanes(&|i| match colour.bandwidth_nm {
-                    Some(width) => solar.irradiance(colour.wavelengths_nm[i], width),
-                    None => solar.spectrum().sample(colour.wavelengths_nm[i]),
-                });
+                let solar_irradiance =
+                    lanes(&|i| atm.solar_irradiance(colour.wavelengths_nm[i], colour.bandwidth_nm));
                 BatchOptics {
                     rayleigh_scattering: lanes(&|i| optics[i].rayleigh_cross_section_m2 * air_ref),
                     rayleigh_depolarisation: lanes(&|i| optics[i].rayleigh_depolarisation),
@@ -320,7 +317,7 @@ pub(crate) mod tests {
     pub(crate) fn params() -> Params {
         let scene = Scene::default();
         Params::new(
-            &Atmosphere::new(&scene.atmosphere),
+            &Atmosphere::for_scene(&scene),
             WavelengthSet::Spectral4,
             Quality::Medium,
         )

@@ -170,7 +170,7 @@ mod tests {
     fn params() -> Params {
         let scene = Scene::default();
         Params::new(
-            &Atmosphere::new(&scene.atmosphere),
+            &Atmosphere::for_scene(&scene),
             WavelengthSet::Spectral4,
             Quality::Medium,
         )
@@ -196,7 +196,7 @@ mod tests {
     #[test]
     fn zenith_transmittance_matches_the_exact_optical_depth() {
         let scene = Scene::default();
-        let atm = Atmosphere::new(&scene.atmosphere);
+        let atm = Atmosphere::for_scene(&scene);
         let p = Params::new(&atm, WavelengthSet::Spectral4, Quality::High);
         let t = compute_transmittance_lut(&p);
         for (lane, &w) in p.batches[0].colour.wavelengths_nm.iter().enumerate() {
