@@ -1060,3 +1060,49 @@ fn learn_lists_the_lessons_and_prints_one_with_the_models_numbers() {
         stderr(&o)
     );
 }
+
+/// Each model's stated AOD range holds: at its upper end the mean sky radiance error against
+/// the path tracer is within the bound, and at five times that AOD it is not (the range is
+/// where the model works, not a formality).
+#[test]
+fn every_model_keeps_its_stated_aod_range() {
+    let bound = atmoscope_model::methods::AOD_RANGE_ERROR;
+    for m in atmoscope_model::methods::realtime() {
+        let max = m.domain.max_aod550;
+        let aods = format!("{max},{}", 5.0 * max);
+        let o = atmoscope(&[
+            "bench",
+            "aod",
+            "--methods",
+            m.id,
+            "--aods",
+            &aods,
+            "--spp",
+            "2000",
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let rows: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+        let at = |aod: f64| -> Vec<f64> {
+            rows.as_array()
+                .expect("rows")
+                .iter()
+                .filter(|r| r["aod550"].as_f64() == Some(aod))
+                .map(|r| r["mean_abs_error"].as_f64().expect("error"))
+                .collect()
+        };
+        let (inside, beyond) = (at(max), at(5.0 * max));
+        assert_eq!(inside.len(), 2, "{}: a row per sun", m.id);
+        assert!(
+            inside.iter().all(|&e| e <= bound),
+            "{} at AOD {max}: {inside:?}",
+            m.id
+        );
+        assert!(
+            beyond.iter().any(|&e| e > bound),
+            "{} at AOD {}: {beyond:?}: the stated range is too narrow",
+            m.id,
+            5.0 * max
+        );
+    }
+}

@@ -23,6 +23,9 @@ pub enum Bench {
     Gpu(super::bench_gpu::GpuBench),
     /// ΔE2000 of the real-time engine against path-traced references of the view suite.
     Accuracy(super::bench_gpu::AccuracyBench),
+    /// Each model's sky radiance against the path tracer as the aerosol optical depth grows:
+    /// the measurement behind each model's stated AOD range.
+    Aod(super::bench_aod::AodBench),
 }
 
 #[derive(Args, Debug)]
@@ -66,6 +69,7 @@ pub fn run(bench: &Bench) -> anyhow::Result<ExitCode> {
         Bench::PathTracer(args) => path_tracer(args),
         Bench::Gpu(args) => super::bench_gpu::gpu_bench(args),
         Bench::Accuracy(args) => super::bench_gpu::accuracy(args),
+        Bench::Aod(args) => super::bench_aod::run(args),
     }
 }
 

@@ -3,6 +3,7 @@
 
 mod aerosols;
 mod bench;
+mod bench_aod;
 mod bench_gpu;
 mod compare;
 mod fit;

@@ -56,6 +56,15 @@ fn parse_probe_method(s: &str) -> Result<ProbeMethod, String> {
 pub struct ProbeArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
+    #[command(flatten)]
+    pub request: ProbeRequest,
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// What to probe: directions, wavelengths and method.
+#[derive(Args, Debug, Clone)]
+pub struct ProbeRequest {
     /// View zenith angles, degrees (0 = straight up, 180 = straight down).
     #[arg(
         long,
@@ -97,8 +106,6 @@ pub struct ProbeArgs {
     /// Random seed (path tracer).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    #[arg(long)]
-    pub json: bool,
 }
 
 #[derive(Serialize, Debug)]
@@ -129,7 +136,7 @@ pub struct Probe {
 }
 
 /// Runs the probe.
-pub fn probe(scene: &Scene, args: &ProbeArgs) -> Probe {
+pub fn probe(scene: &Scene, args: &ProbeRequest) -> Probe {
     let atm = Atmosphere::for_scene(&scene);
     let sun_angles = scene.sun.angles();
     let sun = direction_from_angles(sun_angles.elevation_deg, sun_angles.azimuth_deg);
@@ -242,7 +249,8 @@ pub fn probe(scene: &Scene, args: &ProbeArgs) -> Probe {
     }
 }
 
-pub fn run(args: &ProbeArgs) -> anyhow::Result<ExitCode> {
+pub fn run(probe_args: &ProbeArgs) -> anyhow::Result<ExitCode> {
+    let args = &probe_args.request;
     super::check_wavelengths(&args.wavelengths_nm)?;
     if let Some(z) = args
         .view_zenith_deg
@@ -254,9 +262,9 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<ExitCode> {
     if args.spp < 2 {
         bail!("--spp: at least 2 paths are needed for a standard error");
     }
-    let scene = args.scene.scene()?;
+    let scene = probe_args.scene.scene()?;
     let p = probe(&scene, args);
-    if args.json {
+    if probe_args.json {
         println!("{}", serde_json::to_string_pretty(&p)?);
         return Ok(ExitCode::SUCCESS);
     }

@@ -253,7 +253,7 @@ pub fn notice(scene: &Scene) -> Option<String> {
     }
     model
         .domain
-        .excludes(scene.camera.altitude_m, scene.sun.angles().elevation_deg)
+        .excludes_scene(scene)
         .map(|why| format!("Outside {}'s domain — {why}", model.label))
 }
 

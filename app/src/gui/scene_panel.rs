@@ -431,8 +431,13 @@ fn camera(ui: &mut egui::Ui, s: &mut Scene) {
 
 /// What a model does, where it is valid and where it comes from.
 fn model_tooltip(m: &methods::ModelInfo) -> String {
+    let aod = if m.domain.max_aod550.is_finite() {
+        format!("; AOD up to {:.2}", m.domain.max_aod550)
+    } else {
+        String::new()
+    };
     format!(
-        "{}: {}\nDomain: {} ({}).\n{}",
+        "{}: {}\nDomain: {} ({}){aod}.\n{}",
         m.label,
         m.summary,
         m.domain.kinds().join(", "),

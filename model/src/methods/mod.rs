@@ -85,7 +85,15 @@ pub struct Domain {
     pub min_sun_elevation_deg: f64,
     /// One sentence on the domain and why.
     pub note: &'static str,
+    /// Highest aerosol optical depth at 550 nm (`f64::INFINITY`: any): the largest AOD at
+    /// which the model's sky radiance stays within [`AOD_RANGE_ERROR`] of the path tracer on
+    /// average (`atmoscope bench aod` measures it; above it the error grows with the AOD).
+    pub max_aod550: f64,
 }
+
+/// The mean relative error of sky radiance against the path tracer that bounds a model's AOD
+/// range (rural aerosol, sun at 30° and 5°, 48 directions and 3 wavelengths).
+pub const AOD_RANGE_ERROR: f64 = 0.2;
 
 /// Camera altitude below which a view is a ground view, m.
 pub const GROUND_VIEW_MAX_ALTITUDE_M: f64 = 2_000.0;
@@ -98,6 +106,7 @@ impl Domain {
         max_altitude_m: f64::INFINITY,
         min_sun_elevation_deg: -90.0,
         note: "ground, plane, space and twilight views",
+        max_aod550: f64::INFINITY,
     };
 
     /// The kinds of view the domain covers: ground, plane, space, twilight.
@@ -131,6 +140,29 @@ impl Domain {
         } else {
             None
         }
+    }
+
+    /// Why an aerosol optical depth `aod550` lies outside the model's AOD range, or None.
+    pub fn excludes_aod(&self, aod550: f64) -> Option<String> {
+        (aod550 > self.max_aod550).then(|| {
+            format!(
+                "AOD {aod550:.2} is above this model's range (up to {:.2}, where its sky stays within {:.0} % of the path tracer); more aerosol darkens it further",
+                self.max_aod550,
+                AOD_RANGE_ERROR * 100.0
+            )
+        })
+    }
+
+    /// Why `scene` lies outside the domain, by its view or its aerosol, or None.
+    pub fn excludes_scene(&self, scene: &crate::Scene) -> Option<String> {
+        let a = &scene.atmosphere.aerosol;
+        let aod550 = if a.kind == crate::aerosol::AerosolType::None {
+            0.0
+        } else {
+            a.aod550
+        };
+        self.excludes(scene.camera.altitude_m, scene.sun.angles().elevation_deg)
+            .or_else(|| self.excludes_aod(aod550))
     }
 }
 
@@ -215,7 +247,7 @@ pub const MODELS: &[ModelInfo] = &[
         label: "Hillaire 2020",
         citation: "S. Hillaire (2020), A Scalable and Production Ready Sky and Atmosphere Rendering Technique, Computer Graphics Forum 39(4)",
         summary: "Transmittance and multiple-scattering tables, a sky-view table at the camera's altitude and an aerial-perspective volume; ray-marched from space.",
-        domain: Domain::EVERYWHERE,
+        domain: hillaire::DOMAIN,
         tables: &hillaire::TABLES,
         gathers_orders: false,
         refittable: false,
@@ -456,8 +488,16 @@ mod tests {
             max_altitude_m: 1000.0,
             min_sun_elevation_deg: 0.0,
             note: "ground views in daylight",
+            max_aod550: 0.3,
         };
         assert!(d.excludes(10.0, 30.0).is_none());
+        assert!(d.excludes_aod(0.3).is_none());
+        assert!(d.excludes_aod(0.5).unwrap().contains("AOD 0.50"));
+        let mut hazy = crate::Scene::default();
+        hazy.atmosphere.aerosol.aod550 = 1.0;
+        assert!(d.excludes_scene(&hazy).unwrap().contains("range"));
+        hazy.atmosphere.aerosol.kind = crate::aerosol::AerosolType::None;
+        assert!(d.excludes_scene(&hazy).is_none(), "no aerosol, no AOD");
         assert!(d.excludes(5000.0, 30.0).unwrap().contains("above"));
         assert!(d.excludes(10.0, -6.0).unwrap().contains("below"));
         assert_eq!(d.kinds(), vec!["ground"]);

@@ -64,6 +64,7 @@ pub const DOMAIN: Domain = Domain {
     max_altitude_m: f64::INFINITY,
     min_sun_elevation_deg: -12.0,
     note: "ground, plane and space views; the tables cover the sun down to 12° below the horizon",
+    max_aod550: 0.3,
 };
 
 const SCATTERING_AXES: [&str; 3] = [

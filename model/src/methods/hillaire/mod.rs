@@ -55,9 +55,17 @@ pub use sky_view::{
     sky_view_texel_from_angles,
 };
 
-use super::SkyModel;
 use super::shared::{self, TableSpec};
+use super::{Domain, SkyModel};
 use glam::DVec3;
+
+/// Every view, but a limited amount of aerosol: multiple scattering of the second order and
+/// above is gathered with an isotropic phase function (Ψ_ms = L₂/(1 − f_ms)), which loses the
+/// aerosol's forward peak, so hazy skies come out too dark.
+pub const DOMAIN: Domain = Domain {
+    max_aod550: 0.15,
+    ..Domain::EVERYWHERE
+};
 
 /// Every table of the method, in pass order.
 pub const TABLES: [TableSpec; 6] = [
