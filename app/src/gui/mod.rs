@@ -257,7 +257,13 @@ impl ExplorerApp {
         let Some(active) = &mut self.lesson else {
             return;
         };
-        if active.text.as_ref().is_none_or(|(s, _)| *s != self.scene) {
+        // The numbers depend on the atmosphere, the sun and the camera, not on the display
+        // (which a metered exposure changes frame by frame).
+        let stale = active.text.as_ref().is_none_or(|(s, _)| {
+            (&s.atmosphere, &s.sun, &s.camera)
+                != (&self.scene.atmosphere, &self.scene.sun, &self.scene.camera)
+        });
+        if stale {
             let text = active.lesson.text_for(&self.scene);
             active.text = Some((self.scene.clone(), text));
         }
