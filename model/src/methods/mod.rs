@@ -93,7 +93,7 @@ pub struct Domain {
 
 /// The mean relative error of sky radiance against the path tracer that bounds a model's AOD
 /// range (rural aerosol, sun at 30° and 5°, 48 directions and 3 wavelengths).
-pub const AOD_RANGE_ERROR: f64 = 0.2;
+pub const AOD_RANGE_ERROR: f64 = 0.25;
 
 /// Camera altitude below which a view is a ground view, m.
 pub const GROUND_VIEW_MAX_ALTITUDE_M: f64 = 2_000.0;

@@ -63,7 +63,7 @@ use glam::DVec3;
 /// above is gathered with an isotropic phase function (Ψ_ms = L₂/(1 − f_ms)), which loses the
 /// aerosol's forward peak, so hazy skies come out too dark.
 pub const DOMAIN: Domain = Domain {
-    max_aod550: 0.15,
+    max_aod550: 0.2,
     ..Domain::EVERYWHERE
 };
 
