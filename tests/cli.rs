@@ -975,6 +975,103 @@ fn bench_gpu_reports_multiples_of_the_floor_pass() {
 }
 
 #[test]
+fn bench_methods_writes_results_summary_and_pareto_chart() {
+    let refs = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../tests/data/references");
+    let out = std::env::temp_dir().join(format!("atmoscope-bench-methods-{}", std::process::id()));
+    let refs_arg = refs.to_string_lossy().into_owned();
+    let out_arg = out.to_string_lossy().into_owned();
+    let o = atmoscope(&[
+        "bench",
+        "methods",
+        "--methods",
+        "hillaire,elek",
+        "--sets",
+        "rgb3",
+        "--views",
+        "ground-noon,twilight-6",
+        "--frame-size",
+        "32x18",
+        "--repeats",
+        "1",
+        "--refs",
+        &refs_arg,
+        "--out",
+        &out_arg,
+    ]);
+    if skipped_without_gpu(&o) {
+        return;
+    }
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("results.csv")).expect("results.csv");
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next(),
+        Some(
+            "method,wavelengths,quality,view,precompute_ms,frame_ms,table_bytes,de2000_mean,de2000_p95,flip,rel_rmse"
+        )
+    );
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    let keys: Vec<(&str, &str)> = rows.iter().map(|r| (r[0], r[3])).collect();
+    assert_eq!(
+        keys,
+        [
+            ("hillaire", "ground-noon"),
+            ("hillaire", "twilight-6"),
+            ("elek", "ground-noon"),
+            ("elek", "twilight-6")
+        ]
+    );
+    for r in &rows {
+        let f = |k: usize| {
+            r[k].parse::<f64>()
+                .unwrap_or_else(|_| panic!("{r:?}: column {k}"))
+        };
+        assert!(
+            f(4) > 0.0 && f(5) > 0.0 && f(6) > 0.0,
+            "{r:?}: times and memory"
+        );
+        // ΔE2000 mean ≤ p95 is not a law (a skewed error can put the mean above), but a
+        // model's sky against the path tracer is neither perfect nor meaningless.
+        assert!(f(7) > 0.1 && f(7) < 50.0 && f(8) > 0.0, "{r:?}: ΔE2000");
+        assert!(
+            f(9) > 0.0 && f(9) < 1.0 && f(10) > 0.0,
+            "{r:?}: FLIP and RMSE"
+        );
+    }
+    // Hillaire's tables follow the viewpoint; Elek's do not, so his one precompute stands
+    // for both views.
+    assert_eq!(rows[2][4], rows[3][4]);
+    let summary = std::fs::read_to_string(out.join("summary.md")).expect("summary.md");
+    assert!(
+        summary.contains("| hillaire | rgb3 | medium |"),
+        "{summary}"
+    );
+    assert!(summary.contains('★'), "the summary marks the Pareto front");
+    let svg = std::fs::read_to_string(out.join("pareto.svg")).expect("pareto.svg");
+    assert!(svg.starts_with("<svg") && svg.contains("elek"));
+    let png = std::fs::read(out.join("pareto.png")).expect("pareto.png");
+    assert!(png.starts_with(b"\x89PNG"));
+    // A view without a reference is refused before any work.
+    let empty = out.join("no-refs");
+    std::fs::create_dir_all(&empty).expect("dir");
+    let o = atmoscope(&[
+        "bench",
+        "methods",
+        "--quick",
+        "--refs",
+        &empty.to_string_lossy(),
+        "--out",
+        &out_arg,
+    ]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("atmoscope reference --suite"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
 fn stress_reports_every_model_and_replays_a_preset() {
     let dir = std::env::temp_dir().join(format!("atmoscope-stress-{}", std::process::id()));
     let o = atmoscope(&[

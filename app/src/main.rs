@@ -1,6 +1,7 @@
 //! `atmoscope`: without arguments it opens the explorer on the default scene; subcommands
 //! work headless on the same model (see `atmoscope --help`).
 
+mod bench_results;
 mod cache;
 mod cli;
 mod gui;

@@ -26,6 +26,10 @@ pub enum Bench {
     /// Each model's sky radiance against the path tracer as the aerosol optical depth grows:
     /// the measurement behind each model's stated AOD range.
     Aod(super::bench_aod::AodBench),
+    /// Every model × wavelength set × quality over views of the suite: precompute and frame
+    /// time, table memory and error against path-traced references; results.csv, a summary
+    /// and the Pareto chart of time against error.
+    Methods(super::bench_methods::MethodsBench),
 }
 
 #[derive(Args, Debug)]
@@ -70,6 +74,7 @@ pub fn run(bench: &Bench) -> anyhow::Result<ExitCode> {
         Bench::Gpu(args) => super::bench_gpu::gpu_bench(args),
         Bench::Accuracy(args) => super::bench_gpu::accuracy(args),
         Bench::Aod(args) => super::bench_aod::run(args),
+        Bench::Methods(args) => super::bench_methods::run(args),
     }
 }
 

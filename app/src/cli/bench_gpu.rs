@@ -116,12 +116,12 @@ fn sliced_rebuild_ms(
     Ok((longest, mean, start.elapsed().as_secs_f64() * 1e3))
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
+pub(super) fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
 }
 
-fn set_name(s: WavelengthSet) -> String {
+pub(super) fn set_name(s: WavelengthSet) -> String {
     match s {
         WavelengthSet::Rgb3 => "rgb3".into(),
         WavelengthSet::Spectral4 => "spectral4".into(),

@@ -5,6 +5,7 @@ mod aerosols;
 mod bench;
 mod bench_aod;
 mod bench_gpu;
+pub mod bench_methods;
 mod compare;
 mod fit;
 mod fit_garcia_linan;

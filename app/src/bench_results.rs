@@ -1,0 +1,272 @@
+//! The results of `atmoscope bench methods`, one row per model × wavelength set × quality ×
+//! view: written to `results.csv` by the command, read back by the explorer's Bench tab (an
+//! untrusted file: every line is checked), and summarised per configuration with the Pareto
+//! front of frame time against error.
+
+use atmoscope_model::metrics::pareto_front;
+
+/// The columns of `results.csv`, in order.
+pub const COLUMNS: [&str; 11] = [
+    "method",
+    "wavelengths",
+    "quality",
+    "view",
+    "precompute_ms",
+    "frame_ms",
+    "table_bytes",
+    "de2000_mean",
+    "de2000_p95",
+    "flip",
+    "rel_rmse",
+];
+
+/// One model × wavelength set × quality on one view of the suite.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    /// Registry id of the model.
+    pub method: String,
+    /// `rgb3`, `spectral4` or `spectralN`.
+    pub wavelengths: String,
+    /// `low`, `medium` or `high`.
+    pub quality: String,
+    pub view: String,
+    /// A full rebuild of the tables for the view's scene, wall time from encoding to the GPU
+    /// being idle, ms.
+    pub precompute_ms: f64,
+    /// The sky and display passes of a frame with the camera turning, ms.
+    pub frame_ms: f64,
+    /// GPU memory of the model's tables, bytes.
+    pub table_bytes: u64,
+    /// ΔE2000 against the path-traced reference, mean and 95th percentile over the pixels.
+    pub de2000_mean: f64,
+    pub de2000_p95: f64,
+    /// HDR-FLIP, mean over the pixels.
+    pub flip: f64,
+    /// Relative RMSE of luminance outside the sun's disk.
+    pub rel_rmse: f64,
+}
+
+/// Why `results.csv` could not be read.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum ResultsError {
+    #[error("the file is empty")]
+    Empty,
+    #[error("line 1: expected the header {expected:?}")]
+    Header { expected: String },
+    #[error("line {line}: {message}")]
+    Line { line: usize, message: String },
+}
+
+/// `rows` as CSV, header first.
+pub fn to_csv(rows: &[Row]) -> String {
+    let mut s = COLUMNS.join(",") + "\n";
+    for r in rows {
+        s += &format!(
+            "{},{},{},{},{:.4},{:.4},{},{:.4},{:.4},{:.5},{:.5}\n",
+            r.method,
+            r.wavelengths,
+            r.quality,
+            r.view,
+            r.precompute_ms,
+            r.frame_ms,
+            r.table_bytes,
+            r.de2000_mean,
+            r.de2000_p95,
+            r.flip,
+            r.rel_rmse
+        );
+    }
+    s
+}
+
+/// Reads `results.csv`; names the first bad line and what is wrong with it.
+pub fn parse_csv(text: &str) -> Result<Vec<Row>, ResultsError> {
+    let mut lines = text.lines();
+    let header = lines.next().ok_or(ResultsError::Empty)?;
+    if header.trim() != COLUMNS.join(",") {
+        return Err(ResultsError::Header {
+            expected: COLUMNS.join(","),
+        });
+    }
+    let mut rows = Vec::new();
+    for (i, line) in lines.enumerate().filter(|(_, l)| !l.trim().is_empty()) {
+        let bad = |message: String| ResultsError::Line {
+            line: i + 2,
+            message,
+        };
+        let f: Vec<&str> = line.trim().split(',').collect();
+        if f.len() != COLUMNS.len() {
+            return Err(bad(format!(
+                "{} fields, expected {}",
+                f.len(),
+                COLUMNS.len()
+            )));
+        }
+        let number = |k: usize| -> Result<f64, ResultsError> {
+            match f[k].parse::<f64>() {
+                Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+                _ => Err(bad(format!(
+                    "{}: {:?} is not a finite number ≥ 0",
+                    COLUMNS[k], f[k]
+                ))),
+            }
+        };
+        if let Some(k) = (0..4).find(|&k| f[k].is_empty()) {
+            return Err(bad(format!("{} is empty", COLUMNS[k])));
+        }
+        rows.push(Row {
+            method: f[0].into(),
+            wavelengths: f[1].into(),
+            quality: f[2].into(),
+            view: f[3].into(),
+            precompute_ms: number(4)?,
+            frame_ms: number(5)?,
+            table_bytes: f[6]
+                .parse()
+                .map_err(|_| bad(format!("table_bytes: {:?} is not a byte count", f[6])))?,
+            de2000_mean: number(7)?,
+            de2000_p95: number(8)?,
+            flip: number(9)?,
+            rel_rmse: number(10)?,
+        });
+    }
+    Ok(rows)
+}
+
+/// One model × wavelength set × quality over the views it was measured on: means of every
+/// figure (the largest table memory).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Config {
+    pub method: String,
+    pub wavelengths: String,
+    pub quality: String,
+    pub views: usize,
+    pub precompute_ms: f64,
+    pub frame_ms: f64,
+    pub table_bytes: u64,
+    pub de2000_mean: f64,
+    pub de2000_p95: f64,
+    pub flip: f64,
+    pub rel_rmse: f64,
+    /// On the Pareto front of frame time against mean ΔE2000.
+    pub on_front: bool,
+}
+
+impl Config {
+    /// `method/wavelengths/quality`, as the chart and the tables label it.
+    pub fn name(&self) -> String {
+        format!("{}/{}/{}", self.method, self.wavelengths, self.quality)
+    }
+}
+
+/// The configurations in `rows`, in order of first appearance, with their Pareto front.
+pub fn summarise(rows: &[Row]) -> Vec<Config> {
+    let mut configs: Vec<(Config, Vec<&Row>)> = Vec::new();
+    for r in rows {
+        let same = |c: &Config| {
+            c.method == r.method && c.wavelengths == r.wavelengths && c.quality == r.quality
+        };
+        match configs.iter_mut().find(|(c, _)| same(c)) {
+            Some((_, group)) => group.push(r),
+            None => configs.push((
+                Config {
+                    method: r.method.clone(),
+                    wavelengths: r.wavelengths.clone(),
+                    quality: r.quality.clone(),
+                    views: 0,
+                    precompute_ms: 0.0,
+                    frame_ms: 0.0,
+                    table_bytes: 0,
+                    de2000_mean: 0.0,
+                    de2000_p95: 0.0,
+                    flip: 0.0,
+                    rel_rmse: 0.0,
+                    on_front: false,
+                },
+                vec![r],
+            )),
+        }
+    }
+    let mut out: Vec<Config> = configs
+        .into_iter()
+        .map(|(mut c, group)| {
+            let n = group.len() as f64;
+            let mean = |f: fn(&Row) -> f64| group.iter().map(|r| f(r)).sum::<f64>() / n;
+            c.views = group.len();
+            c.precompute_ms = mean(|r| r.precompute_ms);
+            c.frame_ms = mean(|r| r.frame_ms);
+            c.table_bytes = group.iter().map(|r| r.table_bytes).max().unwrap_or(0);
+            c.de2000_mean = mean(|r| r.de2000_mean);
+            c.de2000_p95 = mean(|r| r.de2000_p95);
+            c.flip = mean(|r| r.flip);
+            c.rel_rmse = mean(|r| r.rel_rmse);
+            c
+        })
+        .collect();
+    let points: Vec<(f64, f64)> = out.iter().map(|c| (c.frame_ms, c.de2000_mean)).collect();
+    for i in pareto_front(&points) {
+        out[i].on_front = true;
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(method: &str, view: &str, frame_ms: f64, de: f64) -> Row {
+        Row {
+            method: method.into(),
+            wavelengths: "rgb3".into(),
+            quality: "medium".into(),
+            view: view.into(),
+            precompute_ms: 2.0,
+            frame_ms,
+            table_bytes: 1024,
+            de2000_mean: de,
+            de2000_p95: 2.0 * de,
+            flip: 0.1,
+            rel_rmse: 0.05,
+        }
+    }
+
+    #[test]
+    fn results_read_back_as_written_and_bad_lines_are_named() {
+        let rows = vec![row("a", "v1", 1.5, 2.0), row("b", "v2", 0.25, 3.5)];
+        assert_eq!(parse_csv(&to_csv(&rows)), Ok(rows));
+        let bad = to_csv(&[row("a", "v1", 1.0, 2.0)]).replace("1.0000,", "-1,");
+        assert!(
+            matches!(parse_csv(&bad), Err(ResultsError::Line { line: 2, ref message }) if message.starts_with("frame_ms")),
+            "{:?}",
+            parse_csv(&bad)
+        );
+        assert_eq!(
+            parse_csv("method,view\n"),
+            Err(ResultsError::Header {
+                expected: COLUMNS.join(",")
+            })
+        );
+        assert_eq!(parse_csv(""), Err(ResultsError::Empty));
+        let short = COLUMNS.join(",") + "\na,b,c\n";
+        assert!(matches!(
+            parse_csv(&short),
+            Err(ResultsError::Line { line: 2, .. })
+        ));
+    }
+
+    #[test]
+    fn configurations_average_their_views_and_mark_the_front() {
+        let rows = vec![
+            row("fast", "v1", 1.0, 4.0),
+            row("fast", "v2", 3.0, 6.0),
+            row("slow", "v1", 10.0, 1.0),
+            row("bad", "v1", 20.0, 5.0),
+        ];
+        let c = summarise(&rows);
+        assert_eq!(c.len(), 3);
+        assert_eq!((c[0].views, c[0].frame_ms, c[0].de2000_mean), (2, 2.0, 5.0));
+        assert_eq!(c[0].name(), "fast/rgb3/medium");
+        let front: Vec<bool> = c.iter().map(|c| c.on_front).collect();
+        assert_eq!(front, vec![true, true, false]);
+    }
+}

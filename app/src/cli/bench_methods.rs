@@ -1,0 +1,608 @@
+//! `atmoscope bench methods`: every model × wavelength set × quality over views of the suite,
+//! run time against error on one chart. Per view it measures the table precompute (a full
+//! rebuild, wall time), a frame with the camera turning (sky and display passes), the tables' memory,
+//! and the error of the view against its path-traced reference (ΔE2000 mean and p95, HDR-FLIP,
+//! relative RMSE of luminance outside the sun's disk); it writes `results.csv`, `summary.md` and the Pareto chart
+//! (`pareto.svg`, `pareto.png`) of frame time against mean ΔE2000.
+
+use super::bench_gpu::{median, set_name};
+use super::render::{gpu, parse_wavelengths};
+use crate::bench_results::{Config, Row, summarise, to_csv};
+use crate::images::read_exr;
+use anyhow::{Context, anyhow, bail};
+use atmoscope_model::Scene;
+use atmoscope_model::camera::{Camera, Projection};
+use atmoscope_model::geometry::direction_from_angles;
+use atmoscope_model::metrics::{DisplaySetup, compare, luminance_relative_rmse_where};
+use atmoscope_model::scene::{Quality, WavelengthSet};
+use atmoscope_model::views;
+use atmoscope_render::{Engine, View};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// The views `--quick` measures: ground, plane and space, high and low sun, one twilight.
+pub const QUICK_VIEWS: [&str; 6] = [
+    "ground-noon",
+    "ground-sunrise",
+    "fisheye-sun5",
+    "plane-noon",
+    "orbit-sunrise",
+    "twilight-6",
+];
+
+#[derive(Args, Debug)]
+pub struct MethodsBench {
+    /// A quick run (six views, RGB3 and Spectral4, medium quality, 3 frames each): minutes.
+    #[arg(long, conflicts_with = "full")]
+    pub quick: bool,
+    /// The whole run (every view with a reference; RGB3, Spectral4 and Spectral32; low,
+    /// medium and high quality; 10 frames each).
+    #[arg(long)]
+    pub full: bool,
+    /// Sky models, comma-separated registry ids, or `all` (default: all).
+    #[arg(long, value_name = "IDS", value_parser = super::parse_methods)]
+    pub methods: Option<super::MethodList>,
+    /// Wavelength sets, comma-separated (overrides --quick/--full).
+    #[arg(long, value_delimiter = ',', value_parser = parse_wavelengths)]
+    pub sets: Vec<WavelengthSet>,
+    /// Qualities, comma-separated: low, medium, high (overrides --quick/--full).
+    #[arg(long, value_delimiter = ',', value_parser = parse_quality)]
+    pub qualities: Vec<Quality>,
+    /// Views of the suite, comma-separated (overrides --quick/--full).
+    #[arg(long, value_delimiter = ',')]
+    pub views: Vec<String>,
+    /// Directory of path-traced references `<view>.exr`
+    /// (`atmoscope reference --suite --ci-size --out-dir DIR`, which caches what it renders).
+    #[arg(long, value_name = "DIR", default_value = "tests/data/references")]
+    pub refs: PathBuf,
+    /// Size WxH of the frames that are timed (errors are measured at the references' size).
+    #[arg(long, value_name = "WxH", value_parser = super::reference::parse_size, default_value = "1280x720")]
+    pub frame_size: (u32, u32),
+    /// Frames timed per view (median reported; default 3 quick, 10 full).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    pub repeats: Option<u32>,
+    /// Time passes by fenced CPU wall time even where GPU timestamps exist (always on a
+    /// software adapter, whose timestamps do not time passes).
+    #[arg(long)]
+    pub cpu_timing: bool,
+    /// Output folder (created if missing).
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+}
+
+pub fn parse_quality(s: &str) -> Result<Quality, String> {
+    match s.to_ascii_lowercase().as_str() {
+        "low" => Ok(Quality::Low),
+        "medium" => Ok(Quality::Medium),
+        "high" => Ok(Quality::High),
+        _ => Err(format!("{s:?}: expected low, medium or high")),
+    }
+}
+
+pub fn quality_name(q: Quality) -> &'static str {
+    match q {
+        Quality::Low => "low",
+        Quality::Medium => "medium",
+        Quality::High => "high",
+    }
+}
+
+/// What one run measures, from the flags.
+struct Plan {
+    methods: Vec<atmoscope_model::scene::Method>,
+    sets: Vec<WavelengthSet>,
+    qualities: Vec<Quality>,
+    views: Vec<&'static views::View>,
+    repeats: usize,
+}
+
+fn plan(args: &MethodsBench) -> anyhow::Result<Plan> {
+    let full = args.full;
+    let methods = args.methods.clone().map_or_else(
+        || {
+            atmoscope_model::methods::realtime()
+                .map(|m| m.method)
+                .collect()
+        },
+        |m| m.0,
+    );
+    let sets = match (args.sets.is_empty(), full) {
+        (false, _) => args.sets.clone(),
+        (true, false) => vec![WavelengthSet::Rgb3, WavelengthSet::Spectral4],
+        (true, true) => vec![
+            WavelengthSet::Rgb3,
+            WavelengthSet::Spectral4,
+            WavelengthSet::SpectralN(32),
+        ],
+    };
+    let qualities = match (args.qualities.is_empty(), full) {
+        (false, _) => args.qualities.clone(),
+        (true, false) => vec![Quality::Medium],
+        (true, true) => vec![Quality::Low, Quality::Medium, Quality::High],
+    };
+    let has_ref = |v: &views::View| args.refs.join(format!("{}.exr", v.name)).is_file();
+    let views: Vec<&'static views::View> = if !args.views.is_empty() {
+        args.views
+            .iter()
+            .map(|n| views::find(n).with_context(|| format!("--views: no view {n} in the suite")))
+            .collect::<anyhow::Result<_>>()?
+    } else if full {
+        views::suite().iter().filter(|v| has_ref(v)).collect()
+    } else {
+        QUICK_VIEWS.iter().filter_map(|n| views::find(n)).collect()
+    };
+    if let Some(v) = views.iter().find(|v| !has_ref(v)) {
+        bail!(
+            "{}: no reference for view {} (render them with `atmoscope reference --suite --ci-size --out-dir {}`; results are cached)",
+            args.refs.join(format!("{}.exr", v.name)).display(),
+            v.name,
+            args.refs.display()
+        );
+    }
+    if views.is_empty() {
+        bail!("no references in {}", args.refs.display());
+    }
+    let repeats = args
+        .repeats
+        .map_or(if full { 10 } else { 3 }, |r| r as usize);
+    Ok(Plan {
+        methods,
+        sets,
+        qualities,
+        views,
+        repeats,
+    })
+}
+
+pub fn run(args: &MethodsBench) -> anyhow::Result<ExitCode> {
+    let plan = plan(args)?;
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("cannot create {}", args.out.display()))?;
+    let references: Vec<(Vec<[f64; 3]>, u32, u32)> = plan
+        .views
+        .iter()
+        .map(|v| {
+            let path = args.refs.join(format!("{}.exr", v.name));
+            read_exr(&path).with_context(|| format!("reference {}", path.display()))
+        })
+        .collect::<anyhow::Result<_>>()?;
+    let context = gpu()?;
+    let mut configs = Vec::new();
+    for &m in &plan.methods {
+        for &s in &plan.sets {
+            for &q in &plan.qualities {
+                configs.push((m, s, q));
+            }
+        }
+    }
+    let total = (configs.len() * plan.views.len()) as u64;
+    let progress = Progress::new(total);
+    let start = Instant::now();
+    let (fw, fh) = args.frame_size;
+    let mut rows = Vec::new();
+    let mut timing = String::new();
+    for &(method, set, quality) in &configs {
+        let mut engine = Engine::new(&context.device, &context.queue);
+        engine.set_timing(true);
+        if args.cpu_timing || context.is_software() {
+            engine.force_cpu_timing();
+        }
+        let info = atmoscope_model::methods::info(method);
+        let mut precompute: Option<f64> = None;
+        for (v, (reference, w, h)) in plan.views.iter().zip(&references) {
+            let label = format!(
+                "{}/{}/{} {}",
+                info.id,
+                set_name(set),
+                quality_name(quality),
+                v.name
+            );
+            progress.step(&label);
+            let mut scene = v.apply(&Scene::default());
+            scene.render.method = method;
+            scene.render.wavelengths = set;
+            scene.render.quality = quality;
+            // A full rebuild, from encoding to the GPU being idle (per-pass timestamps of
+            // a rebuild are unreliable on software adapters); a model whose tables do not
+            // read the viewpoint builds the same tables for every view, so once is enough.
+            let ref_view = View::new(v.projection, *w, *h);
+            if precompute.is_none() {
+                // Compiles the model's pipelines outside the timing.
+                engine.try_render(&scene, &ref_view)?;
+                engine.wait();
+            }
+            let precompute_ms = match precompute.filter(|_| !info.reads_viewpoint()) {
+                Some(ms) => ms,
+                None => {
+                    let mut times = Vec::new();
+                    for _ in 0..plan.repeats.min(3) {
+                        engine.invalidate();
+                        let start = Instant::now();
+                        engine.try_render(&scene, &ref_view)?;
+                        engine.wait();
+                        times.push(start.elapsed().as_secs_f64() * 1e3);
+                    }
+                    let ms = median(times);
+                    precompute = Some(ms);
+                    ms
+                }
+            };
+            engine.try_render(&scene, &ref_view)?;
+            let image: Vec<[f64; 3]> = engine
+                .read_radiance()?
+                .iter()
+                .map(|p| [p[0], p[1], p[2]].map(f64::from))
+                .collect();
+            let setup = DisplaySetup {
+                exposure_ev: scene.display.exposure_ev,
+                tone_map: scene.display.tone_map,
+                ..DisplaySetup::default()
+            };
+            let (c, _) = compare(&image, reference, *w, *h, setup);
+            let outside_sun = outside_sun_disk(&scene, v.projection, *w, *h);
+            let frame_view = View::new(v.projection, fw, fh);
+            engine.try_render(&scene, &frame_view)?;
+            engine.wait();
+            let mut frames = Vec::new();
+            for i in 0..plan.repeats {
+                scene.camera.heading_deg = (scene.camera.heading_deg + 1.0 + i as f64) % 360.0;
+                let stats = engine.try_render(&scene, &frame_view)?;
+                frames.push(stats.ms("sky").unwrap_or(0.0) + stats.ms("display").unwrap_or(0.0));
+            }
+            engine.wait();
+            timing = engine.timing_source().label().to_string();
+            rows.push(Row {
+                method: info.id.into(),
+                wavelengths: set_name(set),
+                quality: quality_name(quality).into(),
+                view: v.name.clone(),
+                precompute_ms,
+                frame_ms: median(frames),
+                table_bytes: engine.table_bytes(),
+                de2000_mean: c.delta_e2000_mean,
+                de2000_p95: c.delta_e2000_p95,
+                flip: c.hdr_flip_mean,
+                rel_rmse: luminance_relative_rmse_where(&image, reference, &outside_sun),
+            });
+        }
+    }
+    progress.finish();
+    let configs = summarise(&rows);
+    let header = Header {
+        adapter: context.describe(),
+        timing,
+        frame_size: args.frame_size,
+        repeats: plan.repeats,
+        views: plan.views.iter().map(|v| v.name.as_str()).collect(),
+        seconds: start.elapsed().as_secs_f64(),
+    };
+    super::write_atomic(&args.out.join("results.csv"), to_csv(&rows).as_bytes())?;
+    super::write_atomic(
+        &args.out.join("summary.md"),
+        summary_markdown(&configs, &header).as_bytes(),
+    )?;
+    write_charts(&args.out, &configs, &header)?;
+    print!("{}", summary_markdown(&configs, &header));
+    eprintln!(
+        "wrote results.csv, summary.md, pareto.svg and pareto.png to {}",
+        args.out.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Which pixels of a `w`×`h` view of `scene` the sun's disk does not touch.
+fn outside_sun_disk(scene: &Scene, projection: Projection, w: u32, h: u32) -> Vec<bool> {
+    let camera = Camera::new(
+        &scene.camera,
+        scene.atmosphere.planet_radius_km * 1000.0,
+        projection,
+    );
+    let a = scene.sun.angles();
+    let sun = direction_from_angles(a.elevation_deg, a.azimuth_deg);
+    let disk = camera.sun_in_view(sun, w, h);
+    (0..w * h)
+        .map(|i| {
+            disk.as_ref()
+                .is_none_or(|d| d.disk_in_pixel((i % w) as f64 + 0.5, (i / w) as f64 + 0.5) == 0.0)
+        })
+        .collect()
+}
+
+/// A progress bar on a terminal; elsewhere (a pipe: the explorer's Bench tab reads it) one
+/// line per step, `progress DONE/TOTAL LABEL`.
+struct Progress {
+    bar: Option<ProgressBar>,
+    total: u64,
+    done: std::cell::Cell<u64>,
+}
+
+impl Progress {
+    fn new(total: u64) -> Progress {
+        let bar = std::io::stderr().is_terminal().then(|| {
+            let bar = ProgressBar::new(total);
+            bar.set_style(
+                ProgressStyle::with_template(
+                    "[{bar:30}] {pos}/{len} {msg} ({elapsed}, {eta} left)",
+                )
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+            );
+            bar
+        });
+        Progress {
+            bar,
+            total,
+            done: std::cell::Cell::new(0),
+        }
+    }
+
+    fn step(&self, label: &str) {
+        match &self.bar {
+            Some(bar) => {
+                bar.set_message(label.to_string());
+                bar.inc(1);
+            }
+            None => {
+                self.done.set(self.done.get() + 1);
+                eprintln!("progress {}/{} {label}", self.done.get(), self.total);
+            }
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(bar) = &self.bar {
+            bar.finish();
+        }
+    }
+}
+
+/// What the summary and the chart say about the run itself.
+struct Header<'a> {
+    adapter: String,
+    timing: String,
+    frame_size: (u32, u32),
+    repeats: usize,
+    views: Vec<&'a str>,
+    seconds: f64,
+}
+
+fn summary_markdown(configs: &[Config], h: &Header) -> String {
+    let mut s = String::from("# Sky models: run time against error\n\n");
+    s += &format!(
+        "Adapter: {}. Frame time: sky and display passes of a {}×{} frame, median of {} ({}). \
+         Precompute: a full rebuild of the tables at the reference's size, wall time from \
+         encoding to the GPU being idle (median of up to 3). \
+         Error against path-traced references of {} view(s): {}. Measured in {:.0} s.\n\n",
+        h.adapter,
+        h.frame_size.0,
+        h.frame_size.1,
+        h.repeats,
+        h.timing,
+        h.views.len(),
+        h.views.join(", "),
+        h.seconds
+    );
+    s += "Means over the views; ★ marks the Pareto front of frame time against mean ΔE2000.\n\n";
+    s += "| | model | set | quality | precompute ms | frame ms | tables MiB | ΔE2000 mean | ΔE2000 p95 | HDR-FLIP | rel. RMSE L |\n";
+    s += "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+    let mut sorted: Vec<&Config> = configs.iter().collect();
+    sorted.sort_by(|a, b| a.frame_ms.total_cmp(&b.frame_ms));
+    for c in &sorted {
+        s += &format!(
+            "| {} | {} | {} | {} | {:.1} | {:.2} | {:.2} | {:.2} | {:.2} | {:.3} | {:.3} |\n",
+            if c.on_front { "★" } else { "" },
+            c.method,
+            c.wavelengths,
+            c.quality,
+            c.precompute_ms,
+            c.frame_ms,
+            c.table_bytes as f64 / (1024.0 * 1024.0),
+            c.de2000_mean,
+            c.de2000_p95,
+            c.flip,
+            c.rel_rmse
+        );
+    }
+    s += "\n## What to pick for a frame budget\n\n";
+    let front: Vec<&&Config> = sorted.iter().filter(|c| c.on_front).collect();
+    for (i, c) in front.iter().enumerate() {
+        let until = front.get(i + 1).map_or(String::from("and more"), |n| {
+            format!("to {:.2} ms", n.frame_ms)
+        });
+        s += &format!(
+            "- {:.2} ms {until}: **{}** (mean ΔE2000 {:.2})\n",
+            c.frame_ms,
+            c.name(),
+            c.de2000_mean
+        );
+    }
+    s
+}
+
+/// The Pareto chart as `pareto.svg` and `pareto.png`.
+fn write_charts(out: &Path, configs: &[Config], header: &Header) -> anyhow::Result<()> {
+    use plotters::prelude::*;
+    register_font();
+    let size = (960u32, 640u32);
+    let mut svg = String::new();
+    draw_chart(SVGBackend::with_string(&mut svg, size), configs, header)?;
+    super::write_atomic(&out.join("pareto.svg"), svg.as_bytes())?;
+    let mut rgb = vec![0u8; (size.0 * size.1 * 3) as usize];
+    draw_chart(BitMapBackend::with_buffer(&mut rgb, size), configs, header)?;
+    let mut png = Vec::new();
+    image::ImageEncoder::write_image(
+        image::codecs::png::PngEncoder::new(&mut png),
+        &rgb,
+        size.0,
+        size.1,
+        image::ExtendedColorType::Rgb8,
+    )?;
+    super::write_atomic(&out.join("pareto.png"), &png)
+}
+
+/// plotters draws text with the font egui ships, so charts look the same on every machine.
+fn register_font() {
+    use std::sync::Once;
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        // The font is compiled in; failing to parse it would be a build defect, and the chart
+        // still draws without text.
+        let _ = plotters::style::register_font(
+            "sans-serif",
+            plotters::style::FontStyle::Normal,
+            epaint_default_fonts::UBUNTU_LIGHT,
+        );
+    });
+}
+
+/// Axis ticks at 1, 2 and 5 times the powers of ten inside `range` (a log axis of less than a
+/// decade would otherwise show one label or none).
+fn ticks(range: std::ops::Range<f64>) -> Vec<f64> {
+    let (lo, hi) = (
+        range.start.log10().floor() as i32,
+        range.end.log10().ceil() as i32,
+    );
+    (lo..=hi)
+        .flat_map(|d| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(d)))
+        .filter(|v| range.contains(v))
+        .collect()
+}
+
+/// Marker colours, dark enough to read on white.
+const PALETTE: [plotters::style::RGBColor; 8] = [
+    plotters::style::RGBColor(214, 39, 40),
+    plotters::style::RGBColor(31, 119, 180),
+    plotters::style::RGBColor(44, 160, 44),
+    plotters::style::RGBColor(148, 103, 189),
+    plotters::style::RGBColor(255, 127, 14),
+    plotters::style::RGBColor(140, 86, 75),
+    plotters::style::RGBColor(227, 119, 194),
+    plotters::style::RGBColor(23, 190, 207),
+];
+
+fn draw_chart<B: plotters::prelude::DrawingBackend>(
+    backend: B,
+    configs: &[Config],
+    header: &Header,
+) -> anyhow::Result<()> {
+    use plotters::prelude::*;
+    let err = |e: plotters::drawing::DrawingAreaErrorKind<B::ErrorType>| anyhow!("chart: {e}");
+    let root = backend.into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let range = |f: fn(&Config) -> f64| {
+        let (lo, hi) = configs
+            .iter()
+            .map(f)
+            .filter(|v| *v > 0.0 && v.is_finite())
+            .fold((f64::INFINITY, 0.0f64), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            });
+        if lo.is_finite() {
+            (lo / 1.5)..(hi * 1.5)
+        } else {
+            0.01..1.0
+        }
+    };
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            format!(
+                "Frame time against error ({} views, {}×{}, {})",
+                header.views.len(),
+                header.frame_size.0,
+                header.frame_size.1,
+                header.timing
+            ),
+            ("sans-serif", 20),
+        )
+        .margin(16)
+        .x_label_area_size(44)
+        .y_label_area_size(56)
+        .build_cartesian_2d(
+            {
+                let r = range(|c| c.frame_ms);
+                r.clone().log_scale().with_key_points(ticks(r))
+            },
+            {
+                let r = range(|c| c.de2000_mean);
+                r.clone().log_scale().with_key_points(ticks(r))
+            },
+        )
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc("frame time, ms (log)")
+        .y_desc("mean ΔE2000 against the path tracer (log)")
+        .label_style(("sans-serif", 14))
+        .x_label_formatter(&|v| format!("{}", (v * 1e6).round() / 1e6))
+        .y_label_formatter(&|v| format!("{}", (v * 1e6).round() / 1e6))
+        .draw()
+        .map_err(err)?;
+    let mut front: Vec<(f64, f64)> = configs
+        .iter()
+        .filter(|c| c.on_front)
+        .map(|c| (c.frame_ms, c.de2000_mean))
+        .collect();
+    front.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // The front as a staircase: each point is the best error until the next one's time.
+    let mut steps = Vec::new();
+    for (i, p) in front.iter().enumerate() {
+        steps.push(*p);
+        if let Some(n) = front.get(i + 1) {
+            steps.push((n.0, p.1));
+        }
+    }
+    chart
+        .draw_series(LineSeries::new(steps, BLACK.stroke_width(2)))
+        .map_err(err)?
+        .label("Pareto front")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(2)));
+    let mut models: Vec<&str> = configs.iter().map(|c| c.method.as_str()).collect();
+    models.dedup();
+    for (i, model) in models.iter().enumerate() {
+        let colour = PALETTE[i % PALETTE.len()];
+        let points = configs
+            .iter()
+            .filter(|c| c.method == *model)
+            .map(|c| (c.frame_ms, c.de2000_mean));
+        // One marker shape per model, so the chart reads without colour too.
+        match i % 3 {
+            0 => chart
+                .draw_series(points.map(|p| Circle::new(p, 6, colour.filled())))
+                .map_err(err)?
+                .label(*model)
+                .legend(move |(x, y)| Circle::new((x + 9, y), 6, colour.filled())),
+            1 => chart
+                .draw_series(points.map(|p| TriangleMarker::new(p, 7, colour.filled())))
+                .map_err(err)?
+                .label(*model)
+                .legend(move |(x, y)| TriangleMarker::new((x + 9, y), 7, colour.filled())),
+            _ => chart
+                .draw_series(points.map(|p| Cross::new(p, 6, colour.stroke_width(2))))
+                .map_err(err)?
+                .label(*model)
+                .legend(move |(x, y)| Cross::new((x + 9, y), 6, colour.stroke_width(2))),
+        };
+    }
+    chart
+        .draw_series(configs.iter().map(|c| {
+            Text::new(
+                format!("{} {}", c.wavelengths, c.quality),
+                (c.frame_ms * 1.06, c.de2000_mean),
+                ("sans-serif", 12),
+            )
+        }))
+        .map_err(err)?;
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 14))
+        .draw()
+        .map_err(err)?;
+    root.present().map_err(err)?;
+    Ok(())
+}
