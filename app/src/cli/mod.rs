@@ -5,7 +5,7 @@ mod aerosols;
 mod bench;
 mod bench_aod;
 mod bench_gpu;
-pub mod bench_methods;
+mod bench_methods;
 mod compare;
 mod fit;
 mod fit_garcia_linan;
@@ -19,6 +19,8 @@ mod scene_args;
 mod stress;
 mod timelapse;
 
+pub use bench_methods::parse_quality;
+pub use render::parse_wavelengths;
 pub use scene_args::SceneArgs;
 
 use clap::{Parser, Subcommand};

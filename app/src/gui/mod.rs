@@ -3,6 +3,7 @@
 //! engine skips passes whose inputs did not change, and the window repaints only on input or
 //! while background work (path tracing, inspection, exports) is in progress.
 
+mod bench_tab;
 mod compare_tab;
 mod exposure;
 mod files;
@@ -72,6 +73,7 @@ pub struct ExplorerApp {
     layout: Layout,
     views: Option<Views>,
     luts: LutTab,
+    bench: bench_tab::BenchTab,
     inspector: Inspector,
     /// The per-wavelength summary shown under the Inspector.
     summary: SummaryPanel,
@@ -124,6 +126,7 @@ impl ExplorerApp {
             layout,
             views,
             luts: LutTab::default(),
+            bench: bench_tab::BenchTab::new(bench_tab::default_dir()),
             inspector: Inspector::default(),
             summary: SummaryPanel::default(),
             message: None,
@@ -391,6 +394,7 @@ impl ExplorerApp {
                 .is_some_and(|r| r.job().is_some());
         !self.exports.is_empty()
             || self.inspector.job().is_some()
+            || self.bench.running()
             || tracing
             || self.thumbnails.loading()
     }
@@ -526,6 +530,9 @@ impl ExplorerApp {
     }
 
     fn centre(&mut self, ui: &mut egui::Ui) -> Vec<Command> {
+        if self.layout.tab == Tab::Bench {
+            return self.bench.show(ui, &self.scene);
+        }
         let Some(views) = &mut self.views else {
             ui.label("Atmoscope needs eframe's wgpu renderer to draw the views.");
             return Vec::new();
@@ -563,6 +570,7 @@ impl ExplorerApp {
                 reference.show(ui, &self.scene, &mut self.layout.reference);
                 Vec::new()
             }
+            Tab::Bench => Vec::new(),
         }
     }
 

@@ -12,7 +12,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
-/// The centre tabs, with their shortcut keys 1–6.
+/// The centre tabs, with their shortcut keys 1–7.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 pub enum Tab {
     #[default]
@@ -22,16 +22,18 @@ pub enum Tab {
     Compare,
     Luts,
     Reference,
+    Bench,
 }
 
 impl Tab {
-    pub const ALL: [Tab; 6] = [
+    pub const ALL: [Tab; 7] = [
         Tab::Sky,
         Tab::Fisheye,
         Tab::Luminance,
         Tab::Compare,
         Tab::Luts,
         Tab::Reference,
+        Tab::Bench,
     ];
 
     pub fn label(self) -> &'static str {
@@ -42,6 +44,7 @@ impl Tab {
             Tab::Compare => "Compare",
             Tab::Luts => "LUTs",
             Tab::Reference => "Reference",
+            Tab::Bench => "Bench",
         }
     }
 
@@ -61,17 +64,21 @@ impl Tab {
             Tab::Reference => {
                 "A spectral path tracer's ground truth of the view, next to the real-time render."
             }
+            Tab::Bench => {
+                "Every model's frame time against its error from the path tracer, from `atmoscope bench methods`; click a point to render that model."
+            }
         }
     }
 
     pub fn key(self) -> egui::Key {
-        const KEYS: [egui::Key; 6] = [
+        const KEYS: [egui::Key; 7] = [
             egui::Key::Num1,
             egui::Key::Num2,
             egui::Key::Num3,
             egui::Key::Num4,
             egui::Key::Num5,
             egui::Key::Num6,
+            egui::Key::Num7,
         ];
         KEYS[Tab::ALL.iter().position(|&t| t == self).unwrap_or(0)]
     }

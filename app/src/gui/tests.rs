@@ -35,6 +35,10 @@ fn harness_with(layout: Layout, size: egui::Vec2) -> Harness<'static, ExplorerAp
             // Thumbnails go to a cache of the tests' own, not the user's.
             app.thumbnail_dir = std::env::temp_dir()
                 .join(format!("atmoscope-test-thumbnails-{}", std::process::id()));
+            // And benchmark results, none at first.
+            app.bench = super::bench_tab::BenchTab::new(
+                std::env::temp_dir().join(format!("atmoscope-test-bench-{}", std::process::id())),
+            );
             app
         });
     h.run();
@@ -982,4 +986,131 @@ fn automatic_exposure_meters_the_view_and_adapts() {
     h.get_by_label("Rendering and display").click();
     h.run_steps(2);
     h.get_by_label_contains("EV100");
+}
+
+fn bench_rows() -> Vec<crate::bench_results::Row> {
+    let row =
+        |method: &str, set: &str, view: &str, frame_ms: f64, de: f64| crate::bench_results::Row {
+            method: method.into(),
+            wavelengths: set.into(),
+            quality: "medium".into(),
+            view: view.into(),
+            precompute_ms: 40.0,
+            frame_ms,
+            table_bytes: 1 << 20,
+            de2000_mean: de,
+            de2000_p95: 2.0 * de,
+            flip: 0.2,
+            rel_rmse: 0.3,
+        };
+    vec![
+        row("hillaire", "rgb3", "ground-noon", 30.0, 5.0),
+        row("hillaire", "rgb3", "twilight-6", 32.0, 7.0),
+        row("elek", "spectral4", "ground-noon", 48.0, 6.0),
+        row("elek", "spectral4", "twilight-6", 50.0, 8.0),
+    ]
+}
+
+/// A folder of the test's own for the Bench tab.
+fn bench_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("atmoscope-test-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("bench dir");
+    dir
+}
+
+#[test]
+fn the_bench_tab_shows_the_last_results_and_renders_the_model_of_a_row() {
+    let mut h = harness();
+    let dir = bench_dir("bench-results");
+    std::fs::write(
+        dir.join("results.csv"),
+        crate::bench_results::to_csv(&bench_rows()),
+    )
+    .expect("results");
+    h.state_mut().bench = super::bench_tab::BenchTab::new(dir.clone());
+    h.get_by_label("Bench").click();
+    h.run();
+    assert_eq!(h.state().layout.tab, Tab::Bench);
+    // Hillaire is faster and closer: alone on the front; Elek is not.
+    assert!(h.query_by_label("hillaire/rgb3/medium").is_some());
+    h.get_by_label("elek/spectral4/medium").click();
+    h.run();
+    let r = &h.state().scene.render;
+    assert_eq!(
+        (r.method, r.wavelengths),
+        (
+            atmoscope_model::scene::Method::Elek,
+            atmoscope_model::scene::WavelengthSet::Spectral4
+        )
+    );
+    // A damaged file is named with its line, and nothing is shown from it.
+    std::fs::write(
+        dir.join("results.csv"),
+        crate::bench_results::to_csv(&bench_rows()).replace("30.0000", "NaN"),
+    )
+    .expect("results");
+    h.state_mut().bench = super::bench_tab::BenchTab::new(dir);
+    h.run();
+    assert!(h.query_by_label_contains("line 2: frame_ms").is_some());
+    assert!(h.query_by_label("elek/spectral4/medium").is_none());
+}
+
+#[test]
+fn a_quick_benchmark_runs_in_the_background_loads_its_results_and_can_be_cancelled() {
+    let mut h = harness();
+    h.state_mut().layout.tab = Tab::Bench;
+    let dir = bench_dir("bench-run");
+    let csv = crate::bench_results::to_csv(&bench_rows());
+    // A stand-in for `atmoscope bench methods --quick`: the same progress lines and output,
+    // written where `--out DIR` says ($2).
+    let script = format!(
+        "echo 'progress 1/2 hillaire/rgb3/medium ground-noon' >&2; printf '%s' '{csv}' > \"$2/results.csv\"; echo 'progress 2/2 elek' >&2"
+    );
+    let mut tab = super::bench_tab::BenchTab::new(dir.clone());
+    tab.program = ("sh".into(), vec!["-c".into(), script, "sh".into()]);
+    h.state_mut().bench = tab;
+    h.run();
+    h.get_by_label("Run quick benchmark").click();
+    for _ in 0..200 {
+        h.run();
+        if h.query_by_label("elek/spectral4/medium").is_some() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    assert!(
+        h.query_by_label("elek/spectral4/medium").is_some(),
+        "results loaded"
+    );
+    assert!(!h.state().bench.running());
+
+    // A run that hangs is cancelled, and says so.
+    let mut tab = super::bench_tab::BenchTab::new(bench_dir("bench-cancel"));
+    tab.program = (
+        "sh".into(),
+        vec![
+            "-c".into(),
+            "echo 'progress 1/9 x' >&2; sleep 60".into(),
+            "sh".into(),
+        ],
+    );
+    h.state_mut().bench = tab;
+    h.run();
+    h.get_by_label("Run quick benchmark").click();
+    h.run();
+    assert!(h.state().bench.running());
+    h.get_by_label("Cancel").click();
+    for _ in 0..200 {
+        h.run();
+        if !h.state().bench.running() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    h.run();
+    assert!(
+        !h.state().bench.running(),
+        "cancelled within seconds, not after the minute"
+    );
+    assert!(h.query_by_label("cancelled").is_some());
 }

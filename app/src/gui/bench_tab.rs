@@ -1,0 +1,448 @@
+//! The Bench tab: the last `atmoscope bench methods` results as a scatter of frame time
+//! against error (log–log, one marker per model, the Pareto front drawn; hover for the
+//! figures, click a point or a row to render that model), and a button that runs
+//! `bench methods --quick` in the background, as a child process of the same program, with
+//! its progress and a Cancel button.
+
+use super::jobs::Job;
+use super::state::Command;
+use crate::bench_results::{Config, Row, parse_csv, summarise};
+use atmoscope_model::Scene;
+use atmoscope_model::methods;
+use eframe::egui;
+use egui_plot::{HoverPosition, Legend, Line, MarkerShape, Plot, PlotPoints, Points};
+use std::io::BufRead;
+use std::path::{Path, PathBuf};
+use std::process::{Command as Process, Stdio};
+use std::sync::{Arc, Mutex};
+
+/// Where the tab's own runs write and where it looks for results first.
+pub fn default_dir() -> PathBuf {
+    crate::cache::dir("bench")
+}
+
+pub struct BenchTab {
+    /// The folder whose `results.csv` the tab shows and its runs write.
+    pub dir: PathBuf,
+    /// The program a run starts and its arguments before `--out DIR` (by default this
+    /// program's `bench methods --quick --refs …`).
+    pub program: (PathBuf, Vec<String>),
+    /// Results shown: rows and the file they came from, or why they could not be read.
+    results: Option<Result<(Vec<Row>, PathBuf), String>>,
+    /// Which view the chart shows: None for the mean over every view.
+    view: Option<String>,
+    run: Option<Job<Result<(), String>>>,
+    /// The run's latest progress line (`progress N/M label`) and its last error lines.
+    status: Arc<Mutex<Vec<String>>>,
+}
+
+impl BenchTab {
+    pub fn new(dir: PathBuf) -> BenchTab {
+        let exe = std::env::current_exe().unwrap_or_else(|_| PathBuf::from("atmoscope"));
+        let mut args: Vec<String> = ["bench", "methods", "--quick"].map(String::from).into();
+        if let Some(refs) = references_near(&exe) {
+            args.extend(["--refs".into(), refs.to_string_lossy().into_owned()]);
+        }
+        BenchTab {
+            dir,
+            program: (exe, args),
+            results: None,
+            view: None,
+            run: None,
+            status: Arc::default(),
+        }
+    }
+
+    pub fn running(&self) -> bool {
+        self.run.as_ref().is_some_and(Job::is_running)
+    }
+
+    /// Reads `results.csv` from `path`; a bad file is reported and shows nothing.
+    pub fn load(&mut self, path: &Path) {
+        self.results = Some(
+            std::fs::read_to_string(path)
+                .map_err(|e| format!("{}: {e}", path.display()))
+                .and_then(|text| parse_csv(&text).map_err(|e| format!("{}: {e}", path.display())))
+                .map(|rows| (rows, path.to_path_buf())),
+        );
+        self.view = None;
+    }
+
+    /// Starts a quick benchmark in the background, writing into [`BenchTab::dir`].
+    fn start(&mut self, ctx: &egui::Context) {
+        let (program, mut args) = self.program.clone();
+        args.extend(["--out".into(), self.dir.to_string_lossy().into_owned()]);
+        let status = self.status.clone();
+        if let Ok(mut s) = status.lock() {
+            s.clear();
+        }
+        self.run = Some(Job::spawn("bench methods --quick", ctx, move |progress| {
+            std::fs::create_dir_all(args.last().map_or(".", String::as_str))
+                .map_err(|e| format!("cannot create the results folder: {e}"))?;
+            let mut child = Process::new(&program)
+                .args(&args)
+                .stdin(Stdio::null())
+                .stdout(Stdio::null())
+                .stderr(Stdio::piped())
+                .spawn()
+                .map_err(|e| format!("cannot start {}: {e}", program.display()))?;
+            let stderr = child.stderr.take();
+            let lines = status.clone();
+            let ctx = progress.clone();
+            let reader = std::thread::spawn(move || {
+                let Some(stderr) = stderr else { return };
+                for line in std::io::BufReader::new(stderr)
+                    .lines()
+                    .map_while(Result::ok)
+                {
+                    if let Some((done, total)) = parse_progress(&line) {
+                        ctx.set(done as f32 / total.max(1) as f32);
+                    }
+                    if let Ok(mut l) = lines.lock() {
+                        l.push(line);
+                        let excess = l.len().saturating_sub(8);
+                        l.drain(..excess);
+                    }
+                }
+            });
+            let exit = loop {
+                if progress.cancelled() {
+                    // Killing a finished child fails harmlessly.
+                    let _ = child.kill();
+                }
+                match child.try_wait() {
+                    Ok(Some(exit)) => break exit,
+                    Ok(None) => std::thread::sleep(std::time::Duration::from_millis(50)),
+                    Err(e) => return Err(format!("lost the benchmark: {e}")),
+                }
+            };
+            // The reader ends when the pipe closes; a grandchild holding it open must not
+            // hold the job, so give it a second to take the last lines and then leave it.
+            for _ in 0..100 {
+                if reader.is_finished() {
+                    break;
+                }
+                std::thread::sleep(std::time::Duration::from_millis(10));
+            }
+            if progress.cancelled() {
+                Err("cancelled".into())
+            } else if exit.success() {
+                Ok(())
+            } else {
+                let tail = status.lock().map(|l| l.join("\n")).unwrap_or_default();
+                Err(format!("the benchmark failed ({exit}):\n{tail}"))
+            }
+        }));
+    }
+
+    /// Collects a finished run: loads its results, or shows why it failed.
+    fn poll(&mut self) {
+        let Some(result) = self.run.as_mut().and_then(Job::take) else {
+            return;
+        };
+        self.run = None;
+        match result.and_then(|r| r) {
+            Ok(()) => self.load(&self.dir.join("results.csv")),
+            Err(e) => self.results = Some(Err(e)),
+        }
+    }
+
+    pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene) -> Vec<Command> {
+        self.poll();
+        if self.results.is_none() && self.run.is_none() {
+            let path = self.dir.join("results.csv");
+            if path.is_file() {
+                self.load(&path);
+            }
+        }
+        let mut commands = Vec::new();
+        ui.horizontal(|ui| {
+            match &self.run {
+                Some(job) => {
+                    job.show(ui);
+                    if let Some(line) = self.status.lock().ok().and_then(|l| l.last().cloned()) {
+                        ui.label(line);
+                    }
+                    ui.ctx()
+                        .request_repaint_after(std::time::Duration::from_millis(200));
+                }
+                None => {
+                    if ui
+                        .button("Run quick benchmark")
+                        .on_hover_text("atmoscope bench methods --quick: every model with RGB3 and Spectral4 on six views, against the path-traced references (about a minute on two CPU cores)")
+                        .clicked()
+                    {
+                        self.start(ui.ctx());
+                    }
+                }
+            }
+            if ui.button("Open results…").clicked()
+                && let Some(p) = rfd::FileDialog::new()
+                    .add_filter("bench results", &["csv"])
+                    .pick_file()
+            {
+                self.load(&p);
+            }
+        });
+        let (rows, path) = match &self.results {
+            None => {
+                ui.label(format!(
+                    "No results yet: run the quick benchmark, open a results.csv, or run `atmoscope bench methods --quick --out {}`.",
+                    self.dir.display()
+                ));
+                return commands;
+            }
+            Some(Err(e)) => {
+                ui.colored_label(ui.visuals().error_fg_color, e);
+                return commands;
+            }
+            Some(Ok((rows, path))) => (rows, path),
+        };
+        let mut views: Vec<&str> = rows.iter().map(|r| r.view.as_str()).collect();
+        views.sort();
+        views.dedup();
+        ui.horizontal(|ui| {
+            ui.label(format!("{} ({} rows)", path.display(), rows.len()));
+            egui::ComboBox::from_label("view")
+                .selected_text(self.view.as_deref().unwrap_or("mean of every view"))
+                .show_ui(ui, |ui| {
+                    ui.selectable_value(&mut self.view, None, "mean of every view");
+                    for v in &views {
+                        ui.selectable_value(&mut self.view, Some(v.to_string()), *v);
+                    }
+                });
+        });
+        let shown: Vec<Row> = rows
+            .iter()
+            .filter(|r| self.view.as_ref().is_none_or(|v| *v == r.view))
+            .cloned()
+            .collect();
+        let configs = summarise(&shown);
+        let clicked = chart(ui, &configs, self.view.as_deref());
+        commands.extend(clicked.and_then(|i| render_command(scene, &configs[i])));
+        commands.extend(table(ui, &configs).and_then(|i| render_command(scene, &configs[i])));
+        commands
+    }
+}
+
+/// `progress DONE/TOTAL …` as the command prints it on a pipe.
+fn parse_progress(line: &str) -> Option<(u64, u64)> {
+    let (done, total) = line
+        .strip_prefix("progress ")?
+        .split_whitespace()
+        .next()?
+        .split_once('/')?;
+    Some((done.parse().ok()?, total.parse().ok()?))
+}
+
+/// The shipped references, for a program run from the repository or its `target/` folder.
+fn references_near(exe: &Path) -> Option<PathBuf> {
+    let rel = Path::new("tests/data/references");
+    std::iter::once(rel.to_path_buf())
+        .chain(exe.ancestors().skip(1).map(|d| d.join(rel)))
+        .find(|p| p.is_dir())
+}
+
+/// The scene with the configuration's model, wavelength set and quality; None when the row
+/// names a model or set this build does not know (a results file from elsewhere).
+fn render_command(scene: &Scene, c: &Config) -> Option<Command> {
+    let mut s = scene.clone();
+    s.render.method = methods::by_id(&c.method)
+        .filter(|m| m.is_realtime())?
+        .method;
+    s.render.wavelengths = crate::cli::parse_wavelengths(&c.wavelengths).ok()?;
+    s.render.quality = crate::cli::parse_quality(&c.quality).ok()?;
+    Some(Command::SetScene(Box::new(s)))
+}
+
+const MARKERS: [MarkerShape; 5] = [
+    MarkerShape::Circle,
+    MarkerShape::Up,
+    MarkerShape::Cross,
+    MarkerShape::Square,
+    MarkerShape::Diamond,
+];
+
+/// The scatter, log–log (axes in log10, labelled in ms and ΔE); returns the index of a
+/// clicked configuration.
+fn chart(ui: &mut egui::Ui, configs: &[Config], view: Option<&str>) -> Option<usize> {
+    let log = |c: &Config| {
+        [
+            c.frame_ms.max(1e-6).log10(),
+            c.de2000_mean.max(1e-6).log10(),
+        ]
+    };
+    let mut models: Vec<&str> = configs.iter().map(|c| c.method.as_str()).collect();
+    models.dedup();
+    let describe = configs.to_vec();
+    let view_name = view.unwrap_or("mean of every view").to_string();
+    // Room around the points, more towards the legend's corner.
+    let span = |f: fn(&Config) -> f64| {
+        configs
+            .iter()
+            .map(|c| f(c).max(1e-6).log10())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            })
+    };
+    let (x, y) = (span(|c| c.frame_ms), span(|c| c.de2000_mean));
+    let response = Plot::new("bench-scatter")
+        .height((ui.available_height() * 0.6).max(200.0))
+        .legend(Legend::default())
+        .include_x(x.0 - 0.05)
+        .include_x(x.1 + 0.15)
+        .include_y(y.0 - 0.05)
+        .include_y(y.1 + 0.2)
+        .x_axis_label("frame time, ms (log)")
+        .y_axis_label("mean ΔE2000 against the path tracer (log)")
+        .x_grid_spacer(log_grid)
+        .y_grid_spacer(log_grid)
+        .x_axis_formatter(|m, _| log_label(m.value))
+        .y_axis_formatter(|m, _| log_label(m.value))
+        .label_formatter(move |pos| {
+            // Near a point: its configuration's figures; elsewhere nothing.
+            let HoverPosition::NearDataPoint { position: p, .. } = pos else {
+                return None;
+            };
+            nearest(&describe, [p.x, p.y]).map(|(i, _)| {
+                let c = &describe[i];
+                format!(
+                    "{}\n{view_name}\nframe {:.2} ms, precompute {:.0} ms, tables {:.2} MiB\nΔE2000 {:.2} (p95 {:.2}), FLIP {:.3}, rel. RMSE {:.3}",
+                    c.name(),
+                    c.frame_ms,
+                    c.precompute_ms,
+                    c.table_bytes as f64 / 1048576.0,
+                    c.de2000_mean,
+                    c.de2000_p95,
+                    c.flip,
+                    c.rel_rmse
+                )
+            })
+        })
+        .show(ui, |p| {
+            for (i, model) in models.iter().enumerate() {
+                let points: Vec<[f64; 2]> = configs
+                    .iter()
+                    .filter(|c| c.method == *model)
+                    .map(log)
+                    .collect();
+                p.points(
+                    Points::new(*model, PlotPoints::from(points))
+                        .shape(MARKERS[i % MARKERS.len()])
+                        .radius(5.0),
+                );
+            }
+            let mut front: Vec<[f64; 2]> = configs.iter().filter(|c| c.on_front).map(log).collect();
+            front.sort_by(|a, b| a[0].total_cmp(&b[0]));
+            let mut steps = Vec::new();
+            for (i, q) in front.iter().enumerate() {
+                steps.push(*q);
+                if let Some(n) = front.get(i + 1) {
+                    steps.push([n[0], q[1]]);
+                }
+            }
+            // No band aggregation: the staircase has vertical steps.
+            p.line(
+                Line::new("Pareto front", PlotPoints::from(steps))
+                    .allow_band(false)
+                    .width(2.0),
+            );
+            (p.response().clicked())
+                .then(|| p.pointer_coordinate())
+                .flatten()
+        });
+    let at = response.inner?;
+    nearest(&configs.to_vec(), [at.x, at.y])
+        .filter(|(_, d)| *d < 0.05)
+        .map(|(i, _)| i)
+}
+
+/// Grid lines of a log10 axis at 1 to 9 times the powers of ten, decades strongest.
+fn log_grid(input: egui_plot::GridInput) -> Vec<egui_plot::GridMark> {
+    let (lo, hi) = input.bounds;
+    if !(lo.is_finite() && hi.is_finite()) || hi - lo > 12.0 {
+        return Vec::new();
+    }
+    (lo.floor() as i32..=hi.ceil() as i32)
+        .flat_map(|d| {
+            (1..10).map(move |m| egui_plot::GridMark {
+                value: f64::from(d) + f64::from(m).log10(),
+                step_size: match m {
+                    1 => 1.0,
+                    2 | 5 => 0.3,
+                    _ => 0.1,
+                },
+            })
+        })
+        .filter(|g| g.value >= lo && g.value <= hi)
+        .collect()
+}
+
+/// The label of a log10 grid line: its value at 1, 2 and 5 times a power of ten, else none.
+fn log_label(v: f64) -> String {
+    let value = 10f64.powf(v);
+    let leading = value / 10f64.powf(v.floor());
+    if [1.0, 2.0, 5.0].iter().any(|m| (leading - m).abs() < 1e-6) {
+        format!("{}", (value * 1e6).round() / 1e6)
+    } else {
+        String::new()
+    }
+}
+
+/// The configuration nearest to a point of the log–log chart, and its distance in decades.
+fn nearest(configs: &[Config], at: [f64; 2]) -> Option<(usize, f64)> {
+    configs
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let (x, y) = (
+                c.frame_ms.max(1e-6).log10(),
+                c.de2000_mean.max(1e-6).log10(),
+            );
+            (i, ((x - at[0]).powi(2) + (y - at[1]).powi(2)).sqrt())
+        })
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+}
+
+/// The configurations as a table, fastest first, each named on a button that renders it.
+fn table(ui: &mut egui::Ui, configs: &[Config]) -> Option<usize> {
+    let mut order: Vec<usize> = (0..configs.len()).collect();
+    order.sort_by(|&a, &b| configs[a].frame_ms.total_cmp(&configs[b].frame_ms));
+    let mut clicked = None;
+    egui::ScrollArea::both().show(ui, |ui| {
+        egui::Grid::new("bench-table").striped(true).show(ui, |ui| {
+            for h in [
+                "model / set / quality (click to render)", "", "frame ms", "precompute ms", "tables MiB",
+                "ΔE2000", "p95", "FLIP", "rel. RMSE",
+            ] {
+                ui.strong(h);
+            }
+            ui.end_row();
+            for i in order {
+                let c = &configs[i];
+                if ui
+                    .button(c.name())
+                    .on_hover_text("render the views with this model, wavelength set and quality")
+                    .clicked()
+                {
+                    clicked = Some(i);
+                }
+                ui.label(if c.on_front { "front" } else { "" })
+                    .on_hover_text("on the Pareto front: nothing measured is both faster and closer to the path tracer");
+                for v in [
+                    format!("{:.2}", c.frame_ms),
+                    format!("{:.0}", c.precompute_ms),
+                    format!("{:.2}", c.table_bytes as f64 / 1048576.0),
+                    format!("{:.2}", c.de2000_mean),
+                    format!("{:.2}", c.de2000_p95),
+                    format!("{:.3}", c.flip),
+                    format!("{:.3}", c.rel_rmse),
+                ] {
+                    ui.label(v);
+                }
+                ui.end_row();
+            }
+        });
+    });
+    clicked
+}
