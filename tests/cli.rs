@@ -289,6 +289,13 @@ fn probe_runs_every_real_time_model_within_a_bound_of_the_path_tracer() {
             // scattered by aerosol is never scattered again by air (orders stay Rayleigh or
             // Mie), and every order carries the view's phase function.
             "elek" => 0.45,
+            // Nishita: single scattering alone, 32–60 % low here.
+            "nishita" => 0.65,
+            "empty" => {
+                // No air: the sky is black.
+                assert!(probe_values(model.id, &[]).iter().all(|&v| v == 0.0));
+                continue;
+            }
             other => panic!("state the bound of {other} here"),
         };
         let values = probe_values(model.id, &[]);
@@ -638,12 +645,15 @@ fn delta_e_bound(id: &str) -> (f64, Option<f64>) {
     // Measured worst views (mean ΔE2000): hillaire ground-sunrise 4.1, ground-dawn 6.6;
     // bruneton fisheye-sun90 3.3, plane-dawn 9.0; garcia-linan ground-sunrise 11.7 (its L_ms,
     // fitted at 10 km, is far too dark at the ground at low sun); elek ground-sunrise 10.8
-    // (no coupling of Rayleigh and Mie orders, no ground bounce).
+    // (no coupling of Rayleigh and Mie orders, no ground bounce). The baseline without air has
+    // no bound: it is held to being far off instead.
     match id {
         "hillaire" => (4.5, Some(8.0)),
         "bruneton" => (4.0, Some(10.0)),
         "garcia-linan" => (13.0, None),
         "elek" => (12.0, None),
+        // Single scattering: the sky lacks the higher orders (worst ground-sunrise 13.7).
+        "nishita" => (14.5, None),
         other => panic!("state the ΔE2000 bound of {other} here"),
     }
 }
@@ -678,6 +688,9 @@ fn every_model_is_within_its_stated_delta_e_of_the_path_tracer_on_each_view_of_i
         let sun = scene.sun.angles().elevation_deg;
         assert_eq!(row["sun_elevation_deg"].as_f64(), Some(sun));
         for model in atmoscope_model::methods::realtime() {
+            if model.baseline {
+                continue;
+            }
             let (day, twilight) = delta_e_bound(model.id);
             let outside = model.domain.excludes(scene.camera.altitude_m, sun);
             let bound = if sun >= 0.0 {
@@ -710,6 +723,31 @@ fn every_model_is_within_its_stated_delta_e_of_the_path_tracer_on_each_view_of_i
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+    // The baseline without air is far off on average in daylight, and further than any model.
+    let daylight_mean = |id: &str| {
+        let day: Vec<f64> = rows
+            .iter()
+            .filter(|r| r["sun_elevation_deg"].as_f64().is_some_and(|s| s >= 0.0))
+            .filter_map(|r| {
+                r["vs_reference"].as_array()?.iter().find_map(|v| {
+                    (v[0].as_str() == Some(&format!("{id}/spectral4"))).then(|| v[1].as_f64())?
+                })
+            })
+            .collect();
+        day.iter().sum::<f64>() / day.len() as f64
+    };
+    for baseline in atmoscope_model::methods::realtime().filter(|m| m.baseline) {
+        let off = daylight_mean(baseline.id);
+        assert!(off > 20.0, "{}: daylight ΔE2000 {off}", baseline.id);
+        for m in atmoscope_model::methods::realtime().filter(|m| !m.baseline) {
+            assert!(
+                daylight_mean(m.id) < off,
+                "{} is no closer than {}",
+                baseline.id,
+                m.id
+            );
+        }
+    }
 }
 
 /// Numbers a command cannot use are refused before any work, with the flag and the allowed
@@ -1166,7 +1204,17 @@ fn every_model_keeps_its_stated_aod_range() {
     let bound = atmoscope_model::methods::AOD_RANGE_ERROR;
     for m in atmoscope_model::methods::realtime() {
         let max = m.domain.max_aod550;
-        let aods = format!("{max},{}", 5.0 * max);
+        // No range (single scattering alone, no air at all): off already at a trace of aerosol.
+        let (max, beyond_at) = if max > 0.0 {
+            (max, 5.0 * max)
+        } else {
+            (0.01, 0.01)
+        };
+        let aods = if beyond_at > max {
+            format!("{max},{beyond_at}")
+        } else {
+            format!("{max}")
+        };
         let o = atmoscope(&[
             "bench",
             "aod",
@@ -1188,18 +1236,17 @@ fn every_model_keeps_its_stated_aod_range() {
                 .map(|r| r["mean_abs_error"].as_f64().expect("error"))
                 .collect()
         };
-        let (inside, beyond) = (at(max), at(5.0 * max));
+        let (inside, beyond) = (at(max), at(beyond_at));
         assert_eq!(inside.len(), 2, "{}: a row per sun", m.id);
         assert!(
-            inside.iter().all(|&e| e <= bound),
+            m.domain.max_aod550 <= 0.0 || inside.iter().all(|&e| e <= bound),
             "{} at AOD {max}: {inside:?}",
             m.id
         );
         assert!(
             beyond.iter().any(|&e| e > bound),
-            "{} at AOD {}: {beyond:?}: the stated range is too narrow",
-            m.id,
-            5.0 * max
+            "{} at AOD {beyond_at}: {beyond:?}: the stated range is too narrow",
+            m.id
         );
     }
 }

@@ -3,6 +3,7 @@
 //! untrusted file: every line is checked), and summarised per configuration with the Pareto
 //! front of frame time against error.
 
+use atmoscope_model::methods;
 use atmoscope_model::metrics::pareto_front;
 
 /// The columns of `results.csv`, in order.
@@ -148,7 +149,7 @@ pub struct Config {
     pub de2000_p95: f64,
     pub flip: f64,
     pub rel_rmse: f64,
-    /// On the Pareto front of frame time against mean ΔE2000.
+    /// On the Pareto front of frame time against mean ΔE2000 (a baseline never is).
     pub on_front: bool,
 }
 
@@ -203,9 +204,17 @@ pub fn summarise(rows: &[Row]) -> Vec<Config> {
             c
         })
         .collect();
-    let points: Vec<(f64, f64)> = out.iter().map(|c| (c.frame_ms, c.de2000_mean)).collect();
-    for i in pareto_front(&points) {
-        out[i].on_front = true;
+    // A baseline (no atmosphere) is drawn for scale but is no choice for a sky: it never
+    // stands on the front.
+    let candidates: Vec<usize> = (0..out.len())
+        .filter(|&i| !methods::by_id(&out[i].method).is_some_and(|m| m.baseline))
+        .collect();
+    let points: Vec<(f64, f64)> = candidates
+        .iter()
+        .map(|&i| (out[i].frame_ms, out[i].de2000_mean))
+        .collect();
+    for k in pareto_front(&points) {
+        out[candidates[k]].on_front = true;
     }
     out
 }
@@ -261,12 +270,14 @@ mod tests {
             row("fast", "v2", 3.0, 6.0),
             row("slow", "v1", 10.0, 1.0),
             row("bad", "v1", 20.0, 5.0),
+            row("empty", "v1", 0.5, 30.0),
         ];
         let c = summarise(&rows);
-        assert_eq!(c.len(), 3);
+        assert_eq!(c.len(), 4);
         assert_eq!((c[0].views, c[0].frame_ms, c[0].de2000_mean), (2, 2.0, 5.0));
         assert_eq!(c[0].name(), "fast/rgb3/medium");
         let front: Vec<bool> = c.iter().map(|c| c.on_front).collect();
-        assert_eq!(front, vec![true, true, false]);
+        // The baseline is the fastest and on no front.
+        assert_eq!(front, vec![true, true, false, false]);
     }
 }

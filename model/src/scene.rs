@@ -273,6 +273,8 @@ pub enum Method {
     Bruneton,
     GarciaLinan,
     Elek,
+    Nishita,
+    Empty,
     PathTracer,
 }
 

@@ -35,13 +35,18 @@ fn transmittance(layer: u32, h: f32, mu: f32) -> vec4<f32> {
         transmittance_lut[t.i.w], t.w);
 }
 
-// Transmittance to the sun times the visible fraction of its disk above the horizon.
-fn sun_transmittance(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
+// The fraction of the sun's disk above the horizon seen from altitude h with the sun at zenith
+// cosine mu_s (Earth's shadow with its penumbra); twin of shared::sun::visible_fraction.
+fn sun_visible_fraction(h: f32, mu_s: f32) -> f32 {
     let sin_h = bottom_radius() / (bottom_radius() + h);
     let cos_h = -sqrt(max(1.0 - sin_h * sin_h, 0.0));
     let edge = sin_h * SUN_ANGULAR_RADIUS_RAD;
-    let visible = smoothstep(-edge, edge, mu_s - cos_h);
-    return transmittance(layer, h, mu_s) * visible;
+    return smoothstep(-edge, edge, mu_s - cos_h);
+}
+
+// Transmittance to the sun times the visible fraction of its disk above the horizon.
+fn sun_transmittance(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
+    return transmittance(layer, h, mu_s) * sun_visible_fraction(h, mu_s);
 }
 
 // Transmittance to the sun seen from altitude h (anywhere up to space) with the sun at zenith

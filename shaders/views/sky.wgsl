@@ -1,7 +1,8 @@
 // The entry point of every model's sky pass, appended after the pass's file, which defines
 // `radiance(layer, dir)`: a batch's radiance of the sky and the ground along a world direction
-// from the camera. The sun's disk is added here, averaged over the pixel, through the
-// transmittance along the sun's own ray (twin of model::methods::render_with). Sums the
+// from the camera, and, in the model's common files, `sun_through_atmosphere(layer, h, mu_s)`:
+// the transmittance along the sun's own ray (shared/sun_disk.wgsl for the table-based models).
+// The sun's disk is added here, averaged over the pixel (twin of model::methods::render_with). Sums the
 // batches into linear sRGB (Y = ∫ȳL dλ) and writes coverage in alpha (0 outside the projection).
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
@@ -25,7 +26,7 @@ fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
     for (var layer = 0u; layer < batch_count(); layer++) {
         var l = radiance(layer, ray.xyz);
         if SUN_DISK && disk > 0.0 {
-            let sun = sun_seen_from(layer, globals.camera_position.w, globals.sun.w);
+            let sun = sun_through_atmosphere(layer, globals.camera_position.w, globals.sun.w);
             l += batches[layer].solar_irradiance * sun * disk;
         }
         rgb += vec3<f32>(dot(batches[layer].to_srgb_r, l), dot(batches[layer].to_srgb_g, l),

@@ -209,7 +209,8 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             .map(|(p, v)| (p.to_string(), median(v)))
             .collect();
         let (sky_ms, display_ms) = (median(sky), median(display));
-        let lut_total_ms: f64 = lut_ms.iter().map(|(_, ms)| ms).sum();
+        // + 0.0: an empty sum is −0.0, which would print as "-0.00" for a table-free model.
+        let lut_total_ms: f64 = lut_ms.iter().map(|(_, ms)| ms).sum::<f64>() + 0.0;
         let sun_move_ms = median(sun_moves);
         rows.push(GpuRow {
             method: super::method_id(method).into(),

@@ -10,8 +10,10 @@
 
 pub mod bruneton;
 pub mod elek;
+pub mod empty;
 pub mod garcia_linan;
 pub mod hillaire;
+pub mod nishita;
 pub mod path_tracer;
 pub mod rng;
 pub mod shared;
@@ -87,7 +89,8 @@ pub struct Domain {
     pub note: &'static str,
     /// Highest aerosol optical depth at 550 nm (`f64::INFINITY`: any): the largest AOD at
     /// which the model's sky radiance stays within [`AOD_RANGE_ERROR`] of the path tracer on
-    /// average (`atmoscope bench aod` measures it; above it the error grows with the AOD).
+    /// average (`atmoscope bench aod` measures it; above it the error grows with the AOD);
+    /// 0 when no AOD is inside (single scattering alone is too dark even in clean air).
     pub max_aod550: f64,
 }
 
@@ -142,8 +145,16 @@ impl Domain {
         }
     }
 
-    /// Why an aerosol optical depth `aod550` lies outside the model's AOD range, or None.
+    /// Why an aerosol optical depth `aod550` lies outside the model's AOD range, or None. A
+    /// model whose range is empty (`max_aod550` 0) is outside it at any AOD.
     pub fn excludes_aod(&self, aod550: f64) -> Option<String> {
+        if self.max_aod550 <= 0.0 {
+            return Some(format!(
+                "this model has no AOD range: its sky stays more than {:.0} % from the path tracer's even without aerosol ({})",
+                AOD_RANGE_ERROR * 100.0,
+                self.note
+            ));
+        }
         (aod550 > self.max_aod550).then(|| {
             format!(
                 "AOD {aod550:.2} is above this model's range (up to {:.2}, where its sky stays within {:.0} % of the path tracer); more aerosol darkens it further",
@@ -215,6 +226,9 @@ pub struct ModelInfo {
     /// Whether the model has fitted constants, published and refitted, that
     /// `render.fitted_constants` chooses between.
     pub refittable: bool,
+    /// A baseline to measure models against (no atmosphere), not a model of the sky: the
+    /// benchmarks list it, the accuracy tests hold it to being far off.
+    pub baseline: bool,
     /// The CPU twin's constructor; None for the path tracer, which is not a real-time model.
     pub build: Option<fn(&Params, Viewpoint) -> Box<dyn SkyModel>>,
 }
@@ -251,6 +265,7 @@ pub const MODELS: &[ModelInfo] = &[
         tables: &hillaire::TABLES,
         gathers_orders: false,
         refittable: false,
+        baseline: false,
         build: Some(hillaire::build),
     },
     ModelInfo {
@@ -263,6 +278,7 @@ pub const MODELS: &[ModelInfo] = &[
         tables: &bruneton::TABLES,
         gathers_orders: true,
         refittable: false,
+        baseline: false,
         build: Some(bruneton::build),
     },
     ModelInfo {
@@ -275,6 +291,7 @@ pub const MODELS: &[ModelInfo] = &[
         tables: &garcia_linan::TABLES,
         gathers_orders: false,
         refittable: true,
+        baseline: false,
         build: Some(garcia_linan::build),
     },
     ModelInfo {
@@ -287,7 +304,34 @@ pub const MODELS: &[ModelInfo] = &[
         tables: &elek::TABLES,
         gathers_orders: true,
         refittable: false,
+        baseline: false,
         build: Some(elek::build),
+    },
+    ModelInfo {
+        method: Method::Nishita,
+        id: "nishita",
+        label: "Nishita 1993",
+        citation: "T. Nishita, T. Sirai, K. Tadamura, E. Nakamae (1993), Display of the Earth Taking into Account Atmospheric Scattering, SIGGRAPH; per pixel on the GPU as in S. O'Neil (2005), Accurate Atmospheric Scattering, GPU Gems 2",
+        summary: "Single scattering by nested quadrature, no tables: every pixel marches its view ray and, at each sample, the ray to the sun. No higher orders; nothing to rebuild, all the cost is in the frame.",
+        domain: nishita::DOMAIN,
+        tables: &nishita::TABLES,
+        gathers_orders: false,
+        refittable: false,
+        baseline: false,
+        build: Some(nishita::build),
+    },
+    ModelInfo {
+        method: Method::Empty,
+        id: "empty",
+        label: "No atmosphere",
+        citation: "The baseline of D. Leenman (2025), A visual and performance comparison of atmospheric scattering models, master's thesis (his empty shader): the planet without air",
+        summary: "A black sky over ground lit by the sun as in space: the cheapest frame and the largest error, the benchmark's baseline.",
+        domain: empty::DOMAIN,
+        tables: &empty::TABLES,
+        gathers_orders: false,
+        refittable: false,
+        baseline: true,
+        build: Some(empty::build),
     },
     ModelInfo {
         method: Method::PathTracer,
@@ -299,6 +343,7 @@ pub const MODELS: &[ModelInfo] = &[
         tables: &[],
         gathers_orders: false,
         refittable: false,
+        baseline: false,
         build: None,
     },
 ];

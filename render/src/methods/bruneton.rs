@@ -3,7 +3,9 @@
 //! the deltas the previous one wrote. The f64 twin of every pass is
 //! `atmoscope_model::methods::bruneton::<pass>`.
 
-use super::{Dispatch, GpuMethod, PassSpec, Repeat, TRANSMITTANCE_PASS, shader};
+use super::{
+    Dispatch, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS, shader,
+};
 use atmoscope_model::scene::Method;
 
 const T: &str = "transmittance";
@@ -17,7 +19,7 @@ const DENSITY: &str = "scattering-density";
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Bruneton,
-    common: &[shader!("bruneton/common.wgsl")],
+    common: &[SUN_DISK_FROM_TABLE, shader!("bruneton/common.wgsl")],
     constants: |_| [0.0; 4],
     passes: &[
         TRANSMITTANCE_PASS,

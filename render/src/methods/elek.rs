@@ -3,7 +3,9 @@
 //! each order reading the last one's tables. The f64 twin of every pass is
 //! `atmoscope_model::methods::elek::<pass>`.
 
-use super::{Dispatch, GpuMethod, PassSpec, Repeat, TRANSMITTANCE_PASS, shader};
+use super::{
+    Dispatch, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS, shader,
+};
 use atmoscope_model::scene::Method;
 
 const T: &str = "transmittance";
@@ -18,7 +20,7 @@ const VOLUME: Dispatch = Dispatch::Volume(RAYLEIGH);
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Elek,
-    common: &[shader!("elek/common.wgsl")],
+    common: &[SUN_DISK_FROM_TABLE, shader!("elek/common.wgsl")],
     constants: |_| [0.0; 4],
     passes: &[
         TRANSMITTANCE_PASS,

@@ -1,13 +1,16 @@
 //! García Liñán (2023) on the GPU: the passes of `shaders/garcia_linan/` as data. The f64 twin
 //! of every pass is `atmoscope_model::methods::garcia_linan::<pass>`.
 
-use super::{Dispatch, GpuMethod, PassSpec, Repeat, TRANSMITTANCE_PASS, shader};
+use super::{
+    Dispatch, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS, shader,
+};
 use atmoscope_model::methods::garcia_linan::Constants;
 use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::GarciaLinan,
     common: &[
+        SUN_DISK_FROM_TABLE,
         shader!("common/march.wgsl"),
         shader!("garcia_linan/common.wgsl"),
     ],

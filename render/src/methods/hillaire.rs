@@ -1,7 +1,9 @@
 //! Hillaire (2020) on the GPU: the passes of `shaders/hillaire/` as data. The f64 twin of every
 //! pass is `atmoscope_model::methods::hillaire::<pass>`.
 
-use super::{Dispatch, GpuMethod, PassSpec, Repeat, TRANSMITTANCE_PASS, shader};
+use super::{
+    Dispatch, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS, shader,
+};
 use atmoscope_model::scene::Method;
 
 const AP_INSCATTERING: &str = "aerial-perspective-inscattering";
@@ -10,6 +12,7 @@ const AP_TRANSMITTANCE: &str = "aerial-perspective-transmittance";
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Hillaire,
     common: &[
+        SUN_DISK_FROM_TABLE,
         shader!("common/march.wgsl"),
         shader!("hillaire/common.wgsl"),
     ],

@@ -9,8 +9,10 @@
 
 pub mod bruneton;
 pub mod elek;
+pub mod empty;
 pub mod garcia_linan;
 pub mod hillaire;
+pub mod nishita;
 
 use atmoscope_model::methods::{self, Inputs, ModelInfo};
 use atmoscope_model::scene::Method;
@@ -300,6 +302,11 @@ pub const TRANSMITTANCE_PASS: PassSpec = PassSpec {
     reads_for_ground: &[],
 };
 
+/// The sun's disk through the transmittance table, for the models that have one: the
+/// `sun_through_atmosphere` every sky pass's entry point calls (a model without the table
+/// defines its own).
+pub const SUN_DISK_FROM_TABLE: Shader = shader!("shared/sun_disk.wgsl");
+
 /// The entry point every sky pass ends with; the pass's own file defines `radiance(layer, dir)`.
 pub const SKY_ENTRY_POINT: Shader = shader!("views/sky.wgsl");
 
@@ -322,11 +329,13 @@ pub const COMMON: [Shader; 8] = [
 ];
 
 /// Every real-time model's passes, in registry order.
-pub const GPU_METHODS: [GpuMethod; 4] = [
+pub const GPU_METHODS: [GpuMethod; 6] = [
     hillaire::METHOD,
     bruneton::METHOD,
     garcia_linan::METHOD,
     elek::METHOD,
+    nishita::METHOD,
+    empty::METHOD,
 ];
 
 /// The passes of `method`, or None for a model with no real-time passes (the path tracer).
