@@ -274,6 +274,7 @@ pub enum Method {
     GarciaLinan,
     Elek,
     Nishita,
+    Trapezoid,
     Empty,
     PathTracer,
 }

@@ -1,14 +1,11 @@
-// Nishita (1993): the nested march towards the sun, with no table. Twins of
+// Nishita (1993): the nested march towards the sun, with no table, for the table-free
+// single-scattering sky pass (shared/single_scattering_sky.wgsl). Twins of
 // model::methods::nishita. globals.model holds the step counts: (view, sun, 0, 0).
-
-fn view_steps() -> u32 {
-    return u32(globals.model.x);
-}
 
 // Transmittance from altitude h towards the sun at zenith cosine mu_s by a march of midpoint
 // samples to the top, times the visible fraction of the disk (0, and no march, behind the
 // planet).
-fn nested_sun_transmittance(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
+fn sun_transmittance_of_model(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
     let visible = sun_visible_fraction(h, mu_s);
     if visible <= 0.0 {
         return vec4<f32>(0.0);
@@ -22,17 +19,4 @@ fn nested_sun_transmittance(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
         depth += medium(b, at.x).extinction * dt;
     }
     return exp(-depth) * visible;
-}
-
-// The sun's disk seen from any altitude: from where its ray enters the atmosphere when the
-// camera is above it.
-fn sun_through_atmosphere(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
-    if h <= thickness() {
-        return nested_sun_transmittance(layer, h, mu_s);
-    }
-    let entry = entry_into_atmosphere(h, mu_s, mu_s, 1.0);
-    if entry.z == 0.0 {
-        return vec4<f32>(1.0);
-    }
-    return nested_sun_transmittance(layer, thickness(), entry.x);
 }

@@ -30,6 +30,9 @@ pub enum Bench {
     /// time, table memory and error against path-traced references; results.csv, a summary
     /// and the Pareto chart of time against error.
     Methods(super::bench_methods::MethodsBench),
+    /// Optical depth to the top of the atmosphere by the midpoint rule, the trapezoid rule and
+    /// the transmittance table against adaptive quadrature, with the CPU time per evaluation.
+    Transmittance(super::bench_transmittance::TransmittanceBench),
 }
 
 #[derive(Args, Debug)]
@@ -75,6 +78,7 @@ pub fn run(bench: &Bench) -> anyhow::Result<ExitCode> {
         Bench::Accuracy(args) => super::bench_gpu::accuracy(args),
         Bench::Aod(args) => super::bench_aod::run(args),
         Bench::Methods(args) => super::bench_methods::run(args),
+        Bench::Transmittance(args) => super::bench_transmittance::run(args),
     }
 }
 

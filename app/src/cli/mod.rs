@@ -6,6 +6,7 @@ mod bench;
 mod bench_aod;
 mod bench_gpu;
 mod bench_methods;
+mod bench_transmittance;
 mod compare;
 mod fit;
 mod fit_garcia_linan;

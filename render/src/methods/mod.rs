@@ -13,6 +13,7 @@ pub mod empty;
 pub mod garcia_linan;
 pub mod hillaire;
 pub mod nishita;
+pub mod trapezoid;
 
 use atmoscope_model::methods::{self, Inputs, ModelInfo};
 use atmoscope_model::scene::Method;
@@ -302,6 +303,11 @@ pub const TRANSMITTANCE_PASS: PassSpec = PassSpec {
     reads_for_ground: &[],
 };
 
+/// The sky pass of the table-free single-scattering models: the view march lit through each
+/// model's own `sun_transmittance_of_model`.
+pub const SINGLE_SCATTERING_SKY_PASS: PassSpec =
+    PassSpec::sky(shader!("shared/single_scattering_sky.wgsl"), &[]);
+
 /// The sun's disk through the transmittance table, for the models that have one: the
 /// `sun_through_atmosphere` every sky pass's entry point calls (a model without the table
 /// defines its own).
@@ -329,12 +335,13 @@ pub const COMMON: [Shader; 8] = [
 ];
 
 /// Every real-time model's passes, in registry order.
-pub const GPU_METHODS: [GpuMethod; 6] = [
+pub const GPU_METHODS: [GpuMethod; 7] = [
     hillaire::METHOD,
     bruneton::METHOD,
     garcia_linan::METHOD,
     elek::METHOD,
     nishita::METHOD,
+    trapezoid::METHOD,
     empty::METHOD,
 ];
 

@@ -1,22 +1,21 @@
 //! Nishita et al. (1993), "Display of the Earth Taking into Account Atmospheric Scattering"
 //! (SIGGRAPH), in the per-pixel form O'Neil (2005, GPU Gems 2, ch. 16) brought to the GPU:
 //! single scattering by nested quadrature, with no tables at all. Each pixel marches its view
-//! ray; at every sample a second march along the ray towards the sun gives the optical depth to
-//! the sun. A frame costs view steps × sun steps medium evaluations per pixel and batch, and no
-//! scene change costs more than a frame. There are no higher orders: the sky lacks what
-//! multiple scattering adds, and the ground is lit by the sun alone.
+//! ray; at every sample a second march of midpoint samples along the ray towards the sun gives
+//! the optical depth to the sun. A frame costs view steps × sun steps medium evaluations per
+//! pixel and batch, and no scene change costs more than a frame. There are no higher orders:
+//! the sky lacks what multiple scattering adds, and the ground is lit by the sun alone.
 //!
 //! The medium (profiles, cross-sections, phase functions, sun) is the scene's, shared with
-//! every other model, so that comparisons measure the method. One file per pass: [`sky`], twin
-//! of `shaders/nishita/sky.wgsl`.
+//! every other model, so that comparisons measure the method. The sky pass is the table-free
+//! single-scattering models' (`shared::single_scattering_sky`); this module is the way to the
+//! sun, twin of `shaders/nishita/common.wgsl`.
 
-pub mod sky;
-
+use super::shared::single_scattering_sky::{SingleScattering, SunPath, steps};
 use super::shared::sun::visible_fraction;
-use super::shared::{Lanes, Lut, Params, TableSpec, Viewpoint, entry_into_atmosphere};
+use super::shared::{Lanes, Params, TableSpec, Viewpoint};
 use super::{Domain, SkyModel};
 use crate::geometry::{altitude_along, distance_to_top};
-use glam::DVec3;
 
 /// The method has no tables.
 pub const TABLES: [TableSpec; 0] = [];
@@ -32,92 +31,64 @@ pub const DOMAIN: Domain = Domain {
     max_aod550: 0.0,
 };
 
-/// Samples of the view march and of each march towards the sun: (view, sun). Twice and once
-/// the sky-view march's count (32 and 16 at Medium), O'Neil's budget scaled with the quality.
-pub fn steps(p: &Params) -> (u32, u32) {
-    (2 * p.steps.sky_view, p.steps.sky_view)
-}
-
-/// The four values the GPU reads from `globals.model`: the two step counts.
-pub fn constants(p: &Params) -> [f64; 4] {
-    let (view, sun) = steps(p);
-    [f64::from(view), f64::from(sun), 0.0, 0.0]
-}
-
-/// Transmittance per lane from altitude `h` (m) towards the sun at zenith cosine `mu_s`, by a
-/// march of `steps` midpoint samples to the top of the atmosphere, times the visible fraction
-/// of the sun's disk above the horizon (0, and no march, where the planet hides it).
-pub fn sun_transmittance(p: &Params, layer: usize, h: f64, mu_s: f64, steps: u32) -> Lanes {
-    let visible = visible_fraction(h, mu_s, p.bottom_radius_m);
-    if visible <= 0.0 {
-        return [0.0; 4];
-    }
-    let d = distance_to_top(h, mu_s, p.bottom_radius_m, p.top_radius_m);
+/// Optical depth per lane from altitude `h` (m) along zenith cosine `mu` to the top of the
+/// atmosphere by `steps` midpoint samples.
+pub fn optical_depth(p: &Params, layer: usize, h: f64, mu: f64, steps: u32) -> Lanes {
+    let d = distance_to_top(h, mu, p.bottom_radius_m, p.top_radius_m);
     let dt = d / f64::from(steps);
     let mut depth = [0.0; 4];
     for s in 0..steps {
-        let (h_t, _) = altitude_along(h, mu_s, (f64::from(s) + 0.5) * dt, p.bottom_radius_m);
+        let (h_t, _) = altitude_along(h, mu, (f64::from(s) + 0.5) * dt, p.bottom_radius_m);
         let m = p.medium(layer, h_t);
         for (d, e) in depth.iter_mut().zip(m.extinction) {
             *d += e * dt;
         }
     }
-    depth.map(|d| (-d).exp() * visible)
+    depth
 }
 
-/// [`sun_transmittance`] seen from any altitude: from where the sun's ray enters the
-/// atmosphere when the point is above it (1 where the ray misses the atmosphere).
-pub fn sun_seen_from(p: &Params, layer: usize, h: f64, mu_s: f64, steps: u32) -> Lanes {
-    if h <= p.thickness_m() {
-        return sun_transmittance(p, layer, h, mu_s, steps);
+/// Transmittance per lane from altitude `h` (m) towards the sun at zenith cosine `mu_s`
+/// through [`optical_depth`], times the visible fraction of the sun's disk above the horizon
+/// (0, and no march, where the planet hides it).
+pub fn sun_transmittance(p: &Params, layer: usize, h: f64, mu_s: f64, steps: u32) -> Lanes {
+    let visible = visible_fraction(h, mu_s, p.bottom_radius_m);
+    if visible <= 0.0 {
+        return [0.0; 4];
     }
-    match entry_into_atmosphere(p, h, mu_s, mu_s, 1.0) {
-        Some((mu_entry, _)) => sun_transmittance(p, layer, p.thickness_m(), mu_entry, steps),
-        None => [1.0; 4],
-    }
+    optical_depth(p, layer, h, mu_s, steps).map(|d| (-d).exp() * visible)
 }
 
-/// The model for one atmosphere: the optics alone.
-#[derive(Debug, Clone)]
-pub struct Nishita {
-    pub params: Params,
+/// The nested march of midpoint samples towards the sun.
+pub struct NestedMidpoint {
+    pub steps: u32,
 }
 
-impl SkyModel for Nishita {
-    fn params(&self) -> &Params {
-        &self.params
-    }
-
-    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
-        sky::radiance(&self.params, layer, at, dir, sun)
-    }
-
-    fn table(&self, _: &str) -> Option<&Lut> {
-        None
-    }
-
-    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: f64) -> Lanes {
-        if disk <= 0.0 {
-            return [0.0; 4];
-        }
-        let p = &self.params;
-        let tr = sun_seen_from(p, layer, h, mu_s, steps(p).1);
-        std::array::from_fn(|i| p.batches[layer].solar_irradiance[i] * tr[i] * disk)
+impl SunPath for NestedMidpoint {
+    fn transmittance(&self, p: &Params, layer: usize, h: f64, mu_s: f64) -> Lanes {
+        sun_transmittance(p, layer, h, mu_s, self.steps)
     }
 }
 
 /// The registry's constructor (no table depends on the viewpoint: there are none).
 pub fn build(params: &Params, _: Viewpoint) -> Box<dyn SkyModel> {
-    Box::new(Nishita {
+    let (view_steps, sun_steps) = steps(params);
+    Box::new(SingleScattering {
         params: params.clone(),
+        view_steps,
+        sun_path: NestedMidpoint { steps: sun_steps },
     })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::atmosphere::Atmosphere;
+    use crate::geometry::{Ray, direction_from_angles};
     use crate::methods::shared::optics::tests::params;
     use crate::methods::shared::transmittance::{compute_transmittance_lut, transmittance};
+    use crate::methods::single_scattering;
+    use crate::scene::{Quality, Scene, WavelengthSet};
+    use glam::DVec3;
 
     #[test]
     fn the_nested_march_agrees_with_the_transmittance_table() {
@@ -132,7 +103,48 @@ mod tests {
         }
         // Behind the planet the sun is gone, and above the atmosphere nothing dims it.
         assert_eq!(sun_transmittance(&p, 0, 0.0, -0.2, 16), [0.0; 4]);
-        let top = p.thickness_m() + 1_000.0;
-        assert_eq!(sun_seen_from(&p, 0, top, 0.5, 16), [1.0; 4]);
+        let model = SingleScattering {
+            params: p.clone(),
+            view_steps: 8,
+            sun_path: NestedMidpoint { steps: 16 },
+        };
+        assert_eq!(
+            model.sun_seen_from(0, p.thickness_m() + 1_000.0, 0.5),
+            [1.0; 4]
+        );
+    }
+
+    /// With fine steps the nested march is the exact single scattering it approximates.
+    #[test]
+    fn the_nested_march_converges_to_exact_single_scattering() {
+        let scene = Scene::default();
+        let atm = Atmosphere::for_scene(&scene);
+        let mut p = Params::new(&atm, WavelengthSet::SpectralN(4), Quality::High);
+        p.steps.sky_view = 256;
+        let position = DVec3::new(0.0, 0.0, p.bottom_radius_m + 100.0);
+        let sun = direction_from_angles(30.0, 0.0);
+        for (elevation, azimuth) in [(60.0, 0.0), (10.0, 90.0), (2.0, 180.0), (-10.0, 30.0)] {
+            let dir = direction_from_angles(elevation, azimuth);
+            let marched = build(
+                &p,
+                Viewpoint {
+                    h: 100.0,
+                    mu_s: 0.5,
+                },
+            )
+            .radiance(0, (position, 100.0), dir, sun);
+            let ray = Ray::new(position, dir);
+            for (i, &w) in p.batches[0].colour.wavelengths_nm.iter().enumerate() {
+                // Per unit sunlight: the set's sunlight is a band's, the exact one a point's.
+                let exact = single_scattering::radiance(&atm, &ray, sun, w)
+                    / atm.solar_irradiance(w, None)
+                    * p.batches[0].solar_irradiance[i];
+                assert!(
+                    (marched[i] / exact - 1.0).abs() < 0.02,
+                    "{elevation}° {azimuth}° {w} nm: {} vs {exact}",
+                    marched[i]
+                );
+            }
+        }
     }
 }

@@ -8,6 +8,7 @@
 pub mod march;
 pub mod optics;
 pub mod ray;
+pub mod single_scattering_sky;
 pub mod sun;
 pub mod table;
 pub mod transmittance;

@@ -1,0 +1,140 @@
+//! The sky pass of the table-free single-scattering models (`nishita`, `trapezoid`): per pixel,
+//! single scattering marched along the view ray with the model's own transmittance towards the
+//! sun at every sample, and the sunlit ground behind it; from above the atmosphere the march
+//! starts where the ray enters it. Twin of `shaders/shared/single_scattering_sky.wgsl`, where
+//! each model's common file defines `sun_transmittance_of_model()`.
+
+use super::{Lanes, Params, aerosol_phase, entry_into_atmosphere, rayleigh_phase, segment_weight};
+use crate::geometry::{altitude_along, distance_to_boundary, hits_ground};
+use glam::DVec3;
+use std::f64::consts::PI;
+
+/// Samples of the view march and of each march towards the sun: (view, sun). Twice and once
+/// the sky-view march's count (32 and 16 at Medium), O'Neil's budget scaled with the quality;
+/// every table-free single-scattering model takes the same, so that they differ only in their
+/// way to the sun.
+pub fn steps(p: &Params) -> (u32, u32) {
+    (2 * p.steps.sky_view, p.steps.sky_view)
+}
+
+/// The four values the GPU reads from `globals.model`: the two step counts.
+pub fn constants(p: &Params) -> [f64; 4] {
+    let (view, sun) = steps(p);
+    [f64::from(view), f64::from(sun), 0.0, 0.0]
+}
+
+/// The radiance of one batch seen from `position` (m from the planet's centre, altitude `h`)
+/// along the unit direction `dir`, with the sun in direction `sun` (the sun's disk not
+/// included: `SkyModel::sun`): `view_steps` midpoint samples, each lit through
+/// `sun_transmittance(h, mu_s)` (per lane, the disk's visible fraction included).
+pub fn radiance(
+    p: &Params,
+    layer: usize,
+    (position, h): (DVec3, f64),
+    dir: DVec3,
+    sun: DVec3,
+    view_steps: u32,
+    sun_transmittance: impl Fn(f64, f64) -> Lanes,
+) -> Lanes {
+    let big_r = p.bottom_radius_m;
+    let up = position.normalize();
+    let (mu, mu_s, nu) = (dir.dot(up), sun.dot(up), dir.dot(sun));
+    let (h0, mu0, mu_s0) = if h <= p.thickness_m() {
+        (h, mu, mu_s)
+    } else {
+        match entry_into_atmosphere(p, h, mu, mu_s, nu) {
+            Some((mu_e, mu_s_e)) => (p.thickness_m(), mu_e, mu_s_e),
+            None => return [0.0; 4],
+        }
+    };
+    let b = &p.batches[layer];
+    let (phase_r, phase_a) = (rayleigh_phase(p, layer, nu), aerosol_phase(p, layer, nu));
+    let r0 = big_r + h0;
+    let t_max = distance_to_boundary(h0, mu0, big_r, p.top_radius_m);
+    let dt = t_max / f64::from(view_steps);
+    let mut inscattered = [0.0; 4];
+    let mut throughput = [1.0; 4];
+    for s in 0..view_steps {
+        let t = (f64::from(s) + 0.5) * dt;
+        let (h_t, r_t) = altitude_along(h0, mu0, t, big_r);
+        let mu_s_t = ((r0 * mu_s0 + t * nu) / r_t).clamp(-1.0, 1.0);
+        let m = p.medium(layer, h_t);
+        let sun_t = sun_transmittance(h_t, mu_s_t);
+        let weight = segment_weight(m.extinction, dt);
+        for i in 0..4 {
+            let source = (m.rayleigh_scattering[i] * phase_r[i]
+                + m.aerosol_scattering[i] * phase_a[i])
+                * sun_t[i];
+            inscattered[i] += throughput[i] * weight[i] * source;
+            throughput[i] *= (-m.extinction[i] * dt).exp();
+        }
+    }
+    let mut l: Lanes = std::array::from_fn(|i| inscattered[i] * b.solar_irradiance[i]);
+    if hits_ground(h0, mu0, big_r) {
+        let mu_s_g = ((r0 * mu_s0 + t_max * nu) / big_r).clamp(-1.0, 1.0);
+        let sun_g = sun_transmittance(0.0, mu_s_g);
+        for i in 0..4 {
+            let ground =
+                b.ground_albedo[i] / PI * b.solar_irradiance[i] * sun_g[i] * mu_s_g.max(0.0);
+            l[i] += throughput[i] * ground;
+        }
+    }
+    l
+}
+
+/// How a table-free single-scattering model gets the transmittance towards the sun.
+pub trait SunPath: Send + Sync {
+    /// Transmittance per lane from altitude `h` (m) towards the sun at zenith cosine `mu_s`,
+    /// times the visible fraction of the sun's disk above the horizon.
+    fn transmittance(&self, p: &Params, layer: usize, h: f64, mu_s: f64) -> Lanes;
+}
+
+/// A table-free single-scattering model: the optics, the view march's sample count and the
+/// model's way to the sun.
+pub struct SingleScattering<S: SunPath> {
+    pub params: Params,
+    pub view_steps: u32,
+    pub sun_path: S,
+}
+
+impl<S: SunPath> SingleScattering<S> {
+    /// The transmittance towards the sun seen from any altitude: from where the sun's ray
+    /// enters the atmosphere when the point is above it (1 where the ray misses it).
+    pub fn sun_seen_from(&self, layer: usize, h: f64, mu_s: f64) -> Lanes {
+        let p = &self.params;
+        if h <= p.thickness_m() {
+            return self.sun_path.transmittance(p, layer, h, mu_s);
+        }
+        match entry_into_atmosphere(p, h, mu_s, mu_s, 1.0) {
+            Some((mu_entry, _)) => self
+                .sun_path
+                .transmittance(p, layer, p.thickness_m(), mu_entry),
+            None => [1.0; 4],
+        }
+    }
+}
+
+impl<S: SunPath> crate::methods::SkyModel for SingleScattering<S> {
+    fn params(&self) -> &Params {
+        &self.params
+    }
+
+    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
+        let p = &self.params;
+        radiance(p, layer, at, dir, sun, self.view_steps, |h, mu_s| {
+            self.sun_path.transmittance(p, layer, h, mu_s)
+        })
+    }
+
+    fn table(&self, _: &str) -> Option<&super::Lut> {
+        None
+    }
+
+    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: f64) -> Lanes {
+        if disk <= 0.0 {
+            return [0.0; 4];
+        }
+        let tr = self.sun_seen_from(layer, h, mu_s);
+        std::array::from_fn(|i| self.params.batches[layer].solar_irradiance[i] * tr[i] * disk)
+    }
+}
