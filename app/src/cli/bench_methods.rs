@@ -500,7 +500,8 @@ fn draw_chart<B: plotters::prelude::DrawingBackend>(
     let err = |e: plotters::drawing::DrawingAreaErrorKind<B::ErrorType>| anyhow!("chart: {e}");
     let root = backend.into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
-    let range = |f: fn(&Config) -> f64| {
+    // `room`: how far past the largest value the axis goes (the labels sit right of points).
+    let range = |f: fn(&Config) -> f64, room: f64| {
         let (lo, hi) = configs
             .iter()
             .map(f)
@@ -509,7 +510,7 @@ fn draw_chart<B: plotters::prelude::DrawingBackend>(
                 (lo.min(v), hi.max(v))
             });
         if lo.is_finite() {
-            (lo / 1.5)..(hi * 1.5)
+            (lo / 1.5)..(hi * room)
         } else {
             0.01..1.0
         }
@@ -530,11 +531,11 @@ fn draw_chart<B: plotters::prelude::DrawingBackend>(
         .y_label_area_size(56)
         .build_cartesian_2d(
             {
-                let r = range(|c| c.frame_ms);
+                let r = range(|c| c.frame_ms, 3.0);
                 r.clone().log_scale().with_key_points(ticks(r))
             },
             {
-                let r = range(|c| c.de2000_mean);
+                let r = range(|c| c.de2000_mean, 1.5);
                 r.clone().log_scale().with_key_points(ticks(r))
             },
         )
