@@ -31,8 +31,7 @@ pub struct Row {
     /// `low`, `medium` or `high`.
     pub quality: String,
     pub view: String,
-    /// A full rebuild of the tables for the view's scene, wall time from encoding to the GPU
-    /// being idle, ms.
+    /// The table passes of a full rebuild for the view's scene, ms.
     pub precompute_ms: f64,
     /// The sky and display passes of a frame with the camera turning, ms.
     pub frame_ms: f64,
@@ -217,6 +216,18 @@ pub fn summarise(rows: &[Row]) -> Vec<Config> {
         out[candidates[k]].on_front = true;
     }
     out
+}
+
+/// The models of `configs`, each once, in order of first appearance (one legend entry and
+/// one marker each, however the rows are ordered).
+pub fn models_in_order(configs: &[Config]) -> Vec<&str> {
+    let mut models: Vec<&str> = Vec::new();
+    for c in configs {
+        if !models.contains(&c.method.as_str()) {
+            models.push(&c.method);
+        }
+    }
+    models
 }
 
 #[cfg(test)]

@@ -55,13 +55,13 @@ impl GpuContext {
         })
     }
 
-    /// One line naming the adapter, its backend and device type.
     /// Whether the adapter rasterises on the CPU (lavapipe, llvmpipe, WARP), whose timestamp
     /// queries do not time passes reliably.
     pub fn is_software(&self) -> bool {
         self.adapter.get_info().device_type == wgpu::DeviceType::Cpu
     }
 
+    /// One line naming the adapter, its backend and device type.
     pub fn describe(&self) -> String {
         let i = self.adapter.get_info();
         format!(

@@ -1,36 +1,56 @@
 // Pass: the view with a table-free single-scattering model (nishita, trapezoid): single
-// scattering marched along each pixel's ray, lit at every sample through the model's own
-// transmittance towards the sun, and the sunlit ground behind; from above the atmosphere the
-// march starts where the ray enters it (entry point: views/sky.wgsl). The model's common file
-// defines sun_transmittance_of_model(layer, h, mu_s); globals.model.x is the view march's
-// sample count. Twin of model::methods::shared::single_scattering_sky.
+// scattering marched along each pixel's ray, lit at every sample through the transmittance
+// towards the sun integrated along the sun's ray, and the sunlit ground behind; from above
+// the atmosphere the march starts where the ray enters it (entry point: views/sky.wgsl).
+// globals.model holds (view samples, sun intervals, rule: 0 midpoint or 1 trapezoid, 0), from
+// the model's registry constants. Twin of model::methods::shared::single_scattering_sky.
 
-fn view_steps() -> u32 {
-    return u32(globals.model.x);
+// Optical depth from altitude h along zenith cosine mu to the top by the model's rule over
+// equal intervals; twin of single_scattering_sky::optical_depth.
+fn optical_depth_to_top(layer: u32, h: f32, mu: f32) -> vec4<f32> {
+    let n = u32(globals.model.y);
+    let trapezoid = globals.model.z > 0.5;
+    let dt = distance_to_top(h, mu) / f32(n);
+    var samples = n;
+    var offset = 0.5;
+    if trapezoid {
+        samples = n + 1u;
+        offset = 0.0;
+    }
+    let b = batches[layer];
+    var depth = vec4<f32>(0.0);
+    for (var s = 0u; s < samples; s++) {
+        let at = altitude_along(h, mu, (f32(s) + offset) * dt);
+        var w = 1.0;
+        if trapezoid && (s == 0u || s == n) {
+            w = 0.5;
+        }
+        depth += w * medium(b, at.x).extinction * dt;
+    }
+    return depth;
 }
 
+// Transmittance towards the sun at zenith cosine mu_s, times the visible fraction of its disk
+// (0, and no integral, behind the planet); twin of single_scattering_sky::sun_transmittance.
+fn sun_transmittance_marched(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
+    let visible = sun_visible_fraction(h, mu_s);
+    if visible <= 0.0 {
+        return vec4<f32>(0.0);
+    }
+    return exp(-optical_depth_to_top(layer, h, mu_s)) * visible;
+}
 
 fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     let big_r = bottom_radius();
-    let up = normalize(globals.camera_position.xyz);
-    let sun = globals.sun.xyz;
-    let nu = dot(dir, sun);
-    var h0 = globals.camera_position.w;
-    var mu0 = dot(dir, up);
-    var mu_s0 = dot(sun, up);
-    var ground: bool;
-    if ABOVE_ATMOSPHERE {
-        let entry = entry_into_atmosphere(h0, mu0, mu_s0, nu);
-        if entry.z == 0.0 {
-            return vec4<f32>(0.0);
-        }
-        h0 = thickness();
-        mu0 = entry.x;
-        mu_s0 = entry.y;
-        ground = hits_ground(h0, mu0);
-    } else {
-        ground = sees_ground(h0, mu0);
+    let cc = camera_coords(dir);
+    if !cc.hit {
+        return vec4<f32>(0.0);
     }
+    let h0 = cc.c.h;
+    let mu0 = cc.c.mu;
+    let mu_s0 = cc.c.mu_s;
+    let nu = cc.c.nu;
+    let ground = cc.c.ground;
     let b = batches[layer];
     let phase_r = rayleigh_phase(nu, b.rayleigh_depolarisation);
     let phase_a = aerosol_phase(nu, b.aerosol_g);
@@ -39,7 +59,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     if ground {
         t_max = distance_to_ground(h0, mu0);
     }
-    let n = view_steps();
+    let n = u32(globals.model.x);
     let dt = t_max / f32(n);
     var inscattered = vec4<f32>(0.0);
     var throughput = vec4<f32>(1.0);
@@ -48,7 +68,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
         let at = altitude_along(h0, mu0, t);
         let mu_s_t = clamp((r0 * mu_s0 + t * nu) / at.y, -1.0, 1.0);
         let m = medium(b, at.x);
-        let sun_t = sun_transmittance_of_model(layer, at.x, mu_s_t);
+        let sun_t = sun_transmittance_marched(layer, at.x, mu_s_t);
         let source = (m.rayleigh_scattering * phase_r + m.aerosol_scattering * phase_a) * sun_t;
         inscattered += throughput * segment_weight(m.extinction, dt) * source;
         throughput *= exp(-m.extinction * dt);
@@ -56,7 +76,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     var l = inscattered * b.solar_irradiance;
     if ground {
         let mu_s_g = clamp((r0 * mu_s0 + t_max * nu) / big_r, -1.0, 1.0);
-        let sun_g = sun_transmittance_of_model(layer, 0.0, mu_s_g);
+        let sun_g = sun_transmittance_marched(layer, 0.0, mu_s_g);
         l += throughput * b.ground_albedo / PI * b.solar_irradiance * sun_g * max(mu_s_g, 0.0);
     }
     return l;
@@ -66,11 +86,11 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
 // camera is above it (twin of SingleScattering::sun_seen_from).
 fn sun_through_atmosphere(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
     if h <= thickness() {
-        return sun_transmittance_of_model(layer, h, mu_s);
+        return sun_transmittance_marched(layer, h, mu_s);
     }
     let entry = entry_into_atmosphere(h, mu_s, mu_s, 1.0);
     if entry.z == 0.0 {
         return vec4<f32>(1.0);
     }
-    return sun_transmittance_of_model(layer, thickness(), entry.x);
+    return sun_transmittance_marched(layer, thickness(), entry.x);
 }

@@ -116,9 +116,14 @@ fn sliced_rebuild_ms(
     Ok((longest, mean, start.elapsed().as_secs_f64() * 1e3))
 }
 
+/// The median (the mean of the middle two of an even count; NaN of none).
 pub(super) fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+    match v.len() {
+        0 => f64::NAN,
+        n if n % 2 == 1 => v[n / 2],
+        n => 0.5 * (v[n / 2 - 1] + v[n / 2]),
+    }
 }
 
 pub(super) fn set_name(s: WavelengthSet) -> String {

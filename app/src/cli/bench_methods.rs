@@ -1,6 +1,6 @@
 //! `atmoscope bench methods`: every model × wavelength set × quality over views of the suite,
-//! run time against error on one chart. Per view it measures the table precompute (a full
-//! rebuild, wall time), a frame with the camera turning (sky and display passes), the tables' memory,
+//! run time against error on one chart. Per view it measures the table precompute (the table
+//! passes of a full rebuild), a frame with the camera turning (sky and display passes), the tables' memory,
 //! and the error of the view against its path-traced reference (ΔE2000 mean and p95, HDR-FLIP,
 //! relative RMSE of luminance outside the sun's disk); it writes `results.csv`, `summary.md` and the Pareto chart
 //! (`pareto.svg`, `pareto.png`) of frame time against mean ΔE2000.
@@ -197,6 +197,7 @@ pub fn run(args: &MethodsBench) -> anyhow::Result<ExitCode> {
         }
         let info = atmoscope_model::methods::info(method);
         let mut precompute: Option<f64> = None;
+        let mut warmed = false;
         for (v, (reference, w, h)) in plan.views.iter().zip(&references) {
             let label = format!(
                 "{}/{}/{} {}",
@@ -210,27 +211,27 @@ pub fn run(args: &MethodsBench) -> anyhow::Result<ExitCode> {
             scene.render.method = method;
             scene.render.wavelengths = set;
             scene.render.quality = quality;
-            // A full rebuild, from encoding to the GPU being idle (per-pass timestamps of
-            // a rebuild are unreliable on software adapters); a model whose tables do not
-            // read the viewpoint builds the same tables for every view, so once is enough.
+            // A full rebuild, pass by pass (each table pass's time, summed); a model whose
+            // tables do not read the viewpoint builds the same tables for every view, so once
+            // is enough.
             let ref_view = View::new(v.projection, *w, *h);
-            if precompute.is_none() {
+            if !warmed {
                 // Compiles the model's pipelines outside the timing.
                 engine.try_render(&scene, &ref_view)?;
                 engine.wait();
+                warmed = true;
             }
             let precompute_ms = match precompute.filter(|_| !info.reads_viewpoint()) {
                 Some(ms) => ms,
-                // Nothing to precompute: a rebuild would time a frame.
+                // Nothing to precompute.
                 None if info.tables.is_empty() => 0.0,
                 None => {
                     let mut times = Vec::new();
                     for _ in 0..plan.repeats.min(3) {
                         engine.invalidate();
-                        let start = Instant::now();
-                        engine.try_render(&scene, &ref_view)?;
+                        let stats = engine.try_render(&scene, &ref_view)?;
+                        times.push(stats.tables_run.iter().filter_map(|p| stats.ms(p)).sum());
                         engine.wait();
-                        times.push(start.elapsed().as_secs_f64() * 1e3);
                     }
                     let ms = median(times);
                     precompute = Some(ms);
@@ -256,7 +257,10 @@ pub fn run(args: &MethodsBench) -> anyhow::Result<ExitCode> {
             for i in 0..plan.repeats {
                 scene.camera.heading_deg = (scene.camera.heading_deg + 1.0 + i as f64) % 360.0;
                 let stats = engine.try_render(&scene, &frame_view)?;
-                frames.push(stats.ms("sky").unwrap_or(0.0) + stats.ms("display").unwrap_or(0.0));
+                // A frame whose passes were not timed (none ran) is left out.
+                if let (Some(sky), Some(display)) = (stats.ms("sky"), stats.ms("display")) {
+                    frames.push(sky + display);
+                }
                 engine.wait();
                 if timing_start.elapsed() > FRAME_TIMING_BUDGET {
                     break;
@@ -381,8 +385,7 @@ fn summary_markdown(configs: &[Config], h: &Header) -> String {
     let mut s = String::from("# Sky models: run time against error\n\n");
     s += &format!(
         "Adapter: {}. Frame time: sky and display passes of a {}×{} frame, median of up to {} (fewer after 2 s; {}). \
-         Precompute: a full rebuild of the tables at the reference's size, wall time from \
-         encoding to the GPU being idle (median of up to 3). \
+         Precompute: the table passes of a full rebuild, timed the same way (median of up to 3). \
          Error against path-traced references of {} view(s): {}. Measured in {:.0} s.\n\n",
         h.adapter,
         h.frame_size.0,
@@ -568,8 +571,7 @@ fn draw_chart<B: plotters::prelude::DrawingBackend>(
         .map_err(err)?
         .label("Pareto front")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(2)));
-    let mut models: Vec<&str> = configs.iter().map(|c| c.method.as_str()).collect();
-    models.dedup();
+    let models = crate::bench_results::models_in_order(configs);
     for (i, model) in models.iter().enumerate() {
         let colour = PALETTE[i % PALETTE.len()];
         let points = configs

@@ -8,9 +8,9 @@
 use super::SceneArgs;
 use atmoscope_model::atmosphere::Atmosphere;
 use atmoscope_model::geometry::{altitude_along, distance_to_top, hits_ground};
+use atmoscope_model::methods::shared::single_scattering_sky::{Rule, optical_depth};
 use atmoscope_model::methods::shared::transmittance::{compute_transmittance_lut, transmittance};
 use atmoscope_model::methods::shared::{Lanes, Params};
-use atmoscope_model::methods::{nishita, trapezoid};
 use atmoscope_model::quadrature::integrate_adaptive;
 use atmoscope_model::scene::WavelengthSet;
 use clap::Args;
@@ -119,10 +119,10 @@ pub fn run(args: &TransmittanceBench) -> anyhow::Result<ExitCode> {
     let mut rows = Vec::new();
     for &n in &args.steps {
         rows.push(measure("midpoint (nishita)", Some(n), &|h, mu| {
-            nishita::optical_depth(&p, 0, h, mu, n)
+            optical_depth(&p, 0, h, mu, n, Rule::Midpoint)
         }));
         rows.push(measure("trapezoid", Some(n), &|h, mu| {
-            trapezoid::optical_depth(&p, 0, h, mu, n)
+            optical_depth(&p, 0, h, mu, n, Rule::Trapezoid)
         }));
     }
     let table = compute_transmittance_lut(&p);

@@ -32,6 +32,8 @@ pub struct BenchTab {
     /// Which view the chart shows: None for the mean over every view.
     view: Option<String>,
     run: Option<Job<Result<(), String>>>,
+    /// Why the last run ended without results (cancelled, failed); the results shown stay.
+    run_error: Option<String>,
     /// The run's latest progress line (`progress N/M label`) and its last error lines.
     status: Arc<Mutex<Vec<String>>>,
 }
@@ -49,6 +51,7 @@ impl BenchTab {
             results: None,
             view: None,
             run: None,
+            run_error: None,
             status: Arc::default(),
         }
     }
@@ -70,6 +73,7 @@ impl BenchTab {
 
     /// Starts a quick benchmark in the background, writing into [`BenchTab::dir`].
     fn start(&mut self, ctx: &egui::Context) {
+        self.run_error = None;
         let (program, mut args) = self.program.clone();
         args.extend(["--out".into(), self.dir.to_string_lossy().into_owned()]);
         let status = self.status.clone();
@@ -113,7 +117,11 @@ impl BenchTab {
                 match child.try_wait() {
                     Ok(Some(exit)) => break exit,
                     Ok(None) => std::thread::sleep(std::time::Duration::from_millis(50)),
-                    Err(e) => return Err(format!("lost the benchmark: {e}")),
+                    Err(e) => {
+                        let _ = child.kill();
+                        let _ = child.wait();
+                        return Err(format!("lost the benchmark: {e}"));
+                    }
                 }
             };
             // The reader ends when the pipe closes; a grandchild holding it open must not
@@ -142,8 +150,11 @@ impl BenchTab {
         };
         self.run = None;
         match result.and_then(|r| r) {
-            Ok(()) => self.load(&self.dir.join("results.csv")),
-            Err(e) => self.results = Some(Err(e)),
+            Ok(()) => {
+                self.run_error = None;
+                self.load(&self.dir.join("results.csv"));
+            }
+            Err(e) => self.run_error = Some(e),
         }
     }
 
@@ -169,7 +180,7 @@ impl BenchTab {
                 None => {
                     if ui
                         .button("Run quick benchmark")
-                        .on_hover_text("atmoscope bench methods --quick: every model with RGB3 and Spectral4 on six views, against the path-traced references (about a minute on two CPU cores)")
+                        .on_hover_text("atmoscope bench methods --quick: every model with RGB3 and Spectral4 on six views, against the path-traced references (about two minutes on two CPU cores without a GPU)")
                         .clicked()
                     {
                         self.start(ui.ctx());
@@ -184,6 +195,9 @@ impl BenchTab {
                 self.load(&p);
             }
         });
+        if let Some(e) = &self.run_error {
+            ui.colored_label(ui.visuals().error_fg_color, e);
+        }
         let (rows, path) = match &self.results {
             None => {
                 ui.label(format!(
@@ -222,6 +236,22 @@ impl BenchTab {
         commands.extend(clicked.and_then(|i| render_command(scene, &configs[i])));
         commands.extend(table(ui, &configs).and_then(|i| render_command(scene, &configs[i])));
         commands
+    }
+}
+
+/// Closing the explorer (or replacing the tab) ends a run: the worker kills its child at its
+/// next check, within 50 ms, so no benchmark outlives the window.
+impl Drop for BenchTab {
+    fn drop(&mut self) {
+        if let Some(job) = &self.run {
+            job.cancel();
+            for _ in 0..40 {
+                if !job.is_running() {
+                    break;
+                }
+                std::thread::sleep(std::time::Duration::from_millis(25));
+            }
+        }
     }
 }
 
@@ -272,8 +302,7 @@ fn chart(ui: &mut egui::Ui, configs: &[Config], view: Option<&str>) -> Option<us
             c.de2000_mean.max(1e-6).log10(),
         ]
     };
-    let mut models: Vec<&str> = configs.iter().map(|c| c.method.as_str()).collect();
-    models.dedup();
+    let models = crate::bench_results::models_in_order(configs);
     let describe = configs.to_vec();
     let view_name = view.unwrap_or("mean of every view").to_string();
     // Room around the points, more towards the legend's corner.
@@ -352,7 +381,7 @@ fn chart(ui: &mut egui::Ui, configs: &[Config], view: Option<&str>) -> Option<us
                 .flatten()
         });
     let at = response.inner?;
-    nearest(&configs.to_vec(), [at.x, at.y])
+    nearest(configs, [at.x, at.y])
         .filter(|(_, d)| *d < 0.05)
         .map(|(i, _)| i)
 }

@@ -411,7 +411,12 @@ fn the_lut_tab_reads_every_table() {
             assert_eq!(h.state().layout.luts.table, t.id);
         }
     }
+    // A table-free model says so.
+    h.state_mut().scene.render.method = atmoscope_model::scene::Method::Nishita;
+    h.run();
+    h.get_by_label_contains("has no tables");
     // A table id the model does not have (an old or edited layout) shows the first table.
+    h.state_mut().scene.render.method = atmoscope_model::scene::Method::Hillaire;
     h.state_mut().layout.luts.table = "no-such-table".into();
     h.run();
     h.get_by_label_contains("texels ×");
@@ -1031,8 +1036,9 @@ fn the_bench_tab_shows_the_last_results_and_renders_the_model_of_a_row() {
     h.get_by_label("Bench").click();
     h.run();
     assert_eq!(h.state().layout.tab, Tab::Bench);
-    // Hillaire is faster and closer: alone on the front; Elek is not.
+    // Hillaire is faster and closer: alone on the front.
     assert!(h.query_by_label("hillaire/rgb3/medium").is_some());
+    assert_eq!(h.query_all_by_label("front").count(), 1);
     h.get_by_label("elek/spectral4/medium").click();
     h.run();
     let r = &h.state().scene.render;

@@ -303,8 +303,8 @@ pub const TRANSMITTANCE_PASS: PassSpec = PassSpec {
     reads_for_ground: &[],
 };
 
-/// The sky pass of the table-free single-scattering models: the view march lit through each
-/// model's own `sun_transmittance_of_model`.
+/// The sky pass of the table-free single-scattering models: the view march lit through the
+/// optical depth towards the sun by the model's rule (its constants say which).
 pub const SINGLE_SCATTERING_SKY_PASS: PassSpec =
     PassSpec::sky(shader!("shared/single_scattering_sky.wgsl"), &[]);
 

@@ -8,21 +8,19 @@
 //!
 //! The medium (profiles, cross-sections, phase functions, sun) is the scene's, shared with
 //! every other model, so that comparisons measure the method. The sky pass is the table-free
-//! single-scattering models' (`shared::single_scattering_sky`); this module is the way to the
-//! sun, twin of `shaders/nishita/common.wgsl`.
+//! single-scattering models' (`shared::single_scattering_sky`); this module chooses the
+//! midpoint rule for the way to the sun.
 
-use super::shared::single_scattering_sky::{SingleScattering, SunPath, steps};
-use super::shared::sun::visible_fraction;
-use super::shared::{Lanes, Params, TableSpec, Viewpoint};
+use super::shared::single_scattering_sky::{Rule, SingleScattering, SunMarch, steps};
+use super::shared::{Params, TableSpec, Viewpoint};
 use super::{Domain, SkyModel};
-use crate::geometry::{altitude_along, distance_to_top};
 
 /// The method has no tables.
 pub const TABLES: [TableSpec; 0] = [];
 
 /// Where the model is meant to work: anywhere with the sun up. Below the horizon the sky is
 /// lit by light scattered more than once, which the model leaves out; above it the sky lacks
-/// the higher orders too (35 % of the path tracer's radiance with the sun at 30° and almost
+/// the higher orders too (35 % below the path tracer's radiance with the sun at 30° and almost
 /// no aerosol, `atmoscope bench aod`), so no aerosol amount is inside its AOD range.
 pub const DOMAIN: Domain = Domain {
     max_altitude_m: f64::INFINITY,
@@ -31,51 +29,16 @@ pub const DOMAIN: Domain = Domain {
     max_aod550: 0.0,
 };
 
-/// Optical depth per lane from altitude `h` (m) along zenith cosine `mu` to the top of the
-/// atmosphere by `steps` midpoint samples.
-pub fn optical_depth(p: &Params, layer: usize, h: f64, mu: f64, steps: u32) -> Lanes {
-    let d = distance_to_top(h, mu, p.bottom_radius_m, p.top_radius_m);
-    let dt = d / f64::from(steps);
-    let mut depth = [0.0; 4];
-    for s in 0..steps {
-        let (h_t, _) = altitude_along(h, mu, (f64::from(s) + 0.5) * dt, p.bottom_radius_m);
-        let m = p.medium(layer, h_t);
-        for (d, e) in depth.iter_mut().zip(m.extinction) {
-            *d += e * dt;
-        }
-    }
-    depth
-}
-
-/// Transmittance per lane from altitude `h` (m) towards the sun at zenith cosine `mu_s`
-/// through [`optical_depth`], times the visible fraction of the sun's disk above the horizon
-/// (0, and no march, where the planet hides it).
-pub fn sun_transmittance(p: &Params, layer: usize, h: f64, mu_s: f64, steps: u32) -> Lanes {
-    let visible = visible_fraction(h, mu_s, p.bottom_radius_m);
-    if visible <= 0.0 {
-        return [0.0; 4];
-    }
-    optical_depth(p, layer, h, mu_s, steps).map(|d| (-d).exp() * visible)
-}
-
-/// The nested march of midpoint samples towards the sun.
-pub struct NestedMidpoint {
-    pub steps: u32,
-}
-
-impl SunPath for NestedMidpoint {
-    fn transmittance(&self, p: &Params, layer: usize, h: f64, mu_s: f64) -> Lanes {
-        sun_transmittance(p, layer, h, mu_s, self.steps)
-    }
-}
-
 /// The registry's constructor (no table depends on the viewpoint: there are none).
 pub fn build(params: &Params, _: Viewpoint) -> Box<dyn SkyModel> {
     let (view_steps, sun_steps) = steps(params);
     Box::new(SingleScattering {
         params: params.clone(),
         view_steps,
-        sun_path: NestedMidpoint { steps: sun_steps },
+        sun_path: SunMarch {
+            intervals: sun_steps,
+            rule: Rule::Midpoint,
+        },
     })
 }
 
@@ -85,6 +48,7 @@ mod tests {
     use crate::atmosphere::Atmosphere;
     use crate::geometry::{Ray, direction_from_angles};
     use crate::methods::shared::optics::tests::params;
+    use crate::methods::shared::single_scattering_sky::sun_transmittance;
     use crate::methods::shared::transmittance::{compute_transmittance_lut, transmittance};
     use crate::methods::single_scattering;
     use crate::scene::{Quality, Scene, WavelengthSet};
@@ -95,18 +59,24 @@ mod tests {
         let p = params();
         let table = compute_transmittance_lut(&p);
         for (h, mu_s) in [(0.0, 1.0), (0.0, 0.3), (5_000.0, 0.1), (30_000.0, 0.6)] {
-            let marched = sun_transmittance(&p, 0, h, mu_s, 4096);
+            let marched = sun_transmittance(&p, 0, h, mu_s, 4096, Rule::Midpoint);
             let looked_up = transmittance(&p, &table, 0, h, mu_s);
             for (m, t) in marched.iter().zip(looked_up) {
                 assert!((m / t - 1.0).abs() < 0.01, "h {h} mu_s {mu_s}: {m} vs {t}");
             }
         }
         // Behind the planet the sun is gone, and above the atmosphere nothing dims it.
-        assert_eq!(sun_transmittance(&p, 0, 0.0, -0.2, 16), [0.0; 4]);
+        assert_eq!(
+            sun_transmittance(&p, 0, 0.0, -0.2, 16, Rule::Midpoint),
+            [0.0; 4]
+        );
         let model = SingleScattering {
             params: p.clone(),
             view_steps: 8,
-            sun_path: NestedMidpoint { steps: 16 },
+            sun_path: SunMarch {
+                intervals: 16,
+                rule: Rule::Midpoint,
+            },
         };
         assert_eq!(
             model.sun_seen_from(0, p.thickness_m() + 1_000.0, 0.5),

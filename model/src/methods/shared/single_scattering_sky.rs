@@ -1,26 +1,34 @@
 //! The sky pass of the table-free single-scattering models (`nishita`, `trapezoid`): per pixel,
 //! single scattering marched along the view ray with the model's own transmittance towards the
 //! sun at every sample, and the sunlit ground behind it; from above the atmosphere the march
-//! starts where the ray enters it. Twin of `shaders/shared/single_scattering_sky.wgsl`, where
-//! each model's common file defines `sun_transmittance_of_model()`.
+//! starts where the ray enters it; the models differ only in the quadrature rule along the
+//! sun's ray ([`Rule`]). Twin of `shaders/shared/single_scattering_sky.wgsl`, which reads the
+//! counts and the rule from the model's constants.
 
+use super::ray::camera_coords;
+use super::sun::visible_fraction;
 use super::{Lanes, Params, aerosol_phase, entry_into_atmosphere, rayleigh_phase, segment_weight};
-use crate::geometry::{altitude_along, distance_to_boundary, hits_ground};
+use crate::geometry::{altitude_along, distance_to_ground, distance_to_top};
 use glam::DVec3;
 use std::f64::consts::PI;
 
 /// Samples of the view march and of each march towards the sun: (view, sun). Twice and once
-/// the sky-view march's count (32 and 16 at Medium), O'Neil's budget scaled with the quality;
+/// the sky-view march's count (64 and 32 at Medium), O'Neil's budget scaled with the quality;
 /// every table-free single-scattering model takes the same, so that they differ only in their
 /// way to the sun.
 pub fn steps(p: &Params) -> (u32, u32) {
     (2 * p.steps.sky_view, p.steps.sky_view)
 }
 
-/// The four values the GPU reads from `globals.model`: the two step counts.
-pub fn constants(p: &Params) -> [f64; 4] {
+/// The four values the GPU reads from `globals.model`: the two sample counts and the rule
+/// along the sun's ray (0 midpoint, 1 trapezoid).
+pub fn constants(p: &Params, rule: Rule) -> [f64; 4] {
     let (view, sun) = steps(p);
-    [f64::from(view), f64::from(sun), 0.0, 0.0]
+    let code = match rule {
+        Rule::Midpoint => 0.0,
+        Rule::Trapezoid => 1.0,
+    };
+    [f64::from(view), f64::from(sun), code, 0.0]
 }
 
 /// The radiance of one batch seen from `position` (m from the planet's centre, altitude `h`)
@@ -37,20 +45,18 @@ pub fn radiance(
     sun_transmittance: impl Fn(f64, f64) -> Lanes,
 ) -> Lanes {
     let big_r = p.bottom_radius_m;
-    let up = position.normalize();
-    let (mu, mu_s, nu) = (dir.dot(up), sun.dot(up), dir.dot(sun));
-    let (h0, mu0, mu_s0) = if h <= p.thickness_m() {
-        (h, mu, mu_s)
-    } else {
-        match entry_into_atmosphere(p, h, mu, mu_s, nu) {
-            Some((mu_e, mu_s_e)) => (p.thickness_m(), mu_e, mu_s_e),
-            None => return [0.0; 4],
-        }
+    let Some(c) = camera_coords(p, (position, h), dir, sun) else {
+        return [0.0; 4];
     };
+    let (h0, mu0, mu_s0, nu) = (c.h, c.mu, c.mu_s, c.nu);
     let b = &p.batches[layer];
     let (phase_r, phase_a) = (rayleigh_phase(p, layer, nu), aerosol_phase(p, layer, nu));
     let r0 = big_r + h0;
-    let t_max = distance_to_boundary(h0, mu0, big_r, p.top_radius_m);
+    let t_max = if c.ground {
+        distance_to_ground(h0, mu0, big_r)
+    } else {
+        distance_to_top(h0, mu0, big_r, p.top_radius_m)
+    };
     let dt = t_max / f64::from(view_steps);
     let mut inscattered = [0.0; 4];
     let mut throughput = [1.0; 4];
@@ -70,7 +76,7 @@ pub fn radiance(
         }
     }
     let mut l: Lanes = std::array::from_fn(|i| inscattered[i] * b.solar_irradiance[i]);
-    if hits_ground(h0, mu0, big_r) {
+    if c.ground {
         let mu_s_g = ((r0 * mu_s0 + t_max * nu) / big_r).clamp(-1.0, 1.0);
         let sun_g = sun_transmittance(0.0, mu_s_g);
         for i in 0..4 {
@@ -80,6 +86,77 @@ pub fn radiance(
         }
     }
     l
+}
+
+/// A quadrature rule over equal intervals of a ray.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rule {
+    /// One sample at the middle of each interval.
+    Midpoint,
+    /// Samples at the ends of each interval, half weight at the ray's two ends.
+    Trapezoid,
+}
+
+/// Optical depth per lane from altitude `h` (m) along zenith cosine `mu` to the top of the
+/// atmosphere, by `rule` over `intervals` equal intervals.
+pub fn optical_depth(
+    p: &Params,
+    layer: usize,
+    h: f64,
+    mu: f64,
+    intervals: u32,
+    rule: Rule,
+) -> Lanes {
+    let d = distance_to_top(h, mu, p.bottom_radius_m, p.top_radius_m);
+    let dt = d / f64::from(intervals);
+    let (samples, offset) = match rule {
+        Rule::Midpoint => (intervals, 0.5),
+        Rule::Trapezoid => (intervals + 1, 0.0),
+    };
+    let mut depth = [0.0; 4];
+    for s in 0..samples {
+        let (h_t, _) = altitude_along(h, mu, (f64::from(s) + offset) * dt, p.bottom_radius_m);
+        let w = if rule == Rule::Trapezoid && (s == 0 || s == intervals) {
+            0.5
+        } else {
+            1.0
+        };
+        let m = p.medium(layer, h_t);
+        for (d, e) in depth.iter_mut().zip(m.extinction) {
+            *d += w * e * dt;
+        }
+    }
+    depth
+}
+
+/// Transmittance per lane from altitude `h` (m) towards the sun at zenith cosine `mu_s`
+/// through [`optical_depth`], times the visible fraction of the sun's disk above the horizon
+/// (0, and no integral, where the planet hides it).
+pub fn sun_transmittance(
+    p: &Params,
+    layer: usize,
+    h: f64,
+    mu_s: f64,
+    intervals: u32,
+    rule: Rule,
+) -> Lanes {
+    let visible = visible_fraction(h, mu_s, p.bottom_radius_m);
+    if visible <= 0.0 {
+        return [0.0; 4];
+    }
+    optical_depth(p, layer, h, mu_s, intervals, rule).map(|d| (-d).exp() * visible)
+}
+
+/// The way to the sun of a table-free model that integrates it along the sun's ray.
+pub struct SunMarch {
+    pub intervals: u32,
+    pub rule: Rule,
+}
+
+impl SunPath for SunMarch {
+    fn transmittance(&self, p: &Params, layer: usize, h: f64, mu_s: f64) -> Lanes {
+        sun_transmittance(p, layer, h, mu_s, self.intervals, self.rule)
+    }
 }
 
 /// How a table-free single-scattering model gets the transmittance towards the sun.
