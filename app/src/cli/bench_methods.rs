@@ -186,9 +186,9 @@ pub fn run(args: &MethodsBench) -> anyhow::Result<ExitCode> {
     let total = (configs.len() * plan.views.len()) as u64;
     let progress = Progress::new(total);
     let start = Instant::now();
-    let (fw, fh) = args.frame_size;
     let mut rows = Vec::new();
     let mut timing = String::new();
+    let mut failures = Vec::new();
     for &(method, set, quality) in &configs {
         let mut engine = Engine::new(&context.device, &context.queue);
         engine.set_timing(true);
@@ -196,8 +196,7 @@ pub fn run(args: &MethodsBench) -> anyhow::Result<ExitCode> {
             engine.force_cpu_timing();
         }
         let info = atmoscope_model::methods::info(method);
-        let mut precompute: Option<f64> = None;
-        let mut warmed = false;
+        let mut state = ConfigState::default();
         for (v, (reference, w, h)) in plan.views.iter().zip(&references) {
             let label = format!(
                 "{}/{}/{} {}",
@@ -211,80 +210,39 @@ pub fn run(args: &MethodsBench) -> anyhow::Result<ExitCode> {
             scene.render.method = method;
             scene.render.wavelengths = set;
             scene.render.quality = quality;
-            // A full rebuild, pass by pass (each table pass's time, summed); a model whose
-            // tables do not read the viewpoint builds the same tables for every view, so once
-            // is enough.
-            let ref_view = View::new(v.projection, *w, *h);
-            if !warmed {
-                // Compiles the model's pipelines outside the timing.
-                engine.try_render(&scene, &ref_view)?;
-                engine.wait();
-                warmed = true;
-            }
-            let precompute_ms = match precompute.filter(|_| !info.reads_viewpoint()) {
-                Some(ms) => ms,
-                // Nothing to precompute.
-                None if info.tables.is_empty() => 0.0,
-                None => {
-                    let mut times = Vec::new();
-                    for _ in 0..plan.repeats.min(3) {
-                        engine.invalidate();
-                        let stats = engine.try_render(&scene, &ref_view)?;
-                        times.push(stats.tables_run.iter().filter_map(|p| stats.ms(p)).sum());
-                        engine.wait();
-                    }
-                    let ms = median(times);
-                    precompute = Some(ms);
-                    ms
-                }
+            let case = Case {
+                view: v,
+                scene,
+                reference,
+                size: (*w, *h),
             };
-            engine.try_render(&scene, &ref_view)?;
-            let image: Vec<[f64; 3]> = engine
-                .read_radiance()?
-                .iter()
-                .map(|p| [p[0], p[1], p[2]].map(f64::from))
-                .collect();
-            let setup = DisplaySetup {
-                exposure_ev: scene.display.exposure_ev,
-                tone_map: scene.display.tone_map,
-                ..DisplaySetup::default()
-            };
-            let (c, _) = compare(&image, reference, *w, *h, setup);
-            let outside_sun = outside_sun_disk(&scene, v.projection, *w, *h);
-            let frame_view = View::new(v.projection, fw, fh);
-            let mut frames = Vec::new();
-            let timing_start = Instant::now();
-            for i in 0..plan.repeats {
-                scene.camera.heading_deg = (scene.camera.heading_deg + 1.0 + i as f64) % 360.0;
-                let stats = engine.try_render(&scene, &frame_view)?;
-                // A frame whose passes were not timed (none ran) is left out.
-                if let (Some(sky), Some(display)) = (stats.ms("sky"), stats.ms("display")) {
-                    frames.push(sky + display);
+            // A failure (a GPU error, say) leaves this case out and the run goes on.
+            match measure(
+                &mut engine,
+                info,
+                case,
+                args.frame_size,
+                plan.repeats,
+                &mut state,
+            ) {
+                Ok(row) => {
+                    timing = engine.timing_source().label().to_string();
+                    rows.push(row);
                 }
-                engine.wait();
-                if timing_start.elapsed() > FRAME_TIMING_BUDGET {
-                    break;
+                Err(e) => {
+                    eprintln!("{label}: {e:#}; left out");
+                    failures.push(format!("{label}: {e:#}"));
                 }
             }
-            timing = engine.timing_source().label().to_string();
-            rows.push(Row {
-                method: info.id.into(),
-                wavelengths: set_name(set),
-                quality: quality_name(quality).into(),
-                view: v.name.clone(),
-                precompute_ms,
-                frame_ms: median(frames),
-                table_bytes: engine.table_bytes(),
-                de2000_mean: c.delta_e2000_mean,
-                de2000_p95: c.delta_e2000_p95,
-                flip: c.hdr_flip_mean,
-                rel_rmse: luminance_relative_rmse_where(&image, reference, &outside_sun),
-            });
         }
     }
     progress.finish();
+    if rows.is_empty() {
+        bail!("every case failed:\n{}", failures.join("\n"));
+    }
     let configs = summarise(&rows);
     let header = Header {
+        left_out: &failures,
         adapter: context.describe(),
         timing,
         frame_size: args.frame_size,
@@ -299,11 +257,124 @@ pub fn run(args: &MethodsBench) -> anyhow::Result<ExitCode> {
     )?;
     write_charts(&args.out, &configs, &header)?;
     print!("{}", summary_markdown(&configs, &header));
+    if !failures.is_empty() {
+        eprintln!(
+            "{} case(s) left out:\n{}",
+            failures.len(),
+            failures.join("\n")
+        );
+    }
     eprintln!(
         "wrote results.csv, summary.md, pareto.svg and pareto.png to {}",
         args.out.display()
     );
-    Ok(ExitCode::SUCCESS)
+    // Results are written either way; a run with cases left out says so in its status.
+    Ok(if failures.is_empty() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
+
+/// One view of one configuration: its scene and its path-traced reference.
+struct Case<'a> {
+    view: &'a views::View,
+    scene: Scene,
+    reference: &'a [[f64; 3]],
+    size: (u32, u32),
+}
+
+/// What the views of one configuration share: whether its pipelines are compiled, and its
+/// precompute when no table reads the viewpoint.
+#[derive(Default)]
+struct ConfigState {
+    warmed: bool,
+    precompute: Option<f64>,
+}
+
+/// Measures one case with `engine` (the configuration's).
+fn measure(
+    engine: &mut Engine,
+    info: &atmoscope_model::methods::ModelInfo,
+    case: Case,
+    (fw, fh): (u32, u32),
+    repeats: usize,
+    state: &mut ConfigState,
+) -> anyhow::Result<Row> {
+    let Case {
+        view: v,
+        mut scene,
+        reference,
+        size: (w, h),
+    } = case;
+    // A full rebuild, pass by pass (each table pass's time, summed); a model whose
+    // tables do not read the viewpoint builds the same tables for every view, so once
+    // is enough.
+    let ref_view = View::new(v.projection, w, h);
+    if !state.warmed {
+        // Compiles the model's pipelines outside the timing.
+        engine.try_render(&scene, &ref_view)?;
+        engine.wait();
+        state.warmed = true;
+    }
+    let precompute_ms = match state.precompute.filter(|_| !info.reads_viewpoint()) {
+        Some(ms) => ms,
+        // Nothing to precompute.
+        None if info.tables.is_empty() => 0.0,
+        None => {
+            let mut times = Vec::new();
+            for _ in 0..repeats.min(3) {
+                engine.invalidate();
+                let stats = engine.try_render(&scene, &ref_view)?;
+                times.push(stats.tables_run.iter().filter_map(|p| stats.ms(p)).sum());
+                engine.wait();
+            }
+            let ms = median(times);
+            state.precompute = Some(ms);
+            ms
+        }
+    };
+    engine.try_render(&scene, &ref_view)?;
+    let image: Vec<[f64; 3]> = engine
+        .read_radiance()?
+        .iter()
+        .map(|p| [p[0], p[1], p[2]].map(f64::from))
+        .collect();
+    let setup = DisplaySetup {
+        exposure_ev: scene.display.exposure_ev,
+        tone_map: scene.display.tone_map,
+        ..DisplaySetup::default()
+    };
+    let (c, _) = compare(&image, reference, w, h, setup);
+    let outside_sun = outside_sun_disk(&scene, v.projection, w, h);
+    let frame_view = View::new(v.projection, fw, fh);
+    let mut frames = Vec::new();
+    let timing_start = Instant::now();
+    for i in 0..repeats {
+        scene.camera.heading_deg = (scene.camera.heading_deg + 1.0 + i as f64) % 360.0;
+        let stats = engine.try_render(&scene, &frame_view)?;
+        // A frame whose passes were not timed (none ran) is left out.
+        if let (Some(sky), Some(display)) = (stats.ms("sky"), stats.ms("display")) {
+            frames.push(sky + display);
+        }
+        engine.wait();
+        if timing_start.elapsed() > FRAME_TIMING_BUDGET {
+            break;
+        }
+    }
+    Ok(Row {
+        method: info.id.into(),
+        wavelengths: set_name(scene.render.wavelengths),
+        quality: quality_name(scene.render.quality).into(),
+        view: v.name.clone(),
+        precompute_ms,
+        frame_ms: median(frames),
+        table_bytes: engine.table_bytes(),
+        de2000_mean: c.delta_e2000_mean,
+        de2000_p95: c.delta_e2000_p95,
+        flip: c.hdr_flip_mean,
+        rel_rmse: luminance_relative_rmse_where(&image, reference, &outside_sun),
+    })
 }
 
 /// Which pixels of a `w`×`h` view of `scene` the sun's disk does not touch.
@@ -373,6 +444,8 @@ impl Progress {
 
 /// What the summary and the chart say about the run itself.
 struct Header<'a> {
+    /// Cases that failed and were left out, each with why.
+    left_out: &'a [String],
     adapter: String,
     timing: String,
     frame_size: (u32, u32),
@@ -429,6 +502,12 @@ fn summary_markdown(configs: &[Config], h: &Header) -> String {
             c.name(),
             c.de2000_mean
         );
+    }
+    if !h.left_out.is_empty() {
+        s += "\n## Left out\n\n";
+        for f in h.left_out {
+            s += &format!("- {f}\n");
+        }
     }
     s
 }

@@ -32,8 +32,11 @@ pub struct BenchTab {
     /// Which view the chart shows: None for the mean over every view.
     view: Option<String>,
     run: Option<Job<Result<(), String>>>,
-    /// Why the last run ended without results (cancelled, failed); the results shown stay.
+    /// Why the last run failed or was cancelled; the results shown stay (or are the run's
+    /// own, when it wrote them before failing: cases it left out).
     run_error: Option<String>,
+    /// When the last run started, to tell its results from older ones.
+    run_started: Option<std::time::SystemTime>,
     /// The run's latest progress line (`progress N/M label`) and its last error lines.
     status: Arc<Mutex<Vec<String>>>,
 }
@@ -52,6 +55,7 @@ impl BenchTab {
             view: None,
             run: None,
             run_error: None,
+            run_started: None,
             status: Arc::default(),
         }
     }
@@ -74,6 +78,7 @@ impl BenchTab {
     /// Starts a quick benchmark in the background, writing into [`BenchTab::dir`].
     fn start(&mut self, ctx: &egui::Context) {
         self.run_error = None;
+        self.run_started = Some(std::time::SystemTime::now());
         let (program, mut args) = self.program.clone();
         args.extend(["--out".into(), self.dir.to_string_lossy().into_owned()]);
         let status = self.status.clone();
@@ -154,7 +159,16 @@ impl BenchTab {
                 self.run_error = None;
                 self.load(&self.dir.join("results.csv"));
             }
-            Err(e) => self.run_error = Some(e),
+            Err(e) => {
+                let path = self.dir.join("results.csv");
+                let written_by_this_run = std::fs::metadata(&path)
+                    .and_then(|m| m.modified())
+                    .is_ok_and(|t| self.run_started.is_some_and(|s| t >= s));
+                if written_by_this_run {
+                    self.load(&path);
+                }
+                self.run_error = Some(e);
+            }
         }
     }
 

@@ -1090,6 +1090,32 @@ fn a_quick_benchmark_runs_in_the_background_loads_its_results_and_can_be_cancell
     );
     assert!(!h.state().bench.running());
 
+    // A run that leaves cases out writes its results and fails: both are shown.
+    let mut tab = super::bench_tab::BenchTab::new(bench_dir("bench-partial"));
+    let partial = format!(
+        "printf '%s' '{csv}' > \"$2/results.csv\"; echo 'elek/rgb3/medium twilight-6: GPU lost; left out' >&2; exit 1"
+    );
+    tab.program = ("sh".into(), vec!["-c".into(), partial, "sh".into()]);
+    h.state_mut().bench = tab;
+    h.run();
+    h.get_by_label("Run quick benchmark").click();
+    for _ in 0..200 {
+        h.run();
+        if !h.state().bench.running() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    h.run();
+    assert!(
+        h.query_by_label("elek/spectral4/medium").is_some(),
+        "partial results loaded"
+    );
+    assert!(
+        h.query_by_label_contains("GPU lost").is_some(),
+        "and the failure named"
+    );
+
     // A run that hangs is cancelled, and says so.
     let mut tab = super::bench_tab::BenchTab::new(bench_dir("bench-cancel"));
     tab.program = (
