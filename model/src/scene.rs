@@ -275,6 +275,8 @@ pub enum Method {
     Elek,
     Nishita,
     Trapezoid,
+    NishitaMs,
+    TrapezoidMs,
     Empty,
     PathTracer,
 }

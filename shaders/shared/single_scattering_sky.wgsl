@@ -3,7 +3,9 @@
 // towards the sun integrated along the sun's ray, and the sunlit ground behind; from above
 // the atmosphere the march starts where the ray enters it (entry point: views/sky.wgsl).
 // globals.model holds (view samples, sun intervals, rule: 0 midpoint or 1 trapezoid, 0), from
-// the model's registry constants. Twin of model::methods::shared::single_scattering_sky.
+// the model's registry constants; the model's common file defines psi(layer, h, mu_s), its
+// isotropic higher orders (zero in shared/no_higher_orders.wgsl, Hillaire's Ψ_ms table in
+// hillaire/common.wgsl for the -ms rows). Twin of model::methods::shared::single_scattering_sky.
 
 // Optical depth from altitude h along zenith cosine mu to the top by the model's rule over
 // equal intervals; twin of single_scattering_sky::optical_depth.
@@ -69,7 +71,9 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
         let mu_s_t = clamp((r0 * mu_s0 + t * nu) / at.y, -1.0, 1.0);
         let m = medium(b, at.x);
         let sun_t = sun_transmittance_marched(layer, at.x, mu_s_t);
-        let source = (m.rayleigh_scattering * phase_r + m.aerosol_scattering * phase_a) * sun_t;
+        let higher = psi(layer, at.x, mu_s_t);
+        let source = m.rayleigh_scattering * (phase_r * sun_t + higher)
+            + m.aerosol_scattering * (phase_a * sun_t + higher);
         inscattered += throughput * segment_weight(m.extinction, dt) * source;
         throughput *= exp(-m.extinction * dt);
     }

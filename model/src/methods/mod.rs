@@ -27,6 +27,7 @@ use crate::scene::{Method, Scene};
 use crate::wavelengths::{WavelengthBatch, to_linear_srgb};
 use glam::DVec3;
 use rayon::prelude::*;
+use shared::single_scattering_sky;
 use shared::{Lanes, Lut, Params, TableSpec, Viewpoint};
 
 /// What a pass or a table can depend on in a scene; a set of these is a bit mask. The engine
@@ -333,6 +334,32 @@ pub const MODELS: &[ModelInfo] = &[
         refittable: false,
         baseline: false,
         build: Some(trapezoid::build),
+    },
+    ModelInfo {
+        method: Method::NishitaMs,
+        id: "nishita-ms",
+        label: "Nishita 1993 + Hillaire's Ψ_ms",
+        citation: "Nishita et al. (1993) as the nishita row, with the multiple-scattering table of S. Hillaire (2020) as its higher orders",
+        summary: "The nishita row's table-free single scattering plus Hillaire's isotropic higher orders Ψ_ms, looked up at every sample: two small tables that depend on the atmosphere alone.",
+        domain: nishita::DOMAIN_MS,
+        tables: &single_scattering_sky::TABLES_WITH_HIGHER_ORDERS,
+        gathers_orders: false,
+        refittable: false,
+        baseline: false,
+        build: Some(nishita::build_ms),
+    },
+    ModelInfo {
+        method: Method::TrapezoidMs,
+        id: "trapezoid-ms",
+        label: "Trapezoid rule + Hillaire's Ψ_ms",
+        citation: "The trapezoid row, with the multiple-scattering table of S. Hillaire (2020) as its higher orders",
+        summary: "The trapezoid row's single scattering plus Hillaire's isotropic higher orders Ψ_ms.",
+        domain: trapezoid::DOMAIN_MS,
+        tables: &single_scattering_sky::TABLES_WITH_HIGHER_ORDERS,
+        gathers_orders: false,
+        refittable: false,
+        baseline: false,
+        build: Some(trapezoid::build_ms),
     },
     ModelInfo {
         method: Method::Empty,

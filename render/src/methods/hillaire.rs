@@ -9,6 +9,16 @@ use atmoscope_model::scene::Method;
 const AP_INSCATTERING: &str = "aerial-perspective-inscattering";
 const AP_TRANSMITTANCE: &str = "aerial-perspective-transmittance";
 
+/// The Ψ_ms table's pass, which the single-scattering `-ms` rows share.
+pub const MULTIPLE_SCATTERING_PASS: PassSpec = PassSpec::table(
+    "multiple-scattering",
+    shader!("hillaire/multiple_scattering.wgsl"),
+    &["transmittance"],
+    &["multiple-scattering"],
+    Dispatch::Table("multiple-scattering"),
+    Repeat::Once,
+);
+
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Hillaire,
     common: &[
@@ -19,14 +29,7 @@ pub const METHOD: GpuMethod = GpuMethod {
     constants: |_| [0.0; 4],
     passes: &[
         TRANSMITTANCE_PASS,
-        PassSpec::table(
-            "multiple-scattering",
-            shader!("hillaire/multiple_scattering.wgsl"),
-            &["transmittance"],
-            &["multiple-scattering"],
-            Dispatch::Table("multiple-scattering"),
-            Repeat::Once,
-        ),
+        MULTIPLE_SCATTERING_PASS,
         PassSpec::table(
             "ground-irradiance",
             shader!("hillaire/ground_irradiance.wgsl"),

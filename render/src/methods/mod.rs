@@ -308,6 +308,20 @@ pub const TRANSMITTANCE_PASS: PassSpec = PassSpec {
 pub const SINGLE_SCATTERING_SKY_PASS: PassSpec =
     PassSpec::sky(shader!("shared/single_scattering_sky.wgsl"), &[]);
 
+/// Single scattering alone: the `psi` of the table-free sky pass is zero.
+pub const NO_HIGHER_ORDERS: Shader = shader!("shared/no_higher_orders.wgsl");
+
+/// The passes of a table-free single-scattering model with Hillaire's higher orders: the
+/// transmittance and Ψ_ms tables (Hillaire's pass), then the sky pass reading Ψ_ms.
+pub const SINGLE_SCATTERING_MS_PASSES: [PassSpec; 3] = [
+    TRANSMITTANCE_PASS,
+    hillaire::MULTIPLE_SCATTERING_PASS,
+    PassSpec::sky(
+        shader!("shared/single_scattering_sky.wgsl"),
+        &["multiple-scattering"],
+    ),
+];
+
 /// The sun's disk through the transmittance table, for the models that have one: the
 /// `sun_through_atmosphere` every sky pass's entry point calls (a model without the table
 /// defines its own).
@@ -335,13 +349,15 @@ pub const COMMON: [Shader; 8] = [
 ];
 
 /// Every real-time model's passes, in registry order.
-pub const GPU_METHODS: [GpuMethod; 7] = [
+pub const GPU_METHODS: [GpuMethod; 9] = [
     hillaire::METHOD,
     bruneton::METHOD,
     garcia_linan::METHOD,
     elek::METHOD,
     nishita::METHOD,
     trapezoid::METHOD,
+    nishita::METHOD_MS,
+    trapezoid::METHOD_MS,
     empty::METHOD,
 ];
 

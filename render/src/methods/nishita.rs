@@ -2,13 +2,23 @@
 //! (`shaders/shared/single_scattering_sky.wgsl`) with the midpoint rule towards the sun. Its
 //! f64 twin is `atmoscope_model::methods::nishita`.
 
-use super::{GpuMethod, SINGLE_SCATTERING_SKY_PASS};
+use super::{
+    GpuMethod, NO_HIGHER_ORDERS, SINGLE_SCATTERING_MS_PASSES, SINGLE_SCATTERING_SKY_PASS, shader,
+};
 use atmoscope_model::methods::shared::single_scattering_sky::{self, Rule};
 use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Nishita,
-    common: &[],
+    common: &[NO_HIGHER_ORDERS],
     constants: |p| single_scattering_sky::constants(p, Rule::Midpoint),
     passes: &[SINGLE_SCATTERING_SKY_PASS],
+};
+
+/// With Hillaire's Ψ_ms table as the higher orders (the `nishita-ms` row).
+pub const METHOD_MS: GpuMethod = GpuMethod {
+    method: Method::NishitaMs,
+    common: &[shader!("hillaire/common.wgsl")],
+    constants: |p| single_scattering_sky::constants(p, Rule::Midpoint),
+    passes: &SINGLE_SCATTERING_MS_PASSES,
 };

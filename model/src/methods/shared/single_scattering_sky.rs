@@ -7,7 +7,10 @@
 
 use super::ray::camera_coords;
 use super::sun::visible_fraction;
-use super::{Lanes, Params, aerosol_phase, entry_into_atmosphere, rayleigh_phase, segment_weight};
+use super::{
+    Lanes, Lut, Params, TableSpec, aerosol_phase, entry_into_atmosphere, rayleigh_phase,
+    segment_weight,
+};
 use crate::geometry::{altitude_along, distance_to_ground, distance_to_top};
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -34,7 +37,10 @@ pub fn constants(p: &Params, rule: Rule) -> [f64; 4] {
 /// The radiance of one batch seen from `position` (m from the planet's centre, altitude `h`)
 /// along the unit direction `dir`, with the sun in direction `sun` (the sun's disk not
 /// included: `SkyModel::sun`): `view_steps` midpoint samples, each lit through
-/// `sun_transmittance(h, mu_s)` (per lane, the disk's visible fraction included).
+/// `sun_transmittance(h, mu_s)` (per lane, the disk's visible fraction included), plus the
+/// isotropic higher orders `psi(h, mu_s)` (sr⁻¹ per unit solar irradiance; zero for single
+/// scattering alone) times the local scattering coefficient.
+#[allow(clippy::too_many_arguments)]
 pub fn radiance(
     p: &Params,
     layer: usize,
@@ -43,6 +49,7 @@ pub fn radiance(
     sun: DVec3,
     view_steps: u32,
     sun_transmittance: impl Fn(f64, f64) -> Lanes,
+    psi: impl Fn(f64, f64) -> Lanes,
 ) -> Lanes {
     let big_r = p.bottom_radius_m;
     let Some(c) = camera_coords(p, (position, h), dir, sun) else {
@@ -66,11 +73,11 @@ pub fn radiance(
         let mu_s_t = ((r0 * mu_s0 + t * nu) / r_t).clamp(-1.0, 1.0);
         let m = p.medium(layer, h_t);
         let sun_t = sun_transmittance(h_t, mu_s_t);
+        let higher = psi(h_t, mu_s_t);
         let weight = segment_weight(m.extinction, dt);
         for i in 0..4 {
-            let source = (m.rayleigh_scattering[i] * phase_r[i]
-                + m.aerosol_scattering[i] * phase_a[i])
-                * sun_t[i];
+            let source = m.rayleigh_scattering[i] * (phase_r[i] * sun_t[i] + higher[i])
+                + m.aerosol_scattering[i] * (phase_a[i] * sun_t[i] + higher[i]);
             inscattered[i] += throughput[i] * weight[i] * source;
             throughput[i] *= (-m.extinction[i] * dt).exp();
         }
@@ -166,12 +173,41 @@ pub trait SunPath: Send + Sync {
     fn transmittance(&self, p: &Params, layer: usize, h: f64, mu_s: f64) -> Lanes;
 }
 
-/// A table-free single-scattering model: the optics, the view march's sample count and the
-/// model's way to the sun.
+/// Hillaire's (2020) transmittance and multiple-scattering tables, added to a single-scattering
+/// model as its isotropic higher orders Ψ_ms.
+pub struct HigherOrders {
+    pub transmittance: Lut,
+    pub multiple_scattering: Lut,
+}
+
+impl HigherOrders {
+    pub fn compute(p: &Params) -> HigherOrders {
+        let transmittance = super::transmittance::compute_transmittance_lut(p);
+        let multiple_scattering =
+            crate::methods::hillaire::multiple_scattering::compute_multiple_scattering_lut(
+                p,
+                &transmittance,
+            );
+        HigherOrders {
+            transmittance,
+            multiple_scattering,
+        }
+    }
+}
+
+/// The tables of a single-scattering model with Hillaire's higher orders, in pass order.
+pub const TABLES_WITH_HIGHER_ORDERS: [TableSpec; 2] = [
+    super::transmittance::TABLE,
+    crate::methods::hillaire::multiple_scattering::TABLE,
+];
+
+/// A single-scattering model: the optics, the view march's sample count, the model's way to
+/// the sun, and optionally Hillaire's higher orders.
 pub struct SingleScattering<S: SunPath> {
     pub params: Params,
     pub view_steps: u32,
     pub sun_path: S,
+    pub higher_orders: Option<HigherOrders>,
 }
 
 impl<S: SunPath> SingleScattering<S> {
@@ -198,13 +234,30 @@ impl<S: SunPath> crate::methods::SkyModel for SingleScattering<S> {
 
     fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
         let p = &self.params;
-        radiance(p, layer, at, dir, sun, self.view_steps, |h, mu_s| {
-            self.sun_path.transmittance(p, layer, h, mu_s)
-        })
+        let sun_t = |h, mu_s| self.sun_path.transmittance(p, layer, h, mu_s);
+        match &self.higher_orders {
+            None => radiance(p, layer, at, dir, sun, self.view_steps, sun_t, |_, _| {
+                [0.0; 4]
+            }),
+            Some(t) => radiance(p, layer, at, dir, sun, self.view_steps, sun_t, |h, mu_s| {
+                crate::methods::hillaire::multiple_scattering::multiple_scattering(
+                    p,
+                    &t.multiple_scattering,
+                    layer,
+                    h,
+                    mu_s,
+                )
+            }),
+        }
     }
 
-    fn table(&self, _: &str) -> Option<&super::Lut> {
-        None
+    fn table(&self, id: &str) -> Option<&Lut> {
+        let t = self.higher_orders.as_ref()?;
+        match id {
+            "transmittance" => Some(&t.transmittance),
+            "multiple-scattering" => Some(&t.multiple_scattering),
+            _ => None,
+        }
     }
 
     fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: f64) -> Lanes {
@@ -214,4 +267,24 @@ impl<S: SunPath> crate::methods::SkyModel for SingleScattering<S> {
         let tr = self.sun_seen_from(layer, h, mu_s);
         std::array::from_fn(|i| self.params.batches[layer].solar_irradiance[i] * tr[i] * disk)
     }
+}
+
+/// A single-scattering model by `rule` with the shared sample counts, with or without
+/// Hillaire's higher orders (what the registry constructors of nishita, trapezoid and their
+/// `-ms` rows build).
+pub fn build(
+    p: &Params,
+    rule: Rule,
+    with_higher_orders: bool,
+) -> Box<dyn crate::methods::SkyModel> {
+    let (view_steps, sun_steps) = steps(p);
+    Box::new(SingleScattering {
+        params: p.clone(),
+        view_steps,
+        sun_path: SunMarch {
+            intervals: sun_steps,
+            rule,
+        },
+        higher_orders: with_higher_orders.then(|| HigherOrders::compute(p)),
+    })
 }
