@@ -562,7 +562,7 @@ fn ticks(range: std::ops::Range<f64>) -> Vec<f64> {
 }
 
 /// Marker colours, dark enough to read on white.
-const PALETTE: [plotters::style::RGBColor; 8] = [
+const PALETTE: [plotters::style::RGBColor; 10] = [
     plotters::style::RGBColor(214, 39, 40),
     plotters::style::RGBColor(31, 119, 180),
     plotters::style::RGBColor(44, 160, 44),
@@ -571,6 +571,8 @@ const PALETTE: [plotters::style::RGBColor; 8] = [
     plotters::style::RGBColor(140, 86, 75),
     plotters::style::RGBColor(227, 119, 194),
     plotters::style::RGBColor(23, 190, 207),
+    plotters::style::RGBColor(127, 127, 127),
+    plotters::style::RGBColor(188, 189, 34),
 ];
 
 fn draw_chart<B: plotters::prelude::DrawingBackend>(
