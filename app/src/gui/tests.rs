@@ -1016,6 +1016,20 @@ fn bench_rows() -> Vec<crate::bench_results::Row> {
     ]
 }
 
+/// Runs frames until `done` (a background run has come to something), for at most 4 s.
+fn run_until(
+    h: &mut Harness<'static, ExplorerApp>,
+    done: impl Fn(&Harness<'static, ExplorerApp>) -> bool,
+) {
+    for _ in 0..200 {
+        h.run();
+        if done(h) {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+}
+
 /// A folder of the test's own for the Bench tab.
 fn bench_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("atmoscope-test-{name}-{}", std::process::id()));
@@ -1077,13 +1091,9 @@ fn a_quick_benchmark_runs_in_the_background_loads_its_results_and_can_be_cancell
     h.state_mut().bench = tab;
     h.run();
     h.get_by_label("Run quick benchmark").click();
-    for _ in 0..200 {
-        h.run();
-        if h.query_by_label("elek/spectral4/medium").is_some() {
-            break;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
+    run_until(&mut h, |h| {
+        h.query_by_label("elek/spectral4/medium").is_some()
+    });
     assert!(
         h.query_by_label("elek/spectral4/medium").is_some(),
         "results loaded"
@@ -1099,13 +1109,7 @@ fn a_quick_benchmark_runs_in_the_background_loads_its_results_and_can_be_cancell
     h.state_mut().bench = tab;
     h.run();
     h.get_by_label("Run quick benchmark").click();
-    for _ in 0..200 {
-        h.run();
-        if !h.state().bench.running() {
-            break;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
+    run_until(&mut h, |h| !h.state().bench.running());
     h.run();
     assert!(
         h.query_by_label("elek/spectral4/medium").is_some(),
@@ -1132,13 +1136,7 @@ fn a_quick_benchmark_runs_in_the_background_loads_its_results_and_can_be_cancell
     h.run();
     assert!(h.state().bench.running());
     h.get_by_label("Cancel").click();
-    for _ in 0..200 {
-        h.run();
-        if !h.state().bench.running() {
-            break;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
+    run_until(&mut h, |h| !h.state().bench.running());
     h.run();
     assert!(
         !h.state().bench.running(),
