@@ -37,6 +37,8 @@ pub struct BenchTab {
     run_error: Option<String>,
     /// When the last run started, to tell its results from older ones.
     run_started: Option<std::time::SystemTime>,
+    /// Results to show while the tab has none of its own (the repository's `docs/bench`).
+    fallback: Option<PathBuf>,
     /// The run's latest progress line (`progress N/M label`) and its last error lines.
     status: Arc<Mutex<Vec<String>>>,
 }
@@ -45,7 +47,7 @@ impl BenchTab {
     pub fn new(dir: PathBuf) -> BenchTab {
         let exe = std::env::current_exe().unwrap_or_else(|_| PathBuf::from("atmoscope"));
         let mut args: Vec<String> = ["bench", "methods", "--quick"].map(String::from).into();
-        if let Some(refs) = references_near(&exe) {
+        if let Some(refs) = near(&exe, Path::new("tests/data/references")).filter(|p| p.is_dir()) {
             args.extend(["--refs".into(), refs.to_string_lossy().into_owned()]);
         }
         BenchTab {
@@ -56,8 +58,17 @@ impl BenchTab {
             run: None,
             run_error: None,
             run_started: None,
+            fallback: None,
             status: Arc::default(),
         }
+    }
+
+    /// The tab of the explorer: until it has results of its own it shows the repository's
+    /// last committed quick run (`docs/bench/results.csv`), found beside the program.
+    pub fn with_shipped_results(mut self) -> BenchTab {
+        let exe = std::env::current_exe().unwrap_or_default();
+        self.fallback = near(&exe, Path::new("docs/bench/results.csv")).filter(|p| p.is_file());
+        self
     }
 
     pub fn running(&self) -> bool {
@@ -175,8 +186,11 @@ impl BenchTab {
     pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene) -> Vec<Command> {
         self.poll();
         if self.results.is_none() && self.run.is_none() {
-            let path = self.dir.join("results.csv");
-            if path.is_file() {
+            let own = self.dir.join("results.csv");
+            if let Some(path) = Some(own)
+                .filter(|p| p.is_file())
+                .or_else(|| self.fallback.clone())
+            {
                 self.load(&path);
             }
         }
@@ -279,12 +293,12 @@ fn parse_progress(line: &str) -> Option<(u64, u64)> {
     Some((done.parse().ok()?, total.parse().ok()?))
 }
 
-/// The shipped references, for a program run from the repository or its `target/` folder.
-fn references_near(exe: &Path) -> Option<PathBuf> {
-    let rel = Path::new("tests/data/references");
+/// `rel` under the working directory or a folder above the program (a program run from the
+/// repository or its `target/` folder), where it exists.
+fn near(exe: &Path, rel: &Path) -> Option<PathBuf> {
     std::iter::once(rel.to_path_buf())
         .chain(exe.ancestors().skip(1).map(|d| d.join(rel)))
-        .find(|p| p.is_dir())
+        .find(|p| p.exists())
 }
 
 /// The scene with the configuration's model, wavelength set and quality; None when the row

@@ -126,7 +126,7 @@ impl ExplorerApp {
             layout,
             views,
             luts: LutTab::default(),
-            bench: bench_tab::BenchTab::new(bench_tab::default_dir()),
+            bench: bench_tab::BenchTab::new(bench_tab::default_dir()).with_shipped_results(),
             inspector: Inspector::default(),
             summary: SummaryPanel::default(),
             message: None,

@@ -1050,6 +1050,17 @@ fn the_bench_tab_shows_the_last_results_and_renders_the_model_of_a_row() {
     h.get_by_label("Bench").click();
     h.run();
     assert_eq!(h.state().layout.tab, Tab::Bench);
+    // The explorer's own tab, with no results of its own, shows the repository's last quick run.
+    h.state_mut().bench =
+        super::bench_tab::BenchTab::new(bench_dir("bench-none")).with_shipped_results();
+    h.run();
+    assert!(
+        h.query_by_label_contains("docs/bench/results.csv")
+            .is_some()
+    );
+    assert!(h.query_by_label("nishita-ms/spectral4/medium").is_some());
+    h.state_mut().bench = super::bench_tab::BenchTab::new(dir.clone());
+    h.run();
     // Hillaire is faster and closer: alone on the front.
     assert!(h.query_by_label("hillaire/rgb3/medium").is_some());
     assert_eq!(h.query_all_by_label("front").count(), 1);
