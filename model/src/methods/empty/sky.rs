@@ -54,13 +54,10 @@ mod tests {
         );
         let ground = radiance(&p, 0, (position, 10.0), -DVec3::Z, sun);
         let b = &p.batches[0];
-        for i in 0..4 {
-            let expected = b.ground_albedo[i] * b.solar_irradiance[i] * 0.5 / PI;
-            assert!(
-                (ground[i] / expected - 1.0).abs() < 1e-6,
-                "{} vs {expected}",
-                ground[i]
-            );
+        // The sun at 30°: cos θ_s = 0.5 on the Lambertian ground below.
+        for ((g, a), e) in ground.iter().zip(b.ground_albedo).zip(b.solar_irradiance) {
+            let expected = a * e * 0.5 / PI;
+            assert!((g / expected - 1.0).abs() < 1e-6, "{g} vs {expected}");
         }
     }
 }
