@@ -277,6 +277,10 @@ pub enum Method {
     Trapezoid,
     NishitaMs,
     TrapezoidMs,
+    Schuler,
+    SchulerMs,
+    GalajTaylor,
+    GalajTaylorMs,
     Empty,
     PathTracer,
 }

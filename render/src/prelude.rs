@@ -143,6 +143,16 @@ pub fn wgsl_prelude() -> String {
         "f32",
         f(shared::SMALL_OPTICAL_THICKNESS),
     );
+    c(
+        "GALAJ_TAYLOR_A",
+        "f32",
+        f(shared::exponential::GALAJ_TAYLOR_A),
+    );
+    c(
+        "GALAJ_TAYLOR_B",
+        "f32",
+        f(shared::exponential::GALAJ_TAYLOR_B),
+    );
     c("SUN_ANGULAR_RADIUS_RAD", "f32", f(SUN_ANGULAR_RADIUS_RAD));
     c("SUN_LIMB_DARKENING_U", "f32", f(SUN_LIMB_DARKENING_U));
     c("SUN_LIMB_INSET", "f32", f(shared::sun::SUN_LIMB_INSET));

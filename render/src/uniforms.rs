@@ -97,7 +97,7 @@ pub struct Globals {
     pub steps_b: [u32; 4],
     pub display: [f32; 4],
     pub white_balance: [[f32; 4]; 3],
-    pub model: [f32; 4],
+    pub model: [[f32; 4]; 3],
 }
 
 fn v4(v: DVec3, w: f64) -> [f32; 4] {
@@ -114,7 +114,7 @@ pub struct FrameInputs<'a> {
     pub size: [u32; 2],
     pub mode: DisplayMode,
     /// The constants of the model on screen.
-    pub model: [f64; 4],
+    pub model: crate::methods::ModelConstants,
     /// The display's white balance (rows, on linear sRGB).
     pub balance: [[f64; 3]; 3],
 }
@@ -185,7 +185,7 @@ impl From<&FrameInputs<'_>> for Globals {
             white_balance: f
                 .balance
                 .map(|r| [r[0] as f32, r[1] as f32, r[2] as f32, 0.0]),
-            model: f4(f.model),
+            model: std::array::from_fn(|row| std::array::from_fn(|i| f.model[4 * row + i] as f32)),
         }
     }
 }

@@ -520,9 +520,12 @@ fn from_above_the_atmosphere_the_view_tables_wait_until_a_view_needs_them() {
             ],
             "garcia-linan" => &["transmittance", "sky", "display"],
             // No view tables to leave stale: the same passes everywhere.
-            "bruneton" | "elek" | "nishita" | "trapezoid" | "empty" => continue,
+            "bruneton" | "elek" | "nishita" | "trapezoid" | "schuler" | "galaj-taylor"
+            | "empty" => {
+                continue;
+            }
             // The same passes from space: the sky pass marches every pixel anyway.
-            "nishita-ms" | "trapezoid-ms" => {
+            "nishita-ms" | "trapezoid-ms" | "schuler-ms" | "galaj-taylor-ms" => {
                 &["transmittance", "multiple-scattering", "sky", "display"]
             }
             other => panic!("state what {other} runs from space"),

@@ -34,8 +34,8 @@ struct Globals {
     display: vec4<f32>,
     // white balance matrix rows on linear sRGB (model::white_balance), w unused
     white_balance: array<vec4<f32>, 3>,
-    // constants of the model on screen (render::methods::GpuMethod::constants)
-    model: vec4<f32>,
+    // constants of the model on screen, three rows (render::methods::GpuMethod::constants)
+    model: array<vec4<f32>, 3>,
 }
 
 // The optics of one batch of four wavelengths (per unit of the density profile).

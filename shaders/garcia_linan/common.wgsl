@@ -1,10 +1,10 @@
 // García Liñán (2023): the functions the method's passes share. Twins of
 // model::methods::garcia_linan (same mapping, same steps, same arithmetic in f32).
-// globals.model holds the fitted constants: (L_ms scale, a, b, reference wavelength in nm).
+// globals.model[0] holds the fitted constants: (L_ms scale, a, b, reference wavelength in nm).
 
 // L_ms per lane at sun zenith cosine mu_s: scale·(λ_ref/λ)⁴ / (1 + a·exp(−b·mu_s)).
 fn multiple_scattering_fit(layer: u32, mu_s: f32) -> vec4<f32> {
-    let c = globals.model;
+    let c = globals.model[0];
     let logistic = c.x / (1.0 + c.y * exp(-c.z * mu_s));
     let ratio = vec4<f32>(c.w) / batches[layer].wavelengths_nm;
     let r2 = ratio * ratio;

@@ -1,17 +1,23 @@
-// Pass: the view with a table-free single-scattering model (nishita, trapezoid): single
-// scattering marched along each pixel's ray, lit at every sample through the transmittance
-// towards the sun integrated along the sun's ray, and the sunlit ground behind; from above
-// the atmosphere the march starts where the ray enters it (entry point: views/sky.wgsl).
-// globals.model holds (view samples, sun intervals, rule: 0 midpoint or 1 trapezoid, 0), from
-// the model's registry constants; the model's common file defines psi(layer, h, mu_s), its
-// isotropic higher orders (zero in shared/no_higher_orders.wgsl, Hillaire's Ψ_ms table in
-// hillaire/common.wgsl for the -ms rows). Twin of model::methods::shared::single_scattering_sky.
+// Pass: the view with a table-free single-scattering model (nishita, trapezoid, schuler,
+// galaj-taylor): single scattering marched along each pixel's ray, lit at every sample through
+// the transmittance towards the sun by the model's way, and the sunlit ground behind; from
+// above the atmosphere the march starts where the ray enters it (entry point: views/sky.wgsl).
+// globals.model[0] holds (view samples, sun intervals, way: 0 midpoint or 1 trapezoid rule
+// along the sun's ray, 2 Schuler's or 3 Gałaj's closed form on the exponential medium of
+// shared/exponential.wgsl, 0), from the model's registry constants; the model's common file
+// defines psi(layer, h, mu_s), its isotropic higher orders (zero in shared/no_higher_orders.wgsl,
+// Hillaire's Ψ_ms table in hillaire/common.wgsl for the -ms rows). Twin of
+// model::methods::shared::single_scattering_sky.
+
+fn way_to_sun() -> u32 {
+    return u32(globals.model[0].z + 0.5);
+}
 
 // Optical depth from altitude h along zenith cosine mu to the top by the model's rule over
 // equal intervals; twin of single_scattering_sky::optical_depth.
 fn optical_depth_to_top(layer: u32, h: f32, mu: f32) -> vec4<f32> {
-    let n = u32(globals.model.y);
-    let trapezoid = globals.model.z > 0.5;
+    let n = u32(globals.model[0].y);
+    let trapezoid = way_to_sun() == 1u;
     let dt = distance_to_top(h, mu) / f32(n);
     var samples = n;
     var offset = 0.5;
@@ -32,12 +38,16 @@ fn optical_depth_to_top(layer: u32, h: f32, mu: f32) -> vec4<f32> {
     return depth;
 }
 
-// Transmittance towards the sun at zenith cosine mu_s, times the visible fraction of its disk
-// (0, and no integral, behind the planet); twin of single_scattering_sky::sun_transmittance.
-fn sun_transmittance_marched(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
+// Transmittance towards the sun at zenith cosine mu_s by the model's way, times the visible
+// fraction of its disk (0, and no integral, behind the planet); twin of SunRoute::transmittance.
+fn sun_transmittance_by_way(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
     let visible = sun_visible_fraction(h, mu_s);
     if visible <= 0.0 {
         return vec4<f32>(0.0);
+    }
+    let way = way_to_sun();
+    if way >= 2u {
+        return exp(-exponential_optical_depth(layer, h, mu_s, way)) * visible;
     }
     return exp(-optical_depth_to_top(layer, h, mu_s)) * visible;
 }
@@ -61,7 +71,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     if ground {
         t_max = distance_to_ground(h0, mu0);
     }
-    let n = u32(globals.model.x);
+    let n = u32(globals.model[0].x);
     let dt = t_max / f32(n);
     var inscattered = vec4<f32>(0.0);
     var throughput = vec4<f32>(1.0);
@@ -70,7 +80,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
         let at = altitude_along(h0, mu0, t);
         let mu_s_t = clamp((r0 * mu_s0 + t * nu) / at.y, -1.0, 1.0);
         let m = medium(b, at.x);
-        let sun_t = sun_transmittance_marched(layer, at.x, mu_s_t);
+        let sun_t = sun_transmittance_by_way(layer, at.x, mu_s_t);
         let higher = psi(layer, at.x, mu_s_t);
         let source = m.rayleigh_scattering * (phase_r * sun_t + higher)
             + m.aerosol_scattering * (phase_a * sun_t + higher);
@@ -80,7 +90,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     var l = inscattered * b.solar_irradiance;
     if ground {
         let mu_s_g = clamp((r0 * mu_s0 + t_max * nu) / big_r, -1.0, 1.0);
-        let sun_g = sun_transmittance_marched(layer, 0.0, mu_s_g);
+        let sun_g = sun_transmittance_by_way(layer, 0.0, mu_s_g);
         l += throughput * b.ground_albedo / PI * b.solar_irradiance * sun_g * max(mu_s_g, 0.0);
     }
     return l;
@@ -90,11 +100,11 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
 // camera is above it (twin of SingleScattering::sun_seen_from).
 fn sun_through_atmosphere(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
     if h <= thickness() {
-        return sun_transmittance_marched(layer, h, mu_s);
+        return sun_transmittance_by_way(layer, h, mu_s);
     }
     let entry = entry_into_atmosphere(h, mu_s, mu_s, 1.0);
     if entry.z == 0.0 {
         return vec4<f32>(1.0);
     }
-    return sun_transmittance_marched(layer, thickness(), entry.x);
+    return sun_transmittance_by_way(layer, thickness(), entry.x);
 }

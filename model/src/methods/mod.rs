@@ -11,11 +11,13 @@
 pub mod bruneton;
 pub mod elek;
 pub mod empty;
+pub mod galaj_taylor;
 pub mod garcia_linan;
 pub mod hillaire;
 pub mod nishita;
 pub mod path_tracer;
 pub mod rng;
+pub mod schuler;
 pub mod shared;
 pub mod single_scattering;
 pub mod trapezoid;
@@ -360,6 +362,58 @@ pub const MODELS: &[ModelInfo] = &[
         refittable: false,
         baseline: false,
         build: Some(trapezoid::build_ms),
+    },
+    ModelInfo {
+        method: Method::Schuler,
+        id: "schuler",
+        label: "Schuler 2012",
+        citation: "C. Schuler (2012), An Approximation to the Chapman Grazing-Incidence Function for Atmospheric Scattering, GPU Pro 3; as compared by D. Leenman (2025)",
+        summary: "Nishita's per-pixel single scattering with the march towards the sun replaced by Schuler's closed-form Chapman function on exponential fits of air and aerosol (ozone as a thin shell); no tables, no higher orders.",
+        domain: schuler::DOMAIN,
+        tables: &schuler::TABLES,
+        gathers_orders: false,
+        refittable: false,
+        baseline: false,
+        build: Some(schuler::build),
+    },
+    ModelInfo {
+        method: Method::SchulerMs,
+        id: "schuler-ms",
+        label: "Schuler 2012 + Hillaire's Ψ_ms",
+        citation: "The schuler row, with the multiple-scattering table of S. Hillaire (2020) as its higher orders",
+        summary: "The schuler row's single scattering plus Hillaire's isotropic higher orders Ψ_ms.",
+        domain: schuler::DOMAIN_MS,
+        tables: &single_scattering_sky::TABLES_WITH_HIGHER_ORDERS,
+        gathers_orders: false,
+        refittable: false,
+        baseline: false,
+        build: Some(schuler::build_ms),
+    },
+    ModelInfo {
+        method: Method::GalajTaylor,
+        id: "galaj-taylor",
+        label: "Gałaj 2021 (Taylor)",
+        citation: "T. Gałaj, F. Pietrusiak, M. Galewski, R. Ledzion, A. Wojciechowski (2021), Hybrid Integration Method for Sunlight Atmospheric Scattering, IEEE Access 9: the Taylor-series transmittance (a = b = 0.45)",
+        summary: "Single scattering marched along the view ray, with the optical depth towards the sun from one closed form per constituent: the altitude along the sun's ray expanded to order 1 + a about a point b of the way to the top; exponential fits of air and aerosol, ozone as a thin shell; no tables, no higher orders.",
+        domain: galaj_taylor::DOMAIN,
+        tables: &galaj_taylor::TABLES,
+        gathers_orders: false,
+        refittable: false,
+        baseline: false,
+        build: Some(galaj_taylor::build),
+    },
+    ModelInfo {
+        method: Method::GalajTaylorMs,
+        id: "galaj-taylor-ms",
+        label: "Gałaj 2021 (Taylor) + Hillaire's Ψ_ms",
+        citation: "The galaj-taylor row, with the multiple-scattering table of S. Hillaire (2020) as its higher orders",
+        summary: "The galaj-taylor row's single scattering plus Hillaire's isotropic higher orders Ψ_ms.",
+        domain: galaj_taylor::DOMAIN_MS,
+        tables: &single_scattering_sky::TABLES_WITH_HIGHER_ORDERS,
+        gathers_orders: false,
+        refittable: false,
+        baseline: false,
+        build: Some(galaj_taylor::build_ms),
     },
     ModelInfo {
         method: Method::Empty,

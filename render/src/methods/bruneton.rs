@@ -20,7 +20,7 @@ const DENSITY: &str = "scattering-density";
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Bruneton,
     common: &[SUN_DISK_FROM_TABLE, shader!("bruneton/common.wgsl")],
-    constants: |_| [0.0; 4],
+    constants: |_| [0.0; 12],
     passes: &[
         TRANSMITTANCE_PASS,
         PassSpec::table(

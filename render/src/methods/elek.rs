@@ -21,7 +21,7 @@ const VOLUME: Dispatch = Dispatch::Volume(RAYLEIGH);
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Elek,
     common: &[SUN_DISK_FROM_TABLE, shader!("elek/common.wgsl")],
-    constants: |_| [0.0; 4],
+    constants: |_| [0.0; 12],
     passes: &[
         TRANSMITTANCE_PASS,
         PassSpec::table(

@@ -7,6 +7,6 @@ use atmoscope_model::scene::Method;
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Empty,
     common: &[],
-    constants: |_| [0.0; 4],
+    constants: |_| [0.0; 12],
     passes: &[PassSpec::sky(shader!("empty/sky.wgsl"), &[])],
 };

@@ -14,7 +14,7 @@ pub const METHOD: GpuMethod = GpuMethod {
         shader!("common/march.wgsl"),
         shader!("garcia_linan/common.wgsl"),
     ],
-    constants: |p| Constants::chosen(p.fitted_constants).uniform(),
+    constants: |p| super::first_row(Constants::chosen(p.fitted_constants).uniform()),
     passes: &[
         TRANSMITTANCE_PASS,
         PassSpec::table(

@@ -26,7 +26,7 @@ pub const METHOD: GpuMethod = GpuMethod {
         shader!("common/march.wgsl"),
         shader!("hillaire/common.wgsl"),
     ],
-    constants: |_| [0.0; 4],
+    constants: |_| [0.0; 12],
     passes: &[
         TRANSMITTANCE_PASS,
         MULTIPLE_SCATTERING_PASS,

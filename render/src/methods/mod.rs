@@ -10,9 +10,11 @@
 pub mod bruneton;
 pub mod elek;
 pub mod empty;
+pub mod galaj_taylor;
 pub mod garcia_linan;
 pub mod hillaire;
 pub mod nishita;
+pub mod schuler;
 pub mod trapezoid;
 
 use atmoscope_model::methods::{self, Inputs, ModelInfo};
@@ -247,7 +249,17 @@ pub struct GpuMethod {
     pub passes: &'static [PassSpec],
     /// The model's constants the passes read from `globals.model`, for the optics and model
     /// settings of `Params`.
-    pub constants: fn(&atmoscope_model::methods::shared::Params) -> [f64; 4],
+    pub constants: fn(&atmoscope_model::methods::shared::Params) -> ModelConstants,
+}
+
+/// The values of `globals.model`: three rows of four.
+pub type ModelConstants = [f64; 12];
+
+/// Constants that fill the first row of `globals.model` alone.
+pub fn first_row(row: [f64; 4]) -> ModelConstants {
+    let mut c = [0.0; 12];
+    c[..4].copy_from_slice(&row);
+    c
 }
 
 impl GpuMethod {
@@ -311,6 +323,15 @@ pub const SINGLE_SCATTERING_SKY_PASS: PassSpec =
 /// Single scattering alone: the `psi` of the table-free sky pass is zero.
 pub const NO_HIGHER_ORDERS: Shader = shader!("shared/no_higher_orders.wgsl");
 
+/// The exponential medium and the closed forms of the table-free sky pass's analytic ways to
+/// the sun.
+pub const EXPONENTIAL: Shader = shader!("shared/exponential.wgsl");
+
+/// What a table-free single-scattering model includes: no higher orders, or Hillaire's Ψ_ms
+/// (the `-ms` rows); the exponential medium either way.
+pub const SINGLE_SCATTERING_COMMON: [Shader; 2] = [NO_HIGHER_ORDERS, EXPONENTIAL];
+pub const SINGLE_SCATTERING_MS_COMMON: [Shader; 2] = [shader!("hillaire/common.wgsl"), EXPONENTIAL];
+
 /// The passes of a table-free single-scattering model with Hillaire's higher orders: the
 /// transmittance and Ψ_ms tables (Hillaire's pass), then the sky pass reading Ψ_ms.
 pub const SINGLE_SCATTERING_MS_PASSES: [PassSpec; 3] = [
@@ -349,7 +370,7 @@ pub const COMMON: [Shader; 8] = [
 ];
 
 /// Every real-time model's passes, in registry order.
-pub const GPU_METHODS: [GpuMethod; 9] = [
+pub const GPU_METHODS: [GpuMethod; 13] = [
     hillaire::METHOD,
     bruneton::METHOD,
     garcia_linan::METHOD,
@@ -358,6 +379,10 @@ pub const GPU_METHODS: [GpuMethod; 9] = [
     trapezoid::METHOD,
     nishita::METHOD_MS,
     trapezoid::METHOD_MS,
+    schuler::METHOD,
+    schuler::METHOD_MS,
+    galaj_taylor::METHOD,
+    galaj_taylor::METHOD_MS,
     empty::METHOD,
 ];
 

@@ -3,22 +3,23 @@
 //! twin is `atmoscope_model::methods::trapezoid`.
 
 use super::{
-    GpuMethod, NO_HIGHER_ORDERS, SINGLE_SCATTERING_MS_PASSES, SINGLE_SCATTERING_SKY_PASS, shader,
+    GpuMethod, SINGLE_SCATTERING_COMMON, SINGLE_SCATTERING_MS_COMMON, SINGLE_SCATTERING_MS_PASSES,
+    SINGLE_SCATTERING_SKY_PASS,
 };
-use atmoscope_model::methods::shared::single_scattering_sky::{self, Rule};
+use atmoscope_model::methods::shared::single_scattering_sky::{self, Rule, Way};
 use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Trapezoid,
-    common: &[NO_HIGHER_ORDERS],
-    constants: |p| single_scattering_sky::constants(p, Rule::Trapezoid),
+    common: &SINGLE_SCATTERING_COMMON,
+    constants: |p| single_scattering_sky::constants(p, Way::March(Rule::Trapezoid)),
     passes: &[SINGLE_SCATTERING_SKY_PASS],
 };
 
 /// With Hillaire's Ψ_ms table as the higher orders (the `trapezoid-ms` row).
 pub const METHOD_MS: GpuMethod = GpuMethod {
     method: Method::TrapezoidMs,
-    common: &[shader!("hillaire/common.wgsl")],
-    constants: |p| single_scattering_sky::constants(p, Rule::Trapezoid),
+    common: &SINGLE_SCATTERING_MS_COMMON,
+    constants: |p| single_scattering_sky::constants(p, Way::March(Rule::Trapezoid)),
     passes: &SINGLE_SCATTERING_MS_PASSES,
 };

@@ -11,7 +11,7 @@
 //! single-scattering models' (`shared::single_scattering_sky`); this module chooses the
 //! midpoint rule for the way to the sun.
 
-use super::shared::single_scattering_sky::{self, Rule};
+use super::shared::single_scattering_sky::{self, Rule, Way};
 use super::shared::{Params, TableSpec, Viewpoint};
 use super::{Domain, SkyModel};
 
@@ -41,12 +41,12 @@ pub const DOMAIN_MS: Domain = Domain {
 
 /// The registry's constructor (no table depends on the viewpoint).
 pub fn build(params: &Params, _: Viewpoint) -> Box<dyn SkyModel> {
-    single_scattering_sky::build(params, Rule::Midpoint, false)
+    single_scattering_sky::build(params, Way::March(Rule::Midpoint), false)
 }
 
 /// The constructor of the `nishita-ms` row: with Hillaire's multiple-scattering table.
 pub fn build_ms(params: &Params, _: Viewpoint) -> Box<dyn SkyModel> {
-    single_scattering_sky::build(params, Rule::Midpoint, true)
+    single_scattering_sky::build(params, Way::March(Rule::Midpoint), true)
 }
 
 #[cfg(test)]
@@ -56,7 +56,7 @@ mod tests {
     use crate::geometry::{Ray, direction_from_angles};
     use crate::methods::shared::optics::tests::params;
     use crate::methods::shared::single_scattering_sky::{
-        SingleScattering, SunMarch, sun_transmittance,
+        SingleScattering, SunRoute, Way, sun_transmittance,
     };
     use crate::methods::shared::transmittance::{compute_transmittance_lut, transmittance};
     use crate::methods::single_scattering;
@@ -82,10 +82,7 @@ mod tests {
         let model = SingleScattering {
             params: p.clone(),
             view_steps: 8,
-            sun_path: SunMarch {
-                intervals: 16,
-                rule: Rule::Midpoint,
-            },
+            sun_path: SunRoute::new(&p, Way::March(Rule::Midpoint)),
             higher_orders: None,
         };
         assert_eq!(

@@ -5,6 +5,7 @@
 //! table texel's ray ([`ray`]). Geometry in (h, mu) lives
 //! in [`crate::geometry`]. WGSL twins are in `shaders/common/`.
 
+pub mod exponential;
 pub mod march;
 pub mod optics;
 pub mod ray;

@@ -1,10 +1,12 @@
-//! The sky pass of the table-free single-scattering models (`nishita`, `trapezoid`): per pixel,
-//! single scattering marched along the view ray with the model's own transmittance towards the
-//! sun at every sample, and the sunlit ground behind it; from above the atmosphere the march
-//! starts where the ray enters it; the models differ only in the quadrature rule along the
-//! sun's ray ([`Rule`]). Twin of `shaders/shared/single_scattering_sky.wgsl`, which reads the
-//! counts and the rule from the model's constants.
+//! The sky pass of the table-free single-scattering models (`nishita`, `trapezoid`, `schuler`,
+//! `galaj-taylor`): per pixel, single scattering marched along the view ray with the model's own
+//! transmittance towards the sun at every sample, and the sunlit ground behind it; from above
+//! the atmosphere the march starts where the ray enters it; the models differ only in their way
+//! to the sun ([`Way`]): a quadrature rule along the sun's ray, or a closed form on the
+//! exponential medium ([`super::exponential`]). Twin of `shaders/shared/single_scattering_sky.wgsl`,
+//! which reads the counts, the way and the fitted medium from the model's constants.
 
+use super::exponential::{self, ExponentialMedium};
 use super::ray::camera_coords;
 use super::sun::visible_fraction;
 use super::{
@@ -23,15 +25,14 @@ pub fn steps(p: &Params) -> (u32, u32) {
     (2 * p.steps.sky_view, p.steps.sky_view)
 }
 
-/// The four values the GPU reads from `globals.model`: the two sample counts and the rule
-/// along the sun's ray (0 midpoint, 1 trapezoid).
-pub fn constants(p: &Params, rule: Rule) -> [f64; 4] {
+/// The values the GPU reads from `globals.model`: (view samples, sun intervals, the way to the
+/// sun's code, 0), then the fitted exponential medium ([`ExponentialMedium::constants`]).
+pub fn constants(p: &Params, way: Way) -> [f64; 12] {
     let (view, sun) = steps(p);
-    let code = match rule {
-        Rule::Midpoint => 0.0,
-        Rule::Trapezoid => 1.0,
-    };
-    [f64::from(view), f64::from(sun), code, 0.0]
+    let mut c = [0.0; 12];
+    c[..4].copy_from_slice(&[f64::from(view), f64::from(sun), way.code(), 0.0]);
+    c[4..].copy_from_slice(&ExponentialMedium::fit(p).constants());
+    c
 }
 
 /// The radiance of one batch seen from `position` (m from the planet's centre, altitude `h`)
@@ -147,30 +148,88 @@ pub fn sun_transmittance(
     intervals: u32,
     rule: Rule,
 ) -> Lanes {
+    towards_sun(p, h, mu_s, || {
+        optical_depth(p, layer, h, mu_s, intervals, rule)
+    })
+}
+
+/// exp(−`depth`) times the visible fraction of the sun's disk from altitude `h` at zenith
+/// cosine `mu_s`; `depth` is not evaluated where the planet hides the sun.
+fn towards_sun(p: &Params, h: f64, mu_s: f64, depth: impl FnOnce() -> Lanes) -> Lanes {
     let visible = visible_fraction(h, mu_s, p.bottom_radius_m);
     if visible <= 0.0 {
         return [0.0; 4];
     }
-    optical_depth(p, layer, h, mu_s, intervals, rule).map(|d| (-d).exp() * visible)
+    depth().map(|d| (-d).exp() * visible)
 }
 
-/// The way to the sun of a table-free model that integrates it along the sun's ray.
-pub struct SunMarch {
-    pub intervals: u32,
-    pub rule: Rule,
+/// A table-free model's way to the optical depth towards the sun.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Way {
+    /// Integrated along the sun's ray by a quadrature rule (`nishita`, `trapezoid`).
+    March(Rule),
+    /// Schuler's (2012) Chapman function on the exponential medium (`schuler`).
+    SchulerChapman,
+    /// Gałaj et al.'s (2021) Taylor-series integral on the exponential medium (`galaj-taylor`).
+    GalajTaylor,
 }
 
-impl SunPath for SunMarch {
-    fn transmittance(&self, p: &Params, layer: usize, h: f64, mu_s: f64) -> Lanes {
-        sun_transmittance(p, layer, h, mu_s, self.intervals, self.rule)
+impl Way {
+    /// The code the GPU branches on (uniform across a dispatch).
+    pub fn code(self) -> f64 {
+        match self {
+            Way::March(Rule::Midpoint) => 0.0,
+            Way::March(Rule::Trapezoid) => 1.0,
+            Way::SchulerChapman => 2.0,
+            Way::GalajTaylor => 3.0,
+        }
     }
 }
 
-/// How a table-free single-scattering model gets the transmittance towards the sun.
-pub trait SunPath: Send + Sync {
+/// The way to the sun of a table-free model, with what it needs: the march's interval count,
+/// the fitted exponential medium of the closed forms.
+pub struct SunRoute {
+    pub way: Way,
+    pub intervals: u32,
+    pub medium: ExponentialMedium,
+}
+
+impl SunRoute {
+    pub fn new(p: &Params, way: Way) -> SunRoute {
+        SunRoute {
+            way,
+            intervals: steps(p).1,
+            medium: ExponentialMedium::fit(p),
+        }
+    }
+
+    /// Optical depth per lane from altitude `h` (m) along zenith cosine `mu` to the top.
+    pub fn optical_depth(&self, p: &Params, layer: usize, h: f64, mu: f64) -> Lanes {
+        let (big_r, top) = (p.bottom_radius_m, p.top_radius_m);
+        match self.way {
+            Way::March(rule) => optical_depth(p, layer, h, mu, self.intervals, rule),
+            Way::SchulerChapman => self.medium.optical_depth(p, layer, h, mu, |h, mu, hh| {
+                exponential::schuler_chapman(h, mu, hh, big_r)
+            }),
+            Way::GalajTaylor => self.medium.optical_depth(p, layer, h, mu, |h, mu, hh| {
+                exponential::galaj_taylor(
+                    h,
+                    mu,
+                    hh,
+                    big_r,
+                    top,
+                    (exponential::GALAJ_TAYLOR_A, exponential::GALAJ_TAYLOR_B),
+                )
+            }),
+        }
+    }
+
     /// Transmittance per lane from altitude `h` (m) towards the sun at zenith cosine `mu_s`,
-    /// times the visible fraction of the sun's disk above the horizon.
-    fn transmittance(&self, p: &Params, layer: usize, h: f64, mu_s: f64) -> Lanes;
+    /// times the visible fraction of the sun's disk above the horizon (0, and no integral,
+    /// where the planet hides it).
+    pub fn transmittance(&self, p: &Params, layer: usize, h: f64, mu_s: f64) -> Lanes {
+        towards_sun(p, h, mu_s, || self.optical_depth(p, layer, h, mu_s))
+    }
 }
 
 /// Hillaire's (2020) transmittance and multiple-scattering tables, added to a single-scattering
@@ -203,14 +262,14 @@ pub const TABLES_WITH_HIGHER_ORDERS: [TableSpec; 2] = [
 
 /// A single-scattering model: the optics, the view march's sample count, the model's way to
 /// the sun, and optionally Hillaire's higher orders.
-pub struct SingleScattering<S: SunPath> {
+pub struct SingleScattering {
     pub params: Params,
     pub view_steps: u32,
-    pub sun_path: S,
+    pub sun_path: SunRoute,
     pub higher_orders: Option<HigherOrders>,
 }
 
-impl<S: SunPath> SingleScattering<S> {
+impl SingleScattering {
     /// The transmittance towards the sun seen from any altitude: from where the sun's ray
     /// enters the atmosphere when the point is above it (1 where the ray misses it).
     pub fn sun_seen_from(&self, layer: usize, h: f64, mu_s: f64) -> Lanes {
@@ -227,7 +286,7 @@ impl<S: SunPath> SingleScattering<S> {
     }
 }
 
-impl<S: SunPath> crate::methods::SkyModel for SingleScattering<S> {
+impl crate::methods::SkyModel for SingleScattering {
     fn params(&self) -> &Params {
         &self.params
     }
@@ -269,22 +328,14 @@ impl<S: SunPath> crate::methods::SkyModel for SingleScattering<S> {
     }
 }
 
-/// A single-scattering model by `rule` with the shared sample counts, with or without
-/// Hillaire's higher orders (what the registry constructors of nishita, trapezoid and their
-/// `-ms` rows build).
-pub fn build(
-    p: &Params,
-    rule: Rule,
-    with_higher_orders: bool,
-) -> Box<dyn crate::methods::SkyModel> {
-    let (view_steps, sun_steps) = steps(p);
+/// A single-scattering model with `way` to the sun and the shared sample counts, with or
+/// without Hillaire's higher orders (what the registry constructors of the table-free models
+/// and their `-ms` rows build).
+pub fn build(p: &Params, way: Way, with_higher_orders: bool) -> Box<dyn crate::methods::SkyModel> {
     Box::new(SingleScattering {
         params: p.clone(),
-        view_steps,
-        sun_path: SunMarch {
-            intervals: sun_steps,
-            rule,
-        },
+        view_steps: steps(p).0,
+        sun_path: SunRoute::new(p, way),
         higher_orders: with_higher_orders.then(|| HigherOrders::compute(p)),
     })
 }

@@ -6,7 +6,7 @@
 //! is densest along a rising ray, is sampled itself. No tables and no higher orders. This
 //! module chooses that rule.
 
-use super::shared::single_scattering_sky::{self, Rule};
+use super::shared::single_scattering_sky::{self, Rule, Way};
 use super::shared::{Params, TableSpec, Viewpoint};
 use super::{Domain, SkyModel};
 
@@ -26,12 +26,12 @@ pub const DOMAIN_MS: Domain = Domain {
 
 /// The registry's constructor (no table depends on the viewpoint).
 pub fn build(params: &Params, _: Viewpoint) -> Box<dyn SkyModel> {
-    single_scattering_sky::build(params, Rule::Trapezoid, false)
+    single_scattering_sky::build(params, Way::March(Rule::Trapezoid), false)
 }
 
 /// The constructor of the `trapezoid-ms` row: with Hillaire's multiple-scattering table.
 pub fn build_ms(params: &Params, _: Viewpoint) -> Box<dyn SkyModel> {
-    single_scattering_sky::build(params, Rule::Trapezoid, true)
+    single_scattering_sky::build(params, Way::March(Rule::Trapezoid), true)
 }
 
 #[cfg(test)]
