@@ -1136,8 +1136,8 @@ fn bench_methods_writes_results_summary_and_pareto_chart() {
 fn bench_transmittance_converges_with_the_step_count_and_times_each_method() {
     let o = atmoscope(&["bench", "transmittance", "--steps", "8,2048", "--json"]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let rows: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
-    let rows = rows.as_array().expect("rows");
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
+    let rows = v["rows"].as_array().expect("rows");
     let find = |method: &str, steps: Option<u64>| {
         rows.iter()
             .find(|r| {
@@ -1159,6 +1159,17 @@ fn bench_transmittance_converges_with_the_step_count_and_times_each_method() {
     assert!(
         table["max_relative_error"].as_f64().expect("max") < 0.05,
         "{table}"
+    );
+    // The closed forms: Schuler's within a few per cent on average (its worst near the
+    // horizon), Gałaj's Taylor far off along grazing rays through aerosol.
+    let (schuler, taylor) = (find("schuler", None), find("galaj-taylor", None));
+    assert!(err(schuler) < 0.1, "{schuler}");
+    assert!(err(taylor) > err(schuler), "{taylor}");
+    let search = &v["galaj_grid_search"];
+    let e = |k: &str| search[k].as_f64().expect("error");
+    assert!(
+        e("best_mean_relative_error") <= e("paper_mean_relative_error"),
+        "{search}"
     );
 }
 
