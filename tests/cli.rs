@@ -1147,11 +1147,11 @@ fn bench_transmittance_converges_with_the_step_count_and_times_each_method() {
             .unwrap_or_else(|| panic!("no row {method} {steps:?}"))
     };
     let err = |r: &serde_json::Value| r["mean_relative_error"].as_f64().expect("error");
+    let ns = |r: &serde_json::Value| r["ns_per_evaluation"].as_f64().expect("time");
     for method in ["midpoint", "trapezoid"] {
         let (coarse, fine) = (find(method, Some(8)), find(method, Some(2048)));
         assert!(err(fine) < 1e-3, "{method} at 2048 steps: {}", err(fine));
         assert!(err(coarse) > 10.0 * err(fine), "{method} converges");
-        let ns = |r: &serde_json::Value| r["ns_per_evaluation"].as_f64().expect("time");
         assert!(ns(fine) > ns(coarse), "{method}: more steps take longer");
     }
     let table = find("transmittance table", None);
@@ -1160,10 +1160,13 @@ fn bench_transmittance_converges_with_the_step_count_and_times_each_method() {
         table["max_relative_error"].as_f64().expect("max") < 0.05,
         "{table}"
     );
-    // The closed forms: Schuler's within a few per cent on average (its worst near the
-    // horizon), Gałaj's Taylor far off along grazing rays through aerosol.
+    // The closed forms on the fitted medium: an order of magnitude cheaper than the coarsest
+    // march; Schuler's off by a quarter on average over these rays up to 50 km (the fit of the
+    // air above a high point, the ozone shell), Gałaj's Taylor far off along grazing rays
+    // through aerosol.
     let (schuler, taylor) = (find("schuler", None), find("galaj-taylor", None));
-    assert!(err(schuler) < 0.1, "{schuler}");
+    assert!(ns(schuler) < ns(find("midpoint", Some(8))), "{schuler}");
+    assert!(err(schuler) < 0.4, "{schuler}");
     assert!(err(taylor) > err(schuler), "{taylor}");
     let search = &v["galaj_grid_search"];
     let e = |k: &str| search[k].as_f64().expect("error");
