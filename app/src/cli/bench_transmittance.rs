@@ -12,7 +12,8 @@ use super::SceneArgs;
 use atmoscope_model::atmosphere::Atmosphere;
 use atmoscope_model::geometry::{altitude_along, distance_to_top, hits_ground};
 use atmoscope_model::methods::shared::exponential::{
-    ExponentialMedium, GALAJ_TAYLOR_A, GALAJ_TAYLOR_B, galaj_grid_search, galaj_taylor_mean_error,
+    ExponentialMedium, GALAJ_TAYLOR_A, GALAJ_TAYLOR_B, column_by_quadrature, galaj_grid_search,
+    galaj_taylor_mean_error,
 };
 use atmoscope_model::methods::shared::single_scattering_sky::{Rule, SunRoute, Way, optical_depth};
 use atmoscope_model::methods::shared::transmittance::{compute_transmittance_lut, transmittance};
@@ -226,17 +227,7 @@ fn grid_search(p: &Params, rays: &[(f64, f64)]) -> GridSearch {
         .collect();
     let exact: Vec<f64> = search_rays
         .iter()
-        .map(|&(h, mu, hh)| {
-            let d = distance_to_top(h, mu, big_r, top);
-            integrate_adaptive(
-                |t| (-altitude_along(h, mu, t, big_r).0 / hh).exp(),
-                0.0,
-                d,
-                1e-10,
-                1e-14,
-            )
-            .value
-        })
+        .map(|&(h, mu, hh)| column_by_quadrature(h, mu, hh, big_r, top))
         .collect();
     let (best, best_mean_relative_error) = galaj_grid_search(&search_rays, &exact, big_r, top);
     let paper_mean_relative_error = galaj_taylor_mean_error(
