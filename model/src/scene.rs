@@ -281,6 +281,7 @@ pub enum Method {
     SchulerMs,
     GalajTaylor,
     GalajTaylorMs,
+    Preetham,
     Empty,
     PathTracer,
 }

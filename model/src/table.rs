@@ -160,6 +160,7 @@ pub mod tables {
     embedded_table!(garcia_linan_constants, "garcia_linan_2023_constants.csv");
     embedded_table!(garcia_linan_refit, "garcia_linan_refit.csv");
     embedded_table!(spectral4_fitted_matrix, "spectral4_fitted_matrix.csv");
+    embedded_table!(preetham_constants, "preetham1999_constants.csv");
 }
 
 #[cfg(test)]
@@ -188,6 +189,7 @@ mod tests {
             tables::opac_type_profiles(),
             tables::guimera_aerosol_types(),
             tables::garcia_linan_constants(),
+            tables::preetham_constants(),
         ];
         assert_eq!(tables::garcia_linan_refit().len(), 4);
         for t in all {

@@ -27,7 +27,7 @@ use atmoscope_model::colour::Xyz;
 use atmoscope_model::display::{HISTOGRAM_BINS, Histogram};
 use atmoscope_model::geometry::direction_from_angles;
 use atmoscope_model::methods::shared::{Params, viewpoint};
-use atmoscope_model::methods::{self, Inputs, NotRealtime};
+use atmoscope_model::methods::{self, CannotDraw, Inputs};
 use atmoscope_model::scene::{
     AtmosphereSettings, CameraSettings, FittedConstants, Method, Quality, Scene, ToneMap,
     WavelengthSet, WhiteBalance,
@@ -113,8 +113,9 @@ pub enum EngineError {
     NotRendered,
     #[error("the model has no table `{0}`")]
     NoSuchTable(String),
+    /// The model is offline, or refuses this view (a message says why).
     #[error(transparent)]
-    NotRealtime(#[from] NotRealtime),
+    CannotDraw(#[from] CannotDraw),
     #[error(transparent)]
     Readback(#[from] ReadbackError),
     #[error("a {0}×{1} view is larger than this GPU allows ({2} pixels on a side at most)")]
@@ -846,8 +847,12 @@ impl Engine {
             return Err(EngineError::ViewTooLarge(view.width, view.height, max));
         }
         let method = scene.render.method;
-        let gpu = gpu_method(method)
-            .ok_or_else(|| NotRealtime(methods::info(method).id, methods::realtime_ids()))?;
+        if let Some(why) = methods::info(method).cannot_draw(scene) {
+            return Err(why.into());
+        }
+        let gpu = gpu_method(method).ok_or_else(|| {
+            CannotDraw::NotRealtime(methods::info(method).id, methods::realtime_ids())
+        })?;
         let key = AtmosphereKey {
             settings: scene.atmosphere.clone(),
             sun_distance_au: scene.sun.distance_au(),

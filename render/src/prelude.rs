@@ -167,6 +167,7 @@ pub fn wgsl_prelude() -> String {
         let col = |j: usize| format!("vec3<f32>({}, {}, {})", f(m[0][j]), f(m[1][j]), f(m[2][j]));
         format!("mat3x3<f32>({}, {}, {})", col(0), col(1), col(2))
     };
+    preetham_constants(&mut c, &mat3);
     c("AGX_INSET", "mat3x3<f32>", mat3(display::AGX_INSET));
     c("AGX_OUTSET", "mat3x3<f32>", mat3(display::AGX_OUTSET));
     let [lo, hi] = display::AGX_LOG2_RANGE;
@@ -257,4 +258,58 @@ pub fn wgsl_prelude() -> String {
     )
     .expect("write to String");
     s
+}
+
+/// Preetham et al.'s (1999) published constants and the model's spectral basis
+/// (`model::methods::preetham`).
+fn preetham_constants(
+    c: &mut impl FnMut(&str, &str, String),
+    mat3: &dyn Fn([[f64; 3]; 3]) -> String,
+) {
+    use atmoscope_model::methods::preetham as pr;
+    let k = pr::Constants::published();
+    let vec = |v: &[f64]| {
+        let parts: Vec<String> = v.iter().map(|&x| f(x)).collect();
+        format!("vec{}<f32>({})", v.len(), parts.join(", "))
+    };
+    let array = |rows: Vec<String>, ty: &str| {
+        format!("array<{ty}, {}>({})", rows.len(), rows.join(", "))
+    };
+    c(
+        "PREETHAM_PEREZ_SLOPE",
+        "array<vec3<f32>, 5>",
+        array(k.perez_slope.iter().map(|r| vec(r)).collect(), "vec3<f32>"),
+    );
+    c(
+        "PREETHAM_PEREZ_INTERCEPT",
+        "array<vec3<f32>, 5>",
+        array(k.perez_intercept.iter().map(|r| vec(r)).collect(), "vec3<f32>"),
+    );
+    c("PREETHAM_ZENITH_LUMINANCE", "vec4<f32>", vec(&k.zenith_luminance));
+    c("PREETHAM_CHI", "vec2<f32>", vec(&k.chi));
+    for (name, m) in [
+        ("PREETHAM_ZENITH_X", &k.zenith_x),
+        ("PREETHAM_ZENITH_Y", &k.zenith_y),
+    ] {
+        c(
+            name,
+            "array<vec4<f32>, 3>",
+            array(m.iter().map(|r| vec(r)).collect(), "vec4<f32>"),
+        );
+    }
+    c("PREETHAM_SUN_RAYLEIGH", "vec2<f32>", vec(&k.sun_rayleigh));
+    c("PREETHAM_HAZE", "vec3<f32>", vec(&k.haze));
+    c("PREETHAM_AIR_MASS", "vec3<f32>", vec(&k.air_mass));
+    c("PREETHAM_MIN_COS_THETA", "f32", f(pr::MIN_COS_THETA));
+    c(
+        "PREETHAM_BASIS",
+        "vec2<f32>",
+        vec(&[pr::BASIS_CENTRE_NM, pr::BASIS_SCALE_NM]),
+    );
+    c("PREETHAM_SPECTRAL_BASIS", "mat3x3<f32>", mat3(pr::spectral_basis()));
+    c(
+        "PREETHAM_KCD_PER_M2",
+        "f32",
+        f(pr::kcd_per_m2_in_luminance_unit()),
+    );
 }

@@ -127,6 +127,9 @@ pub struct Findings {
     pub monotonicity: Vec<String>,
     /// A GPU fault.
     pub fault: Option<String>,
+    /// Whether the model refuses the scene (`ModelInfo::cannot_draw`): then only that the GPU
+    /// refuses it too is checked.
+    pub refused: bool,
 }
 
 impl Findings {
@@ -250,6 +253,15 @@ impl Stress {
             ..Findings::default()
         };
         let view = View::new(Projection::Perspective, VIEW_SIZE, VIEW_SIZE);
+        if let Some(why) = model.cannot_draw(scene) {
+            f.refused = true;
+            match self.gpu_radiance(scene, &view) {
+                Err(EngineError::CannotDraw(_)) => {}
+                Err(e) => f.fault = Some(e.to_string()),
+                Ok(_) => f.fault = Some(format!("the GPU drew a view the model refuses: {why}")),
+            }
+            return f;
+        }
         let camera = Camera::new(
             &scene.camera,
             scene.atmosphere.planet_radius_km * 1000.0,

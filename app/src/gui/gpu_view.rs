@@ -80,6 +80,9 @@ pub struct GpuView {
     pub last_frame_ms: f64,
     /// The last frame's GPU fault, until the app shows it.
     fault: Option<String>,
+    /// Whether the scene's model refused the last frame (or is offline): the view then shows
+    /// nothing rather than an earlier frame, and `notice` says why.
+    refused: bool,
 }
 
 impl GpuView {
@@ -100,16 +103,20 @@ impl GpuView {
             histogram: None,
             last_frame_ms: 0.0,
             fault: None,
+            refused: false,
         }
     }
 
     /// Renders `view` of `scene` if anything changed; returns what the frame ran.
     pub fn render(&mut self, scene: &Scene, view: &View) -> &FrameStats {
         let start = Instant::now();
-        let drew = match self.engine.try_render(scene, view) {
+        let result = self.engine.try_render(scene, view);
+        self.refused = matches!(result, Err(EngineError::CannotDraw(_)));
+        let drew = match result {
             Ok(stats) => !stats.run.is_empty() || stats.rebuild_done,
-            // A path-tracer scene draws nothing here; a GPU fault is shown to the user.
-            Err(EngineError::NotRealtime(_)) => false,
+            // A path-tracer scene or a refused view draws nothing here (`notice` says why); a
+            // GPU fault is shown to the user.
+            Err(EngineError::CannotDraw(_)) => false,
             Err(e) => {
                 self.fault = Some(e.to_string());
                 false
@@ -171,8 +178,9 @@ impl GpuView {
         self.fault.take()
     }
 
+    /// The frame on screen; None before the first or while the model refuses the view.
     pub fn texture(&self) -> Option<egui::TextureId> {
-        self.texture
+        self.texture.filter(|_| !self.refused)
     }
 
     /// The view last drawn.
@@ -199,7 +207,10 @@ impl GpuView {
         {
             return Ok(r.clone());
         }
-        let view = self.view.ok_or(EngineError::NotRendered)?;
+        let view = self
+            .view
+            .filter(|_| !self.refused)
+            .ok_or(EngineError::NotRendered)?;
         let r = Arc::new(Radiance {
             width: view.width,
             height: view.height,
@@ -249,6 +260,11 @@ pub fn notice(scene: &Scene) -> Option<String> {
         return Some(format!(
             "{} is offline: the Reference tab renders it; choose a real-time model under Method to draw here.",
             model.label
+        ));
+    }
+    if let Some(why) = model.cannot_draw(scene) {
+        return Some(format!(
+            "{why}. Bring the camera down or the sun up, or choose another model under Method."
         ));
     }
     model

@@ -16,6 +16,7 @@ pub mod garcia_linan;
 pub mod hillaire;
 pub mod nishita;
 pub mod path_tracer;
+pub mod preetham;
 pub mod rng;
 pub mod schuler;
 pub mod shared;
@@ -82,7 +83,7 @@ impl Inputs {
 }
 
 /// Where a model is meant to work. Views outside it still render (and are marked as such), so a
-/// user can see how a model fails.
+/// user can see how a model fails, unless the model refuses them ([`Domain::refuses`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Domain {
     /// Highest camera altitude, m (`f64::INFINITY`: anywhere).
@@ -96,6 +97,9 @@ pub struct Domain {
     /// average (`atmoscope bench aod` measures it; above it the error grows with the AOD);
     /// 0 when no AOD is inside (single scattering alone is too dark even in clean air).
     pub max_aod550: f64,
+    /// Whether the model refuses to draw a view outside its altitude and sun range (a fit
+    /// that means nothing there) instead of drawing it marked.
+    pub refuses: bool,
 }
 
 /// The mean relative error of sky radiance against the path tracer that bounds a model's AOD
@@ -114,6 +118,7 @@ impl Domain {
         min_sun_elevation_deg: -90.0,
         note: "ground, plane, space and twilight views",
         max_aod550: f64::INFINITY,
+        refuses: false,
     };
 
     /// The kinds of view the domain covers: ground, plane, space, twilight.
@@ -254,6 +259,20 @@ impl ModelInfo {
     /// A table of the model by id.
     pub fn table(&self, id: &str) -> Option<&'static TableSpec> {
         self.tables.iter().find(|t| t.id == id)
+    }
+
+    /// Why the model will not draw `scene`: it is offline, or it refuses views outside its
+    /// domain and this one is. None when it draws.
+    pub fn cannot_draw(&self, scene: &Scene) -> Option<CannotDraw> {
+        if !self.is_realtime() {
+            return Some(CannotDraw::NotRealtime(self.id, realtime_ids()));
+        }
+        if !self.domain.refuses {
+            return None;
+        }
+        self.domain
+            .excludes(scene.camera.altitude_m, scene.sun.angles().elevation_deg)
+            .map(|why| CannotDraw::Refused(self.label, why))
     }
 }
 
@@ -416,6 +435,19 @@ pub const MODELS: &[ModelInfo] = &[
         build: Some(galaj_taylor::build_ms),
     },
     ModelInfo {
+        method: Method::Preetham,
+        id: "preetham",
+        label: "Preetham 1999",
+        citation: "A. J. Preetham, P. Shirley, B. Smits (1999), A Practical Analytic Model for Daylight, SIGGRAPH; on the sky-luminance distribution of R. Perez, R. Seals, J. Michalsky (1993)",
+        summary: "The analytic daylight model: Perez's five-parameter distribution in xyY, linear in the turbidity, scaled by fitted zenith values; one closed form per pixel, no tables. Ground views in daylight only; the ground gets the direct sun alone.",
+        domain: preetham::DOMAIN,
+        tables: &preetham::TABLES,
+        gathers_orders: false,
+        refittable: false,
+        baseline: false,
+        build: Some(preetham::build),
+    },
+    ModelInfo {
         method: Method::Empty,
         id: "empty",
         label: "No atmosphere",
@@ -466,17 +498,26 @@ pub fn realtime_ids() -> String {
     realtime().map(|m| m.id).collect::<Vec<_>>().join(", ")
 }
 
-/// Why a model cannot draw: the path tracer is offline.
+/// Why a model draws nothing for a scene.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{0} is not a real-time model (real-time models: {1})")]
-pub struct NotRealtime(pub &'static str, pub String);
+pub enum CannotDraw {
+    /// The path tracer is offline: its id and the real-time models' ids.
+    #[error("{0} is not a real-time model (real-time models: {1})")]
+    NotRealtime(&'static str, String),
+    /// The view lies outside the domain of a model that refuses such views: its label and why.
+    #[error("{0} does not draw this view: {1}")]
+    Refused(&'static str, String),
+}
 
 /// The CPU twin of the scene's model for `scene` seen through `camera`.
-pub fn build(scene: &Scene, camera: &Camera) -> Result<Box<dyn SkyModel>, NotRealtime> {
+pub fn build(scene: &Scene, camera: &Camera) -> Result<Box<dyn SkyModel>, CannotDraw> {
     let row = info(scene.render.method);
+    if let Some(why) = row.cannot_draw(scene) {
+        return Err(why);
+    }
     let build = row
         .build
-        .ok_or_else(|| NotRealtime(row.id, realtime_ids()))?;
+        .ok_or_else(|| CannotDraw::NotRealtime(row.id, realtime_ids()))?;
     let atm = Atmosphere::for_scene(&scene);
     let p = Params::new(&atm, scene.render.wavelengths, scene.render.quality)
         .with_render(&scene.render);
@@ -490,7 +531,7 @@ pub fn render(
     projection: Projection,
     width: u32,
     height: u32,
-) -> Result<Vec<[f64; 3]>, NotRealtime> {
+) -> Result<Vec<[f64; 3]>, CannotDraw> {
     let camera = Camera::new(
         &scene.camera,
         scene.atmosphere.planet_radius_km * 1000.0,
@@ -629,6 +670,7 @@ mod tests {
             min_sun_elevation_deg: 0.0,
             note: "ground views in daylight",
             max_aod550: 0.3,
+            refuses: false,
         };
         assert!(d.excludes(10.0, 30.0).is_none());
         assert!(d.excludes_aod(0.3).is_none());

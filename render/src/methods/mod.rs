@@ -14,6 +14,7 @@ pub mod galaj_taylor;
 pub mod garcia_linan;
 pub mod hillaire;
 pub mod nishita;
+pub mod preetham;
 pub mod schuler;
 pub mod trapezoid;
 
@@ -370,7 +371,7 @@ pub const COMMON: [Shader; 8] = [
 ];
 
 /// Every real-time model's passes, in registry order.
-pub const GPU_METHODS: [GpuMethod; 13] = [
+pub const GPU_METHODS: [GpuMethod; 14] = [
     hillaire::METHOD,
     bruneton::METHOD,
     garcia_linan::METHOD,
@@ -383,6 +384,7 @@ pub const GPU_METHODS: [GpuMethod; 13] = [
     schuler::METHOD_MS,
     galaj_taylor::METHOD,
     galaj_taylor::METHOD_MS,
+    preetham::METHOD,
     empty::METHOD,
 ];
 

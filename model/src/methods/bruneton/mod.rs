@@ -65,6 +65,7 @@ pub const DOMAIN: Domain = Domain {
     min_sun_elevation_deg: -12.0,
     note: "ground, plane and space views; the tables cover the sun down to 12° below the horizon",
     max_aod550: 0.3,
+    refuses: false,
 };
 
 const SCATTERING_AXES: [&str; 3] = [

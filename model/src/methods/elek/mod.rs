@@ -54,6 +54,7 @@ pub const DOMAIN: Domain = Domain {
     min_sun_elevation_deg: 0.0,
     note: "ground, plane and space views in daylight; without the sun–view azimuth the Earth's shadow in twilight cannot appear",
     max_aod550: 0.05,
+    refuses: false,
 };
 
 const AXES: [&str; 3] = [

@@ -41,6 +41,7 @@ pub const DOMAIN: Domain = Domain {
     min_sun_elevation_deg: 0.0,
     note: "views from below 100 km in daylight; L_ms was fitted at 10 km altitude with the sun above the horizon",
     max_aod550: 0.1,
+    refuses: false,
 };
 
 /// The fitted constants of L_ms = scale·(λ_ref/λ)⁴ / (1 + a·exp(−b·μ_s)) (thesis eq. 5.7, the

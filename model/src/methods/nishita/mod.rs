@@ -27,6 +27,7 @@ pub const DOMAIN: Domain = Domain {
     min_sun_elevation_deg: 0.0,
     note: "ground, plane and space views in daylight; single scattering only, so the sky lacks what higher orders add and twilight, lit by them, is outside",
     max_aod550: 0.0,
+    refuses: false,
 };
 
 /// The domain with Hillaire's higher orders added (the `nishita-ms` row): daylight views, and

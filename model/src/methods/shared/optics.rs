@@ -4,7 +4,7 @@
 //! buffers (`render::uniforms`).
 
 use super::Lanes;
-use crate::atmosphere::Atmosphere;
+use crate::atmosphere::{Atmosphere, OpticalDepth};
 use crate::camera::Camera;
 use crate::geometry::direction_from_angles;
 use crate::phase;
@@ -92,6 +92,9 @@ pub struct Params {
     pub scattering_orders: u32,
     /// The fitted constants the models that have them use (García Liñán).
     pub fitted_constants: FittedConstants,
+    /// Vertical optical depth of the whole atmosphere at 550 nm, by constituent: what the
+    /// analytic models that take a turbidity read (Preetham).
+    pub optical_depth_550: OpticalDepth,
 }
 
 impl Params {
@@ -187,6 +190,7 @@ impl Params {
             steps: Steps::for_quality(quality),
             scattering_orders: crate::scene::DEFAULT_SCATTERING_ORDERS,
             fitted_constants: FittedConstants::default(),
+            optical_depth_550: atm.vertical_optical_depth(&atm.optics(550.0), 0.0),
         }
     }
 
