@@ -372,24 +372,36 @@ pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
             tone_map: scene.display.tone_map,
             ..DisplaySetup::default()
         };
-        let images: Vec<Vec<[f64; 3]>> = runs
+        // None where the model refuses the view (its figures are then NaN, null in JSON).
+        let images: Vec<Option<Vec<[f64; 3]>>> = runs
             .iter()
             .zip(engines.iter_mut())
             .map(|(&(method, set), engine)| {
                 let mut s = scene.clone();
                 s.render.method = method;
                 s.render.wavelengths = set;
+                if atmoscope_model::methods::info(method)
+                    .cannot_draw(&s)
+                    .is_some()
+                {
+                    return Ok(None);
+                }
                 engine.try_render(&s, &View::new(v.projection, w, h))?;
-                Ok(engine
-                    .read_radiance()?
-                    .iter()
-                    .map(|p| [p[0], p[1], p[2]].map(f64::from))
-                    .collect())
+                Ok(Some(
+                    engine
+                        .read_radiance()?
+                        .iter()
+                        .map(|p| [p[0], p[1], p[2]].map(f64::from))
+                        .collect(),
+                ))
             })
             .collect::<anyhow::Result<_>>()?;
-        let de = |a: &[[f64; 3]], b: &[[f64; 3]]| {
-            let (c, _) = compare(a, b, w, h, setup);
-            (c.delta_e2000_mean, c.delta_e2000_p95)
+        let de = |a: &Option<Vec<[f64; 3]>>, b: &[[f64; 3]]| match a {
+            Some(a) => {
+                let (c, _) = compare(a, b, w, h, setup);
+                (c.delta_e2000_mean, c.delta_e2000_p95)
+            }
+            None => (f64::NAN, f64::NAN),
         };
         let vs_reference = runs
             .iter()
@@ -406,7 +418,10 @@ pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
             .enumerate()
             .filter(|(i, _)| i % sets.len() != 0)
             .map(|(i, &run)| {
-                let (m, p) = de(&images[i], &images[i - i % sets.len()]);
+                let (m, p) = match &images[i - i % sets.len()] {
+                    Some(first) => de(&images[i], first),
+                    None => (f64::NAN, f64::NAN),
+                };
                 (name(run), m, p)
             })
             .collect();
@@ -440,7 +455,11 @@ pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
     for r in &rows {
         print!("{:20} {:>6.1} ", r.view, r.sun_elevation_deg);
         for (_, m, p) in r.vs_reference.iter().chain(&r.vs_spectral) {
-            print!(" {:>9.2} / {:>5.2}", m, p);
+            if m.is_nan() {
+                print!(" {:>17}", "refused");
+            } else {
+                print!(" {:>9.2} / {:>5.2}", m, p);
+            }
         }
         println!();
     }
@@ -455,15 +474,30 @@ pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
         if group.is_empty() {
             continue;
         }
+        // Over the views each run draws (a refusing model's are fewer).
         let mean = |f: &dyn Fn(&AccuracyRow) -> f64| {
-            group.iter().map(|r| f(r)).sum::<f64>() / group.len() as f64
+            let drawn: Vec<f64> = group.iter().map(|r| f(r)).filter(|v| !v.is_nan()).collect();
+            drawn.iter().sum::<f64>() / drawn.len() as f64
         };
         println!("{label}, {} views, mean ΔE2000 (mean / p95):", group.len());
         for (i, (n, _, _)) in first.vs_reference.iter().enumerate() {
+            let drawn = group
+                .iter()
+                .filter(|r| !r.vs_reference[i].1.is_nan())
+                .count();
+            if drawn == 0 {
+                println!("  {n} vs ref: refuses these views");
+                continue;
+            }
             println!(
-                "  {n} vs ref {:.2} / {:.2}",
+                "  {n} vs ref {:.2} / {:.2}{}",
                 mean(&|r| r.vs_reference[i].1),
-                mean(&|r| r.vs_reference[i].2)
+                mean(&|r| r.vs_reference[i].2),
+                if drawn < group.len() {
+                    format!(" (over the {drawn} views it draws)")
+                } else {
+                    String::new()
+                }
             );
         }
         for (i, (n, _, _)) in first.vs_spectral.iter().enumerate() {

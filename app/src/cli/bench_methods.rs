@@ -189,6 +189,7 @@ pub fn run(args: &MethodsBench) -> anyhow::Result<ExitCode> {
     let mut rows = Vec::new();
     let mut timing = String::new();
     let mut failures = Vec::new();
+    let mut refused = Vec::new();
     for &(method, set, quality) in &configs {
         let mut engine = Engine::new(&context.device, &context.queue);
         engine.set_timing(true);
@@ -210,6 +211,10 @@ pub fn run(args: &MethodsBench) -> anyhow::Result<ExitCode> {
             scene.render.method = method;
             scene.render.wavelengths = set;
             scene.render.quality = quality;
+            if let Some(why) = info.cannot_draw(&scene) {
+                refused.push(format!("{label}: {why}"));
+                continue;
+            }
             let case = Case {
                 view: v,
                 scene,
@@ -243,6 +248,7 @@ pub fn run(args: &MethodsBench) -> anyhow::Result<ExitCode> {
     let configs = summarise(&rows);
     let header = Header {
         left_out: &failures,
+        refused: &refused,
         adapter: context.describe(),
         timing,
         frame_size: args.frame_size,
@@ -446,6 +452,8 @@ impl Progress {
 struct Header<'a> {
     /// Cases that failed and were left out, each with why.
     left_out: &'a [String],
+    /// Cases outside the domain of a model that refuses them, each with why.
+    refused: &'a [String],
     adapter: String,
     timing: String,
     frame_size: (u32, u32),
@@ -502,6 +510,13 @@ fn summary_markdown(configs: &[Config], h: &Header) -> String {
             c.name(),
             c.de2000_mean
         );
+    }
+    if !h.refused.is_empty() {
+        s += "\n## Refused\n\nViews outside the domain of a model that refuses them; that \
+              model's figures are means over the views it draws.\n\n";
+        for f in h.refused {
+            s += &format!("- {f}\n");
+        }
     }
     if !h.left_out.is_empty() {
         s += "\n## Left out\n\n";

@@ -4,7 +4,7 @@
 //! Hillaire at Spectral32). The models come from the registry; the path tracer is compared in
 //! the Reference tab.
 
-use super::gpu_view::{Gpu, GpuView, mark, pixels};
+use super::gpu_view::{Gpu, GpuView, mark, notice, pixels};
 use super::state::{CompareMode, DELTA_E_SCALE_MAX, Layout, Tab, projection};
 use atmoscope_model::Scene;
 use atmoscope_model::methods;
@@ -167,6 +167,14 @@ impl CompareTab {
         }
         let textures = [self.views[0].texture(), self.views[1].texture()];
         let [Some(ta), Some(tb)] = textures else {
+            // A side the model refuses (or not drawn yet): say why.
+            for (texture, (method, _)) in textures.iter().zip(pairs) {
+                let mut s = scene.clone();
+                s.render.method = method;
+                if let (None, Some(why)) = (texture, notice(&s)) {
+                    ui.label(why);
+                }
+            }
             return;
         };
         match c.mode {

@@ -396,6 +396,23 @@ fn the_inspector_splits_a_pixel_into_its_parts() {
     h.get_by_label_contains("ground (single):");
 }
 
+/// A model that refuses the view (Preetham from orbit) leaves the sky tab without an image
+/// and says why; back on the ground it draws again.
+#[test]
+fn the_sky_tab_says_why_a_model_refuses_the_view() {
+    let mut h = harness();
+    h.state_mut().scene.render.method = atmoscope_model::scene::Method::Preetham;
+    h.state_mut().scene.camera.altitude_m = 400_000.0;
+    h.run();
+    h.get_by_label_contains("Preetham 1999 does not draw this view");
+    h.state_mut().scene.camera.altitude_m = 1.0;
+    h.run();
+    assert!(
+        h.query_by_label_contains("does not draw this view").is_none(),
+        "the ground view draws"
+    );
+}
+
 #[test]
 fn the_lut_tab_reads_every_table() {
     let mut h = harness();
