@@ -281,6 +281,8 @@ pub enum Method {
     SchulerMs,
     GalajTaylor,
     GalajTaylorMs,
+    Flat,
+    Raymarched,
     Preetham,
     Empty,
     PathTracer,

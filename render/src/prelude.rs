@@ -144,6 +144,11 @@ pub fn wgsl_prelude() -> String {
         f(shared::SMALL_OPTICAL_THICKNESS),
     );
     c(
+        "SMALL_DEPTH_DIFFERENCE",
+        "f32",
+        f(shared::segments_sky::SMALL_DEPTH_DIFFERENCE),
+    );
+    c(
         "GALAJ_TAYLOR_A",
         "f32",
         f(shared::exponential::GALAJ_TAYLOR_A),
@@ -272,9 +277,8 @@ fn preetham_constants(
         let parts: Vec<String> = v.iter().map(|&x| f(x)).collect();
         format!("vec{}<f32>({})", v.len(), parts.join(", "))
     };
-    let array = |rows: Vec<String>, ty: &str| {
-        format!("array<{ty}, {}>({})", rows.len(), rows.join(", "))
-    };
+    let array =
+        |rows: Vec<String>, ty: &str| format!("array<{ty}, {}>({})", rows.len(), rows.join(", "));
     c(
         "PREETHAM_PEREZ_SLOPE",
         "array<vec3<f32>, 5>",
@@ -283,9 +287,16 @@ fn preetham_constants(
     c(
         "PREETHAM_PEREZ_INTERCEPT",
         "array<vec3<f32>, 5>",
-        array(k.perez_intercept.iter().map(|r| vec(r)).collect(), "vec3<f32>"),
+        array(
+            k.perez_intercept.iter().map(|r| vec(r)).collect(),
+            "vec3<f32>",
+        ),
     );
-    c("PREETHAM_ZENITH_LUMINANCE", "vec4<f32>", vec(&k.zenith_luminance));
+    c(
+        "PREETHAM_ZENITH_LUMINANCE",
+        "vec4<f32>",
+        vec(&k.zenith_luminance),
+    );
     c("PREETHAM_CHI", "vec2<f32>", vec(&k.chi));
     for (name, m) in [
         ("PREETHAM_ZENITH_X", &k.zenith_x),
@@ -306,7 +317,11 @@ fn preetham_constants(
         "vec2<f32>",
         vec(&[pr::BASIS_CENTRE_NM, pr::BASIS_SCALE_NM]),
     );
-    c("PREETHAM_SPECTRAL_BASIS", "mat3x3<f32>", mat3(pr::spectral_basis()));
+    c(
+        "PREETHAM_SPECTRAL_BASIS",
+        "mat3x3<f32>",
+        mat3(pr::spectral_basis()),
+    );
     c(
         "PREETHAM_KCD_PER_M2",
         "f32",

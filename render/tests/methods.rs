@@ -326,7 +326,10 @@ fn a_refused_view_is_an_error_with_its_reason() {
     let view = View::new(Projection::Perspective, 24, 16);
     let mut engine = Engine::new(&gpu.device, &gpu.queue);
     let refusing: Vec<_> = methods::realtime().filter(|m| m.domain.refuses).collect();
-    assert!(!refusing.is_empty(), "preetham refuses views off the ground");
+    assert!(
+        !refusing.is_empty(),
+        "preetham refuses views off the ground"
+    );
     for model in refusing {
         let mut scene = with(model, &Scene::default());
         scene.camera.altitude_m = 400_000.0;
@@ -335,13 +338,23 @@ fn a_refused_view_is_an_error_with_its_reason() {
                 assert_eq!(label, model.label);
                 assert!(why.contains("above this model's domain"), "{why}");
             }
-            other => panic!("{}: expected a refusal, got {:?}", model.id, other.map(|_| ())),
+            other => panic!(
+                "{}: expected a refusal, got {:?}",
+                model.id,
+                other.map(|_| ())
+            ),
         }
         assert!(methods::render(&scene, Projection::Perspective, 8, 8).is_err());
         scene.camera.altitude_m = 1.0;
-        engine.try_render(&scene, &view).expect("a ground view draws");
+        engine
+            .try_render(&scene, &view)
+            .expect("a ground view draws");
         let image = engine.read_radiance().expect("read-back");
-        assert!(image.iter().any(|p| p[1] > 0.0), "{}: a black sky", model.id);
+        assert!(
+            image.iter().any(|p| p[1] > 0.0),
+            "{}: a black sky",
+            model.id
+        );
     }
 }
 

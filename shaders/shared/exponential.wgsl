@@ -87,9 +87,27 @@ fn galaj_taylor(h: f32, mu: f32, big_h: f32) -> f32 {
 }
 
 // ∫ exp(−h'/H) along the ray by the model's closed form: 2 Schuler, 3 Gałaj's Taylor.
+// Leenman's (2025) column: the density at h times the chord through a homogeneous shell one
+// scale height thick (DR-1), continued through the horizontal looking down; twin of
+// exponential::homogeneous_shell.
+fn homogeneous_shell(h: f32, mu: f32, big_h: f32) -> f32 {
+    let r = bottom_radius() + h;
+    let shell = big_h * (2.0 * r + big_h);
+    let m = abs(mu);
+    let up = sqrt(r * r * m * m + shell) - r * m;
+    var chord = up;
+    if mu < 0.0 {
+        chord = 2.0 * sqrt(shell) - up;
+    }
+    return exp(-h / big_h) * chord;
+}
+
 fn exponential_column(way: u32, h: f32, mu: f32, big_h: f32) -> f32 {
     if way == 2u {
         return schuler_chapman(h, mu, big_h);
+    }
+    if way == 4u {
+        return homogeneous_shell(h, mu, big_h);
     }
     return galaj_taylor(h, mu, big_h);
 }

@@ -7,50 +7,7 @@
 // shared/exponential.wgsl, 0), from the model's registry constants; the model's common file
 // defines psi(layer, h, mu_s), its isotropic higher orders (zero in shared/no_higher_orders.wgsl,
 // Hillaire's Ψ_ms table in hillaire/common.wgsl for the -ms rows). Twin of
-// model::methods::shared::single_scattering_sky.
-
-fn way_to_sun() -> u32 {
-    return u32(globals.model[0].z + 0.5);
-}
-
-// Optical depth from altitude h along zenith cosine mu to the top by the model's rule over
-// equal intervals; twin of single_scattering_sky::optical_depth.
-fn optical_depth_to_top(layer: u32, h: f32, mu: f32) -> vec4<f32> {
-    let n = u32(globals.model[0].y);
-    let trapezoid = way_to_sun() == 1u;
-    let dt = distance_to_top(h, mu) / f32(n);
-    var samples = n;
-    var offset = 0.5;
-    if trapezoid {
-        samples = n + 1u;
-        offset = 0.0;
-    }
-    let b = batches[layer];
-    var depth = vec4<f32>(0.0);
-    for (var s = 0u; s < samples; s++) {
-        let at = altitude_along(h, mu, (f32(s) + offset) * dt);
-        var w = 1.0;
-        if trapezoid && (s == 0u || s == n) {
-            w = 0.5;
-        }
-        depth += w * medium(b, at.x).extinction * dt;
-    }
-    return depth;
-}
-
-// Transmittance towards the sun at zenith cosine mu_s by the model's way, times the visible
-// fraction of its disk (0, and no integral, behind the planet); twin of SunRoute::transmittance.
-fn sun_transmittance_by_way(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
-    let visible = sun_visible_fraction(h, mu_s);
-    if visible <= 0.0 {
-        return vec4<f32>(0.0);
-    }
-    let way = way_to_sun();
-    if way >= 2u {
-        return exp(-exponential_optical_depth(layer, h, mu_s, way)) * visible;
-    }
-    return exp(-optical_depth_to_top(layer, h, mu_s)) * visible;
-}
+// model::methods::shared::single_scattering_sky; the way to the sun is in shared/sun_route.wgsl.
 
 fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     let big_r = bottom_radius();
@@ -94,17 +51,4 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
         l += throughput * b.ground_albedo / PI * b.solar_irradiance * sun_g * max(mu_s_g, 0.0);
     }
     return l;
-}
-
-// The sun's disk seen from any altitude: from where its ray enters the atmosphere when the
-// camera is above it (twin of SingleScattering::sun_seen_from).
-fn sun_through_atmosphere(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
-    if h <= thickness() {
-        return sun_transmittance_by_way(layer, h, mu_s);
-    }
-    let entry = entry_into_atmosphere(h, mu_s, mu_s, 1.0);
-    if entry.z == 0.0 {
-        return vec4<f32>(1.0);
-    }
-    return sun_transmittance_by_way(layer, thickness(), entry.x);
 }

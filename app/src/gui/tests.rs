@@ -408,7 +408,8 @@ fn the_sky_tab_says_why_a_model_refuses_the_view() {
     h.state_mut().scene.camera.altitude_m = 1.0;
     h.run();
     assert!(
-        h.query_by_label_contains("does not draw this view").is_none(),
+        h.query_by_label_contains("does not draw this view")
+            .is_none(),
         "the ground view draws"
     );
 }

@@ -11,12 +11,14 @@
 pub mod bruneton;
 pub mod elek;
 pub mod empty;
+pub mod flat;
 pub mod galaj_taylor;
 pub mod garcia_linan;
 pub mod hillaire;
 pub mod nishita;
 pub mod path_tracer;
 pub mod preetham;
+pub mod raymarched;
 pub mod rng;
 pub mod schuler;
 pub mod shared;
@@ -433,6 +435,32 @@ pub const MODELS: &[ModelInfo] = &[
         refittable: false,
         baseline: false,
         build: Some(galaj_taylor::build_ms),
+    },
+    ModelInfo {
+        method: Method::Flat,
+        id: "flat",
+        label: "Leenman 2025 (flat)",
+        citation: "D. Leenman (2025), A visual and performance comparison of atmospheric scattering models, master's thesis: the flat homogeneous atmosphere on the sphere, after Jodie (2019)",
+        summary: "Single scattering of the whole view ray as one slab in closed form, every optical depth the chord through a homogeneous shell one scale height thick; no tables, no march, no higher orders, no Earth shadow in the sky.",
+        domain: flat::DOMAIN,
+        tables: &flat::TABLES,
+        gathers_orders: false,
+        refittable: false,
+        baseline: false,
+        build: Some(flat::build),
+    },
+    ModelInfo {
+        method: Method::Raymarched,
+        id: "raymarched",
+        label: "Leenman 2025 (raymarched)",
+        citation: "D. Leenman (2025), A visual and performance comparison of atmospheric scattering models, master's thesis: five slab segments along the view ray (his eq. 55) with homogeneous-shell optical depths",
+        summary: "The flat model's slab integral over five segments of the view ray, each between its ends' view and sun optical depths; no tables, no higher orders, no Earth shadow in the sky.",
+        domain: raymarched::DOMAIN,
+        tables: &raymarched::TABLES,
+        gathers_orders: false,
+        refittable: false,
+        baseline: false,
+        build: Some(raymarched::build),
     },
     ModelInfo {
         method: Method::Preetham,

@@ -10,11 +10,13 @@
 pub mod bruneton;
 pub mod elek;
 pub mod empty;
+pub mod flat;
 pub mod galaj_taylor;
 pub mod garcia_linan;
 pub mod hillaire;
 pub mod nishita;
 pub mod preetham;
+pub mod raymarched;
 pub mod schuler;
 pub mod trapezoid;
 
@@ -330,8 +332,16 @@ pub const EXPONENTIAL: Shader = shader!("shared/exponential.wgsl");
 
 /// What a table-free single-scattering model includes: no higher orders, or Hillaire's Ψ_ms
 /// (the `-ms` rows); the exponential medium either way.
-pub const SINGLE_SCATTERING_COMMON: [Shader; 2] = [NO_HIGHER_ORDERS, EXPONENTIAL];
-pub const SINGLE_SCATTERING_MS_COMMON: [Shader; 2] = [shader!("hillaire/common.wgsl"), EXPONENTIAL];
+/// The table-free models' way to the sun and the sun's disk through it.
+pub const SUN_ROUTE: Shader = shader!("shared/sun_route.wgsl");
+
+pub const SINGLE_SCATTERING_COMMON: [Shader; 3] = [NO_HIGHER_ORDERS, EXPONENTIAL, SUN_ROUTE];
+pub const SINGLE_SCATTERING_MS_COMMON: [Shader; 3] =
+    [shader!("hillaire/common.wgsl"), EXPONENTIAL, SUN_ROUTE];
+
+/// Leenman's segment-integral sky (`flat`, `raymarched`) and what it reads.
+pub const SEGMENTS_COMMON: [Shader; 2] = [EXPONENTIAL, SUN_ROUTE];
+pub const SEGMENTS_SKY_PASS: PassSpec = PassSpec::sky(shader!("shared/segments_sky.wgsl"), &[]);
 
 /// The passes of a table-free single-scattering model with Hillaire's higher orders: the
 /// transmittance and Ψ_ms tables (Hillaire's pass), then the sky pass reading Ψ_ms.
@@ -371,7 +381,7 @@ pub const COMMON: [Shader; 8] = [
 ];
 
 /// Every real-time model's passes, in registry order.
-pub const GPU_METHODS: [GpuMethod; 14] = [
+pub const GPU_METHODS: [GpuMethod; 16] = [
     hillaire::METHOD,
     bruneton::METHOD,
     garcia_linan::METHOD,
@@ -384,6 +394,8 @@ pub const GPU_METHODS: [GpuMethod; 14] = [
     schuler::METHOD_MS,
     galaj_taylor::METHOD,
     galaj_taylor::METHOD_MS,
+    flat::METHOD,
+    raymarched::METHOD,
     preetham::METHOD,
     empty::METHOD,
 ];

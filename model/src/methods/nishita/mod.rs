@@ -56,9 +56,7 @@ mod tests {
     use crate::atmosphere::Atmosphere;
     use crate::geometry::{Ray, direction_from_angles};
     use crate::methods::shared::optics::tests::params;
-    use crate::methods::shared::single_scattering_sky::{
-        SingleScattering, SunRoute, Way, sun_transmittance,
-    };
+    use crate::methods::shared::single_scattering_sky::{SunRoute, Way, sun_transmittance};
     use crate::methods::shared::transmittance::{compute_transmittance_lut, transmittance};
     use crate::methods::single_scattering;
     use crate::scene::{Quality, Scene, WavelengthSet};
@@ -80,14 +78,9 @@ mod tests {
             sun_transmittance(&p, 0, 0.0, -0.2, 16, Rule::Midpoint),
             [0.0; 4]
         );
-        let model = SingleScattering {
-            params: p.clone(),
-            view_steps: 8,
-            sun_path: SunRoute::new(&p, Way::March(Rule::Midpoint)),
-            higher_orders: None,
-        };
+        let route = SunRoute::new(&p, Way::March(Rule::Midpoint));
         assert_eq!(
-            model.sun_seen_from(0, p.thickness_m() + 1_000.0, 0.5),
+            route.seen_from(&p, 0, p.thickness_m() + 1_000.0, 0.5),
             [1.0; 4]
         );
     }

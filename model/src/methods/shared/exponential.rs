@@ -186,6 +186,25 @@ pub fn schuler_chapman(h: f64, mu: f64, scale_height_m: f64, big_r: f64) -> f64 
     big_h * (through_lowest - (-h / big_h).exp() * chapman_upper(x, -mu)).max(0.0)
 }
 
+/// ∫ exp(−h'/H) along the ray from altitude `h` (m) with zenith cosine `mu` to infinity, m, as
+/// Leenman (2025) takes it after Jodie (2019): the density at `h` times the chord through a
+/// homogeneous shell one scale height thick above the point — √(r²μ² + (r + H)² − r²) − rμ,
+/// r = R + h (Rapp-Arrarás & Domingo-Santos's DR-1 form). Looking down, the chord through the
+/// whole shell at the horizontal less the chord behind the point (Leenman's eq. 53): still the
+/// density at `h`, and the planet in the way ignored.
+pub fn homogeneous_shell(h: f64, mu: f64, scale_height_m: f64, big_r: f64) -> f64 {
+    let (r, big_h) = (big_r + h, scale_height_m);
+    // (r + H)² − r², formed without cancellation.
+    let shell = big_h * (2.0 * r + big_h);
+    let up = |m: f64| (r * r * m * m + shell).sqrt() - r * m;
+    let chord = if mu >= 0.0 {
+        up(mu)
+    } else {
+        2.0 * shell.sqrt() - up(-mu)
+    };
+    (-h / big_h).exp() * chord
+}
+
 /// Gałaj et al.'s (2021) parameters of the Taylor surrogate: the order between 1 and 2 (`a`)
 /// and where along the ray it is expanded (`b`), from their grid search (both 0.45).
 pub const GALAJ_TAYLOR_A: f64 = 0.45;
@@ -353,6 +372,34 @@ mod tests {
                 }
             }
         }
+        // Leenman's homogeneous shell: exact at the zenith (H·e^{−h/H}), within 0.5 % to 60°
+        // from it and 2 % at 80°, 13 % long at the horizon (√(2rH) against the Chapman
+        // function's √(πrH/2)).
+        for big_h in [8_000.0, 1_200.0] {
+            for h in [0.0, 1_000.0, 10_000.0] {
+                for (zenith_deg, bound) in [
+                    (0.0f64, 1e-4),
+                    (30.0, 0.005),
+                    (60.0, 0.005),
+                    (80.0, 0.02),
+                    (90.0, 0.14),
+                ] {
+                    let mu = f64::cos(zenith_deg.to_radians());
+                    let ratio = homogeneous_shell(h, mu, big_h, R) / exact(h, mu, big_h);
+                    assert!(
+                        (ratio - 1.0).abs() < bound,
+                        "shell H {big_h} h {h} zenith {zenith_deg}: ratio {ratio}"
+                    );
+                }
+            }
+        }
+        // Looking down it continues the upward chord through the horizontal.
+        let (a, b) = (
+            homogeneous_shell(1_000.0, 1e-9, 8_000.0, R),
+            homogeneous_shell(1_000.0, -1e-9, 8_000.0, R),
+        );
+        assert!((a / b - 1.0).abs() < 1e-6);
+        assert!(homogeneous_shell(1_000.0, -0.2, 8_000.0, R) > a);
         // The overshoot along a grazing ray is the method's, not a slip of this code.
         let grazing = galaj_taylor(0.0, 0.0, 1_200.0, R, TOP, (GALAJ_TAYLOR_A, GALAJ_TAYLOR_B));
         assert!(grazing / exact(0.0, 0.0, 1_200.0) > 100.0);

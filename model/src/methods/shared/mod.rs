@@ -9,6 +9,7 @@ pub mod exponential;
 pub mod march;
 pub mod optics;
 pub mod ray;
+pub mod segments_sky;
 pub mod single_scattering_sky;
 pub mod sun;
 pub mod table;

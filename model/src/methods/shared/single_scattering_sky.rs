@@ -172,6 +172,9 @@ pub enum Way {
     SchulerChapman,
     /// Gałaj et al.'s (2021) Taylor-series integral on the exponential medium (`galaj-taylor`).
     GalajTaylor,
+    /// Leenman's (2025) homogeneous shell one scale height thick on the exponential medium
+    /// (`flat`, `raymarched`).
+    HomogeneousShell,
 }
 
 impl Way {
@@ -182,6 +185,7 @@ impl Way {
             Way::March(Rule::Trapezoid) => 1.0,
             Way::SchulerChapman => 2.0,
             Way::GalajTaylor => 3.0,
+            Way::HomogeneousShell => 4.0,
         }
     }
 }
@@ -221,6 +225,9 @@ impl SunRoute {
                     (exponential::GALAJ_TAYLOR_A, exponential::GALAJ_TAYLOR_B),
                 )
             }),
+            Way::HomogeneousShell => self.medium.optical_depth(p, layer, h, mu, |h, mu, hh| {
+                exponential::homogeneous_shell(h, mu, hh, big_r)
+            }),
         }
     }
 
@@ -229,6 +236,29 @@ impl SunRoute {
     /// where the planet hides it).
     pub fn transmittance(&self, p: &Params, layer: usize, h: f64, mu_s: f64) -> Lanes {
         towards_sun(p, h, mu_s, || self.optical_depth(p, layer, h, mu_s))
+    }
+
+    /// [`SunRoute::transmittance`] seen from any altitude: from where the sun's ray enters the
+    /// atmosphere when the point is above it (1 where the ray misses it).
+    pub fn seen_from(&self, p: &Params, layer: usize, h: f64, mu_s: f64) -> Lanes {
+        if h <= p.thickness_m() {
+            return self.transmittance(p, layer, h, mu_s);
+        }
+        match entry_into_atmosphere(p, h, mu_s, mu_s, 1.0) {
+            Some((mu_entry, _)) => self.transmittance(p, layer, p.thickness_m(), mu_entry),
+            None => [1.0; 4],
+        }
+    }
+
+    /// The sun's disk for batch `layer` seen from altitude `h` at zenith cosine `mu_s`, where
+    /// the disk's radiance per unit irradiance is `disk` (sr⁻¹): `SkyModel::sun` of the
+    /// table-free models.
+    pub fn sun_disk(&self, p: &Params, layer: usize, h: f64, mu_s: f64, disk: f64) -> Lanes {
+        if disk <= 0.0 {
+            return [0.0; 4];
+        }
+        let tr = self.seen_from(p, layer, h, mu_s);
+        std::array::from_fn(|i| p.batches[layer].solar_irradiance[i] * tr[i] * disk)
     }
 }
 
@@ -269,23 +299,6 @@ pub struct SingleScattering {
     pub higher_orders: Option<HigherOrders>,
 }
 
-impl SingleScattering {
-    /// The transmittance towards the sun seen from any altitude: from where the sun's ray
-    /// enters the atmosphere when the point is above it (1 where the ray misses it).
-    pub fn sun_seen_from(&self, layer: usize, h: f64, mu_s: f64) -> Lanes {
-        let p = &self.params;
-        if h <= p.thickness_m() {
-            return self.sun_path.transmittance(p, layer, h, mu_s);
-        }
-        match entry_into_atmosphere(p, h, mu_s, mu_s, 1.0) {
-            Some((mu_entry, _)) => self
-                .sun_path
-                .transmittance(p, layer, p.thickness_m(), mu_entry),
-            None => [1.0; 4],
-        }
-    }
-}
-
 impl crate::methods::SkyModel for SingleScattering {
     fn params(&self) -> &Params {
         &self.params
@@ -320,11 +333,7 @@ impl crate::methods::SkyModel for SingleScattering {
     }
 
     fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: f64) -> Lanes {
-        if disk <= 0.0 {
-            return [0.0; 4];
-        }
-        let tr = self.sun_seen_from(layer, h, mu_s);
-        std::array::from_fn(|i| self.params.batches[layer].solar_irradiance[i] * tr[i] * disk)
+        self.sun_path.sun_disk(&self.params, layer, h, mu_s, disk)
     }
 }
 
