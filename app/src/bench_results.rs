@@ -148,7 +148,8 @@ pub struct Config {
     pub de2000_p95: f64,
     pub flip: f64,
     pub rel_rmse: f64,
-    /// On the Pareto front of frame time against mean ΔE2000 (a baseline never is).
+    /// On the Pareto front of frame time against mean ΔE2000 (a baseline never is, nor a
+    /// configuration measured on fewer views than the most: a model that refuses some).
     pub on_front: bool,
 }
 
@@ -204,9 +205,14 @@ pub fn summarise(rows: &[Row]) -> Vec<Config> {
         })
         .collect();
     // A baseline (no atmosphere) is drawn for scale but is no choice for a sky: it never
-    // stands on the front.
+    // stands on the front. Nor does a model that refused some views (Preetham off the
+    // ground): its means cover easier views than the others' and would not compare.
+    let most_views = out.iter().map(|c| c.views).max().unwrap_or(0);
     let candidates: Vec<usize> = (0..out.len())
-        .filter(|&i| !methods::by_id(&out[i].method).is_some_and(|m| m.baseline))
+        .filter(|&i| {
+            out[i].views == most_views
+                && !methods::by_id(&out[i].method).is_some_and(|m| m.baseline)
+        })
         .collect();
     let points: Vec<(f64, f64)> = candidates
         .iter()
@@ -282,13 +288,18 @@ mod tests {
             row("slow", "v1", 10.0, 1.0),
             row("bad", "v1", 20.0, 5.0),
             row("empty", "v1", 0.5, 30.0),
+            row("empty", "v2", 0.5, 30.0),
+            row("slow", "v2", 10.0, 1.0),
+            row("bad", "v2", 20.0, 5.0),
+            // Drawn on one view only (it refused the other): fastest and best, yet no pick.
+            row("preetham", "v1", 0.2, 0.5),
         ];
         let c = summarise(&rows);
-        assert_eq!(c.len(), 4);
+        assert_eq!(c.len(), 5);
         assert_eq!((c[0].views, c[0].frame_ms, c[0].de2000_mean), (2, 2.0, 5.0));
         assert_eq!(c[0].name(), "fast/rgb3/medium");
         let front: Vec<bool> = c.iter().map(|c| c.on_front).collect();
-        // The baseline is the fastest and on no front.
-        assert_eq!(front, vec![true, true, false, false]);
+        // The baseline is the fastest and on no front, nor the model that refused a view.
+        assert_eq!(front, vec![true, true, false, false, false]);
     }
 }

@@ -190,6 +190,8 @@ pub struct Atmosphere {
     /// Total ozone column actually used, DU.
     pub ozone_column_du: f64,
     air: AirProfile,
+    /// Factor on the air profile's density.
+    air_density_scale: f64,
     depolarisation: bool,
     ozone: ScaledOzone,
     ozone_cross_section: OzoneCrossSection,
@@ -257,6 +259,7 @@ impl Atmosphere {
             aerosol_phase: s.aerosol.phase,
             ozone_column_du,
             air: s.air_profile,
+            air_density_scale: s.air_density_scale,
             depolarisation: s.rayleigh_depolarisation,
             ozone,
             ozone_cross_section: s.ozone.cross_section,
@@ -327,7 +330,7 @@ impl Atmosphere {
         if h_m > self.thickness_m() {
             0.0
         } else {
-            self.air.number_density_m3(h_m)
+            self.air_density_scale * self.air.number_density_m3(h_m)
         }
     }
 
@@ -671,5 +674,29 @@ mod tests {
         assert_eq!(atm.transmittance_to_sun(&optics, space, DVec3::Z), 1.0);
         let t = atm.transmittance_to_sun(&optics, ground, DVec3::Z);
         assert!(t > 0.5 && t < 1.0, "{t}");
+    }
+
+    /// The air density factor scales the air's density, and with it the Rayleigh optical
+    /// depth, at every height; nothing else changes.
+    #[test]
+    fn the_air_density_scale_scales_the_rayleigh_optical_depth() {
+        let base = crate::Scene::default().atmosphere;
+        let thin = AtmosphereSettings {
+            air_density_scale: 0.25,
+            ..base.clone()
+        };
+        let (a, b) = (Atmosphere::new(&base), Atmosphere::new(&thin));
+        let optics = a.optics(550.0);
+        let (ta, tb) = (
+            a.vertical_optical_depth(&optics, 0.0),
+            b.vertical_optical_depth(&optics, 0.0),
+        );
+        assert!(
+            (tb.rayleigh / ta.rayleigh - 0.25).abs() < 1e-9,
+            "{ta:?} {tb:?}"
+        );
+        assert_eq!(ta.aerosol, tb.aerosol);
+        assert_eq!(ta.ozone, tb.ozone);
+        assert!((b.air_density_m3(5_000.0) / a.air_density_m3(5_000.0) - 0.25).abs() < 1e-12);
     }
 }

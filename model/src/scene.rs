@@ -60,6 +60,10 @@ pub struct AtmosphereSettings {
     /// Height of the top of the atmosphere above the ground, km (10–1000; Earth 100).
     pub top_km: f64,
     pub air_profile: AirProfile,
+    /// Factor on the air profile's density at every height (0.001–10; Earth 1): thinner or
+    /// denser air of the same composition, for other worlds (Mars' surface air is about 1/60
+    /// of Earth's).
+    pub air_density_scale: f64,
     /// Use the wavelength-dependent depolarisation of air in the Rayleigh phase function.
     pub rayleigh_depolarisation: bool,
     pub aerosol: AerosolSettings,
@@ -75,6 +79,7 @@ impl Default for AtmosphereSettings {
             planet_radius_km: EARTH_RADIUS_M / 1000.0,
             top_km: EARTH_ATMOSPHERE_TOP_M / 1000.0,
             air_profile: AirProfile::default(),
+            air_density_scale: 1.0,
             rayleigh_depolarisation: true,
             aerosol: AerosolSettings::default(),
             ozone: OzoneSettings::default(),
@@ -567,6 +572,12 @@ pub mod limits {
         max: 1000.0,
         unit: " km",
     };
+    /// `atmosphere.air_density_scale`.
+    pub const AIR_DENSITY_SCALE: Limit = Limit {
+        min: 0.001,
+        max: 10.0,
+        unit: "",
+    };
     /// `atmosphere.ground_albedo`.
     pub const GROUND_ALBEDO: Limit = Limit {
         min: 0.0,
@@ -784,6 +795,11 @@ impl Scene {
             limits::PLANET_RADIUS_KM,
         );
         c.limit("atmosphere.top_km", a.top_km, limits::TOP_KM);
+        c.limit(
+            "atmosphere.air_density_scale",
+            a.air_density_scale,
+            limits::AIR_DENSITY_SCALE,
+        );
         c.limit(
             "atmosphere.ground_albedo",
             a.ground_albedo,

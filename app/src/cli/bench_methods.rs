@@ -482,11 +482,17 @@ fn summary_markdown(configs: &[Config], h: &Header) -> String {
     s += "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
     let mut sorted: Vec<&Config> = configs.iter().collect();
     sorted.sort_by(|a, b| a.frame_ms.total_cmp(&b.frame_ms));
+    let most_views = configs.iter().map(|c| c.views).max().unwrap_or(0);
     for c in &sorted {
         s += &format!(
-            "| {} | {} | {} | {} | {:.1} | {:.2} | {:.2} | {:.2} | {:.2} | {:.3} | {:.3} |\n",
+            "| {} | {}{} | {} | {} | {:.1} | {:.2} | {:.2} | {:.2} | {:.2} | {:.3} | {:.3} |\n",
             if c.on_front { "★" } else { "" },
             c.method,
+            if c.views < most_views {
+                format!(" ({} of {most_views} views)", c.views)
+            } else {
+                String::new()
+            },
             c.wavelengths,
             c.quality,
             c.precompute_ms,

@@ -70,6 +70,8 @@ pub struct SceneArgs {
     pub planet_radius_km: Option<f64>,
     #[arg(long, value_name = "KM", allow_hyphen_values = true, help = ranged("Height of the top of the atmosphere", limits::TOP_KM))]
     pub top_km: Option<f64>,
+    #[arg(long, value_name = "X", allow_hyphen_values = true, help = ranged("Factor on the air's density at every height (Earth 1)", limits::AIR_DENSITY_SCALE))]
+    pub air_density_scale: Option<f64>,
     /// Any other scene field by its dotted path, value as JSON or a bare word, e.g.
     /// `--set camera.fov_deg=50`, `--set atmosphere.aerosol.phase=CornetteShanks`. Repeatable.
     #[arg(long = "set", value_name = "PATH=VALUE")]
@@ -118,6 +120,9 @@ impl SceneArgs {
         let atm = &mut scene.atmosphere;
         if let Some(v) = self.planet_radius_km {
             atm.planet_radius_km = v;
+        }
+        if let Some(v) = self.air_density_scale {
+            atm.air_density_scale = v;
         }
         if let Some(v) = self.top_km {
             atm.top_km = v;

@@ -298,6 +298,17 @@ fn ground_and_air(ui: &mut egui::Ui, s: &mut Scene) {
     .on_hover_text(
         "Height above which the air is ignored; 100 km (the Kármán line) loses nothing visible.",
     );
+    ui.add(
+        Slider::new(
+            &mut atm.air_density_scale,
+            limits::AIR_DENSITY_SCALE.range(),
+        )
+        .logarithmic(true)
+        .text("air density ×"),
+    )
+    .on_hover_text(
+        "The air profile's density times this factor at every height: thinner air scatters less blue (Mars' surface air is about 1/60 of Earth's), denser air reddens the whole sky.",
+    );
 }
 
 fn sun(ui: &mut egui::Ui, s: &mut Scene) {
