@@ -733,9 +733,9 @@ fn delta_e_bound(id: &str) -> (f64, Option<f64>) {
         // the Taylor integral's overshoot darkens the sunlight (ground-sunrise 25.4 and 20.2).
         "galaj-taylor" => (26.0, None),
         "galaj-taylor-ms" => (21.0, None),
-        // Leenman's slabs (single scattering, homogeneous-shell depths): worst plane-sunrise
-        // 24.4 and 24.9 (daylight means 11.8 and 11.3).
-        "flat" | "raymarched" => (26.0, None),
+        // Leenman's slabs (single scattering, homogeneous-shell depths): worst fisheye-sun0
+        // 16.2 and ground-sunrise 15.7 (daylight means 10.1 and 9.5).
+        "flat" | "raymarched" => (17.0, None),
         // Preetham's fit to another atmosphere, on the ground views it draws: worst
         // fisheye-sun0 30.2 (ground-sunrise 17.7, ground-noon 5.5; daylight mean 15.5).
         "preetham" => (31.0, None),

@@ -206,7 +206,8 @@ pub fn summarise(rows: &[Row]) -> Vec<Config> {
         .collect();
     // A baseline (no atmosphere) is drawn for scale but is no choice for a sky: it never
     // stands on the front. Nor does a model that refused some views (Preetham off the
-    // ground): its means cover easier views than the others' and would not compare.
+    // ground): its means cover easier views than the others' and would not compare. (A
+    // configuration that failed on a view is left off the front for the same reason.)
     let most_views = out.iter().map(|c| c.views).max().unwrap_or(0);
     let candidates: Vec<usize> = (0..out.len())
         .filter(|&i| {

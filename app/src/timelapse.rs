@@ -122,6 +122,17 @@ pub fn render(
         (1..=120).contains(&fps),
         "{fps} frames a second: from 1 to 120"
     );
+    // A model that refuses some frame (Preetham once the sun sets) fails here, before any
+    // frame is written, rather than halfway through.
+    for i in 0..frames {
+        let scene = sweep.scene(base, i, frames)?;
+        if let Some(why) = atmoscope_model::methods::info(scene.render.method).cannot_draw(&scene) {
+            anyhow::bail!(
+                "frame {} of {frames}: {why}; choose another model or a sweep inside its domain",
+                i + 1
+            );
+        }
+    }
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let mut engine = Engine::new(device, queue);
     let mut images = Vec::new();

@@ -828,7 +828,16 @@ impl Engine {
         let device = self.device.clone();
         match capture(&device, || self.render_frame(scene, view)) {
             Ok(Ok(())) => Ok(&self.stats),
-            Ok(Err(e)) => Err(e),
+            Ok(Err(e)) => {
+                if matches!(e, EngineError::CannotDraw(_)) {
+                    // Nothing ran for this scene: no earlier model's passes on show.
+                    self.stats = FrameStats {
+                        method: scene.render.method,
+                        ..FrameStats::default()
+                    };
+                }
+                Err(e)
+            }
             Err(fault) => {
                 // Whatever the frame created may be invalid: start from nothing.
                 self.pipelines.clear();
@@ -1171,8 +1180,9 @@ impl Engine {
         Ok((shown, metered))
     }
 
-    /// [`Engine::try_render`] for callers that have already checked the scene's model is a
-    /// real-time one; a path-tracer scene renders nothing and reports no pass.
+    /// [`Engine::try_render`] for callers that have already checked the scene's model draws
+    /// it (`ModelInfo::cannot_draw`); a path-tracer scene or a refused view renders nothing and
+    /// reports no pass.
     pub fn render(&mut self, scene: &Scene, view: &View) -> &FrameStats {
         if self.try_render(scene, view).is_err() {
             self.stats = FrameStats {

@@ -107,6 +107,17 @@ pub fn scene_at(u: &[f64; DIMENSIONS], method: Method) -> Scene {
     );
     s.camera.heading_deg = 360.0 * u[9];
     s.camera.fov_deg = 1.0 + 169.0 * u[10];
+    // A model that refuses views outside its domain is stressed inside it (the same edges,
+    // clamped); its refusals are checked wherever a scene strays out (`Stress::check`).
+    let d = methods::info(method).domain;
+    if d.refuses {
+        s.camera.altitude_m = s.camera.altitude_m.min(d.max_altitude_m);
+        let a = s.sun.angles();
+        s.sun = SunSettings::Angles {
+            elevation_deg: a.elevation_deg.max(d.min_sun_elevation_deg),
+            azimuth_deg: a.azimuth_deg,
+        };
+    }
     s
 }
 

@@ -600,8 +600,8 @@ fn from_above_the_atmosphere_the_view_tables_wait_until_a_view_needs_them() {
             ],
             "garcia-linan" => &["transmittance", "sky", "display"],
             // No view tables to leave stale: the same passes everywhere.
-            "bruneton" | "elek" | "nishita" | "trapezoid" | "schuler" | "galaj-taylor"
-            | "flat" | "raymarched" | "empty" => {
+            "bruneton" | "elek" | "nishita" | "trapezoid" | "schuler" | "galaj-taylor" | "flat"
+            | "raymarched" | "empty" => {
                 continue;
             }
             // The same passes from space: the sky pass marches every pixel anyway.

@@ -1,6 +1,7 @@
 // The scene's medium as the analytic transmittance models see it: air and aerosol as fitted
 // exponentials, ozone as a thin shell, and the closed forms of the optical depth along a ray
-// to space — Schuler's (2012) Chapman function and Gałaj et al.'s (2021) Taylor integral.
+// to space — Schuler's (2012) Chapman function, Gałaj et al.'s (2021) Taylor integral and
+// Leenman's (2025) homogeneous-shell chord.
 // globals.model[1] = (H and ρ₀ of air, H and ρ₀ of aerosol), globals.model[2] = (ozone column,
 // shell altitude, smallest μ through the shell, 0), from ExponentialMedium::constants.
 // Twin of model::methods::shared::exponential.
@@ -86,7 +87,6 @@ fn galaj_taylor(h: f32, mu: f32, big_h: f32) -> f32 {
     return max(big_h / slope * bracket, 0.0);
 }
 
-// ∫ exp(−h'/H) along the ray by the model's closed form: 2 Schuler, 3 Gałaj's Taylor.
 // Leenman's (2025) column: the density at h times the chord through a homogeneous shell one
 // scale height thick (DR-1), continued through the horizontal looking down; twin of
 // exponential::homogeneous_shell.
@@ -94,7 +94,7 @@ fn homogeneous_shell(h: f32, mu: f32, big_h: f32) -> f32 {
     let r = bottom_radius() + h;
     let shell = big_h * (2.0 * r + big_h);
     let m = abs(mu);
-    let up = sqrt(r * r * m * m + shell) - r * m;
+    let up = shell / (sqrt(r * r * m * m + shell) + r * m);
     var chord = up;
     if mu < 0.0 {
         chord = 2.0 * sqrt(shell) - up;
@@ -102,6 +102,8 @@ fn homogeneous_shell(h: f32, mu: f32, big_h: f32) -> f32 {
     return exp(-h / big_h) * chord;
 }
 
+// ∫ exp(−h'/H) along the ray by the model's closed form: 2 Schuler, 3 Gałaj's Taylor,
+// 4 Leenman's homogeneous shell.
 fn exponential_column(way: u32, h: f32, mu: f32, big_h: f32) -> f32 {
     if way == 2u {
         return schuler_chapman(h, mu, big_h);

@@ -6,21 +6,50 @@
 // views/sky.wgsl; the sun's disk in shared/sun_route.wgsl). Twin of
 // model::methods::shared::segments_sky.
 
-// What the segment integral reads at a point of the view ray (twin of segments_sky::Point).
-struct SlabPoint {
-    // homogeneous-shell columns to infinity along the view: air, aerosol
-    columns: vec2<f32>,
-    view: vec4<f32>,
-    sun: vec4<f32>,
+// Homogeneous-shell columns to infinity from altitude h along zenith cosine mu: air, aerosol,
+// ozone shell path (twin of Segments::columns).
+fn shell_columns(h: f32, mu: f32) -> vec3<f32> {
+    let fit = globals.model[1];
+    return vec3<f32>(
+        fit.y * homogeneous_shell(h, mu, fit.x),
+        fit.w * homogeneous_shell(h, mu, fit.z),
+        ozone_path(h, mu),
+    );
 }
 
-fn slab_point(layer: u32, h: f32, mu: f32, mu_s: f32) -> SlabPoint {
-    let fit = globals.model[1];
-    var p: SlabPoint;
-    p.columns = vec2<f32>(fit.y * homogeneous_shell(h, mu, fit.x), fit.w * homogeneous_shell(h, mu, fit.z));
-    p.view = exponential_optical_depth(layer, h, mu, 4u);
-    p.sun = exponential_optical_depth(layer, h, mu_s, 4u);
-    return p;
+// Optical depth per lane of columns c (twin of Segments::depth).
+fn columns_depth(layer: u32, c: vec3<f32>) -> vec4<f32> {
+    let b = batches[layer];
+    return b.rayleigh_scattering * c.x + b.ozone_absorption * c.z
+        + (b.aerosol_scattering + b.aerosol_absorption) * c.y;
+}
+
+// Columns between distances t_a < t_b along the ray from (h0, mu0): chords ahead where the ray
+// climbs, behind where it descends, split at its lowest point (twin of Segments::between).
+fn columns_between(h0: f32, mu0: f32, t_a: f32, t_b: f32) -> vec3<f32> {
+    let r0 = bottom_radius() + h0;
+    let a = altitude_along(h0, mu0, t_a);
+    let b = altitude_along(h0, mu0, t_b);
+    let mu_a = clamp((r0 * mu0 + t_a) / a.y, -1.0, 1.0);
+    let mu_b = clamp((r0 * mu0 + t_b) / b.y, -1.0, 1.0);
+    let lowest = -r0 * mu0;
+    let zero = vec3<f32>(0.0);
+    if lowest <= t_a {
+        return max(shell_columns(a.x, mu_a) - shell_columns(b.x, mu_b), zero);
+    }
+    if lowest >= t_b {
+        return max(shell_columns(b.x, -mu_b) - shell_columns(a.x, -mu_a), zero);
+    }
+    let through = shell_columns(altitude_along(h0, mu0, lowest).x, 0.0);
+    return max(through - shell_columns(a.x, -mu_a), zero)
+        + max(through - shell_columns(b.x, mu_b), zero);
+}
+
+// The sun's optical depth at distance t along the ray.
+fn sun_depth_at(layer: u32, h0: f32, mu0: f32, mu_s0: f32, nu: f32, t: f32) -> vec4<f32> {
+    let at = altitude_along(h0, mu0, t);
+    let mu_s_t = clamp(((bottom_radius() + h0) * mu_s0 + t * nu) / at.y, -1.0, 1.0);
+    return columns_depth(layer, shell_columns(at.x, mu_s_t));
 }
 
 // ∫₀¹ exp(−(a + (b − a)t)) dt per lane; twin of segments_sky::slab.
@@ -52,29 +81,25 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     }
     let n = u32(globals.model[0].x);
     let dt = t_max / f32(n);
-    var a_point = slab_point(layer, h0, mu0, mu_s0);
+    var sun_a = sun_depth_at(layer, h0, mu0, mu_s0, nu, 0.0);
     var depth = vec4<f32>(0.0);
     var l = vec4<f32>(0.0);
-    var mu_s_end = mu_s0;
     for (var s = 1u; s <= n; s++) {
-        let t = f32(s) * dt;
-        let at = altitude_along(h0, mu0, t);
-        let mu_t = clamp((r0 * mu0 + t) / at.y, -1.0, 1.0);
-        let mu_s_t = clamp((r0 * mu_s0 + t * nu) / at.y, -1.0, 1.0);
-        let b_point = slab_point(layer, at.x, mu_t, mu_s_t);
-        let step = max(a_point.view - b_point.view, vec4<f32>(0.0));
-        let columns = max(a_point.columns - b_point.columns, vec2<f32>(0.0));
-        let scattering = b.rayleigh_scattering * columns.x * phase_r
-            + b.aerosol_scattering * columns.y * phase_a;
-        l += b.solar_irradiance * scattering
-            * slab(depth + a_point.sun, depth + step + b_point.sun);
+        let t_a = f32(s - 1u) * dt;
+        let t_b = f32(s) * dt;
+        let seg = columns_between(h0, mu0, t_a, t_b);
+        let step = columns_depth(layer, seg);
+        let sun_b = sun_depth_at(layer, h0, mu0, mu_s0, nu, t_b);
+        let scattering = b.rayleigh_scattering * seg.x * phase_r
+            + b.aerosol_scattering * seg.y * phase_a;
+        l += b.solar_irradiance * scattering * slab(depth + sun_a, depth + step + sun_b);
         depth += step;
-        a_point = b_point;
-        mu_s_end = mu_s_t;
+        sun_a = sun_b;
     }
     if ground {
-        let sun_g = sun_transmittance_by_way(layer, 0.0, mu_s_end);
-        l += exp(-depth) * b.ground_albedo / PI * b.solar_irradiance * sun_g * max(mu_s_end, 0.0);
+        let mu_s_g = clamp((r0 * mu_s0 + t_max * nu) / altitude_along(h0, mu0, t_max).y, -1.0, 1.0);
+        let sun_g = sun_transmittance_by_way(layer, 0.0, mu_s_g);
+        l += exp(-depth) * b.ground_albedo / PI * b.solar_irradiance * sun_g * max(mu_s_g, 0.0);
     }
     return l;
 }

@@ -47,7 +47,7 @@ fn sun_transmittance_by_way(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
 }
 
 // The sun's disk seen from any altitude: from where its ray enters the atmosphere when the
-// camera is above it (twin of SingleScattering::sun_seen_from).
+// camera is above it (twin of SunRoute::seen_from).
 fn sun_through_atmosphere(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
     if h <= thickness() {
         return sun_transmittance_by_way(layer, h, mu_s);

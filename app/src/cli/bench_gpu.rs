@@ -154,6 +154,14 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         let mut scene = base.clone();
         scene.render.method = method;
         scene.render.wavelengths = set;
+        if let Some(why) = atmoscope_model::methods::info(method).cannot_draw(&scene) {
+            eprintln!(
+                "{}/{}: {why}; left out",
+                super::method_id(method),
+                set_name(set)
+            );
+            continue;
+        }
         let mut engine = Engine::new(&context.device, &context.queue);
         engine.set_timing(true);
         if args.cpu_timing {
@@ -501,7 +509,12 @@ pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
             );
         }
         for (i, (n, _, _)) in first.vs_spectral.iter().enumerate() {
-            println!("  {n} vs {s} {:.2}", mean(&|r| r.vs_spectral[i].1));
+            let m = mean(&|r| r.vs_spectral[i].1);
+            if m.is_nan() {
+                println!("  {n} vs {s}: refuses these views");
+            } else {
+                println!("  {n} vs {s} {m:.2}");
+            }
         }
     }
     Ok(ExitCode::SUCCESS)

@@ -263,6 +263,13 @@ pub fn run(probe_args: &ProbeArgs) -> anyhow::Result<ExitCode> {
         bail!("--spp: at least 2 paths are needed for a standard error");
     }
     let scene = probe_args.scene.scene()?;
+    if let ProbeMethod::Model(m) = args.method {
+        let mut drawn = scene.clone();
+        drawn.render.method = m;
+        if let Some(why) = methods::info(m).cannot_draw(&drawn) {
+            bail!("{why}");
+        }
+    }
     let p = probe(&scene, args);
     if probe_args.json {
         println!("{}", serde_json::to_string_pretty(&p)?);

@@ -104,6 +104,10 @@ impl Tally {
         self.out_of_bound += f.out_of_bound;
         self.monotonicity += f.monotonicity.len();
         self.faults += usize::from(f.fault.is_some());
+        if f.refused {
+            // Refused, and refused on the GPU too (else a fault): nothing drawn to compare.
+            return;
+        }
         if !f.in_domain {
             self.worst_outside = self.worst_outside.max(f.worst_gpu_cpu);
         } else if f.worst_gpu_cpu > self.worst_gpu_cpu || self.worst_case.is_none() {

@@ -226,6 +226,13 @@ impl CompareTab {
     }
 
     fn update_figures(&mut self, ctx: &egui::Context, scene: &Scene) {
+        // A side the model refuses has no image: no figures rather than stale ones.
+        if self.views.iter().any(|v| v.refused()) {
+            self.figures = None;
+            self.heat_map = None;
+            self.computed = None;
+            return;
+        }
         let generations = [0, 1, 2].map(|i| self.views[i].generation());
         if self.computed == Some(generations) {
             return;

@@ -161,7 +161,7 @@ pub fn export_panorama(
     if progress.cancelled() {
         return Ok(None);
     }
-    engine.render(scene, &View::new(Projection::Panorama, w, h));
+    engine.try_render(scene, &View::new(Projection::Panorama, w, h))?;
     engine.wait();
     progress.set(0.6);
     if progress.cancelled() {

@@ -202,15 +202,15 @@ impl GpuView {
 
     /// The linear radiance of the frame on screen (read back at most once per frame drawn).
     pub fn radiance(&mut self) -> Result<Arc<Radiance>, EngineError> {
+        if self.refused {
+            return Err(EngineError::NotRendered);
+        }
         if let Some((g, r)) = &self.radiance
             && *g == self.generation
         {
             return Ok(r.clone());
         }
-        let view = self
-            .view
-            .filter(|_| !self.refused)
-            .ok_or(EngineError::NotRendered)?;
+        let view = self.view.ok_or(EngineError::NotRendered)?;
         let r = Arc::new(Radiance {
             width: view.width,
             height: view.height,
@@ -228,6 +228,9 @@ impl GpuView {
     /// The luminance histogram of the frame on screen, while metering (read back at most
     /// once per frame drawn).
     pub fn histogram(&mut self) -> Option<Arc<Histogram>> {
+        if self.refused {
+            return None;
+        }
         if let Some((g, h)) = &self.histogram
             && *g == self.generation
         {
@@ -240,7 +243,15 @@ impl GpuView {
 
     /// The frame as displayed, RGBA8.
     pub fn display_rgba8(&self) -> Result<Vec<u8>, EngineError> {
+        if self.refused {
+            return Err(EngineError::NotRendered);
+        }
         self.engine.read_display()
+    }
+
+    /// Whether the scene's model refused the last frame (or is offline).
+    pub fn refused(&self) -> bool {
+        self.refused
     }
 }
 

@@ -73,20 +73,31 @@ pub fn show(
         pixels(ui.ctx(), points, layout.scale(ui.ctx())),
     );
     gpu.render(scene, &view);
-    let Some(texture) = gpu.texture() else {
-        ui.label(notice(scene).unwrap_or("The view has not been drawn yet.".into()));
-        return commands;
+    let response = match gpu.texture() {
+        Some(texture) => ui.add(egui::Image::new((texture, points)).sense(Sense::click_and_drag())),
+        None if gpu.refused() => {
+            // The model refuses this view: the reason, over an empty view that still takes the
+            // wheel and the drags that brought it here, so that they can undo it.
+            ui.label(notice(scene).unwrap_or_default());
+            let (_, response) = ui.allocate_exact_size(
+                egui::vec2(points.x, ui.available_height().min(points.y)),
+                Sense::click_and_drag(),
+            );
+            response
+        }
+        None => {
+            ui.label(notice(scene).unwrap_or("The view has not been drawn yet.".into()));
+            return commands;
+        }
     };
-    let response = ui
-        .add(egui::Image::new((texture, points)).sense(Sense::click_and_drag()))
-        .on_hover_text(match tab {
-            Tab::Fisheye => "Drag to move the sun over the dome · click a pixel to inspect it",
-            _ => {
-                "Drag to look around · wheel: altitude · Shift-drag: move the sun · click: inspect"
-            }
-        });
+    let response = response.on_hover_text(match tab {
+        Tab::Fisheye => "Drag to move the sun over the dome · click a pixel to inspect it",
+        _ => "Drag to look around · wheel: altitude · Shift-drag: move the sun · click: inspect",
+    });
     let rect = response.rect;
-    mark(ui, rect, scene);
+    if !gpu.refused() {
+        mark(ui, rect, scene);
+    }
     let pixel_at = |pos: Pos2| -> Option<(u32, u32)> {
         let f = (pos - rect.min) / rect.size();
         ((0.0..1.0).contains(&f.x) && (0.0..1.0).contains(&f.y)).then_some({

@@ -183,7 +183,7 @@ impl Domain {
         } else {
             a.aod550
         };
-        self.excludes(scene.camera.altitude_m, scene.sun.angles().elevation_deg)
+        self.excludes(scene.camera.altitude_m, sun_elevation_at_camera_deg(scene))
             .or_else(|| self.excludes_aod(aod550))
     }
 }
@@ -273,9 +273,24 @@ impl ModelInfo {
             return None;
         }
         self.domain
-            .excludes(scene.camera.altitude_m, scene.sun.angles().elevation_deg)
+            .excludes(scene.camera.altitude_m, sun_elevation_at_camera_deg(scene))
             .map(|why| CannotDraw::Refused(self.label, why))
     }
+}
+
+/// The sun's elevation above the camera's own horizon, degrees: the scene's sun elevation
+/// unless the camera is moved back over the planet (`camera.back_km`), which tilts its horizon.
+pub fn sun_elevation_at_camera_deg(scene: &Scene) -> f64 {
+    let camera = Camera::new(
+        &scene.camera,
+        scene.atmosphere.planet_radius_km * 1000.0,
+        Projection::Perspective,
+    );
+    shared::viewpoint(scene, &camera)
+        .mu_s
+        .clamp(-1.0, 1.0)
+        .asin()
+        .to_degrees()
 }
 
 /// The registry: every model, one row each.

@@ -326,15 +326,15 @@ pub const SINGLE_SCATTERING_SKY_PASS: PassSpec =
 /// Single scattering alone: the `psi` of the table-free sky pass is zero.
 pub const NO_HIGHER_ORDERS: Shader = shader!("shared/no_higher_orders.wgsl");
 
-/// The exponential medium and the closed forms of the table-free sky pass's analytic ways to
-/// the sun.
+/// The exponential medium and its closed forms of the optical depth along a ray (the analytic
+/// ways to the sun, and Leenman's depths along the view too).
 pub const EXPONENTIAL: Shader = shader!("shared/exponential.wgsl");
 
-/// What a table-free single-scattering model includes: no higher orders, or Hillaire's Ψ_ms
-/// (the `-ms` rows); the exponential medium either way.
 /// The table-free models' way to the sun and the sun's disk through it.
 pub const SUN_ROUTE: Shader = shader!("shared/sun_route.wgsl");
 
+/// What a table-free single-scattering model includes: no higher orders, or Hillaire's Ψ_ms
+/// (the `-ms` rows); the exponential medium and the way to the sun either way.
 pub const SINGLE_SCATTERING_COMMON: [Shader; 3] = [NO_HIGHER_ORDERS, EXPONENTIAL, SUN_ROUTE];
 pub const SINGLE_SCATTERING_MS_COMMON: [Shader; 3] =
     [shader!("hillaire/common.wgsl"), EXPONENTIAL, SUN_ROUTE];

@@ -1,7 +1,8 @@
 //! The scene's medium as the analytic transmittance models see it: closed forms of the optical
-//! depth towards the sun that hold for a density falling exponentially with altitude — Schuler's
-//! (2012) approximation of the Chapman grazing-incidence function ([`schuler_chapman`]) and
-//! Gałaj et al.'s (2021) Taylor-series integral ([`galaj_taylor`]).
+//! depth along a ray that hold for a density falling exponentially with altitude — Schuler's
+//! (2012) approximation of the Chapman grazing-incidence function ([`schuler_chapman`]),
+//! Gałaj et al.'s (2021) Taylor-series integral ([`galaj_taylor`]) and Leenman's (2025)
+//! homogeneous-shell chord ([`homogeneous_shell`]).
 //!
 //! Air and aerosol each become one exponential, ρ₀·exp(−h/H), fitted to the scene's profile by
 //! its first two moments: H is the altitude of the column's centroid and ρ₀ = column / H, which
@@ -10,8 +11,9 @@
 //! veil does). Ozone, a layer peaking near 22 km that no exponential resembles, becomes a thin
 //! shell at the altitude of its column's centroid, crossed with the slant factor 1/μ at the shell
 //! (the Dobson ozone air mass); the slant factor is capped at that of a horizontal path through
-//! a layer as thick as the profile's spread. The view march of these models still reads the
-//! scene's own profile: only the way to the sun is analytic.
+//! a layer as thick as the profile's spread. The view march of `schuler` and `galaj-taylor`
+//! still reads the scene's own profile (only their way to the sun is analytic); Leenman's
+//! `flat` and `raymarched` take their depths along the view from this medium too.
 
 use super::{Lanes, Params};
 use crate::geometry::rho_squared;
@@ -196,7 +198,8 @@ pub fn homogeneous_shell(h: f64, mu: f64, scale_height_m: f64, big_r: f64) -> f6
     let (r, big_h) = (big_r + h, scale_height_m);
     // (r + H)² − r², formed without cancellation.
     let shell = big_h * (2.0 * r + big_h);
-    let up = |m: f64| (r * r * m * m + shell).sqrt() - r * m;
+    // √(r²m² + s) − rm written as s / (√(r²m² + s) + rm), which keeps its digits in f32.
+    let up = |m: f64| shell / ((r * r * m * m + shell).sqrt() + r * m);
     let chord = if mu >= 0.0 {
         up(mu)
     } else {

@@ -49,14 +49,32 @@ pub fn slab(a: f64, b: f64) -> f64 {
     }
 }
 
-/// What the segment integral reads at one point of the view ray: the homogeneous-shell
-/// columns to infinity along the view (air, aerosol; relative density × m) and the optical
-/// depths along the view and towards the sun (per lane).
-struct Point {
+/// Homogeneous-shell columns from a point to infinity along a direction, or between two points:
+/// air and aerosol (profile units × m) and the ozone shell's path (relative density × m).
+#[derive(Debug, Clone, Copy, Default)]
+struct Columns {
     air: f64,
     aerosol: f64,
-    view: Lanes,
-    sun: Lanes,
+    ozone: f64,
+}
+
+impl Columns {
+    /// `self` less `other`, never negative (the shell's chords are approximations).
+    fn less(self, other: Columns) -> Columns {
+        Columns {
+            air: (self.air - other.air).max(0.0),
+            aerosol: (self.aerosol - other.aerosol).max(0.0),
+            ozone: (self.ozone - other.ozone).max(0.0),
+        }
+    }
+
+    fn plus(self, other: Columns) -> Columns {
+        Columns {
+            air: self.air + other.air,
+            aerosol: self.aerosol + other.aerosol,
+            ozone: self.ozone + other.ozone,
+        }
+    }
 }
 
 /// Leenman's segment-integral sky.
@@ -76,16 +94,51 @@ impl Segments {
         }
     }
 
-    fn point(&self, layer: usize, h: f64, mu: f64, mu_s: f64) -> Point {
-        let p = &self.params;
+    /// The columns from altitude `h` along zenith cosine `mu` to infinity.
+    fn columns(&self, h: f64, mu: f64) -> Columns {
         let m = &self.route.medium;
-        let big_r = p.bottom_radius_m;
-        let column = |h: f64, mu: f64, big_h: f64| homogeneous_shell(h, mu, big_h, big_r);
-        Point {
-            air: m.air.at_ground * column(h, mu, m.air.scale_height_m),
-            aerosol: m.aerosol.at_ground * column(h, mu, m.aerosol.scale_height_m),
-            view: m.optical_depth(p, layer, h, mu, column),
-            sun: m.optical_depth(p, layer, h, mu_s, column),
+        let big_r = self.params.bottom_radius_m;
+        Columns {
+            air: m.air.at_ground * homogeneous_shell(h, mu, m.air.scale_height_m, big_r),
+            aerosol: m.aerosol.at_ground
+                * homogeneous_shell(h, mu, m.aerosol.scale_height_m, big_r),
+            ozone: m.ozone_path(big_r, h, mu),
+        }
+    }
+
+    /// The optical depth per lane of batch `layer` of columns `c`.
+    fn depth(&self, layer: usize, c: Columns) -> Lanes {
+        let b = &self.params.batches[layer];
+        std::array::from_fn(|i| {
+            b.rayleigh_scattering[i] * c.air
+                + b.ozone_absorption[i] * c.ozone
+                + (b.aerosol_scattering[i] + b.aerosol_absorption[i]) * c.aerosol
+        })
+    }
+
+    /// The columns between distances `t_a` < `t_b` along the ray from altitude `h0` at zenith
+    /// cosine `mu0`: the difference of the chords to infinity ahead where the ray climbs,
+    /// behind (the reversed ray, from the lower, denser end) where it descends, split at its
+    /// lowest point — a chord from the higher, thinner end would be the shorter one.
+    fn between(&self, h0: f64, mu0: f64, t_a: f64, t_b: f64) -> Columns {
+        let big_r = self.params.bottom_radius_m;
+        let r0 = big_r + h0;
+        let at = |t: f64| {
+            let (h, r) = altitude_along(h0, mu0, t, big_r);
+            (h, ((r0 * mu0 + t) / r).clamp(-1.0, 1.0))
+        };
+        let ((h_a, mu_a), (h_b, mu_b)) = (at(t_a), at(t_b));
+        let lowest = -r0 * mu0;
+        if lowest <= t_a {
+            self.columns(h_a, mu_a).less(self.columns(h_b, mu_b))
+        } else if lowest >= t_b {
+            self.columns(h_b, -mu_b).less(self.columns(h_a, -mu_a))
+        } else {
+            let (h_t, _) = at(lowest);
+            let through = self.columns(h_t, 0.0);
+            through
+                .less(self.columns(h_a, -mu_a))
+                .plus(through.less(self.columns(h_b, mu_b)))
         }
     }
 
@@ -109,32 +162,29 @@ impl Segments {
         } else {
             distance_to_top(c.h, c.mu, big_r, p.top_radius_m)
         };
-        let at_t = |t: f64| {
+        // The sun's depth and zenith cosine at distance t along the ray.
+        let sun_at = |t: f64| {
             let (h_t, r_t) = altitude_along(c.h, c.mu, t, big_r);
-            let mu_t = ((r0 * c.mu + t) / r_t).clamp(-1.0, 1.0);
             let mu_s_t = ((r0 * c.mu_s + t * c.nu) / r_t).clamp(-1.0, 1.0);
-            (self.point(layer, h_t, mu_t, mu_s_t), mu_s_t)
+            (self.depth(layer, self.columns(h_t, mu_s_t)), mu_s_t)
         };
-        let (mut a_point, _) = at_t(0.0);
+        let (mut sun_a, mut mu_s_end) = sun_at(0.0);
         let mut depth = [0.0; 4];
         let mut l = [0.0; 4];
         let dt = t_max / f64::from(self.segments);
-        let mut mu_s_end = c.mu_s;
         for s in 1..=self.segments {
-            let (b_point, mu_s_b) = at_t(f64::from(s) * dt);
-            // The depth between the ends: the difference of their chords, never negative.
-            let step: Lanes = std::array::from_fn(|i| (a_point.view[i] - b_point.view[i]).max(0.0));
-            let air = (a_point.air - b_point.air).max(0.0);
-            let aerosol = (a_point.aerosol - b_point.aerosol).max(0.0);
+            let (t_a, t_b) = (f64::from(s - 1) * dt, f64::from(s) * dt);
+            let seg = self.between(c.h, c.mu, t_a, t_b);
+            let step = self.depth(layer, seg);
+            let (sun_b, mu_s_b) = sun_at(t_b);
             for i in 0..4 {
-                let scattering = b.rayleigh_scattering[i] * air * phase_r[i]
-                    + b.aerosol_scattering[i] * aerosol * phase_a[i];
-                let a = depth[i] + a_point.sun[i];
-                let bb = depth[i] + step[i] + b_point.sun[i];
+                let scattering = b.rayleigh_scattering[i] * seg.air * phase_r[i]
+                    + b.aerosol_scattering[i] * seg.aerosol * phase_a[i];
+                let (a, bb) = (depth[i] + sun_a[i], depth[i] + step[i] + sun_b[i]);
                 l[i] += b.solar_irradiance[i] * scattering * slab(a, bb);
                 depth[i] += step[i];
             }
-            a_point = b_point;
+            sun_a = sun_b;
             mu_s_end = mu_s_b;
         }
         if c.ground {
@@ -255,6 +305,43 @@ mod tests {
                 "lane {i}: {} vs {}",
                 l5[i],
                 l1[i]
+            );
+        }
+    }
+
+    /// Between two points of a ray the shell's columns follow the exponential's integral, on
+    /// rays that climb, descend to the ground and dip through their lowest point: within 3 %
+    /// where the ray is steep, 15 % along grazing stretches (the chord's error at the horizon).
+    #[test]
+    fn columns_between_two_points_follow_the_integral_climbing_descending_and_through_the_lowest_point()
+     {
+        let p = params();
+        let model = Segments::new(&p, RAYMARCHED_SEGMENTS);
+        let m = &model.route.medium;
+        let big_r = p.bottom_radius_m;
+        let exact = |h0: f64, mu0: f64, t_a: f64, t_b: f64| {
+            let n = 20_000;
+            let dt = (t_b - t_a) / n as f64;
+            (0..n)
+                .map(|k| {
+                    let (h, _) = altitude_along(h0, mu0, t_a + (k as f64 + 0.5) * dt, big_r);
+                    (-h / m.air.scale_height_m).exp() * dt
+                })
+                .sum::<f64>()
+        };
+        for (h0, mu0, t_a, t_b, bound) in [
+            (1.0, 0.5, 0.0, 20_000.0, 0.03),
+            // From a plane down to the ground: the reversed chords.
+            (10_000.0, -0.5, 0.0, 10_000.0, 0.03),
+            (10_000.0, -0.5, 10_000.0, 19_000.0, 0.03),
+            // A limb ray from 30 km through its lowest point (about 10 km) and up again.
+            (30_000.0, -0.08, 100_000.0, 700_000.0, 0.15),
+        ] {
+            let got = model.between(h0, mu0, t_a, t_b).air / m.air.at_ground;
+            let want = exact(h0, mu0, t_a, t_b);
+            assert!(
+                (got / want - 1.0).abs() < bound,
+                "h0 {h0} mu0 {mu0} [{t_a}, {t_b}]: {got} vs {want}"
             );
         }
     }
