@@ -1245,6 +1245,10 @@ fn bench_transmittance_converges_with_the_step_count_and_times_each_method() {
     let (schuler, taylor) = (find("schuler", None), find("galaj-taylor", None));
     assert!(ns(schuler) < ns(find("midpoint", Some(8))), "{schuler}");
     assert!(err(schuler) < 0.4, "{schuler}");
+    // Leenman's homogeneous shell: as cheap and as far off as Schuler's form on this medium.
+    let shell = find("homogeneous shell", None);
+    assert!(ns(shell) < ns(find("midpoint", Some(8))), "{shell}");
+    assert!(err(shell) < 0.4, "{shell}");
     assert!(err(taylor) > err(schuler), "{taylor}");
     let search = &v["galaj_grid_search"];
     let e = |k: &str| search[k].as_f64().expect("error");
