@@ -286,6 +286,8 @@ pub enum Method {
     SchulerMs,
     GalajTaylor,
     GalajTaylorMs,
+    GalajSpline,
+    GalajSplineMs,
     Flat,
     Raymarched,
     Preetham,

@@ -16,7 +16,7 @@ use atmoscope_model::constants::{
 use atmoscope_model::display;
 use atmoscope_model::methods::hillaire as h;
 use atmoscope_model::methods::shared::{self, Spacing};
-use atmoscope_model::methods::{bruneton, elek};
+use atmoscope_model::methods::{bruneton, elek, galaj_spline};
 use atmoscope_model::scene::{AerosolPhase, ToneMap};
 use std::fmt::Write;
 
@@ -147,6 +147,15 @@ pub fn wgsl_prelude() -> String {
         "SMALL_DEPTH_DIFFERENCE",
         "f32",
         f(shared::segments_sky::SMALL_DEPTH_DIFFERENCE),
+    );
+    c(
+        "GALAJ_SPLINE_MESH_SIZE",
+        "vec2<u32>",
+        format!(
+            "vec2<u32>({}u, {}u)",
+            galaj_spline::ALONG,
+            galaj_spline::ACROSS
+        ),
     );
     c(
         "GALAJ_TAYLOR_A",

@@ -600,14 +600,21 @@ fn from_above_the_atmosphere_the_view_tables_wait_until_a_view_needs_them() {
             ],
             "garcia-linan" => &["transmittance", "sky", "display"],
             // No view tables to leave stale: the same passes everywhere.
-            "bruneton" | "elek" | "nishita" | "trapezoid" | "schuler" | "galaj-taylor" | "flat"
-            | "raymarched" | "empty" => {
+            "bruneton" | "elek" | "nishita" | "trapezoid" | "schuler" | "galaj-taylor"
+            | "galaj-spline" | "flat" | "raymarched" | "empty" => {
                 continue;
             }
             // The same passes from space: the sky pass marches every pixel anyway.
             "nishita-ms" | "trapezoid-ms" | "schuler-ms" | "galaj-taylor-ms" => {
                 &["transmittance", "multiple-scattering", "sky", "display"]
             }
+            "galaj-spline-ms" => &[
+                "galaj-spline-mesh",
+                "transmittance",
+                "multiple-scattering",
+                "sky",
+                "display",
+            ],
             other => panic!("state what {other} runs from space"),
         };
         let mut engine = Engine::new(&gpu.device, &gpu.queue);

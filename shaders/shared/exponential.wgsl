@@ -102,28 +102,12 @@ fn homogeneous_shell(h: f32, mu: f32, big_h: f32) -> f32 {
     return exp(-h / big_h) * chord;
 }
 
-// ∫ exp(−h'/H) along the ray by the model's closed form: 2 Schuler, 3 Gałaj's Taylor,
-// 4 Leenman's homogeneous shell.
-fn exponential_column(way: u32, h: f32, mu: f32, big_h: f32) -> f32 {
-    if way == 2u {
-        return schuler_chapman(h, mu, big_h);
-    }
-    if way == 4u {
-        return homogeneous_shell(h, mu, big_h);
-    }
-    return galaj_taylor(h, mu, big_h);
-}
-
-// Optical depth per lane from altitude h along zenith cosine mu out of the atmosphere (twin of
-// ExponentialMedium::optical_depth).
-fn exponential_optical_depth(layer: u32, h: f32, mu: f32, way: u32) -> vec4<f32> {
+// Optical depth per lane from altitude h along zenith cosine mu out of the atmosphere, given
+// the integrals of exp(−h/H) along that ray for air and aerosol (twin of
+// ExponentialMedium::optical_depth_from_columns).
+fn exponential_optical_depth(layer: u32, h: f32, mu: f32, columns: vec2<f32>) -> vec4<f32> {
     let fit = globals.model[1];
     let b = batches[layer];
-    let air = fit.y * exponential_column(way, h, mu, fit.x);
-    var aerosol = 0.0;
-    if fit.w > 0.0 {
-        aerosol = fit.w * exponential_column(way, h, mu, fit.z);
-    }
-    return b.rayleigh_scattering * air + b.ozone_absorption * ozone_path(h, mu)
-        + (b.aerosol_scattering + b.aerosol_absorption) * aerosol;
+    return b.rayleigh_scattering * (fit.y * columns.x) + b.ozone_absorption * ozone_path(h, mu)
+        + (b.aerosol_scattering + b.aerosol_absorption) * (fit.w * columns.y);
 }

@@ -1,6 +1,7 @@
 // The table-free models' way to the sun (globals.model[0].z: 0 midpoint or 1 trapezoid rule
-// along the sun's ray over globals.model[0].y intervals, 2 Schuler's, 3 Gałaj's or 4 Leenman's
-// homogeneous-shell closed form on the exponential medium of shared/exponential.wgsl) and the
+// along the sun's ray over globals.model[0].y intervals, 2 Schuler's, 3 Gałaj's Taylor or
+// 4 Leenman's homogeneous-shell closed form on the exponential medium of shared/exponential.wgsl
+// (shared/closed_form_columns.wgsl), 5 Gałaj's spline (galaj_spline/columns.wgsl)) and the
 // sun's disk through it. Twin of model::methods::shared::single_scattering_sky::SunRoute.
 
 fn way_to_sun() -> u32 {
@@ -41,7 +42,7 @@ fn sun_transmittance_by_way(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
     }
     let way = way_to_sun();
     if way >= 2u {
-        return exp(-exponential_optical_depth(layer, h, mu_s, way)) * visible;
+        return exp(-exponential_optical_depth(layer, h, mu_s, columns_to_top(way, h, mu_s))) * visible;
     }
     return exp(-optical_depth_to_top(layer, h, mu_s)) * visible;
 }

@@ -1,8 +1,9 @@
 //! `atmoscope bench transmittance`: the optical depth from a point to the top of the
 //! atmosphere by each way the models compute it — the midpoint rule (`nishita`), the trapezoid
-//! rule (`trapezoid`), each at several step counts, Schuler's Chapman function (`schuler`) and
-//! Gałaj et al.'s Taylor integral (`galaj-taylor`) and Leenman's homogeneous-shell chord (`flat`,
-//! `raymarched`) on the fitted exponential medium, and a
+//! rule (`trapezoid`), each at several step counts, Schuler's Chapman function (`schuler`),
+//! Gałaj et al.'s Taylor integral (`galaj-taylor`) and Hermite spline over a 50 × 20 mesh
+//! (`galaj-spline`), and Leenman's homogeneous-shell chord (`flat`, `raymarched`) on the fitted
+//! exponential medium, and a
 //! look-up of the transmittance table the table-based models share — against an adaptive f64
 //! quadrature of the scene's medium, over heights and zenith angles, with the CPU time of one
 //! evaluation: the comparison of Gałaj et al. (2021) for the methods Atmoscope has. It also
@@ -136,6 +137,7 @@ pub fn run(args: &TransmittanceBench) -> anyhow::Result<ExitCode> {
     for (name, way) in [
         ("schuler (Chapman)", Way::SchulerChapman),
         ("galaj-taylor", Way::GalajTaylor),
+        ("galaj-spline", Way::GalajSpline),
         ("homogeneous shell", Way::HomogeneousShell),
     ] {
         let route = SunRoute::new(&p, way);

@@ -12,6 +12,7 @@ pub mod bruneton;
 pub mod elek;
 pub mod empty;
 pub mod flat;
+pub mod galaj_spline;
 pub mod galaj_taylor;
 pub mod garcia_linan;
 pub mod hillaire;
@@ -450,6 +451,32 @@ pub const MODELS: &[ModelInfo] = &[
         refittable: false,
         baseline: false,
         build: Some(galaj_taylor::build_ms),
+    },
+    ModelInfo {
+        method: Method::GalajSpline,
+        id: "galaj-spline",
+        label: "Gałaj 2021 (spline)",
+        citation: "T. Gałaj, F. Pietrusiak, M. Galewski, R. Ledzion, A. Wojciechowski (2021), Hybrid Integration Method for Sunlight Atmospheric Scattering, IEEE Access 9: the spline transmittance (Hermite, 50 × 20 mesh)",
+        summary: "Single scattering marched along the view ray, with the optical depth towards the sun integrated exactly over a cubic Hermite spline of the integrand, read from a 50 × 20 mesh per constituent (lines above the ground in distance, lines meeting it in altitude); exponential fits of air and aerosol, ozone as a thin shell; no higher orders.",
+        domain: galaj_spline::DOMAIN,
+        tables: &galaj_spline::TABLES,
+        gathers_orders: false,
+        refittable: false,
+        baseline: false,
+        build: Some(galaj_spline::build),
+    },
+    ModelInfo {
+        method: Method::GalajSplineMs,
+        id: "galaj-spline-ms",
+        label: "Gałaj 2021 (spline) + Hillaire's Ψ_ms",
+        citation: "The galaj-spline row, with the multiple-scattering table of S. Hillaire (2020) as its higher orders",
+        summary: "The galaj-spline row's single scattering plus Hillaire's isotropic higher orders Ψ_ms.",
+        domain: galaj_spline::DOMAIN_MS,
+        tables: &galaj_spline::TABLES_MS,
+        gathers_orders: false,
+        refittable: false,
+        baseline: false,
+        build: Some(galaj_spline::build_ms),
     },
     ModelInfo {
         method: Method::Flat,

@@ -11,6 +11,7 @@ pub mod bruneton;
 pub mod elek;
 pub mod empty;
 pub mod flat;
+pub mod galaj_spline;
 pub mod galaj_taylor;
 pub mod garcia_linan;
 pub mod hillaire;
@@ -330,24 +331,45 @@ pub const NO_HIGHER_ORDERS: Shader = shader!("shared/no_higher_orders.wgsl");
 /// ways to the sun, and Leenman's depths along the view too).
 pub const EXPONENTIAL: Shader = shader!("shared/exponential.wgsl");
 
+/// The closed forms' columns along a ray for the way to the sun (`galaj_spline` defines its
+/// own from its mesh).
+pub const CLOSED_FORM_COLUMNS: Shader = shader!("shared/closed_form_columns.wgsl");
+
 /// The table-free models' way to the sun and the sun's disk through it.
 pub const SUN_ROUTE: Shader = shader!("shared/sun_route.wgsl");
 
+/// Hillaire's Ψ_ms table as a single-scattering model's higher orders (the `-ms` rows).
+pub const HILLAIRE_HIGHER_ORDERS: Shader = shader!("hillaire/common.wgsl");
+
 /// What a table-free single-scattering model includes: no higher orders, or Hillaire's Ψ_ms
-/// (the `-ms` rows); the exponential medium and the way to the sun either way.
-pub const SINGLE_SCATTERING_COMMON: [Shader; 3] = [NO_HIGHER_ORDERS, EXPONENTIAL, SUN_ROUTE];
-pub const SINGLE_SCATTERING_MS_COMMON: [Shader; 3] =
-    [shader!("hillaire/common.wgsl"), EXPONENTIAL, SUN_ROUTE];
+/// (the `-ms` rows); the exponential medium, its columns and the way to the sun either way.
+pub const SINGLE_SCATTERING_COMMON: [Shader; 4] = [
+    NO_HIGHER_ORDERS,
+    EXPONENTIAL,
+    CLOSED_FORM_COLUMNS,
+    SUN_ROUTE,
+];
+pub const SINGLE_SCATTERING_MS_COMMON: [Shader; 4] = [
+    HILLAIRE_HIGHER_ORDERS,
+    EXPONENTIAL,
+    CLOSED_FORM_COLUMNS,
+    SUN_ROUTE,
+];
 
 /// Leenman's segment-integral sky (`flat`, `raymarched`) and what it reads.
-pub const SEGMENTS_COMMON: [Shader; 2] = [EXPONENTIAL, SUN_ROUTE];
+pub const SEGMENTS_COMMON: [Shader; 3] = [EXPONENTIAL, CLOSED_FORM_COLUMNS, SUN_ROUTE];
 pub const SEGMENTS_SKY_PASS: PassSpec = PassSpec::sky(shader!("shared/segments_sky.wgsl"), &[]);
+
+/// The passes that build Hillaire's higher orders for a single-scattering model: the
+/// transmittance and Ψ_ms tables.
+pub const HIGHER_ORDERS_PASSES: [PassSpec; 2] =
+    [TRANSMITTANCE_PASS, hillaire::MULTIPLE_SCATTERING_PASS];
 
 /// The passes of a table-free single-scattering model with Hillaire's higher orders: the
 /// transmittance and Ψ_ms tables (Hillaire's pass), then the sky pass reading Ψ_ms.
 pub const SINGLE_SCATTERING_MS_PASSES: [PassSpec; 3] = [
-    TRANSMITTANCE_PASS,
-    hillaire::MULTIPLE_SCATTERING_PASS,
+    HIGHER_ORDERS_PASSES[0],
+    HIGHER_ORDERS_PASSES[1],
     PassSpec::sky(
         shader!("shared/single_scattering_sky.wgsl"),
         &["multiple-scattering"],
@@ -381,7 +403,7 @@ pub const COMMON: [Shader; 8] = [
 ];
 
 /// Every real-time model's passes, in registry order.
-pub const GPU_METHODS: [GpuMethod; 16] = [
+pub const GPU_METHODS: [GpuMethod; 18] = [
     hillaire::METHOD,
     bruneton::METHOD,
     garcia_linan::METHOD,
@@ -394,6 +416,8 @@ pub const GPU_METHODS: [GpuMethod; 16] = [
     schuler::METHOD_MS,
     galaj_taylor::METHOD,
     galaj_taylor::METHOD_MS,
+    galaj_spline::METHOD,
+    galaj_spline::METHOD_MS,
     flat::METHOD,
     raymarched::METHOD,
     preetham::METHOD,

@@ -125,13 +125,29 @@ impl ExponentialMedium {
         mu: f64,
         column: impl Fn(f64, f64, f64) -> f64,
     ) -> Lanes {
-        let b = &p.batches[layer];
-        let air = self.air.at_ground * column(h, mu, self.air.scale_height_m);
         let aerosol = if self.aerosol.at_ground > 0.0 {
-            self.aerosol.at_ground * column(h, mu, self.aerosol.scale_height_m)
+            column(h, mu, self.aerosol.scale_height_m)
         } else {
             0.0
         };
+        let air = column(h, mu, self.air.scale_height_m);
+        self.optical_depth_from_columns(p, layer, h, mu, (air, aerosol))
+    }
+
+    /// Optical depth per lane of batch `layer` from altitude `h` along zenith cosine `mu` out
+    /// of the atmosphere, given the integrals of exp(−h/H) along that ray for air and aerosol
+    /// (m, per unit ground density): ozone through its shell.
+    pub fn optical_depth_from_columns(
+        &self,
+        p: &Params,
+        layer: usize,
+        h: f64,
+        mu: f64,
+        (air_column, aerosol_column): (f64, f64),
+    ) -> Lanes {
+        let b = &p.batches[layer];
+        let air = self.air.at_ground * air_column;
+        let aerosol = self.aerosol.at_ground * aerosol_column;
         let ozone = self.ozone_path(p.bottom_radius_m, h, mu);
         std::array::from_fn(|i| {
             b.rayleigh_scattering[i] * air

@@ -175,6 +175,9 @@ pub enum Way {
     /// Leenman's (2025) homogeneous shell one scale height thick on the exponential medium
     /// (`flat`, `raymarched`).
     HomogeneousShell,
+    /// Gałaj et al.'s (2021) Hermite spline over a mesh of the exponential medium's integrand
+    /// (`galaj-spline`).
+    GalajSpline,
 }
 
 impl Way {
@@ -186,16 +189,19 @@ impl Way {
             Way::SchulerChapman => 2.0,
             Way::GalajTaylor => 3.0,
             Way::HomogeneousShell => 4.0,
+            Way::GalajSpline => 5.0,
         }
     }
 }
 
 /// The way to the sun of a table-free model, with what it needs: the march's interval count,
-/// the fitted exponential medium of the closed forms.
+/// the fitted exponential medium of the closed forms, the spline's mesh.
 pub struct SunRoute {
     pub way: Way,
     pub intervals: u32,
     pub medium: ExponentialMedium,
+    /// The integrand's mesh of [`Way::GalajSpline`] (`galaj_spline::MESH`); None otherwise.
+    pub mesh: Option<Lut>,
 }
 
 impl SunRoute {
@@ -204,6 +210,8 @@ impl SunRoute {
             way,
             intervals: steps(p).1,
             medium: ExponentialMedium::fit(p),
+            mesh: (way == Way::GalajSpline)
+                .then(|| crate::methods::galaj_spline::compute_mesh_lut(p)),
         }
     }
 
@@ -228,6 +236,15 @@ impl SunRoute {
             Way::HomogeneousShell => self.medium.optical_depth(p, layer, h, mu, |h, mu, hh| {
                 exponential::homogeneous_shell(h, mu, hh, big_r)
             }),
+            Way::GalajSpline => {
+                let mesh = self
+                    .mesh
+                    .as_ref()
+                    .expect("SunRoute::new builds the spline's mesh");
+                let columns = crate::methods::galaj_spline::columns(p, mesh, h, mu);
+                self.medium
+                    .optical_depth_from_columns(p, layer, h, mu, columns)
+            }
         }
     }
 
@@ -324,6 +341,9 @@ impl crate::methods::SkyModel for SingleScattering {
     }
 
     fn table(&self, id: &str) -> Option<&Lut> {
+        if id == crate::methods::galaj_spline::MESH.id {
+            return self.sun_path.mesh.as_ref();
+        }
         let t = self.higher_orders.as_ref()?;
         match id {
             "transmittance" => Some(&t.transmittance),

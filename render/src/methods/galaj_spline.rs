@@ -1,0 +1,48 @@
+//! Gałaj et al.'s (2021) spline transmittance on the GPU: the mesh pass
+//! (`shaders/galaj_spline/mesh.wgsl`), then the table-free single-scattering sky
+//! (`shaders/shared/single_scattering_sky.wgsl`) whose way to the sun integrates the spline over
+//! that mesh (`shaders/galaj_spline/columns.wgsl`). Its f64 twin is
+//! `atmoscope_model::methods::galaj_spline`.
+
+use super::{
+    Dispatch, EXPONENTIAL, GpuMethod, HIGHER_ORDERS_PASSES, HILLAIRE_HIGHER_ORDERS,
+    NO_HIGHER_ORDERS, PassSpec, Repeat, SUN_ROUTE, Shader, shader,
+};
+use atmoscope_model::methods::galaj_spline::MESH;
+use atmoscope_model::methods::shared::single_scattering_sky::{self, Way};
+use atmoscope_model::scene::Method;
+
+/// The spline's columns, in place of the closed forms'.
+const COLUMNS: Shader = shader!("galaj_spline/columns.wgsl");
+
+/// The mesh of the integrand, rebuilt with the atmosphere.
+pub const MESH_PASS: PassSpec = PassSpec::table(
+    "galaj-spline-mesh",
+    shader!("galaj_spline/mesh.wgsl"),
+    &[],
+    &[MESH.id],
+    Dispatch::Table(MESH.id),
+    Repeat::Once,
+);
+
+const SKY_SHADER: Shader = shader!("shared/single_scattering_sky.wgsl");
+
+pub const METHOD: GpuMethod = GpuMethod {
+    method: Method::GalajSpline,
+    common: &[NO_HIGHER_ORDERS, EXPONENTIAL, COLUMNS, SUN_ROUTE],
+    constants: |p| single_scattering_sky::constants(p, Way::GalajSpline),
+    passes: &[MESH_PASS, PassSpec::sky(SKY_SHADER, &[MESH.id])],
+};
+
+/// With Hillaire's Ψ_ms table as the higher orders (the `galaj-spline-ms` row).
+pub const METHOD_MS: GpuMethod = GpuMethod {
+    method: Method::GalajSplineMs,
+    common: &[HILLAIRE_HIGHER_ORDERS, EXPONENTIAL, COLUMNS, SUN_ROUTE],
+    constants: |p| single_scattering_sky::constants(p, Way::GalajSpline),
+    passes: &[
+        MESH_PASS,
+        HIGHER_ORDERS_PASSES[0],
+        HIGHER_ORDERS_PASSES[1],
+        PassSpec::sky(SKY_SHADER, &[MESH.id, "multiple-scattering"]),
+    ],
+};
