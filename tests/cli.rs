@@ -1410,3 +1410,81 @@ fn every_model_keeps_its_stated_aod_range() {
         );
     }
 }
+
+/// `bench leenman` replays Leenman's appendices on his set-up: his views and models by his
+/// names, ours by their ids, a refusal left out, his published value beside ours, and the
+/// transmittance table far closer to his Riemann reference than his flat model's shell.
+#[test]
+fn bench_leenman_writes_his_tables_beside_ours() {
+    let out = std::env::temp_dir().join(format!("atmoscope-bench-leenman-{}", std::process::id()));
+    let out_arg = out.to_string_lossy().into_owned();
+    let o = atmoscope(&[
+        "bench",
+        "leenman",
+        "--size",
+        "16x9",
+        "--spp",
+        "4",
+        "--views",
+        "ground-noon,space",
+        "--methods",
+        "hillaire,preetham,galaj-spline",
+        "--out",
+        &out_arg,
+    ]);
+    if skipped_without_gpu(&o) {
+        return;
+    }
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("leenman.csv")).expect("leenman.csv");
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("table,view,model,value"));
+    let rows: Vec<(String, String, String, f64)> = lines
+        .map(|l| {
+            // The model may be quoted (his "Preetham, Shirley, and Smits").
+            let (head, value) = l.rsplit_once(',').expect("four cells");
+            let mut cells = head.splitn(3, ',');
+            let (t, v, m) = (
+                cells.next().expect("table"),
+                cells.next().expect("view"),
+                cells.next().expect("model"),
+            );
+            (
+                t.into(),
+                v.into(),
+                m.trim_matches('"').into(),
+                value.parse().expect("number"),
+            )
+        })
+        .collect();
+    let has = |t: &str, v: &str, m: &str| rows.iter().any(|r| r.0 == t && r.1 == v && r.2 == m);
+    for table in ["A_FLIP", "B_RMSE"] {
+        for view in ["ground-noon", "space"] {
+            assert!(has(table, view, "Hillaire"), "{table} {view}");
+            assert!(has(table, view, "galaj-spline"), "{table} {view}");
+        }
+        assert!(has(table, "ground-noon", "Preetham, Shirley, and Smits"));
+        // Preetham refuses a view from space: no value.
+        assert!(!has(table, "space", "Preetham, Shirley, and Smits"));
+    }
+    let value = |t: &str, v: &str, m: &str| {
+        rows.iter()
+            .find(|r| r.0 == t && r.1 == v && r.2 == m)
+            .map(|r| r.3)
+            .unwrap_or_else(|| panic!("{t} {v} {m}"))
+    };
+    for view in ["ground", "plane", "orbit", "space", "planet-shadow-orbit"] {
+        let (flat, table) = (
+            value("D_RMSE_T", view, "Flat"),
+            value("D_RMSE_T", view, "transmittance table"),
+        );
+        assert!(flat > 0.0 && table < flat, "{view}: {table} vs flat {flat}");
+        assert!(has("C_FLIP_T", view, "Flat"), "{view}");
+    }
+    assert!(rows.iter().all(|r| r.3.is_finite() && r.3 >= 0.0));
+    let md = std::fs::read_to_string(out.join("leenman.md")).expect("leenman.md");
+    // His A_FLIP for Hillaire at ground-noon, 0.07796405, beside ours.
+    assert!(md.contains("| 0.0780 / "), "{md}");
+    assert!(md.contains("refused"), "{md}");
+    let _ = std::fs::remove_dir_all(&out);
+}

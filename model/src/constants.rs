@@ -37,6 +37,16 @@ pub const AIR_DENSITY_FIT_A: f64 = 0.07771971;
 /// Exponent b of the air density fit.
 pub const AIR_DENSITY_FIT_B: f64 = 1.16364243;
 
+/// Scale height of the exponential air of Bruneton & Neyret (2008) and Hillaire (2020), m: the
+/// real-time literature's Earth (`AirProfile::Exponential8km`).
+pub const EXPONENTIAL_AIR_SCALE_HEIGHT_M: f64 = 8_000.0;
+
+/// The ozone "tent" of Bruneton (2017) and Hillaire (2020): density rising linearly from zero
+/// at 10 km to its peak at 25 km and back to zero at 40 km (`OzoneProfile::Tent`). Peak, m.
+pub const OZONE_TENT_PEAK_M: f64 = 25_000.0;
+/// Half width of the ozone tent at its base, m.
+pub const OZONE_TENT_HALF_WIDTH_M: f64 = 15_000.0;
+
 /// Log-normal ozone profile fit of García Liñán (2023): n(h) ∝ exp(-k·(ln h − c)²)/h, h in km.
 pub const OZONE_FIT_C: f64 = 3.22261;
 /// Width parameter k of the ozone fit, 1/(2·0.3²).

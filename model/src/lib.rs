@@ -12,6 +12,7 @@ pub mod constants;
 pub mod display;
 pub mod files;
 pub mod geometry;
+pub mod leenman;
 pub mod methods;
 pub mod metrics;
 pub mod mie;

@@ -2,13 +2,16 @@
 //!
 //! Air: the US Standard Atmosphere 1976 table (geopotential levels converted to geometric
 //! altitude; continued above 86 km by the AFGL US-standard profile), any of the six AFGL 1986
-//! profiles (Anderson et al. 1986), or the fit n(h) = n₀·exp(−a·h^b) of García Liñán (2023).
-//! Ozone: the AFGL profiles, the Guimera et al. (2018) 9 km layers, or García Liñán's smooth
-//! log-normal fit, each scaled to a total column. Tables are interpolated linearly in ln(n)
+//! profiles (Anderson et al. 1986), the fit n(h) = n₀·exp(−a·h^b) of García Liñán (2023), or
+//! the real-time literature's pure exponential with an 8 km scale height (Bruneton & Neyret
+//! 2008, Hillaire 2020). Ozone: the AFGL profiles, the Guimera et al. (2018) 9 km layers,
+//! García Liñán's smooth log-normal fit, or Bruneton's (2017) tent from 10 to 40 km, each
+//! scaled to a total column. Tables are interpolated linearly in ln(n)
 //! against altitude, exact for an exponential between levels.
 
 use crate::constants::{
-    AIR_DENSITY_FIT_A, AIR_DENSITY_FIT_B, DOBSON_UNIT_PER_M2, OZONE_FIT_C, OZONE_FIT_K,
+    AIR_DENSITY_FIT_A, AIR_DENSITY_FIT_B, DOBSON_UNIT_PER_M2, EXPONENTIAL_AIR_SCALE_HEIGHT_M,
+    OZONE_FIT_C, OZONE_FIT_K, OZONE_TENT_HALF_WIDTH_M, OZONE_TENT_PEAK_M,
 };
 use crate::quadrature::integrate_adaptive;
 use crate::table::tables;
@@ -78,6 +81,9 @@ pub enum AirProfile {
     Afgl(AfglProfile),
     /// n₀·exp(−a·h^b) with a = 0.07771971, b = 1.16364243, h in km (García Liñán 2023).
     ExponentialFit,
+    /// n₀·exp(−h/8 km): the air of Bruneton & Neyret (2008) and Hillaire (2020), with the US
+    /// Standard Atmosphere's ground density.
+    Exponential8km,
 }
 
 impl AirProfile {
@@ -86,6 +92,7 @@ impl AirProfile {
         let mut v = vec![AirProfile::UsStandard1976];
         v.extend(AfglProfile::ALL.map(AirProfile::Afgl));
         v.push(AirProfile::ExponentialFit);
+        v.push(AirProfile::Exponential8km);
         v
     }
 
@@ -94,6 +101,7 @@ impl AirProfile {
             AirProfile::UsStandard1976 => "us-standard-1976",
             AirProfile::Afgl(p) => p.cli_name(),
             AirProfile::ExponentialFit => "exponential-fit",
+            AirProfile::Exponential8km => "exponential-8km",
         }
     }
 
@@ -112,6 +120,9 @@ impl AirProfile {
                 us_standard_air().eval(0.0)
                     * (-AIR_DENSITY_FIT_A * h_km.powf(AIR_DENSITY_FIT_B)).exp()
             }
+            AirProfile::Exponential8km => {
+                us_standard_air().eval(0.0) * (-h_m.max(0.0) / EXPONENTIAL_AIR_SCALE_HEIGHT_M).exp()
+            }
         }
     }
 
@@ -120,7 +131,7 @@ impl AirProfile {
         match self {
             AirProfile::UsStandard1976 => &us_standard_air().z_m,
             AirProfile::Afgl(p) => &afgl_levels()[p.index()].air.z_m,
-            AirProfile::ExponentialFit => &[],
+            AirProfile::ExponentialFit | AirProfile::Exponential8km => &[],
         }
     }
 }
@@ -135,6 +146,9 @@ pub enum OzoneProfile {
     /// García Liñán (2023): n ∝ exp(−k·(ln h − c)²)/h, h in km, peak near 20 km.
     #[default]
     Fit,
+    /// Bruneton (2017) and Hillaire (2020): a tent rising linearly from 10 km to its peak at
+    /// 25 km and falling to zero at 40 km.
+    Tent,
 }
 
 impl OzoneProfile {
@@ -142,6 +156,7 @@ impl OzoneProfile {
         let mut v: Vec<_> = AfglProfile::ALL.map(OzoneProfile::Afgl).to_vec();
         v.push(OzoneProfile::Guimera);
         v.push(OzoneProfile::Fit);
+        v.push(OzoneProfile::Tent);
         v
     }
 
@@ -150,6 +165,7 @@ impl OzoneProfile {
             OzoneProfile::Afgl(p) => p.cli_name(),
             OzoneProfile::Guimera => "guimera",
             OzoneProfile::Fit => "fit",
+            OzoneProfile::Tent => "tent",
         }
     }
 
@@ -177,6 +193,9 @@ impl OzoneProfile {
                 }
                 (-OZONE_FIT_K * (h_km.ln() - OZONE_FIT_C).powi(2)).exp() / h_km
             }
+            OzoneProfile::Tent => {
+                (1.0 - (h_m - OZONE_TENT_PEAK_M).abs() / OZONE_TENT_HALF_WIDTH_M).max(0.0)
+            }
         }
     }
 
@@ -185,6 +204,11 @@ impl OzoneProfile {
             OzoneProfile::Afgl(p) => afgl_levels()[p.index()].ozone.z_m.clone(),
             OzoneProfile::Guimera => guimera_layers().iter().flat_map(|l| [l.0, l.1]).collect(),
             OzoneProfile::Fit => vec![],
+            OzoneProfile::Tent => vec![
+                OZONE_TENT_PEAK_M - OZONE_TENT_HALF_WIDTH_M,
+                OZONE_TENT_PEAK_M,
+                OZONE_TENT_PEAK_M + OZONE_TENT_HALF_WIDTH_M,
+            ],
         }
     }
 
@@ -359,6 +383,21 @@ mod tests {
                 prev = n;
             }
         }
+    }
+
+    /// The literature's Earth: air e-folds over 8 km exactly, ozone is a tent whose column
+    /// is its peak density times 15 km (Bruneton's 300 DU over 15 km peak).
+    #[test]
+    fn the_exponential_air_and_the_ozone_tent_have_their_stated_shapes() {
+        let p = AirProfile::Exponential8km;
+        let ratio = p.number_density_m3(0.0) / p.number_density_m3(8_000.0);
+        assert!((ratio - std::f64::consts::E).abs() < 1e-12, "{ratio}");
+        let o = OzoneProfile::Tent.scaled(300.0, 100_000.0);
+        let peak = o.number_density_m3(25_000.0);
+        assert!((peak * 15_000.0 / (300.0 * DOBSON_UNIT_PER_M2) - 1.0).abs() < 1e-9);
+        assert!((o.number_density_m3(17_500.0) / peak - 0.5).abs() < 1e-12);
+        assert_eq!(o.number_density_m3(9_000.0), 0.0);
+        assert_eq!(o.number_density_m3(41_000.0), 0.0);
     }
 
     #[test]

@@ -33,6 +33,10 @@ pub enum Bench {
     /// Optical depth to the top of the atmosphere by the midpoint rule, the trapezoid rule and
     /// the transmittance table against adaptive quadrature, with the CPU time per evaluation.
     Transmittance(super::bench_transmittance::TransmittanceBench),
+    /// Leenman's (2025) comparison replayed: his Earth, views and metrics (his appendices
+    /// A–D), every model he compares and ours; leenman.csv and leenman.md with his value
+    /// beside ours.
+    Leenman(super::bench_leenman::LeenmanBench),
 }
 
 #[derive(Args, Debug)]
@@ -78,6 +82,7 @@ pub fn run(bench: &Bench) -> anyhow::Result<ExitCode> {
         Bench::Accuracy(args) => super::bench_gpu::accuracy(args),
         Bench::Aod(args) => super::bench_aod::run(args),
         Bench::Methods(args) => super::bench_methods::run(args),
+        Bench::Leenman(args) => super::bench_leenman::run(args),
         Bench::Transmittance(args) => super::bench_transmittance::run(args),
     }
 }

@@ -384,7 +384,7 @@ fn measure(
 }
 
 /// Which pixels of a `w`×`h` view of `scene` the sun's disk does not touch.
-fn outside_sun_disk(scene: &Scene, projection: Projection, w: u32, h: u32) -> Vec<bool> {
+pub(super) fn outside_sun_disk(scene: &Scene, projection: Projection, w: u32, h: u32) -> Vec<bool> {
     let camera = Camera::new(
         &scene.camera,
         scene.atmosphere.planet_radius_km * 1000.0,

@@ -5,6 +5,7 @@ mod aerosols;
 mod bench;
 mod bench_aod;
 mod bench_gpu;
+mod bench_leenman;
 mod bench_methods;
 mod bench_transmittance;
 mod compare;

@@ -177,24 +177,67 @@ pub fn run(args: &ReferenceArgs) -> anyhow::Result<ExitCode> {
 
 fn render_job(job: &Job, args: &ReferenceArgs) -> anyhow::Result<()> {
     let (w, h) = job.size;
+    let settings = PathTrace {
+        spp: args.spp,
+        noise: args.noise,
+        max_order: args.max_order,
+        seed: args.seed,
+        no_cache: args.no_cache,
+    };
+    let label = job
+        .out
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let rgb = path_traced(&job.scene, job.projection, job.size, &settings, &label)?;
+    let png = job.out.with_extension("png");
+    write_exr(&job.out, &rgb, w, h)?;
+    write_png(&png, &rgb, w, h, &job.scene)?;
+    eprintln!("{}: preview {}", job.out.display(), png.display());
+    Ok(())
+}
+
+/// How a path-traced reference is rendered.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PathTrace {
+    /// Paths per pixel (default 64, or until `noise` is reached).
+    pub spp: Option<u64>,
+    /// Stop at this mean relative standard error of pixel luminance.
+    pub noise: Option<f64>,
+    /// Highest scattering order (None: all).
+    pub max_order: Option<u32>,
+    pub seed: u64,
+    /// Ignore and overwrite the cache.
+    pub no_cache: bool,
+}
+
+/// The path-traced linear sRGB image (W·m⁻²·sr⁻¹, row-major) of `scene` through `projection`
+/// at `size`: from the cache when an entry reads back whole, else rendered with a progress bar
+/// labelled `label` and cached.
+pub(crate) fn path_traced(
+    scene: &Scene,
+    projection: Projection,
+    (w, h): (u32, u32),
+    pt: &PathTrace,
+    label: &str,
+) -> anyhow::Result<Vec<[f64; 3]>> {
     let key = format!(
         "v{CACHE_VERSION}|{}|{:?}|{w}x{h}|{:?}|{:?}|{:?}|{}",
-        job.scene.to_ron(),
-        job.projection,
-        args.spp,
-        args.noise,
-        args.max_order,
-        args.seed
+        scene.to_ron(),
+        projection,
+        pt.spp,
+        pt.noise,
+        pt.max_order,
+        pt.seed
     );
     let cached = crate::cache::dir("references")
         .join(format!("{:016x}.exr", crate::cache::key(key.as_bytes())));
-    let png = job.out.with_extension("png");
     // A cache entry that does not read back whole (cut short, corrupted, another size) is
     // ignored and replaced.
-    let hit = (cached.exists() && !args.no_cache)
+    let hit = (cached.exists() && !pt.no_cache)
         .then(|| crate::images::read_exr(&cached))
         .and_then(|r| match r {
-            Ok((rgb, cw, ch)) if (cw, ch) == (w, h) => Some((rgb, cw, ch)),
+            Ok((rgb, cw, ch)) if (cw, ch) == (w, h) => Some(rgb),
             Ok(_) | Err(_) => {
                 eprintln!(
                     "{}: unreadable cache entry, rendering anew",
@@ -203,35 +246,24 @@ fn render_job(job: &Job, args: &ReferenceArgs) -> anyhow::Result<()> {
                 None
             }
         });
-    if let Some((rgb, cw, ch)) = hit {
-        write_exr(&job.out, &rgb, cw, ch)?;
-        write_png(&png, &rgb, cw, ch, &job.scene)?;
-        eprintln!(
-            "{}: from the cache ({})",
-            job.out.display(),
-            cached.display()
-        );
-        return Ok(());
+    if let Some(rgb) = hit {
+        eprintln!("{label}: from the cache ({})", cached.display());
+        return Ok(rgb);
     }
     let settings = PathTracerSettings {
-        max_order: args.max_order,
+        max_order: pt.max_order,
         ..PathTracerSettings::default()
     };
-    let mut render = ReferenceRender::new(&job.scene, job.projection, w, h, args.seed, settings);
-    let target_spp = args
+    let mut render = ReferenceRender::new(scene, projection, w, h, pt.seed, settings);
+    let target_spp = pt
         .spp
-        .unwrap_or(if args.noise.is_some() { 1 << 20 } else { 64 });
+        .unwrap_or(if pt.noise.is_some() { 1 << 20 } else { 64 });
     let bar = ProgressBar::new(target_spp);
     bar.set_style(
         ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} spp  {msg}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
-    bar.set_prefix(
-        job.out
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default(),
-    );
+    bar.set_prefix(label.to_string());
     let never = AtomicBool::new(false);
     let start = Instant::now();
     let mut pass = 1u64;
@@ -248,7 +280,7 @@ fn render_job(job: &Job, args: &ReferenceArgs) -> anyhow::Result<()> {
             render.samples_per_pixel() as f64 * (w * h) as f64 / start.elapsed().as_secs_f64();
         bar.set_position(render.samples_per_pixel());
         bar.set_message(format!("noise {:.2} %  {:.0} paths/s", noise * 100.0, rate));
-        if args
+        if pt
             .noise
             .is_some_and(|target| noise <= target && render.samples_per_pixel() >= 16)
         {
@@ -257,8 +289,6 @@ fn render_job(job: &Job, args: &ReferenceArgs) -> anyhow::Result<()> {
     }
     bar.finish();
     let rgb = render.linear_srgb();
-    write_exr(&job.out, &rgb, w, h)?;
-    write_png(&png, &rgb, w, h, &job.scene)?;
     if let Some(dir) = cached.parent()
         && std::fs::create_dir_all(dir).is_ok()
     {
@@ -266,12 +296,10 @@ fn render_job(job: &Job, args: &ReferenceArgs) -> anyhow::Result<()> {
         let _ = write_exr(&cached, &rgb, w, h);
     }
     eprintln!(
-        "{}: {} spp, noise {:.2} % (mean per-pixel relative standard error of luminance), {:.1} s; preview {}",
-        job.out.display(),
+        "{label}: {} spp, noise {:.2} % (mean per-pixel relative standard error of luminance), {:.1} s",
         render.samples_per_pixel(),
         render.mean_relative_error() * 100.0,
         start.elapsed().as_secs_f64(),
-        png.display()
     );
-    Ok(())
+    Ok(rgb)
 }

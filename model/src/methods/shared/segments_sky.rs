@@ -142,6 +142,20 @@ impl Segments {
         }
     }
 
+    /// Optical depth per lane of batch `layer` between distances `t_a` < `t_b` along the ray
+    /// from altitude `h0` at zenith cosine `mu0`, as the slabs see it (Leenman's flat
+    /// transmittance).
+    pub fn optical_depth_between(
+        &self,
+        layer: usize,
+        h0: f64,
+        mu0: f64,
+        t_a: f64,
+        t_b: f64,
+    ) -> Lanes {
+        self.depth(layer, self.between(h0, mu0, t_a, t_b))
+    }
+
     /// The radiance of one batch seen from `position` (m from the planet's centre, altitude
     /// `h`) along the unit direction `dir`, with the sun in direction `sun` (the disk not
     /// included).
