@@ -1488,3 +1488,37 @@ fn bench_leenman_writes_his_tables_beside_ours() {
     assert!(md.contains("refused"), "{md}");
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// `render --caption` burns the caption under a PNG and refuses an EXR with a message.
+#[test]
+fn render_burns_a_caption_under_a_png_and_refuses_one_on_an_exr() {
+    let dir = std::env::temp_dir().join(format!("atmoscope-caption-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let png = dir.join("captioned.png");
+    let o = atmoscope(&[
+        "render",
+        "--size",
+        "160x90",
+        "--caption",
+        "--out",
+        png.to_str().expect("UTF-8 path"),
+    ]);
+    if skipped_without_gpu(&o) {
+        return;
+    }
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = image::open(&png).expect("PNG").to_rgb8();
+    assert_eq!(img.width(), 160);
+    assert!(img.height() > 90 + 10, "{:?}", img.dimensions());
+    let exr = dir.join("captioned.exr");
+    let o = atmoscope(&[
+        "render",
+        "--caption",
+        "--out",
+        exr.to_str().expect("UTF-8 path"),
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("--caption"), "{}", stderr(&o));
+    assert!(!exr.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -216,3 +216,135 @@ pub fn legend_strip(width: u32, log10_min: f64, log10_max: f64) -> (Vec<u8>, u32
     }
     (img, rows as u32)
 }
+
+/// Registers the font egui ships as plotters' "sans-serif" (charts, captions), once.
+pub fn register_font() {
+    use std::sync::Once;
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        // The font is compiled in; failing to parse it would be a build defect, and text
+        // simply does not draw.
+        let _ = plotters::style::register_font(
+            "sans-serif",
+            plotters::style::FontStyle::Normal,
+            epaint_default_fonts::UBUNTU_LIGHT,
+        );
+    });
+}
+
+/// The caption of an exported view: the scene's name, the model, the wavelength set, the
+/// exposure and tone map, the sun's elevation and the camera's altitude.
+pub fn caption_text(scene: &Scene) -> String {
+    let d = &scene.display;
+    let exposure = if d.auto_exposure {
+        format!(
+            "auto exposure {:+.1} EV ({:+.2} EV)",
+            d.compensation_ev, d.exposure_ev
+        )
+    } else {
+        format!("exposure {:+.2} EV", d.exposure_ev)
+    };
+    let altitude_m = scene.camera.altitude_m;
+    let altitude = if altitude_m >= 10_000.0 {
+        format!("{:.0} km", altitude_m / 1000.0)
+    } else {
+        format!("{altitude_m:.0} m")
+    };
+    format!(
+        "{} · {} · {} · {} · {} · sun {:.1}° · camera {altitude}",
+        scene.name,
+        atmoscope_model::methods::info(scene.render.method).label,
+        scene.render.wavelengths.label(),
+        exposure,
+        d.tone_map.label(),
+        scene.sun.angles().elevation_deg,
+    )
+}
+
+/// A caption strip `width` pixels wide: `text` in light grey on a dark band, wrapped at word
+/// boundaries to fit, its size following the width. Returns RGB8 rows and their count.
+pub fn caption_strip(width: u32, text: &str) -> (Vec<u8>, u32) {
+    use plotters::prelude::*;
+    register_font();
+    let size = (f64::from(width) / 64.0).clamp(10.0, 28.0);
+    let font: FontDesc = ("sans-serif", size).into_font();
+    let margin = (size * 0.6).ceil() as u32;
+    let fits = |s: &str| {
+        font.box_size(s)
+            .map_or(s.chars().count() as f64 * size * 0.55, |(w, _)| {
+                f64::from(w)
+            })
+            <= f64::from(width.saturating_sub(2 * margin))
+    };
+    let mut lines: Vec<String> = Vec::new();
+    for word in text.split(' ') {
+        match lines.last_mut() {
+            Some(line) if fits(&format!("{line} {word}")) => {
+                line.push(' ');
+                line.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    let line_rows = (size * 1.3).ceil() as u32;
+    let rows = 2 * margin + line_rows * lines.len() as u32;
+    let mut buf = vec![24u8; (width * rows * 3) as usize];
+    {
+        let area = BitMapBackend::with_buffer(&mut buf, (width, rows)).into_drawing_area();
+        let style = font.color(&RGBColor(225, 225, 225));
+        for (i, line) in lines.iter().enumerate() {
+            let y = margin + i as u32 * line_rows;
+            // Text that cannot draw (no font) leaves the band plain.
+            let _ = area.draw_text(line, &style, (margin as i32, y as i32));
+        }
+        let _ = area.present();
+    }
+    (buf, rows)
+}
+
+/// 8-bit RGB rows of a view, `width` × `height`, with `caption` burned in below it (None:
+/// the view alone). Returns the rows and their count.
+pub fn with_caption(
+    rgb: Vec<u8>,
+    width: u32,
+    height: u32,
+    caption: Option<&str>,
+) -> (Vec<u8>, u32) {
+    match caption {
+        Some(text) => {
+            let (strip, rows) = caption_strip(width, text);
+            let mut out = rgb;
+            out.extend(strip);
+            (out, height + rows)
+        }
+        None => (rgb, height),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The caption names what made the image, draws visible text on its band, and wraps a
+    /// caption too long for a narrow image onto more lines.
+    #[test]
+    fn a_caption_names_the_scene_and_draws_wrapped_text() {
+        let scene = Scene::default();
+        let text = caption_text(&scene);
+        for part in ["Default", "Hillaire 2020", "Spectral4", "EV", "sun 30.0°"] {
+            assert!(text.contains(part), "{text}");
+        }
+        let (wide, wide_rows) = caption_strip(1280, &text);
+        assert_eq!(wide.len(), (1280 * wide_rows * 3) as usize);
+        let lit = wide.iter().filter(|&&v| v > 120).count();
+        assert!(lit > 100, "only {lit} bright subpixels: no text drawn");
+        let (_, narrow_rows) = caption_strip(160, &text);
+        assert!(narrow_rows > wide_rows, "{narrow_rows} vs {wide_rows}");
+        let (rgb, rows) = with_caption(vec![0; 160 * 90 * 3], 160, 90, Some(&text));
+        assert_eq!(
+            (rows, rgb.len()),
+            (90 + narrow_rows, (160 * rows * 3) as usize)
+        );
+        assert_eq!(with_caption(vec![0; 12], 2, 2, None).1, 2);
+    }
+}

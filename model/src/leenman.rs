@@ -3,12 +3,16 @@
 //! his Earth, his twelve views with his exposures, his scale of radiance, and the values of his
 //! appendices A–D (`data/leenman2025_appendix_tables.csv`).
 //!
-//! His Earth is the one of Hillaire's (2020) demo, which he takes for every model: linear-sRGB
+//! His Earth is the one of Hillaire's (2020) demo (`data/hillaire2020_earth_defaults.csv`),
+//! which he takes for every model: linear-sRGB
 //! coefficients (no spectral rendering), air exponential with an 8 km scale height, aerosol
 //! exponential with 1.2 km, single-scattering albedo 0.9 and a Cornette–Shanks phase with
 //! g = 0.8, ozone in a tent from 10 to 40 km, a black ground. Atmoscope renders it with the RGB3
 //! set, whose 680/550/440 nm are the wavelengths those coefficients stand for, and the
-//! `exponential-8km` air and `tent` ozone profiles (300 DU, Bruneton's column); the aerosol's
+//! `exponential-8km` air and `tent` ozone profiles (300 DU, Bruneton's column); his air, from
+//! Bruneton's λ⁻⁴ fit, scatters 17 % more than real air at 550 nm, so its density is scaled to
+//! match (`air_density_scale`: red then comes out 1.4 % short of his and blue 2.3 % over;
+//! ozone's absorption at the peak +12 %, −4 % and −14 %); the aerosol's
 //! extinction 4.44·10⁻⁶ m⁻¹ at the ground over its 1.2 km scale height is an AOD of 0.0053,
 //! grey (Ångström exponent 0).
 //!
@@ -30,16 +34,18 @@ use std::sync::OnceLock;
 /// His sun's irradiance, per channel (no unit).
 pub const SUN_IRRADIANCE: f64 = 6.0;
 
-/// Ground extinction of his aerosol, m⁻¹ (Hillaire's demo: 4.44·10⁻³ km⁻¹).
-pub const AEROSOL_EXTINCTION_PER_M: f64 = 4.44e-6;
-/// Scale height of his aerosol, km.
-pub const AEROSOL_SCALE_HEIGHT_KM: f64 = 1.2;
-/// Single-scattering albedo of his aerosol (3.996 / 4.44).
-pub const AEROSOL_SINGLE_SCATTERING_ALBEDO: f64 = 0.9;
-/// Asymmetry parameter of his aerosol's phase function.
-pub const AEROSOL_G: f64 = 0.8;
-/// Total ozone column of the tent, DU (Bruneton's 300 DU).
+/// Total ozone column of the tent, DU: Bruneton's (2017) 300 DU, whose peak density Hillaire's
+/// absorption coefficients stand for.
 pub const OZONE_COLUMN_DU: f64 = 300.0;
+
+/// One value of Hillaire's (2020) demo Earth (`data/hillaire2020_earth_defaults.csv`), in the
+/// table's unit.
+pub fn hillaire_earth(parameter: &str) -> f64 {
+    let t = crate::table::tables::hillaire_earth().filter("parameter", parameter);
+    *t.numbers("value")
+        .first()
+        .unwrap_or_else(|| panic!("hillaire2020_earth_defaults.csv lacks {parameter}"))
+}
 
 /// One of his views: his name, the suite view it is built from, his exposure, and the sun's
 /// position where it differs from the suite's (elevation, azimuth relative to the camera's
@@ -132,22 +138,41 @@ pub fn scene() -> Scene {
     let mut s = Scene::default();
     s.name = "Leenman 2025 (Hillaire's Earth)".into();
     s.description = "Leenman (2025)'s comparison set-up: Hillaire's (2020) Earth in linear sRGB, exponential air and aerosol, tent ozone, black ground.".into();
+    let (bottom_km, top_km) = (
+        hillaire_earth("bottom_radius"),
+        hillaire_earth("top_radius"),
+    );
+    let aerosol_scale_height_km = hillaire_earth("mie_scale_height");
+    let (mie_scattering, mie_extinction) = (
+        hillaire_earth("mie_scattering"),
+        hillaire_earth("mie_extinction"),
+    );
     let a = &mut s.atmosphere;
-    a.planet_radius_km = 6360.0;
-    a.top_km = 100.0;
+    a.planet_radius_km = bottom_km;
+    a.top_km = top_km - bottom_km;
     a.air_profile = crate::profiles::AirProfile::Exponential8km;
-    a.air_density_scale = 1.0;
+    // His air scatters as Bruneton's λ⁻⁴ fit, 17 % more than air at sea level: the density
+    // that gives his green channel's coefficient at 550 nm.
+    let green = crate::table::tables::hillaire_earth()
+        .filter("parameter", "rayleigh_scattering")
+        .filter("channel", "G")
+        .numbers("value")[0];
+    let ground_m3 = crate::profiles::AirProfile::Exponential8km.number_density_m3(0.0);
+    a.air_density_scale = green
+        / 1000.0
+        / (ground_m3 * crate::rayleigh::cross_section_m2(crate::wavelengths::RGB3_NM[1]));
     a.rayleigh_depolarisation = false;
     a.aerosol.kind = AerosolType::Custom;
-    a.aerosol.aod550 = AEROSOL_EXTINCTION_PER_M * AEROSOL_SCALE_HEIGHT_KM * 1000.0;
+    // Extinction (km⁻¹) at the ground over the scale height (km): the vertical optical depth.
+    a.aerosol.aod550 = mie_extinction * aerosol_scale_height_km;
     a.aerosol.phase = AerosolPhase::CornetteShanks;
-    a.aerosol.custom.single_scattering_albedo = AEROSOL_SINGLE_SCATTERING_ALBEDO;
-    a.aerosol.custom.asymmetry_g = AEROSOL_G;
+    a.aerosol.custom.single_scattering_albedo = mie_scattering / mie_extinction;
+    a.aerosol.custom.asymmetry_g = hillaire_earth("mie_phase_g");
     a.aerosol.custom.angstrom_exponent = 0.0;
-    a.aerosol.custom.scale_height_km = AEROSOL_SCALE_HEIGHT_KM;
+    a.aerosol.custom.scale_height_km = aerosol_scale_height_km;
     a.ozone.profile = crate::profiles::OzoneProfile::Tent;
     a.ozone.column = OzoneColumn::Du(OZONE_COLUMN_DU);
-    a.ground_albedo = 0.0;
+    a.ground_albedo = hillaire_earth("ground_albedo");
     s.render.wavelengths = WavelengthSet::Rgb3;
     s
 }
@@ -239,6 +264,47 @@ mod tests {
             }
         }
         assert!(rows.iter().all(|r| r.value.is_finite() && r.value >= 0.0));
+    }
+
+    /// His Earth rebuilt from Atmoscope's physics at the RGB3 wavelengths: the aerosol and the
+    /// air's green channel exactly (set from his numbers), the other channels and ozone from
+    /// their cross-sections close to his coefficients.
+    #[test]
+    fn his_earth_has_his_coefficients() {
+        use crate::methods::shared::Params;
+        let p = Params::new(
+            &crate::Atmosphere::for_scene(&scene()),
+            WavelengthSet::Rgb3,
+            crate::scene::Quality::Medium,
+        );
+        let per_km = |m: f64| m * 1000.0;
+        let ground = p.medium(0, 0.0);
+        let peak = p.medium(0, 25_000.0);
+        for (lane, channel) in ["R", "G", "B"].into_iter().enumerate() {
+            let his = |name: &str| {
+                let t = crate::table::tables::hillaire_earth()
+                    .filter("parameter", name)
+                    .filter("channel", channel);
+                t.numbers("value")[0]
+            };
+            let rayleigh = per_km(ground.rayleigh_scattering[lane]);
+            assert!(
+                (rayleigh / his("rayleigh_scattering") - 1.0).abs() < 0.03,
+                "{channel}: Rayleigh {rayleigh} km⁻¹"
+            );
+            // No ozone at the ground in the tent.
+            let aerosol_extinction =
+                per_km(ground.extinction[lane] - ground.rayleigh_scattering[lane]);
+            assert!(
+                (aerosol_extinction / hillaire_earth("mie_extinction") - 1.0).abs() < 0.02,
+                "{channel}: aerosol {aerosol_extinction} km⁻¹"
+            );
+            let ozone = per_km(peak.extinction[lane] - peak.rayleigh_scattering[lane]);
+            assert!(
+                (ozone / his("ozone_absorption") - 1.0).abs() < 0.15,
+                "{channel}: ozone {ozone} km⁻¹"
+            );
+        }
     }
 
     #[test]

@@ -314,6 +314,15 @@ impl WavelengthSet {
             _ => true,
         }
     }
+
+    /// The set's name as shown: RGB3, Spectral4, Spectral32.
+    pub fn label(self) -> String {
+        match self {
+            WavelengthSet::Rgb3 => "RGB3".into(),
+            WavelengthSet::Spectral4 => "Spectral4".into(),
+            WavelengthSet::SpectralN(n) => format!("Spectral{n}"),
+        }
+    }
 }
 
 impl Default for WavelengthSet {

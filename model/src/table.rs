@@ -161,6 +161,7 @@ pub mod tables {
     embedded_table!(garcia_linan_refit, "garcia_linan_refit.csv");
     embedded_table!(spectral4_fitted_matrix, "spectral4_fitted_matrix.csv");
     embedded_table!(preetham_constants, "preetham1999_constants.csv");
+    embedded_table!(hillaire_earth, "hillaire2020_earth_defaults.csv");
 }
 
 #[cfg(test)]
@@ -190,6 +191,7 @@ mod tests {
             tables::guimera_aerosol_types(),
             tables::garcia_linan_constants(),
             tables::preetham_constants(),
+            tables::hillaire_earth(),
         ];
         assert_eq!(tables::garcia_linan_refit().len(), 4);
         for t in all {

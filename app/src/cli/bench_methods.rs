@@ -536,7 +536,7 @@ fn summary_markdown(configs: &[Config], h: &Header) -> String {
 /// The Pareto chart as `pareto.svg` and `pareto.png`.
 fn write_charts(out: &Path, configs: &[Config], header: &Header) -> anyhow::Result<()> {
     use plotters::prelude::*;
-    register_font();
+    crate::images::register_font();
     let size = (960u32, 640u32);
     let mut svg = String::new();
     draw_chart(SVGBackend::with_string(&mut svg, size), configs, header)?;
@@ -555,19 +555,6 @@ fn write_charts(out: &Path, configs: &[Config], header: &Header) -> anyhow::Resu
 }
 
 /// plotters draws text with the font egui ships, so charts look the same on every machine.
-fn register_font() {
-    use std::sync::Once;
-    static ONCE: Once = Once::new();
-    ONCE.call_once(|| {
-        // The font is compiled in; failing to parse it would be a build defect, and the chart
-        // still draws without text.
-        let _ = plotters::style::register_font(
-            "sans-serif",
-            plotters::style::FontStyle::Normal,
-            epaint_default_fonts::UBUNTU_LIGHT,
-        );
-    });
-}
 
 /// Axis ticks at 1, 2 and 5 times the powers of ten inside `range` (a log axis of less than a
 /// decade would otherwise show one label or none).

@@ -57,6 +57,10 @@ pub struct RenderArgs {
     #[arg(long, value_name = "MIN,MAX", value_parser = parse_range, allow_hyphen_values = true)]
     pub luminance_range: Option<(f64, f64)>,
     /// Output file: .png (as displayed) or .exr (linear radiance, W·m⁻²·sr⁻¹ as linear sRGB).
+    /// Burn a caption under a PNG: the scene's name, the model, the wavelength set, the
+    /// exposure and tone map, the sun's elevation and the camera's altitude.
+    #[arg(long)]
+    pub caption: bool,
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
 }
@@ -120,6 +124,12 @@ pub fn gpu() -> anyhow::Result<GpuContext> {
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let format = format_of(&args.out)?;
+    if args.caption && matches!(format, Format::Exr) {
+        bail!(
+            "--caption burns text into a PNG; {} is an EXR of linear radiance, which keeps no text",
+            args.out.display()
+        );
+    }
     super::check_writable(&args.out)?;
     let mut scene = args.scene.scene()?;
     let mut projection = Projection::Perspective;
@@ -162,7 +172,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         width,
         height,
     };
-    if let (shown, Some(l)) = engine.render_still(&scene, &view)? {
+    let (shown, metered) = engine.render_still(&scene, &view)?;
+    if let Some(l) = metered {
         eprintln!(
             "metered: {l:.3} cd/m² log-average, EV100 {:.1}, exposure {:+.2} EV",
             atmoscope_model::display::ev100(l),
@@ -194,6 +205,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
                 rgb.extend(strip);
                 rows += strip_rows;
             }
+            let caption = args.caption.then(|| crate::images::caption_text(&shown));
+            let (rgb, rows) = crate::images::with_caption(rgb, width, rows, caption.as_deref());
             save_rgb8(&args.out, rgb, width, rows)?;
         }
     }

@@ -31,14 +31,6 @@ pub struct CompareTab {
     heat_map: Option<egui::TextureHandle>,
 }
 
-fn set_label(set: WavelengthSet) -> String {
-    match set {
-        WavelengthSet::Rgb3 => "RGB3".into(),
-        WavelengthSet::Spectral4 => "Spectral4".into(),
-        WavelengthSet::SpectralN(n) => format!("Spectral{n}"),
-    }
-}
-
 /// A model and a wavelength set, chosen side by side.
 fn choice(ui: &mut egui::Ui, label: &str, method: &mut Method, set: &mut WavelengthSet, tip: &str) {
     if !methods::info(*method).is_realtime() {
@@ -58,12 +50,12 @@ fn choice(ui: &mut egui::Ui, label: &str, method: &mut Method, set: &mut Wavelen
 }
 
 fn pair_label(method: Method, set: WavelengthSet) -> String {
-    format!("{} {}", methods::info(method).label, set_label(set))
+    format!("{} {}", methods::info(method).label, set.label())
 }
 
 fn set_choice(ui: &mut egui::Ui, label: &str, set: &mut WavelengthSet, tip: &str) {
     egui::ComboBox::from_label(label)
-        .selected_text(set_label(*set))
+        .selected_text(set.label())
         .show_ui(ui, |ui| {
             for s in [
                 WavelengthSet::Rgb3,
@@ -72,7 +64,7 @@ fn set_choice(ui: &mut egui::Ui, label: &str, set: &mut WavelengthSet, tip: &str
                 WavelengthSet::SpectralN(16),
                 WavelengthSet::SpectralN(32),
             ] {
-                ui.selectable_value(set, s, set_label(s));
+                ui.selectable_value(set, s, s.label());
             }
         })
         .response

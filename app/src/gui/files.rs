@@ -78,13 +78,20 @@ pub fn pick_export(kind: ExportKind) -> Option<PathBuf> {
         .save_file()
 }
 
-/// Writes RGBA8 rows as a PNG, dropping alpha.
-pub fn write_display_png(path: &Path, rgba: &[u8], width: u32, height: u32) -> anyhow::Result<()> {
+/// Writes RGBA8 rows as a PNG, dropping alpha, with `caption` burned in below (None: none).
+pub fn write_display_png(
+    path: &Path,
+    rgba: &[u8],
+    width: u32,
+    height: u32,
+    caption: Option<&str>,
+) -> anyhow::Result<()> {
     let rgb = rgba
         .chunks_exact(4)
         .flat_map(|p| [p[0], p[1], p[2]])
         .collect();
-    save_rgb8(path, rgb, width, height)
+    let (rgb, rows) = crate::images::with_caption(rgb, width, height, caption);
+    save_rgb8(path, rgb, width, rows)
 }
 
 /// Writes linear radiance (RGBA f32 rows) as an EXR.

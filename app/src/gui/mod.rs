@@ -305,10 +305,17 @@ impl ExplorerApp {
         let label = format!("exporting {}", path.display());
         let job = match kind {
             ExportKind::Png => match views.main.display_rgba8() {
-                Ok(rgba) => Job::spawn(label, ctx, move |_| {
-                    files::write_display_png(&path, &rgba, w, h)
-                        .map(|()| Some(format!("wrote {} ({w}×{h}, as displayed)", path.display())))
-                }),
+                Ok(rgba) => {
+                    let caption = self
+                        .layout
+                        .caption_exports
+                        .then(|| crate::images::caption_text(&self.scene));
+                    Job::spawn(label, ctx, move |_| {
+                        files::write_display_png(&path, &rgba, w, h, caption.as_deref()).map(|()| {
+                            Some(format!("wrote {} ({w}×{h}, as displayed)", path.display()))
+                        })
+                    })
+                }
                 Err(e) => return self.message = Some(e.to_string()),
             },
             ExportKind::Exr => match views.main.radiance() {
@@ -478,6 +485,10 @@ impl ExplorerApp {
                         commands.extend(files::pick_export(kind).map(|p| Command::Export(kind, p)));
                     }
                 }
+                ui.checkbox(&mut self.layout.caption_exports, "Caption on PNG exports")
+                    .on_hover_text(
+                        "Burn the scene's name, the model, the wavelength set, the exposure, the sun's elevation and the camera's altitude under the exported view.",
+                    );
             });
             ui.menu_button("View", |ui| {
                 ui.checkbox(&mut self.layout.show_inspector, "Inspector  (I)");

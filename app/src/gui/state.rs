@@ -187,6 +187,8 @@ pub struct Layout {
     pub show_performance: bool,
     /// Only the view (and the menu): for presenting, and for measuring a frame of a given size.
     pub full_view: bool,
+    /// Burn a caption (scene, model, wavelength set, exposure) under exported PNGs.
+    pub caption_exports: bool,
 }
 
 impl Default for Layout {
@@ -202,6 +204,7 @@ impl Default for Layout {
             show_inspector: true,
             show_performance: true,
             full_view: false,
+            caption_exports: false,
         }
     }
 }

@@ -328,6 +328,32 @@ fn exports_png_and_exr_that_read_back_as_drawn() {
     assert!(worst < 1e-3, "EXR differs from the radiance by {worst}");
 }
 
+/// With captions on, the exported PNG is the view as displayed with the caption band below it.
+#[test]
+fn a_captioned_png_export_keeps_the_view_and_adds_its_caption_below() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness();
+    let ctx = h.ctx.clone();
+    h.state_mut().layout.caption_exports = true;
+    let png = dir.path().join("captioned.png");
+    h.state_mut()
+        .apply(&ctx, Command::Export(ExportKind::Png, png.clone()));
+    let views = views(&h);
+    let view = views.main.view().expect("drawn");
+    let shown = views.main.display_rgba8().expect("display");
+    wait_for_exports(&mut h);
+    assert!(h.state().message.is_none(), "{:?}", h.state().message);
+    let png = image::open(&png).expect("PNG reads back").to_rgb8();
+    assert_eq!(png.width(), view.width);
+    assert!(png.height() > view.height + 10, "{:?}", png.dimensions());
+    let top: Vec<u8> = png.into_raw()[..(view.width * view.height * 3) as usize].to_vec();
+    let shown_rgb: Vec<u8> = shown
+        .chunks_exact(4)
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .collect();
+    assert_eq!(top, shown_rgb, "the view above the caption is as displayed");
+}
+
 #[test]
 fn the_compare_tab_shows_a_delta_e_figure() {
     let mut layout = Layout::default();
