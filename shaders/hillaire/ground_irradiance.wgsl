@@ -1,5 +1,7 @@
-// Pass: sky irradiance on horizontal ground per unit solar irradiance, E = π·mean(L) over
-// cosine-weighted stratified directions of the upper hemisphere.
+// Pass: sky irradiance on horizontal ground per unit solar irradiance, ∫ L·cos θ dΩ over the
+// upper hemisphere on rings about the sun (GROUND_IRRADIANCE_DIRECTIONS: rings at γ = π·u²
+// from the sun, dense near it, × azimuths about it; directions below the horizon skipped).
+// Twin of model::methods::hillaire::ground_irradiance.
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
 fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
@@ -9,20 +11,30 @@ fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
     }
     let mu_s = ground_irradiance_mu_s_from_texel(f32(id.x));
     let sun = local_sun(mu_s);
-    let n_theta = GROUND_IRRADIANCE_DIRECTIONS.x;
-    let n_phi = GROUND_IRRADIANCE_DIRECTIONS.y;
+    // A frame about the sun (local_sun lies in the x–z plane).
+    let across = vec3<f32>(0.0, 1.0, 0.0);
+    let up = cross(sun, across);
+    let n_rings = GROUND_IRRADIANCE_DIRECTIONS.x;
+    let n_azimuths = GROUND_IRRADIANCE_DIRECTIONS.y;
     var sum = vec4<f32>(0.0);
-    for (var i = 0u; i < n_theta; i++) {
-        let mu = sqrt((f32(i) + 0.5) / f32(n_theta));
-        let s = sqrt(1.0 - mu * mu);
-        for (var j = 0u; j < n_phi; j++) {
-            let phi = 2.0 * PI * (f32(j) + 0.5) / f32(n_phi);
-            let nu = dot(vec3<f32>(s * cos(phi), s * sin(phi), mu), sun);
+    for (var i = 0u; i < n_rings; i++) {
+        let u0 = f32(i) / f32(n_rings);
+        let u1 = f32(i + 1u) / f32(n_rings);
+        let um = 0.5 * (u0 + u1);
+        let gamma = PI * um * um;
+        let weight = 2.0 * PI * (cos(PI * u0 * u0) - cos(PI * u1 * u1)) / f32(n_azimuths);
+        for (var j = 0u; j < n_azimuths; j++) {
+            let a = 2.0 * PI * (f32(j) + 0.5) / f32(n_azimuths);
+            let dir = sun * cos(gamma) + (across * cos(a) + up * sin(a)) * sin(gamma);
+            let mu = dir.z;
+            if mu <= 0.0 {
+                continue;
+            }
             let t_max = distance_to_top(0.0, mu);
             let l = integrate_inscattering(id.z,
-                vec4<f32>(0.0, mu, mu_s, nu), 0.0, t_max, globals.steps_a.z, SPACING_QUADRATIC);
-            sum += l.radiance;
+                vec4<f32>(0.0, mu, mu_s, cos(gamma)), 0.0, t_max, globals.steps_a.z, SPACING_QUADRATIC);
+            sum += l.radiance * (mu * weight);
         }
     }
-    ground_irradiance_lut[id.z * GROUND_IRRADIANCE_SIZE + id.x] = sum * (PI / f32(n_theta * n_phi));
+    ground_irradiance_lut[id.z * GROUND_IRRADIANCE_SIZE + id.x] = sum;
 }

@@ -14,8 +14,11 @@ use std::f64::consts::PI;
 
 /// Ground irradiance table size (mu_s), on the twilight-dense axis of [`super::MU_S_AXIS_U`].
 pub const GROUND_IRRADIANCE_SIZE: u32 = 64;
-/// Directions of the ground irradiance integral: 8 (cosine-weighted zenith) × 16 (azimuth).
-pub const GROUND_IRRADIANCE_DIRECTIONS: [u32; 2] = [8, 16];
+/// Directions of the ground irradiance integral: 16 rings about the sun, at angles
+/// γ = π·u² from it (u the ring's stratum: dense near the sun, where aerosol's forward peak
+/// is), × 16 azimuths about it; those below the horizon are skipped, so about half are
+/// evaluated.
+pub const GROUND_IRRADIANCE_DIRECTIONS: [u32; 2] = [16, 16];
 
 pub const TABLE: TableSpec = TableSpec {
     id: "ground-irradiance",
@@ -41,8 +44,8 @@ pub fn ground_irradiance_mu_s_from_texel(fx: f64) -> f64 {
     mu_s_axis_mu_s(fx / (GROUND_IRRADIANCE_SIZE - 1) as f64)
 }
 
-/// Sky irradiance on horizontal ground per unit solar irradiance, by cosine-weighted
-/// stratified directions over the upper hemisphere (E = π·mean L).
+/// Sky irradiance on horizontal ground per unit solar irradiance, ∫ L·cos θ dΩ over the upper
+/// hemisphere, on the rings about the sun of [`GROUND_IRRADIANCE_DIRECTIONS`].
 pub fn compute_ground_irradiance_lut(p: &Params, t: &Lut, ms: &Lut) -> Lut {
     Lut::from_spec(&TABLE, p.batches.len(), |layer, _, _, x| {
         let mu_s = ground_irradiance_mu_s_from_texel(x as f64);
@@ -57,33 +60,118 @@ pub(crate) fn compute_ground_irradiance(
     layer: usize,
     mu_s: f64,
 ) -> Lanes {
-    let [n_theta, n_phi] = GROUND_IRRADIANCE_DIRECTIONS;
+    let [n_rings, n_azimuths] = GROUND_IRRADIANCE_DIRECTIONS;
     let sun = local_sun(mu_s);
+    // A frame about the sun (local_sun lies in the x–z plane).
+    let across = DVec3::Y;
+    let up = sun.cross(across);
     let mut sum = [0.0; LANES];
-    for i in 0..n_theta {
-        let mu = ((i as f64 + 0.5) / n_theta as f64).sqrt();
-        let s = (1.0 - mu * mu).sqrt();
-        for j in 0..n_phi {
-            let phi = 2.0 * PI * (j as f64 + 0.5) / n_phi as f64;
-            let nu = DVec3::new(s * phi.cos(), s * phi.sin(), mu).dot(sun);
+    for i in 0..n_rings {
+        let (u0, u1) = (
+            i as f64 / n_rings as f64,
+            (i + 1) as f64 / n_rings as f64,
+        );
+        let gamma = PI * (0.5 * (u0 + u1)).powi(2);
+        let ring_solid_angle = 2.0 * PI * ((PI * u0 * u0).cos() - (PI * u1 * u1).cos());
+        let weight = ring_solid_angle / n_azimuths as f64;
+        for j in 0..n_azimuths {
+            let a = 2.0 * PI * (j as f64 + 0.5) / n_azimuths as f64;
+            let dir = sun * gamma.cos() + (across * a.cos() + up * a.sin()) * gamma.sin();
+            let mu = dir.z;
+            if mu <= 0.0 {
+                continue;
+            }
             let t_max = distance_to_top(0.0, mu, p.bottom_radius_m, p.top_radius_m);
             let (l, _) = integrate_inscattering(
                 p,
                 t,
                 ms,
                 layer,
-                (0.0, mu, mu_s, nu),
+                (0.0, mu, mu_s, gamma.cos()),
                 (0.0, t_max),
                 p.steps.ground_irradiance,
                 Spacing::Quadratic,
             );
-            sum = add(sum, l);
+            sum = add(sum, scale(l, mu * weight));
         }
     }
-    scale(sum, PI / (n_theta * n_phi) as f64)
+    sum
 }
 
 /// Looks up the sky irradiance on the ground per unit solar irradiance.
 pub fn ground_irradiance(gi: &Lut, layer: usize, mu_s: f64) -> Lanes {
     gi.bilinear(layer, ground_irradiance_texel_from_mu_s(mu_s), 0.0, 0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::aerosol::AerosolType;
+    use crate::methods::hillaire::multiple_scattering::compute_multiple_scattering_lut;
+    use crate::methods::shared::transmittance::compute_transmittance_lut;
+    use crate::scene::{Quality, Scene, WavelengthSet};
+
+    /// The integral over 64 × 128 cosine-weighted directions: the converged value.
+    fn dense(p: &Params, t: &Lut, ms: &Lut, mu_s: f64) -> Lanes {
+        let (n_theta, n_phi) = (64, 128);
+        let sun = local_sun(mu_s);
+        let mut sum = [0.0; LANES];
+        for i in 0..n_theta {
+            let mu = ((i as f64 + 0.5) / n_theta as f64).sqrt();
+            let s = (1.0 - mu * mu).sqrt();
+            for j in 0..n_phi {
+                let phi = 2.0 * PI * (j as f64 + 0.5) / n_phi as f64;
+                let nu = DVec3::new(s * phi.cos(), s * phi.sin(), mu).dot(sun);
+                let t_max = distance_to_top(0.0, mu, p.bottom_radius_m, p.top_radius_m);
+                let (l, _) = integrate_inscattering(
+                    p,
+                    t,
+                    ms,
+                    0,
+                    (0.0, mu, mu_s, nu),
+                    (0.0, t_max),
+                    p.steps.ground_irradiance,
+                    Spacing::Quadratic,
+                );
+                sum = add(sum, l);
+            }
+        }
+        scale(sum, PI / f64::from(n_theta * n_phi))
+    }
+
+    /// The rings about the sun catch aerosol's circumsolar peak: within 1.5 % of the converged
+    /// integral in haze and dust at every sun (the former 8 × 16 cosine-weighted grid was 3.9 %
+    /// high under desert dust with the sun 5° up, 2.6 % in rural haze at 2°).
+    #[test]
+    fn ground_irradiance_follows_the_converged_integral_at_low_sun_in_haze() {
+        for (kind, aod) in [
+            (AerosolType::Rural, 0.15),
+            (AerosolType::Rural, 0.5),
+            (AerosolType::DesertDust, 0.5),
+        ] {
+            let mut scene = Scene::default();
+            scene.atmosphere.aerosol.kind = kind;
+            scene.atmosphere.aerosol.aod550 = aod;
+            let p = Params::new(
+                &crate::Atmosphere::for_scene(&scene),
+                WavelengthSet::Spectral4,
+                Quality::Medium,
+            );
+            let t = compute_transmittance_lut(&p);
+            let ms = compute_multiple_scattering_lut(&p, &t);
+            for deg in [60.0f64, 10.0, 5.0, 2.0, -3.0] {
+                let mu_s = deg.to_radians().sin();
+                let (got, want) = (
+                    compute_ground_irradiance(&p, &t, &ms, 0, mu_s),
+                    dense(&p, &t, &ms, mu_s),
+                );
+                for i in 0..LANES {
+                    assert!(
+                        (got[i] / want[i] - 1.0).abs() < 0.015,
+                        "{kind:?} AOD {aod}, sun {deg}°: {got:?} vs {want:?}"
+                    );
+                }
+            }
+        }
+    }
 }
