@@ -34,7 +34,9 @@ fn integrate_inscattering(
         let seg = march_segment(spacing, t0, t1, s, steps);
         let dt = seg.y - seg.x;
         let ts = 0.5 * (seg.x + seg.y);
-        let at = altitude_along(h, mu, ts);
+        // A point past the ground (the aerial-perspective columns march on through it, so
+        // that rows interpolate smoothly) takes the ground's medium and light.
+        let at = max(altitude_along(h, mu, ts), vec2<f32>(0.0, bottom_radius()));
         let mu_s_t = clamp((r * mu_s + ts * nu) / at.y, -1.0, 1.0);
         let m = medium(b, at.x);
         let sun_t = sun_transmittance(layer, at.x, mu_s_t);

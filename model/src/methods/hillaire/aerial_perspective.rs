@@ -91,7 +91,9 @@ pub fn aerial_perspective_slice_from_distance(d: f64) -> f64 {
 }
 
 /// The aerial-perspective volume: (in-scattered radiance, transmittance) from the camera to the
-/// end of each slice, stopping at the ground.
+/// end of each slice. A column marches on past its ground point (through the ground's medium
+/// and light): a pixel between two rows reads both at its own, farther ground, and one that
+/// stopped at its nearer ground would hold too little depth there (15–30 % by the rows' span).
 pub fn compute_aerial_perspective(p: &Params, t: &Lut, ms: &Lut, vp: Viewpoint) -> (Lut, Lut) {
     let [w, hh, d] = AERIAL_PERSPECTIVE_SIZE;
     let big_r = p.bottom_radius_m;
@@ -104,29 +106,26 @@ pub fn compute_aerial_perspective(p: &Params, t: &Lut, ms: &Lut, vp: Viewpoint) 
             let (phi, theta) = aerial_perspective_angles_from_texel(p, vp.h, x as f64, y as f64);
             let omega = direction_from_phi_theta(phi, theta);
             let (mu, nu) = (omega.z, omega.dot(local_sun(vp.mu_s)));
-            let t_limit = distance_to_boundary(vp.h, mu, big_r, p.top_radius_m);
             let e = p.batches[layer].solar_irradiance;
             let mut inscattered = [0.0; LANES];
             let mut throughput = [1.0; LANES];
             let mut start = 0.0;
             (0..d)
                 .map(|k| {
-                    let end = aerial_perspective_slice_distance(k).min(t_limit);
-                    if end > start {
-                        let (l, tr) = integrate_inscattering(
-                            p,
-                            t,
-                            ms,
-                            layer,
-                            (vp.h, mu, vp.mu_s, nu),
-                            (start, end),
-                            p.steps.aerial_perspective_per_slice,
-                            Spacing::Uniform,
-                        );
-                        inscattered = add(inscattered, mul(throughput, mul(l, e)));
-                        throughput = mul(throughput, tr);
-                        start = end;
-                    }
+                    let end = aerial_perspective_slice_distance(k);
+                    let (l, tr) = integrate_inscattering(
+                        p,
+                        t,
+                        ms,
+                        layer,
+                        (vp.h, mu, vp.mu_s, nu),
+                        (start, end),
+                        p.steps.aerial_perspective_per_slice,
+                        Spacing::Uniform,
+                    );
+                    inscattered = add(inscattered, mul(throughput, mul(l, e)));
+                    throughput = mul(throughput, tr);
+                    start = end;
                     (inscattered, throughput)
                 })
                 .collect()
@@ -216,6 +215,67 @@ mod tests {
         for k in 0..AERIAL_PERSPECTIVE_SIZE[2] {
             let f = aerial_perspective_slice_from_distance(aerial_perspective_slice_distance(k));
             assert!((f - k as f64).abs() < 1e-9);
+        }
+    }
+}
+
+#[cfg(test)]
+mod ground_tests {
+    use super::*;
+    use crate::geometry::altitude_along;
+    use crate::methods::hillaire::multiple_scattering::compute_multiple_scattering_lut;
+    use crate::methods::shared::optics::tests::params;
+    use crate::methods::shared::transmittance::compute_transmittance_lut;
+
+    /// The optical depth to the ground that the volume gives a pixel on a row and between two
+    /// rows near the horizon (where the rows' ground distances differ most) follows a fine
+    /// march to that ground: from 30 m within 1.3 % for ground 1 km away or more (the nearest
+    /// slices are 125 m, 500 m and 1.1 km long: 12 % at 200 m), from 1 km within 4.5 %; from
+    /// 10 km within 3.3 % at 34 km, 10.5 % at 59 km and 23 % at 120 km, where grazing rows
+    /// 8 km-long slices apart still differ steeply. Columns that stopped at their own ground
+    /// gave 15–20 %, 14–16 % and 27–34 % too little between rows (30 m, 1 km, 10 km).
+    #[test]
+    fn distant_ground_optical_depth_follows_the_exact_between_rows() {
+        let p = params();
+        let t = compute_transmittance_lut(&p);
+        let ms = compute_multiple_scattering_lut(&p, &t);
+        for h in [30.0, 1000.0, 10_000.0] {
+            let (ins, tr) = compute_aerial_perspective(&p, &t, &ms, Viewpoint { h, mu_s: 0.5 });
+            for fy in [0.0f64, 0.5, 1.0, 1.5, 2.5, 4.5, 8.5, 12.5] {
+                let (phi, theta) = aerial_perspective_angles_from_texel(&p, h, 3.0, fy);
+                let mu = direction_from_phi_theta(phi, theta).z;
+                let d = distance_to_boundary(h, mu, p.bottom_radius_m, p.top_radius_m);
+                if d > AERIAL_PERSPECTIVE_MAX_DISTANCE_M {
+                    continue;
+                }
+                let (_, got) = aerial_perspective(&p, &ins, &tr, 0, h, phi, theta, d);
+                let n = 4000;
+                let mut exact = [0.0; LANES];
+                for s in 0..n {
+                    let x = (f64::from(s) + 0.5) * d / f64::from(n);
+                    let e = p
+                        .medium(0, altitude_along(h, mu, x, p.bottom_radius_m).0)
+                        .extinction;
+                    for l in 0..LANES {
+                        exact[l] += e[l] * d / f64::from(n);
+                    }
+                }
+                for l in 0..LANES {
+                    let ratio = -got[l].ln() / exact[l];
+                    let bound = match (h, d) {
+                        (_, d) if d < 1_000.0 => 0.15,
+                        (h, _) if h < 5_000.0 => 0.05,
+                        (_, d) if d < 40_000.0 => 0.05,
+                        (_, d) if d < 80_000.0 => 0.12,
+                        _ => 0.25,
+                    };
+                    assert!(
+                        (ratio - 1.0).abs() < bound,
+                        "h {h} m, row {fy}, ground {:.1} km: depth ratio {ratio}",
+                        d / 1000.0
+                    );
+                }
+            }
         }
     }
 }

@@ -67,10 +67,7 @@ pub(crate) fn compute_ground_irradiance(
     let up = sun.cross(across);
     let mut sum = [0.0; LANES];
     for i in 0..n_rings {
-        let (u0, u1) = (
-            i as f64 / n_rings as f64,
-            (i + 1) as f64 / n_rings as f64,
-        );
+        let (u0, u1) = (i as f64 / n_rings as f64, (i + 1) as f64 / n_rings as f64);
         let gamma = PI * (0.5 * (u0 + u1)).powi(2);
         let ring_solid_angle = 2.0 * PI * ((PI * u0 * u0).cos() - (PI * u1 * u1).cos());
         let weight = ring_solid_angle / n_azimuths as f64;

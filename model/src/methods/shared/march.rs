@@ -77,7 +77,10 @@ pub fn march_inscattering(
         let (t0, t1) = spacing.segment(t_start, t_end, s, steps);
         let dt = t1 - t0;
         let ts = 0.5 * (t0 + t1);
+        // A point past the ground (the aerial-perspective columns march on through it, so
+        // that rows interpolate smoothly) takes the ground's medium and light.
         let (h_t, r_t) = altitude_along(h, mu, ts, big_r);
+        let (h_t, r_t) = (h_t.max(0.0), r_t.max(big_r));
         let mu_s_t = ((r * mu_s + ts * nu) / r_t).clamp(-1.0, 1.0);
         let m = p.medium(layer, h_t);
         let sun_t = sun_transmittance(p, t, layer, h_t, mu_s_t);
