@@ -33,8 +33,9 @@ pub struct Row {
     pub view: String,
     /// The table passes of a full rebuild for the view's scene, ms.
     pub precompute_ms: f64,
-    /// The sky and display passes of a frame with the camera turning, ms.
-    pub frame_ms: f64,
+    /// The sky and display passes of a frame with the camera turning, ms; None where the run
+    /// timed no frame on this view (`--full` times frames on the quick views only).
+    pub frame_ms: Option<f64>,
     /// GPU memory of the model's tables, bytes.
     pub table_bytes: u64,
     /// ΔE2000 against the path-traced reference, mean and 95th percentile over the pixels.
@@ -62,13 +63,13 @@ pub fn to_csv(rows: &[Row]) -> String {
     let mut s = COLUMNS.join(",") + "\n";
     for r in rows {
         s += &format!(
-            "{},{},{},{},{:.4},{:.4},{},{:.4},{:.4},{:.5},{:.5}\n",
+            "{},{},{},{},{:.4},{},{},{:.4},{:.4},{:.5},{:.5}\n",
             r.method,
             r.wavelengths,
             r.quality,
             r.view,
             r.precompute_ms,
-            r.frame_ms,
+            r.frame_ms.map_or(String::new(), |ms| format!("{ms:.4}")),
             r.table_bytes,
             r.de2000_mean,
             r.de2000_p95,
@@ -120,7 +121,10 @@ pub fn parse_csv(text: &str) -> Result<Vec<Row>, ResultsError> {
             quality: f[2].into(),
             view: f[3].into(),
             precompute_ms: number(4)?,
-            frame_ms: number(5)?,
+            frame_ms: match f[5] {
+                "" => None,
+                _ => Some(number(5)?),
+            },
             table_bytes: f[6]
                 .parse()
                 .map_err(|_| bad(format!("table_bytes: {:?} is not a byte count", f[6])))?,
@@ -195,7 +199,9 @@ pub fn summarise(rows: &[Row]) -> Vec<Config> {
             let mean = |f: fn(&Row) -> f64| group.iter().map(|r| f(r)).sum::<f64>() / n;
             c.views = group.len();
             c.precompute_ms = mean(|r| r.precompute_ms);
-            c.frame_ms = mean(|r| r.frame_ms);
+            // Over the views whose frames were timed.
+            let frames: Vec<f64> = group.iter().filter_map(|r| r.frame_ms).collect();
+            c.frame_ms = frames.iter().sum::<f64>() / frames.len().max(1) as f64;
             c.table_bytes = group.iter().map(|r| r.table_bytes).max().unwrap_or(0);
             c.de2000_mean = mean(|r| r.de2000_mean);
             c.de2000_p95 = mean(|r| r.de2000_p95);
@@ -248,7 +254,7 @@ mod tests {
             quality: "medium".into(),
             view: view.into(),
             precompute_ms: 2.0,
-            frame_ms,
+            frame_ms: Some(frame_ms),
             table_bytes: 1024,
             de2000_mean: de,
             de2000_p95: 2.0 * de,
@@ -259,7 +265,11 @@ mod tests {
 
     #[test]
     fn results_read_back_as_written_and_bad_lines_are_named() {
-        let rows = vec![row("a", "v1", 1.5, 2.0), row("b", "v2", 0.25, 3.5)];
+        let untimed = Row {
+            frame_ms: None,
+            ..row("b", "v3", 0.0, 1.0)
+        };
+        let rows = vec![row("a", "v1", 1.5, 2.0), row("b", "v2", 0.25, 3.5), untimed];
         assert_eq!(parse_csv(&to_csv(&rows)), Ok(rows));
         let bad = to_csv(&[row("a", "v1", 1.0, 2.0)]).replace("1.0000,", "-1,");
         assert!(
@@ -298,6 +308,11 @@ mod tests {
         let c = summarise(&rows);
         assert_eq!(c.len(), 5);
         assert_eq!((c[0].views, c[0].frame_ms, c[0].de2000_mean), (2, 2.0, 5.0));
+        // A view whose frame was not timed counts for the error, not for the frame time.
+        let mut partly = rows.clone();
+        partly[1].frame_ms = None;
+        let c = summarise(&partly);
+        assert_eq!((c[0].views, c[0].frame_ms, c[0].de2000_mean), (2, 1.0, 5.0));
         assert_eq!(c[0].name(), "fast/rgb3/medium");
         let front: Vec<bool> = c.iter().map(|c| c.on_front).collect();
         // The baseline is the fastest and on no front, nor the model that refused a view.

@@ -34,7 +34,8 @@ pub const QUICK_VIEWS: [&str; 6] = [
     "twilight-6",
 ];
 
-/// Wall time after which a view's frame timing stops, however few frames it has.
+/// Wall time after which a view's frame timing, or a configuration's precompute timing, stops,
+/// however few it has timed (one at least).
 const FRAME_TIMING_BUDGET: std::time::Duration = std::time::Duration::from_secs(2);
 
 #[derive(Args, Debug)]
@@ -43,7 +44,7 @@ pub struct MethodsBench {
     #[arg(long, conflicts_with = "full")]
     pub quick: bool,
     /// The whole run (every view with a reference; RGB3, Spectral4 and Spectral32; low,
-    /// medium and high quality; 10 frames each).
+    /// medium and high quality; frames of 320x180 timed on the quick views, 10 each).
     #[arg(long)]
     pub full: bool,
     /// Sky models, comma-separated registry ids, or `all` (default: all).
@@ -62,9 +63,10 @@ pub struct MethodsBench {
     /// (`atmoscope reference --suite --ci-size --out-dir DIR`, which caches what it renders).
     #[arg(long, value_name = "DIR", default_value = "tests/data/references")]
     pub refs: PathBuf,
-    /// Size WxH of the frames that are timed (errors are measured at the references' size).
-    #[arg(long, value_name = "WxH", value_parser = super::reference::parse_size, default_value = "640x360")]
-    pub frame_size: (u32, u32),
+    /// Size WxH of the frames that are timed (errors are measured at the references' size);
+    /// default 640x360, or 320x180 with --full.
+    #[arg(long, value_name = "WxH", value_parser = super::reference::parse_size)]
+    pub frame_size: Option<(u32, u32)>,
     /// Most frames timed per view (median reported; default 3 quick, 10 full); fewer once
     /// they have taken two seconds, as the nested marches of a table-free model can.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1000))]
@@ -101,6 +103,11 @@ struct Plan {
     sets: Vec<WavelengthSet>,
     qualities: Vec<Quality>,
     views: Vec<&'static views::View>,
+    /// The views whose frames are timed: with --full the quick views among `views` (a frame
+    /// of a nested march at Spectral32 High takes the best part of a minute here, and a
+    /// model's frame time varies little across views), else all.
+    frame_views: Vec<&'static str>,
+    frame_size: (u32, u32),
     repeats: usize,
 }
 
@@ -153,11 +160,26 @@ fn plan(args: &MethodsBench) -> anyhow::Result<Plan> {
     let repeats = args
         .repeats
         .map_or(if full { 10 } else { 3 }, |r| r as usize);
+    let quick_ones: Vec<&'static str> = views
+        .iter()
+        .map(|v| v.name.as_str())
+        .filter(|n| QUICK_VIEWS.contains(n))
+        .collect();
+    let frame_views = if full && !quick_ones.is_empty() {
+        quick_ones
+    } else {
+        views.iter().map(|v| v.name.as_str()).collect()
+    };
+    let frame_size = args
+        .frame_size
+        .unwrap_or(if full { (320, 180) } else { (640, 360) });
     Ok(Plan {
         methods,
         sets,
         qualities,
         views,
+        frame_views,
+        frame_size,
         repeats,
     })
 }
@@ -221,15 +243,12 @@ pub fn run(args: &MethodsBench) -> anyhow::Result<ExitCode> {
                 reference,
                 size: (*w, *h),
             };
+            let frames = plan
+                .frame_views
+                .contains(&v.name.as_str())
+                .then_some(plan.frame_size);
             // A failure (a GPU error, say) leaves this case out and the run goes on.
-            match measure(
-                &mut engine,
-                info,
-                case,
-                args.frame_size,
-                plan.repeats,
-                &mut state,
-            ) {
+            match measure(&mut engine, info, case, frames, plan.repeats, &mut state) {
                 Ok(row) => {
                     timing = engine.timing_source().label().to_string();
                     rows.push(row);
@@ -251,9 +270,10 @@ pub fn run(args: &MethodsBench) -> anyhow::Result<ExitCode> {
         refused: &refused,
         adapter: context.describe(),
         timing,
-        frame_size: args.frame_size,
+        frame_size: plan.frame_size,
         repeats: plan.repeats,
         views: plan.views.iter().map(|v| v.name.as_str()).collect(),
+        frame_views: plan.frame_views.clone(),
         seconds: start.elapsed().as_secs_f64(),
     };
     super::write_atomic(&args.out.join("results.csv"), to_csv(&rows).as_bytes())?;
@@ -298,12 +318,13 @@ struct ConfigState {
     precompute: Option<f64>,
 }
 
-/// Measures one case with `engine` (the configuration's).
+/// Measures one case with `engine` (the configuration's): frames of size `frames` are timed,
+/// or none where it is None.
 fn measure(
     engine: &mut Engine,
     info: &atmoscope_model::methods::ModelInfo,
     case: Case,
-    (fw, fh): (u32, u32),
+    frames: Option<(u32, u32)>,
     repeats: usize,
     state: &mut ConfigState,
 ) -> anyhow::Result<Row> {
@@ -329,11 +350,15 @@ fn measure(
         None if info.tables.is_empty() => 0.0,
         None => {
             let mut times = Vec::new();
+            let start = Instant::now();
             for _ in 0..repeats.min(3) {
                 engine.invalidate();
                 let stats = engine.try_render(&scene, &ref_view)?;
                 times.push(stats.tables_run.iter().filter_map(|p| stats.ms(p)).sum());
                 engine.wait();
+                if start.elapsed() > FRAME_TIMING_BUDGET {
+                    break;
+                }
             }
             let ms = median(times);
             state.precompute = Some(ms);
@@ -353,15 +378,18 @@ fn measure(
     };
     let (c, _) = compare(&image, reference, w, h, setup);
     let outside_sun = outside_sun_disk(&scene, v.projection, w, h);
-    let frame_view = View::new(v.projection, fw, fh);
-    let mut frames = Vec::new();
+    let mut times = Vec::new();
     let timing_start = Instant::now();
+    let (frame_view, repeats) = match frames {
+        Some((fw, fh)) => (View::new(v.projection, fw, fh), repeats),
+        None => (View::new(v.projection, 1, 1), 0),
+    };
     for i in 0..repeats {
         scene.camera.heading_deg = (scene.camera.heading_deg + 1.0 + i as f64) % 360.0;
         let stats = engine.try_render(&scene, &frame_view)?;
         // A frame whose passes were not timed (none ran) is left out.
         if let (Some(sky), Some(display)) = (stats.ms("sky"), stats.ms("display")) {
-            frames.push(sky + display);
+            times.push(sky + display);
         }
         engine.wait();
         if timing_start.elapsed() > FRAME_TIMING_BUDGET {
@@ -374,7 +402,8 @@ fn measure(
         quality: quality_name(scene.render.quality).into(),
         view: v.name.clone(),
         precompute_ms,
-        frame_ms: median(frames),
+        // None where no frame was timed (or none of them ran its passes).
+        frame_ms: (frames.is_some() && !times.is_empty()).then(|| median(times)),
         table_bytes: engine.table_bytes(),
         de2000_mean: c.delta_e2000_mean,
         de2000_p95: c.delta_e2000_p95,
@@ -459,20 +488,27 @@ struct Header<'a> {
     frame_size: (u32, u32),
     repeats: usize,
     views: Vec<&'a str>,
+    /// The views whose frames were timed.
+    frame_views: Vec<&'a str>,
     seconds: f64,
 }
 
 fn summary_markdown(configs: &[Config], h: &Header) -> String {
     let mut s = String::from("# Sky models: run time against error\n\n");
     s += &format!(
-        "Adapter: {}. Frame time: sky and display passes of a {}×{} frame, median of up to {} (fewer after 2 s; {}). \
-         Precompute: the table passes of a full rebuild, timed the same way (median of up to 3). \
+        "Adapter: {}. Frame time: sky and display passes of a {}×{} frame, median of up to {} (fewer after 2 s; {}){}. \
+         Precompute: the table passes of a full rebuild, timed the same way (median of up to 3, fewer after 2 s). \
          Error against path-traced references of {} view(s): {}. Measured in {:.0} s.\n\n",
         h.adapter,
         h.frame_size.0,
         h.frame_size.1,
         h.repeats,
         h.timing,
+        if h.frame_views.len() < h.views.len() {
+            format!(", timed on {}", h.frame_views.join(", "))
+        } else {
+            String::new()
+        },
         h.views.len(),
         h.views.join(", "),
         h.seconds

@@ -1045,7 +1045,7 @@ fn bench_rows() -> Vec<crate::bench_results::Row> {
             quality: "medium".into(),
             view: view.into(),
             precompute_ms: 40.0,
-            frame_ms,
+            frame_ms: Some(frame_ms),
             table_bytes: 1 << 20,
             de2000_mean: de,
             de2000_p95: 2.0 * de,

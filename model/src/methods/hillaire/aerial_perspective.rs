@@ -5,7 +5,7 @@
 //! `shaders/hillaire/aerial_perspective.wgsl`.
 
 use super::{Lanes, Lut, Params, Spacing, TableSpec, Viewpoint, integrate_inscattering};
-use crate::geometry::{distance_to_boundary, horizon_beta};
+use crate::geometry::horizon_beta;
 use crate::methods::Inputs;
 use crate::methods::shared::{add, direction_from_phi_theta, lerp, local_sun, mul, scale};
 use crate::wavelengths::LANES;
@@ -96,7 +96,6 @@ pub fn aerial_perspective_slice_from_distance(d: f64) -> f64 {
 /// stopped at its nearer ground would hold too little depth there (15–30 % by the rows' span).
 pub fn compute_aerial_perspective(p: &Params, t: &Lut, ms: &Lut, vp: Viewpoint) -> (Lut, Lut) {
     let [w, hh, d] = AERIAL_PERSPECTIVE_SIZE;
-    let big_r = p.bottom_radius_m;
     // One march per column, as on the GPU; then split into the two volumes.
     let columns: Vec<Vec<(Lanes, Lanes)>> = (0..p.batches.len() * (w * hh) as usize)
         .into_par_iter()
@@ -222,7 +221,7 @@ mod tests {
 #[cfg(test)]
 mod ground_tests {
     use super::*;
-    use crate::geometry::altitude_along;
+    use crate::geometry::{altitude_along, distance_to_boundary};
     use crate::methods::hillaire::multiple_scattering::compute_multiple_scattering_lut;
     use crate::methods::shared::optics::tests::params;
     use crate::methods::shared::transmittance::compute_transmittance_lut;
