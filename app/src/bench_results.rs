@@ -146,6 +146,7 @@ pub struct Config {
     pub quality: String,
     pub views: usize,
     pub precompute_ms: f64,
+    /// Mean over the views whose frames were timed; NaN where none was ([`Config::timed`]).
     pub frame_ms: f64,
     pub table_bytes: u64,
     pub de2000_mean: f64,
@@ -158,6 +159,11 @@ pub struct Config {
 }
 
 impl Config {
+    /// Whether any of the configuration's frames was timed (it has a place on a time axis).
+    pub fn timed(&self) -> bool {
+        self.frame_ms.is_finite()
+    }
+
     /// `method/wavelengths/quality`, as the chart and the tables label it.
     pub fn name(&self) -> String {
         format!("{}/{}/{}", self.method, self.wavelengths, self.quality)
@@ -201,7 +207,11 @@ pub fn summarise(rows: &[Row]) -> Vec<Config> {
             c.precompute_ms = mean(|r| r.precompute_ms);
             // Over the views whose frames were timed.
             let frames: Vec<f64> = group.iter().filter_map(|r| r.frame_ms).collect();
-            c.frame_ms = frames.iter().sum::<f64>() / frames.len().max(1) as f64;
+            c.frame_ms = if frames.is_empty() {
+                f64::NAN
+            } else {
+                frames.iter().sum::<f64>() / frames.len() as f64
+            };
             c.table_bytes = group.iter().map(|r| r.table_bytes).max().unwrap_or(0);
             c.de2000_mean = mean(|r| r.de2000_mean);
             c.de2000_p95 = mean(|r| r.de2000_p95);
@@ -218,6 +228,7 @@ pub fn summarise(rows: &[Row]) -> Vec<Config> {
     let candidates: Vec<usize> = (0..out.len())
         .filter(|&i| {
             out[i].views == most_views
+                && out[i].timed()
                 && !methods::by_id(&out[i].method).is_some_and(|m| m.baseline)
         })
         .collect();
@@ -317,5 +328,25 @@ mod tests {
         let front: Vec<bool> = c.iter().map(|c| c.on_front).collect();
         // The baseline is the fastest and on no front, nor the model that refused a view.
         assert_eq!(front, vec![true, true, false, false, false]);
+        // A configuration with no frame timed has no frame time and stands on no front,
+        // however good its error.
+        let untimed = |view| Row {
+            frame_ms: None,
+            ..row("untimed", view, 0.0, 0.1)
+        };
+        let mut with_untimed = rows.clone();
+        with_untimed.extend([untimed("v1"), untimed("v2")]);
+        let c = summarise(&with_untimed);
+        let u = c
+            .iter()
+            .find(|c| c.method == "untimed")
+            .expect("summarised");
+        assert!(!u.timed() && !u.on_front, "{u:?}");
+        assert!(
+            c.iter()
+                .find(|c| c.method == "fast")
+                .expect("fast")
+                .on_front
+        );
     }
 }

@@ -217,7 +217,8 @@ pub fn legend_strip(width: u32, log10_min: f64, log10_max: f64) -> (Vec<u8>, u32
     (img, rows as u32)
 }
 
-/// Registers the font egui ships as plotters' "sans-serif" (charts, captions), once.
+/// Registers the font egui ships as plotters' "sans-serif" (charts, captions), once, so that
+/// text looks the same on every machine.
 pub fn register_font() {
     use std::sync::Once;
     static ONCE: Once = Once::new();

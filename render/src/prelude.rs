@@ -132,11 +132,11 @@ pub fn wgsl_prelude() -> String {
         "u32",
         format!("{}u", h::MULTIPLE_SCATTERING_DIRECTIONS_SQRT),
     );
-    let [gt, gp] = h::GROUND_IRRADIANCE_DIRECTIONS;
+    let [rings, azimuths] = h::GROUND_IRRADIANCE_DIRECTIONS;
     c(
         "GROUND_IRRADIANCE_DIRECTIONS",
         "vec2<u32>",
-        format!("vec2<u32>({gt}u, {gp}u)"),
+        format!("vec2<u32>({rings}u, {azimuths}u)"),
     );
     c(
         "SMALL_OPTICAL_THICKNESS",

@@ -1,7 +1,7 @@
 // Gałaj et al.'s (2021) spline columns: ∫ exp(−h'/H) along a ray for air and aerosol, by the
 // Hermite spline over the mesh of galaj_spline/mesh.wgsl (Catmull–Rom tangents; across the
-// lines at the ray's d, then integrated exactly along it), floored at zero. Defines the columns_to_top of the
-// way to the sun (shared/sun_route.wgsl) for the galaj-spline rows, as
+// lines at the ray's d, then integrated exactly along it), floored at zero. Defines the
+// columns_to_top of the way to the sun (shared/sun_route.wgsl) for the galaj-spline rows, as
 // shared/closed_form_columns.wgsl does for the closed forms. Twin of
 // model::methods::galaj_spline::columns.
 

@@ -36,7 +36,7 @@ pub const QUICK_VIEWS: [&str; 6] = [
 
 /// Wall time after which a view's frame timing, or a configuration's precompute timing, stops,
 /// however few it has timed (one at least).
-const FRAME_TIMING_BUDGET: std::time::Duration = std::time::Duration::from_secs(2);
+const TIMING_BUDGET: std::time::Duration = std::time::Duration::from_secs(2);
 
 #[derive(Args, Debug)]
 pub struct MethodsBench {
@@ -104,8 +104,8 @@ struct Plan {
     qualities: Vec<Quality>,
     views: Vec<&'static views::View>,
     /// The views whose frames are timed: with --full the quick views among `views` (a frame
-    /// of a nested march at Spectral32 High takes the best part of a minute here, and a
-    /// model's frame time varies little across views), else all.
+    /// of a nested march at Spectral32 High takes 40 s at 640×360 here, and a model's frame
+    /// time varies less across views than across models), else all.
     frame_views: Vec<&'static str>,
     frame_size: (u32, u32),
     repeats: usize,
@@ -356,7 +356,7 @@ fn measure(
                 let stats = engine.try_render(&scene, &ref_view)?;
                 times.push(stats.tables_run.iter().filter_map(|p| stats.ms(p)).sum());
                 engine.wait();
-                if start.elapsed() > FRAME_TIMING_BUDGET {
+                if start.elapsed() > TIMING_BUDGET {
                     break;
                 }
             }
@@ -379,21 +379,20 @@ fn measure(
     let (c, _) = compare(&image, reference, w, h, setup);
     let outside_sun = outside_sun_disk(&scene, v.projection, w, h);
     let mut times = Vec::new();
-    let timing_start = Instant::now();
-    let (frame_view, repeats) = match frames {
-        Some((fw, fh)) => (View::new(v.projection, fw, fh), repeats),
-        None => (View::new(v.projection, 1, 1), 0),
-    };
-    for i in 0..repeats {
-        scene.camera.heading_deg = (scene.camera.heading_deg + 1.0 + i as f64) % 360.0;
-        let stats = engine.try_render(&scene, &frame_view)?;
-        // A frame whose passes were not timed (none ran) is left out.
-        if let (Some(sky), Some(display)) = (stats.ms("sky"), stats.ms("display")) {
-            times.push(sky + display);
-        }
-        engine.wait();
-        if timing_start.elapsed() > FRAME_TIMING_BUDGET {
-            break;
+    if let Some((fw, fh)) = frames {
+        let frame_view = View::new(v.projection, fw, fh);
+        let timing_start = Instant::now();
+        for i in 0..repeats {
+            scene.camera.heading_deg = (scene.camera.heading_deg + 1.0 + i as f64) % 360.0;
+            let stats = engine.try_render(&scene, &frame_view)?;
+            // A frame whose passes were not timed (none ran) is left out.
+            if let (Some(sky), Some(display)) = (stats.ms("sky"), stats.ms("display")) {
+                times.push(sky + display);
+            }
+            engine.wait();
+            if timing_start.elapsed() > TIMING_BUDGET {
+                break;
+            }
         }
     }
     Ok(Row {
@@ -403,7 +402,7 @@ fn measure(
         view: v.name.clone(),
         precompute_ms,
         // None where no frame was timed (or none of them ran its passes).
-        frame_ms: (frames.is_some() && !times.is_empty()).then(|| median(times)),
+        frame_ms: (!times.is_empty()).then(|| median(times)),
         table_bytes: engine.table_bytes(),
         de2000_mean: c.delta_e2000_mean,
         de2000_p95: c.delta_e2000_p95,
@@ -521,7 +520,7 @@ fn summary_markdown(configs: &[Config], h: &Header) -> String {
     let most_views = configs.iter().map(|c| c.views).max().unwrap_or(0);
     for c in &sorted {
         s += &format!(
-            "| {} | {}{} | {} | {} | {:.1} | {:.2} | {:.2} | {:.2} | {:.2} | {:.3} | {:.3} |\n",
+            "| {} | {}{} | {} | {} | {:.1} | {} | {:.2} | {:.2} | {:.2} | {:.3} | {:.3} |\n",
             if c.on_front { "★" } else { "" },
             c.method,
             if c.views < most_views {
@@ -532,7 +531,11 @@ fn summary_markdown(configs: &[Config], h: &Header) -> String {
             c.wavelengths,
             c.quality,
             c.precompute_ms,
-            c.frame_ms,
+            if c.timed() {
+                format!("{:.2}", c.frame_ms)
+            } else {
+                "—".into()
+            },
             c.table_bytes as f64 / (1024.0 * 1024.0),
             c.de2000_mean,
             c.de2000_p95,
@@ -573,6 +576,9 @@ fn summary_markdown(configs: &[Config], h: &Header) -> String {
 fn write_charts(out: &Path, configs: &[Config], header: &Header) -> anyhow::Result<()> {
     use plotters::prelude::*;
     crate::images::register_font();
+    // A configuration without a timed frame has no place on the time axis.
+    let timed: Vec<Config> = configs.iter().filter(|c| c.timed()).cloned().collect();
+    let configs = &timed[..];
     let size = (960u32, 640u32);
     let mut svg = String::new();
     draw_chart(SVGBackend::with_string(&mut svg, size), configs, header)?;
@@ -589,8 +595,6 @@ fn write_charts(out: &Path, configs: &[Config], header: &Header) -> anyhow::Resu
     )?;
     super::write_atomic(&out.join("pareto.png"), &png)
 }
-
-/// plotters draws text with the font egui ships, so charts look the same on every machine.
 
 /// Axis ticks at 1, 2 and 5 times the powers of ten inside `range` (a log axis of less than a
 /// decade would otherwise show one label or none).
@@ -741,4 +745,45 @@ fn draw_chart<B: plotters::prelude::DrawingBackend>(
         .map_err(err)?;
     root.present().map_err(err)?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(full: bool, views: &[&str]) -> MethodsBench {
+        MethodsBench {
+            quick: !full,
+            full,
+            methods: None,
+            sets: Vec::new(),
+            qualities: Vec::new(),
+            views: views.iter().map(|v| v.to_string()).collect(),
+            refs: PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../tests/data/references"),
+            frame_size: None,
+            repeats: None,
+            cpu_timing: false,
+            out: std::env::temp_dir(),
+        }
+    }
+
+    /// `--full` measures every view with a reference but times 320×180 frames on the quick
+    /// views alone; a run without a quick view times all its views, as `--quick` does.
+    #[test]
+    fn full_times_frames_on_the_quick_views_only() {
+        let full = plan(&args(true, &[])).expect("plan");
+        assert!(full.views.len() > QUICK_VIEWS.len());
+        let mut timed = full.frame_views.clone();
+        timed.sort_unstable();
+        let mut quick_views = QUICK_VIEWS.to_vec();
+        quick_views.sort_unstable();
+        assert_eq!(timed, quick_views);
+        assert_eq!(full.frame_size, (320, 180));
+        assert_eq!(full.sets.len() * full.qualities.len(), 9);
+        let quick = plan(&args(false, &[])).expect("plan");
+        assert_eq!(quick.frame_views.len(), quick.views.len());
+        assert_eq!(quick.frame_size, (640, 360));
+        let elsewhere = plan(&args(true, &["space", "twilight-12"])).expect("plan");
+        assert_eq!(elsewhere.frame_views, vec!["space", "twilight-12"]);
+    }
 }

@@ -56,11 +56,11 @@ pub struct RenderArgs {
     /// Luminance map range as log10 of cd/m²: MIN,MAX.
     #[arg(long, value_name = "MIN,MAX", value_parser = parse_range, allow_hyphen_values = true)]
     pub luminance_range: Option<(f64, f64)>,
-    /// Output file: .png (as displayed) or .exr (linear radiance, W·m⁻²·sr⁻¹ as linear sRGB).
     /// Burn a caption under a PNG: the scene's name, the model, the wavelength set, the
     /// exposure and tone map, the sun's elevation and the camera's altitude.
     #[arg(long)]
     pub caption: bool,
+    /// Output file: .png (as displayed) or .exr (linear radiance, W·m⁻²·sr⁻¹ as linear sRGB).
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
 }

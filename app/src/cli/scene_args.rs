@@ -57,11 +57,11 @@ pub struct SceneArgs {
     pub albedo: Option<f64>,
     /// Air density profile: us-standard-1976, afgl-us-standard, afgl-tropical,
     /// afgl-midlatitude-summer, afgl-midlatitude-winter, afgl-subarctic-summer,
-    /// afgl-subarctic-winter, exponential-fit.
+    /// afgl-subarctic-winter, exponential-fit, exponential-8km.
     #[arg(long, value_name = "NAME")]
     pub air_profile: Option<String>,
     /// Ozone profile: an AFGL name (keeps its own column unless --ozone-du or --month is
-    /// given), guimera, or fit.
+    /// given), guimera, fit, or tent.
     #[arg(long, value_name = "NAME")]
     pub ozone_profile: Option<String>,
     #[arg(long, value_name = "K", allow_hyphen_values = true, help = ranged("Temperature of the ozone cross-section", limits::OZONE_TEMPERATURE_K))]

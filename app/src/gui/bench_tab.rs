@@ -208,7 +208,7 @@ impl BenchTab {
                 None => {
                     if ui
                         .button("Run quick benchmark")
-                        .on_hover_text("atmoscope bench methods --quick: every model with RGB3 and Spectral4 on six views, against the path-traced references (about two minutes on two CPU cores without a GPU)")
+                        .on_hover_text("atmoscope bench methods --quick: every model with RGB3 and Spectral4 on six views, against the path-traced references (about four minutes on two CPU cores without a GPU)")
                         .clicked()
                     {
                         self.start(ui.ctx());
@@ -259,7 +259,18 @@ impl BenchTab {
             .filter(|r| self.view.as_ref().is_none_or(|v| *v == r.view))
             .cloned()
             .collect();
-        let configs = summarise(&shown);
+        let mut configs = summarise(&shown);
+        if self.view.is_some() {
+            // A view whose frames were not timed (`--full` times the quick views) takes its
+            // configuration's frame time over the views that were: a property of the model,
+            // set and quality more than of the view.
+            let all = summarise(&rows);
+            for c in configs.iter_mut().filter(|c| !c.timed()) {
+                if let Some(a) = all.iter().find(|a| a.name() == c.name()) {
+                    c.frame_ms = a.frame_ms;
+                }
+            }
+        }
         let clicked = chart(ui, &configs, self.view.as_deref());
         commands.extend(clicked.and_then(|i| render_command(scene, &configs[i])));
         commands.extend(table(ui, &configs).and_then(|i| render_command(scene, &configs[i])));
@@ -337,6 +348,7 @@ fn chart(ui: &mut egui::Ui, configs: &[Config], view: Option<&str>) -> Option<us
     let span = |f: fn(&Config) -> f64| {
         configs
             .iter()
+            .filter(|c| c.timed())
             .map(|c| f(c).max(1e-6).log10())
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
                 (lo.min(v), hi.max(v))
@@ -378,9 +390,10 @@ fn chart(ui: &mut egui::Ui, configs: &[Config], view: Option<&str>) -> Option<us
         })
         .show(ui, |p| {
             for (i, model) in models.iter().enumerate() {
+                // Only what has a frame time has a place on the chart (the table lists all).
                 let points: Vec<[f64; 2]> = configs
                     .iter()
-                    .filter(|c| c.method == *model)
+                    .filter(|c| c.method == *model && c.timed())
                     .map(log)
                     .collect();
                 p.points(
@@ -446,11 +459,13 @@ fn log_label(v: f64) -> String {
     }
 }
 
-/// The configuration nearest to a point of the log–log chart, and its distance in decades.
+/// The configuration nearest to a point of the log–log chart (of those on it), and its
+/// distance in decades.
 fn nearest(configs: &[Config], at: [f64; 2]) -> Option<(usize, f64)> {
     configs
         .iter()
         .enumerate()
+        .filter(|(_, c)| c.timed())
         .map(|(i, c)| {
             let (x, y) = (
                 c.frame_ms.max(1e-6).log10(),
@@ -487,7 +502,11 @@ fn table(ui: &mut egui::Ui, configs: &[Config]) -> Option<usize> {
                 ui.label(if c.on_front { "front" } else { "" })
                     .on_hover_text("on the Pareto front: nothing measured is both faster and closer to the path tracer");
                 for v in [
-                    format!("{:.2}", c.frame_ms),
+                    if c.timed() {
+                        format!("{:.2}", c.frame_ms)
+                    } else {
+                        "—".into()
+                    },
                     format!("{:.0}", c.precompute_ms),
                     format!("{:.2}", c.table_bytes as f64 / 1048576.0),
                     format!("{:.2}", c.de2000_mean),

@@ -503,13 +503,8 @@ fn render(ui: &mut egui::Ui, s: &mut Scene, meter: Option<&exposure::Reading>) {
                  views (`atmoscope fit-garcia-linan`).",
             );
     }
-    let label = match r.wavelengths {
-        WavelengthSet::Rgb3 => "RGB3".to_string(),
-        WavelengthSet::Spectral4 => "Spectral4".to_string(),
-        WavelengthSet::SpectralN(n) => format!("Spectral{n}"),
-    };
     ComboBox::from_label("Wavelengths")
-        .selected_text(label)
+        .selected_text(r.wavelengths.label())
         .show_ui(ui, |ui| {
             ui.selectable_value(&mut r.wavelengths, WavelengthSet::Rgb3, "RGB3");
             ui.selectable_value(&mut r.wavelengths, WavelengthSet::Spectral4, "Spectral4");
