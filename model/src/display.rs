@@ -5,6 +5,9 @@
 //! to 1 before tone mapping; +1 EV doubles it. The curves: the papers' exponential 1 − e^(−x)
 //! (Bruneton 2008, Hillaire 2020), Narkowicz's (2015) fit of the ACES film curve, Sobotka's
 //! AgX in its common sixth-order polynomial fit, Khronos PBR Neutral (2024), and a plain clip.
+//! Optional veiling glare around the sun ([`glare`]): the Stiles–Holladay law of disability
+//! glare as the CIE gives it (CIE 146:2002), the radiance a bright source adds by scattering in
+//! the eye, 10·E/θ² (θ in degrees from the source, E its irradiance at the eye).
 //! The GPU's display pass (`shaders/views/display.wgsl`) is the f32 twin of this module.
 
 use crate::colour::srgb_encode;
@@ -12,6 +15,41 @@ use crate::scene::ToneMap;
 
 /// Scale from linear radiance (Y in W·m⁻²·sr⁻¹) to tone-mapper input at 0 EV.
 pub const EXPOSURE_SCALE: f64 = 1.0 / 20.0;
+
+/// The Stiles–Holladay constant of veiling glare, sr⁻¹·deg²: L = GLARE_K·E/θ².
+pub const GLARE_K: f64 = 10.0;
+/// Angle from the sun's centre below which the glare stays at its value there, degrees: the
+/// law is stated from 1° outwards (inside, the sun's own disk outshines it 1 500-fold).
+pub const GLARE_MIN_ANGLE_DEG: f64 = 1.0;
+
+/// The veiling glare radiance a sun of irradiance `sun_irradiance` (linear sRGB, W·m⁻², as it
+/// reaches the eye) adds to a pixel whose direction makes cosine `cos_theta` with the sun's.
+pub fn glare(cos_theta: f64, sun_irradiance: [f64; 3]) -> [f64; 3] {
+    let theta_deg = cos_theta
+        .clamp(-1.0, 1.0)
+        .acos()
+        .to_degrees()
+        .max(GLARE_MIN_ANGLE_DEG);
+    sun_irradiance.map(|e| GLARE_K * e / (theta_deg * theta_deg))
+}
+
+/// The sun's irradiance reaching a viewer at altitude `h` (m) with the sun at zenith cosine
+/// `mu_s`, in linear sRGB (W·m⁻²): the optics' solar irradiance through the medium towards the
+/// sun (a 64-interval midpoint march, the sun's visible fraction above the horizon included),
+/// the glare's source.
+pub fn sun_irradiance_rgb(p: &crate::methods::shared::Params, h: f64, mu_s: f64) -> [f64; 3] {
+    use crate::methods::shared::single_scattering_sky::{Rule, SunRoute, Way};
+    let mut route = SunRoute::new(p, Way::March(Rule::Midpoint));
+    route.intervals = 64;
+    let colours: Vec<_> = p.batches.iter().map(|b| b.colour.clone()).collect();
+    let through: Vec<_> = (0..p.batches.len())
+        .map(|layer| {
+            let t = route.seen_from(p, layer, h, mu_s);
+            std::array::from_fn(|i| p.batches[layer].solar_irradiance[i] * t[i])
+        })
+        .collect();
+    crate::wavelengths::to_linear_srgb(&colours, &through)
+}
 
 /// The default range of luminance maps, log10 cd/m²: 10⁻² (deep twilight) to 10⁵ (a bright
 /// sky near the sun).
@@ -196,6 +234,42 @@ pub fn metered_exposure_ev(l_cd_m2: f64, compensation_ev: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The glare falls as the square of the angle from the sun (a quarter at twice the angle),
+    /// stays at 10·E inside a degree, and is ten times E per square degree at 1°.
+    #[test]
+    fn glare_follows_the_stiles_holladay_law() {
+        let e = [2.0, 4.0, 8.0];
+        let at = |deg: f64| glare(deg.to_radians().cos(), e);
+        assert!((at(1.0)[1] - 40.0).abs() < 1e-9);
+        for deg in [2.0, 5.0, 15.0] {
+            for c in 0..3 {
+                assert!((at(deg)[c] / at(2.0 * deg)[c] - 4.0).abs() < 1e-9);
+            }
+        }
+        assert_eq!(at(0.2), at(1.0));
+        assert_eq!(glare(1.0, [0.0; 3]), [0.0; 3]);
+    }
+
+    /// The glare's source: the sun overhead on the ground is the top-of-atmosphere sun dimmed
+    /// by the vertical optical depth; below the horizon there is none.
+    #[test]
+    fn the_sun_reaching_the_eye_is_dimmed_by_the_air_and_gone_below_the_horizon() {
+        let p = crate::methods::shared::optics::tests::params();
+        let noon = sun_irradiance_rgb(&p, 0.0, 1.0);
+        let space = sun_irradiance_rgb(&p, 200_000.0, 1.0);
+        let low = sun_irradiance_rgb(&p, 0.0, 5f64.to_radians().sin());
+        for c in 0..3 {
+            assert!(
+                space[c] > noon[c] && noon[c] > 0.5 * space[c],
+                "{noon:?} {space:?}"
+            );
+            assert!(low[c] < noon[c], "{low:?}");
+        }
+        // Redder at a low sun: blue loses more than red.
+        assert!(low[2] / noon[2] < low[0] / noon[0], "{low:?} {noon:?}");
+        assert_eq!(sun_irradiance_rgb(&p, 0.0, -0.2), [0.0; 3]);
+    }
 
     #[test]
     fn black_stays_black_and_bright_saturates() {

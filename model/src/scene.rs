@@ -457,6 +457,9 @@ pub struct DisplaySettings {
     pub dither: bool,
     /// Which light the display shows as white (`model::white_balance`).
     pub white_balance: WhiteBalance,
+    /// Add the eye's veiling glare around the sun to what is shown (`model::display::glare`):
+    /// a display effect for pictures; the radiance, and so every measurement, stays without.
+    pub glare: bool,
 }
 
 /// The light a display shows as white.
@@ -480,6 +483,7 @@ impl Default for DisplaySettings {
             tone_map: ToneMap::default(),
             dither: true,
             white_balance: WhiteBalance::default(),
+            glare: false,
         }
     }
 }

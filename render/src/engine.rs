@@ -168,7 +168,7 @@ struct Snapshot {
     sun: [f64; 3],
     camera: (CameraSettings, Projection),
     size: [u32; 2],
-    display: (f64, ToneMap, DisplayMode, bool, WhiteBalance),
+    display: (f64, ToneMap, DisplayMode, bool, WhiteBalance, bool),
 }
 
 impl Snapshot {
@@ -224,6 +224,7 @@ impl FrameSetup {
                 view.mode,
                 scene.display.dither,
                 scene.display.white_balance,
+                scene.display.glare,
             ),
         };
         let globals = Globals::from(&FrameInputs {
@@ -235,6 +236,10 @@ impl FrameSetup {
             size,
             mode: view.mode,
             model: (gpu.constants)(params),
+            // Only a display that shows glare pays for its source.
+            glare: (scene.display.glare && view.mode == DisplayMode::Colour).then(|| {
+                atmoscope_model::display::sun_irradiance_rgb(params, viewpoint.h, viewpoint.mu_s)
+            }),
             balance: white_balance::matrix_with(scene, || {
                 *state.noon_white.get_or_init(|| {
                     white_balance::noon_sun_white(&Atmosphere::new(&state.key.settings))

@@ -168,6 +168,12 @@ pub fn wgsl_prelude() -> String {
         f(shared::exponential::GALAJ_TAYLOR_B),
     );
     c("SUN_ANGULAR_RADIUS_RAD", "f32", f(SUN_ANGULAR_RADIUS_RAD));
+    c("GLARE_K", "f32", f(display::GLARE_K));
+    c(
+        "GLARE_MIN_ANGLE_DEG",
+        "f32",
+        f(display::GLARE_MIN_ANGLE_DEG),
+    );
     c("SUN_LIMB_DARKENING_U", "f32", f(SUN_LIMB_DARKENING_U));
     c("SUN_LIMB_INSET", "f32", f(shared::sun::SUN_LIMB_INSET));
     c("VERTICAL_RAD", "f32", f(shared::VERTICAL_RAD));

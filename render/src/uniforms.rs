@@ -96,6 +96,7 @@ pub struct Globals {
     pub steps_a: [u32; 4],
     pub steps_b: [u32; 4],
     pub display: [f32; 4],
+    pub glare: [f32; 4],
     pub white_balance: [[f32; 4]; 3],
     pub model: [[f32; 4]; 3],
 }
@@ -117,6 +118,9 @@ pub struct FrameInputs<'a> {
     pub model: crate::methods::ModelConstants,
     /// The display's white balance (rows, on linear sRGB).
     pub balance: [[f64; 3]; 3],
+    /// The sun's irradiance at the camera (linear sRGB, W·m⁻²) where the display adds its
+    /// glare (`model::display::glare`); None: no glare.
+    pub glare: Option<[f64; 3]>,
 }
 
 impl From<&FrameInputs<'_>> for Globals {
@@ -182,6 +186,9 @@ impl From<&FrameInputs<'_>> for Globals {
                 log10_max as f32,
                 f32::from(u8::from(f.scene.display.dither)),
             ],
+            glare: f
+                .glare
+                .map_or([0.0; 4], |e| [e[0] as f32, e[1] as f32, e[2] as f32, 1.0]),
             white_balance: f
                 .balance
                 .map(|r| [r[0] as f32, r[1] as f32, r[2] as f32, 0.0]),

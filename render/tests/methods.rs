@@ -849,6 +849,78 @@ fn a_rebuild_in_slices_gives_the_same_tables_as_a_whole_one() {
     }
 }
 
+/// With glare on, the display pass adds the veiling glare of `model::display::glare` around
+/// the sun, from the sun's irradiance of `sun_irradiance_rgb`, to each pixel before the white
+/// balance and the tone map: the bytes the CPU gives from the same radiance within a step; the
+/// radiance itself (what every measurement reads) is the same with glare as without.
+#[test]
+fn the_display_adds_the_glare_of_its_cpu_twin_around_the_sun() {
+    use atmoscope_model::display::{display_balanced, glare, sun_irradiance_rgb, to_u8};
+    use atmoscope_model::geometry::direction_from_angles;
+    use atmoscope_model::methods::shared::Params;
+    use atmoscope_model::scene::ToneMap;
+    let Some(gpu) = context() else { return };
+    let (w, h) = (48u32, 27u32);
+    let view = View::new(Projection::Perspective, w, h);
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    let mut scene = Scene::default();
+    let sun = scene.sun.angles();
+    scene.camera.heading_deg = sun.azimuth_deg + 10.0;
+    scene.camera.pitch_deg = sun.elevation_deg - 5.0;
+    scene.display.tone_map = ToneMap::Filmic;
+    scene.display.exposure_ev = -1.0;
+    scene.display.dither = false;
+    engine.render(&scene, &view);
+    let (plain_radiance, plain) = (
+        engine.read_radiance().expect("radiance"),
+        engine.read_display().expect("display"),
+    );
+    scene.display.glare = true;
+    engine.render(&scene, &view);
+    let radiance = engine.read_radiance().expect("radiance");
+    let shown = engine.read_display().expect("display");
+    assert_eq!(radiance, plain_radiance, "glare never reaches the radiance");
+    assert_ne!(shown, plain, "glare shows");
+    let p = Params::new(
+        &atmoscope_model::Atmosphere::for_scene(&scene),
+        scene.render.wavelengths,
+        scene.render.quality,
+    );
+    let e = sun_irradiance_rgb(
+        &p,
+        scene.camera.altitude_m,
+        sun.elevation_deg.to_radians().sin(),
+    );
+    let camera = Camera::new(&scene.camera, p.bottom_radius_m, Projection::Perspective);
+    let sun_dir = direction_from_angles(sun.elevation_deg, sun.azimuth_deg);
+    let balance = atmoscope_model::white_balance::matrix(&scene);
+    let (mut worst, mut differ) = (0, 0);
+    for (i, l) in radiance.iter().enumerate() {
+        let (x, y) = (i as u32 % w, i as u32 / w);
+        let ray = camera
+            .ray(f64::from(x) + 0.5, f64::from(y) + 0.5, w, h)
+            .expect("a perspective pixel");
+        let g = glare(ray.direction.dot(sun_dir), e);
+        let l = [l[0], l[1], l[2]].map(f64::from);
+        let cpu = display_balanced(
+            std::array::from_fn(|c| l[c] + g[c]),
+            &balance,
+            scene.display.exposure_ev,
+            scene.display.tone_map,
+        );
+        for c in 0..3 {
+            let d = to_u8(cpu[c]).abs_diff(shown[4 * i + c]);
+            worst = worst.max(d);
+            differ += usize::from(d > 0);
+        }
+    }
+    let n = radiance.len() * 3;
+    assert!(
+        worst <= 1 && differ * 50 <= n,
+        "{worst} steps, {differ} of {n} bytes"
+    );
+}
+
 /// The display pass is the twin of `model::display`: every tone map, with and without
 /// dithering, under each white balance, gives the bytes the CPU gives from the same radiance, within one step (f32
 /// against f64 at rounding edges, in a fiftieth of the bytes at most); dithering changes bytes and keeps their mean.

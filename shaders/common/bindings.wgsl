@@ -32,6 +32,9 @@ struct Globals {
     steps_b: vec4<u32>,
     // exposure scale, log10 luminance min and max (cd/m²), 1 to dither the 8-bit image (else 0)
     display: vec4<f32>,
+    // the sun's irradiance at the camera (linear sRGB, W/m²) and 1 where the display adds its
+    // veiling glare (model::display::glare), else 0
+    glare: vec4<f32>,
     // white balance matrix rows on linear sRGB (model::white_balance), w unused
     white_balance: array<vec4<f32>, 3>,
     // constants of the model on screen, three rows (render::methods::GpuMethod::constants)

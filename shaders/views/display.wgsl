@@ -76,6 +76,18 @@ fn dither(p: vec2<u32>) -> f32 {
     return f32(a >> 8u) / 16777216.0 + f32(b >> 8u) / 16777216.0 - 1.0;
 }
 
+// The veiling glare around the sun at pixel p, 10·E/θ² (θ in degrees, at least 1°); twin of
+// model::display::glare.
+fn glare(p: vec2<u32>) -> vec3<f32> {
+    let ray = camera_ray(f32(p.x) + 0.5, f32(p.y) + 0.5);
+    if ray.w == 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let cos_theta = clamp(dot(normalize(ray.xyz), globals.sun.xyz), -1.0, 1.0);
+    let theta_deg = max(degrees(acos(cos_theta)), GLARE_MIN_ANGLE_DEG);
+    return globals.glare.xyz * (GLARE_K / (theta_deg * theta_deg));
+}
+
 fn false_colour(t: f32) -> vec3<f32> {
     let x = clamp(t, 0.0, 1.0) * f32(FALSE_COLOUR_STOP_COUNT - 1u);
     let i = min(u32(floor(x)), FALSE_COLOUR_STOP_COUNT - 2u);
@@ -96,8 +108,12 @@ fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
             let t = (log(max(y, 1e-30)) / log(10.0) - globals.display.y) / (globals.display.z - globals.display.y);
             out = false_colour(t);
         } else {
+            var shown = l.rgb;
+            if globals.glare.w > 0.0 {
+                shown += glare(id.xy);
+            }
             let wb = globals.white_balance;
-            let balanced = vec3<f32>(dot(wb[0].xyz, l.rgb), dot(wb[1].xyz, l.rgb), dot(wb[2].xyz, l.rgb));
+            let balanced = vec3<f32>(dot(wb[0].xyz, shown), dot(wb[1].xyz, shown), dot(wb[2].xyz, shown));
             out = srgb_encode(tone_map(max(balanced * globals.display.x, vec3<f32>(0.0))));
         }
     }

@@ -607,4 +607,6 @@ fn render(ui: &mut egui::Ui, s: &mut Scene, meter: Option<&exposure::Reading>) {
     }
     ui.checkbox(&mut d.dither, "Dither")
         .on_hover_text("Adds up to one step of noise per pixel to the 8-bit image so that smooth skies do not band. Off for byte-exact comparisons.");
+    ui.checkbox(&mut d.glare, "Glare around the sun")
+        .on_hover_text("Adds the eye's veiling glare around the sun to the picture (10·E/θ², the Stiles–Holladay law: E the sun's irradiance here, θ degrees from it). A display effect: the radiance, the inspector, exports as EXR and every measurement stay without. Off for measurement.");
 }

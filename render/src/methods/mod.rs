@@ -281,7 +281,12 @@ pub const DISPLAY_PASS: PassSpec = PassSpec {
     writes: &[DISPLAY],
     inputs: Inputs::DISPLAY.union(Inputs::VIEW_SIZE),
     dispatch: Dispatch::View,
-    constants: &[Constant::DisplayMode, Constant::ToneMap],
+    // The projection places each pixel's direction for the glare around the sun.
+    constants: &[
+        Constant::DisplayMode,
+        Constant::ToneMap,
+        Constant::Projection,
+    ],
     repeat: Repeat::Once,
     reads_above_atmosphere: None,
     reads_for_ground: &[],
