@@ -168,6 +168,11 @@ pub fn wgsl_prelude() -> String {
         f(shared::exponential::GALAJ_TAYLOR_B),
     );
     c("SUN_ANGULAR_RADIUS_RAD", "f32", f(SUN_ANGULAR_RADIUS_RAD));
+    c(
+        "GROUND_TRANSMITTANCE_FROM_TABLE_ABOVE_M",
+        "f32",
+        f(h::sky::GROUND_TRANSMITTANCE_FROM_TABLE_ABOVE_M),
+    );
     c("GLARE_K", "f32", f(display::GLARE_K));
     c(
         "GLARE_MIN_ANGLE_DEG",

@@ -59,15 +59,19 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
             let d = distance_to_ground(h, mu);
             let mu_s_g = clamp((r * mu_s + d * nu) / big_r, -1.0, 1.0);
             let lg = ground_radiance(layer, mu_s_g);
+            // Twin of hillaire::sky::ground_path.
             var s: Inscattering;
-            if d < AERIAL_PERSPECTIVE_MAX_DISTANCE_M {
+            let near = d < AERIAL_PERSPECTIVE_MAX_DISTANCE_M;
+            if near {
                 s = aerial_perspective(layer, h, phi, theta, d);
             } else {
+                s.radiance = sky_view(layer, h, phi, theta, true);
+            }
+            if !near || h >= GROUND_TRANSMITTANCE_FROM_TABLE_ABOVE_M {
                 let mu_g = clamp((r * mu + d) / big_r, -1.0, 1.0);
                 let t_g = transmittance(layer, 0.0, -mu_g);
                 let t_c = transmittance(layer, h, -mu);
                 s.transmittance = min(t_g / max(t_c, vec4<f32>(1e-30)), vec4<f32>(1.0));
-                s.radiance = sky_view(layer, h, phi, theta, true);
             }
             return s.radiance + s.transmittance * lg;
         }
