@@ -40,7 +40,8 @@ const TIMING_BUDGET: std::time::Duration = std::time::Duration::from_secs(2);
 
 #[derive(Args, Debug)]
 pub struct MethodsBench {
-    /// A quick run (six views, RGB3 and Spectral4, medium quality, up to 3 frames each).
+    /// A quick run (six views, RGB3 and Spectral4, medium quality, up to 3 frames of 480x270
+    /// each).
     #[arg(long, conflicts_with = "full")]
     pub quick: bool,
     /// The whole run (every view with a reference; RGB3, Spectral4 and Spectral32; low,
@@ -64,7 +65,7 @@ pub struct MethodsBench {
     #[arg(long, value_name = "DIR", default_value = "tests/data/references")]
     pub refs: PathBuf,
     /// Size WxH of the frames that are timed (errors are measured at the references' size);
-    /// default 640x360, or 320x180 with --full.
+    /// default 480x270, or 320x180 with --full.
     #[arg(long, value_name = "WxH", value_parser = super::reference::parse_size)]
     pub frame_size: Option<(u32, u32)>,
     /// Most frames timed per view (median reported; default 3 quick, 10 full); fewer once
@@ -172,7 +173,7 @@ fn plan(args: &MethodsBench) -> anyhow::Result<Plan> {
     };
     let frame_size = args
         .frame_size
-        .unwrap_or(if full { (320, 180) } else { (640, 360) });
+        .unwrap_or(if full { (320, 180) } else { (480, 270) });
     Ok(Plan {
         methods,
         sets,
@@ -782,7 +783,7 @@ mod tests {
         assert_eq!(full.sets.len() * full.qualities.len(), 9);
         let quick = plan(&args(false, &[])).expect("plan");
         assert_eq!(quick.frame_views.len(), quick.views.len());
-        assert_eq!(quick.frame_size, (640, 360));
+        assert_eq!(quick.frame_size, (480, 270));
         let elsewhere = plan(&args(true, &["space", "twilight-12"])).expect("plan");
         assert_eq!(elsewhere.frame_views, vec!["space", "twilight-12"]);
     }
