@@ -15,7 +15,7 @@ use crate::methods::{
     Constant, Dispatch, GpuMethod, HISTOGRAM, METER_PASS, PassSpec, Repeat, gpu_method,
 };
 use crate::passes::{ORIGIN_SLOTS, Pipelines, TableBuffers, Variant};
-use crate::prelude::WORKGROUP_SIZE;
+use crate::prelude::{WORKGROUP_SIZE, texel_group_size};
 use crate::readback::{
     ReadbackError, read_buffer_f32x4, read_buffer_u32, read_texture, read_texture_f32x4,
 };
@@ -406,6 +406,10 @@ fn grid(pipelines: &Pipelines, i: usize, layers: u32, size: [u32; 2]) -> [u32; 3
             let [w, h, _] = info.table(id).map_or([1, 1, 1], |t| t.size);
             [groups(w), groups(h), layers]
         }
+        Dispatch::TexelGroups(id) => {
+            let [w, h, _] = info.table(id).map_or([1, 1, 1], |t| t.size);
+            [w, h, layers]
+        }
         Dispatch::Volume(id) => {
             let [w, h, d] = info.table(id).map_or([1, 1, 1], |t| t.size);
             [groups(w), groups(h), d * layers]
@@ -686,6 +690,8 @@ pub struct Engine {
     /// Passes left stale because the last frames did not need them (by pass index of the
     /// model on screen); they run as soon as a frame needs them.
     deferred: Vec<bool>,
+    /// Invocations of a workgroup that shares a texel (`prelude::texel_group_size`).
+    texel_group_size: u32,
 }
 
 impl Engine {
@@ -712,7 +718,21 @@ impl Engine {
             measure: false,
             stats: FrameStats::default(),
             deferred: Vec::new(),
+            texel_group_size: texel_group_size(device.adapter_info().device_type),
         }
+    }
+
+    /// Compiles passes that share a texel among a workgroup with workgroups of `n` invocations
+    /// (a power of two, 1–256) instead of the adapter's choice; the tables come out the same up
+    /// to f32 rounding, only the speed differs. Forgets every compiled pass and table.
+    pub fn set_texel_group_size(&mut self, n: u32) {
+        self.texel_group_size = n.clamp(1, 256).next_power_of_two();
+        self.pipelines.clear();
+        self.atmosphere = None;
+        self.rebuild = None;
+        self.target = None;
+        self.last = None;
+        self.deferred.clear();
     }
 
     /// Forgets the previous frame, so the next one runs every pass (a full rebuild).
@@ -819,7 +839,11 @@ impl Engine {
         {
             Some(i) => i,
             None => {
-                self.pipelines.push(Pipelines::new(&self.device, method));
+                self.pipelines.push(Pipelines::with_texel_group_size(
+                    &self.device,
+                    method,
+                    self.texel_group_size,
+                ));
                 self.pipelines.len() - 1
             }
         }

@@ -5,7 +5,7 @@
 use crate::methods::{
     COMMON, Constant, DISPLAY, GpuMethod, PassSpec, RADIANCE, SKY_ENTRY_POINT, VIEW_PASSES,
 };
-use crate::prelude::wgsl_prelude;
+use crate::prelude::{texel_group_size, wgsl_prelude};
 use crate::uniforms::{Batch, Globals};
 use atmoscope_model::methods::shared::{PROFILE_SAMPLES, Params};
 use atmoscope_model::methods::{ModelInfo, shared::TableSpec};
@@ -80,9 +80,13 @@ fn pass_layout(pass: &PassSpec) -> Vec<wgpu::BindGroupLayoutEntry> {
 }
 
 /// The complete WGSL module of a pass of `method` (the display pass takes no model files; a
-/// sky pass ends with the shared entry point).
-pub fn shader_source(method: &GpuMethod, pass: &PassSpec) -> String {
+/// sky pass ends with the shared entry point), for workgroups of `texel_group_size` where a
+/// workgroup shares a texel (`prelude::texel_group_size`).
+pub fn shader_source(method: &GpuMethod, pass: &PassSpec, texel_group_size: u32) -> String {
     let mut s = wgsl_prelude();
+    s.push_str(&format!(
+        "const TEXEL_GROUP_SIZE: u32 = {texel_group_size}u;\n"
+    ));
     for part in COMMON {
         s.push_str(part.source);
     }
@@ -115,6 +119,17 @@ pub struct Pipelines {
 
 impl Pipelines {
     pub fn new(device: &wgpu::Device, method: &GpuMethod) -> Pipelines {
+        let texel_group = texel_group_size(device.adapter_info().device_type);
+        Self::with_texel_group_size(device, method, texel_group)
+    }
+
+    /// [`Pipelines::new`] with workgroups of `texel_group_size` (a power of two, 1–256) where
+    /// a workgroup shares a texel, whatever the adapter.
+    pub fn with_texel_group_size(
+        device: &wgpu::Device,
+        method: &GpuMethod,
+        texel_group_size: u32,
+    ) -> Pipelines {
         let group0 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("group 0: globals, batches, profile, origin"),
             entries: &[
@@ -142,7 +157,9 @@ impl Pipelines {
                 });
                 let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                     label: Some(spec.shader.path),
-                    source: wgpu::ShaderSource::Wgsl(shader_source(method, &spec).into()),
+                    source: wgpu::ShaderSource::Wgsl(
+                        shader_source(method, &spec, texel_group_size).into(),
+                    ),
                 });
                 let pipeline_layout =
                     device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {

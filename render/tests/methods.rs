@@ -39,7 +39,7 @@ fn every_shader_parses_validates_and_matches_the_rust_layouts() {
         .flat_map(|m| m.passes.iter().chain([&DISPLAY_PASS]).map(move |p| (m, p)))
     {
         let file = pass.shader.path;
-        let src = shader_source(method, pass);
+        let src = shader_source(method, pass, 64);
         let module = naga::front::wgsl::parse_str(&src)
             .unwrap_or_else(|e| panic!("{file}: {}", e.emit_to_string(&src)));
         naga::valid::Validator::new(
@@ -154,6 +154,10 @@ fn every_lookup_table_matches_its_cpu_twin() {
 }
 
 /// The engine's last rendered view as linear sRGB.
+/// How many of the display's bytes may be a step off the f64 twin: one in 20. Lavapipe's f32
+/// puts under 2 % a step off, an H100's faster exp and pow 3.3 % (127 of 3 888); never 2 steps.
+const DIFFER_AT_MOST_ONE_IN: usize = 20;
+
 fn radiance_image(engine: &Engine) -> Vec<[f64; 3]> {
     engine
         .read_radiance()
@@ -839,13 +843,50 @@ fn a_rebuild_in_slices_gives_the_same_tables_as_a_whole_one() {
                 table.id
             );
         }
-        assert_eq!(
-            radiance_image(&sliced),
-            radiance_image(&whole),
-            "{}",
-            model.id
-        );
+        // The same shader on the same pixels: bit for bit on lavapipe; an NVIDIA driver was
+        // seen to round 12 of 384 pixels an f32 ulp apart (3e-7) between the two engines.
+        let worst = radiance_image(&sliced)
+            .iter()
+            .flatten()
+            .zip(radiance_image(&whole).iter().flatten())
+            .map(|(a, b)| (a - b).abs() / b.abs().max(1e-30))
+            .fold(0.0, f64::max);
+        assert!(worst <= 1e-6, "{}: {worst}", model.id);
         assert_ne!(radiance_image(&sliced), old_image, "{}", model.id);
+    }
+}
+
+/// Tables whose texels are shared by a workgroup (`Dispatch::TexelGroups`) come out the same,
+/// up to f32 rounding of the sums' order, whatever the workgroup's size: 16 as on lavapipe, 64
+/// as on a GPU, and 1 (one invocation per texel, the old layout).
+#[test]
+fn texel_groups_of_any_size_give_the_same_tables() {
+    let Some(gpu) = context() else { return };
+    let view = View::new(Projection::Perspective, 8, 8);
+    let mut scene = Scene::default();
+    scene.render.method = Method::Hillaire;
+    let read = |n: u32| {
+        let mut engine = Engine::new(&gpu.device, &gpu.queue);
+        engine.set_texel_group_size(n);
+        engine.render(&scene, &view);
+        ["multiple-scattering", "ground-irradiance"].map(|id| engine.read_table(id).expect(id))
+    };
+    let reference = read(1);
+    for n in [16, 64] {
+        for (table, (a, b)) in ["multiple-scattering", "ground-irradiance"]
+            .iter()
+            .zip(read(n).iter().zip(&reference))
+        {
+            assert_eq!(a.len(), b.len());
+            let worst = a
+                .iter()
+                .flatten()
+                .zip(b.iter().flatten())
+                .map(|(x, y)| (x - y).abs() / y.abs().max(1e-30))
+                .fold(0.0f32, f32::max);
+            assert!(worst < 1e-4, "{table} with groups of {n}: {worst}");
+            assert!(b.iter().flatten().any(|&v| v > 0.0), "{table} is empty");
+        }
     }
 }
 
@@ -916,7 +957,7 @@ fn the_display_adds_the_glare_of_its_cpu_twin_around_the_sun() {
     }
     let n = radiance.len() * 3;
     assert!(
-        worst <= 1 && differ * 50 <= n,
+        worst <= 1 && differ * DIFFER_AT_MOST_ONE_IN <= n,
         "{worst} steps, {differ} of {n} bytes"
     );
 }
@@ -972,7 +1013,7 @@ fn the_display_pass_matches_its_cpu_twin_for_every_tone_map() {
             // Off by a step only where f32 and f64 round a value on either side of an edge.
             let n = radiance.len() * 3;
             assert!(
-                worst <= 1 && differ * 50 <= n,
+                worst <= 1 && differ * DIFFER_AT_MOST_ONE_IN <= n,
                 "{tone_map:?} dither {dither}: {worst} steps, {differ} of {n} bytes"
             );
             bytes.push(gpu_bytes);

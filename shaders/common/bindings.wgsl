@@ -70,6 +70,12 @@ struct Batch {
 // The invocation's place in the pass's whole grid.
 fn dispatched(invocation: vec3<u32>) -> vec3<u32> { return invocation + origin.xyz; }
 
+// The texel of a workgroup of a pass run one workgroup per texel (Dispatch::TexelGroups): a
+// slice's origin counts WORKGROUP_SIZE invocations per row of workgroups, as for any pass.
+fn dispatched_texel(workgroup: vec3<u32>) -> vec3<u32> {
+    return vec3<u32>(workgroup.xy + origin.xy / WORKGROUP_SIZE, workgroup.z + origin.z);
+}
+
 fn bottom_radius() -> f32 { return globals.planet.x; }
 fn top_radius() -> f32 { return globals.planet.y; }
 fn thickness() -> f32 { return globals.planet.z; }

@@ -1,5 +1,6 @@
 // Pass: multiple-scattering table Ψ_ms(h, mu_s) = L_2nd / (1 − f_ms), per unit solar irradiance
-// (Hillaire 2020 §5.5), with an isotropic phase and the sunlit ground bounce.
+// (Hillaire 2020 §5.5), with an isotropic phase and the sunlit ground bounce. One workgroup per
+// texel, its invocations sharing the directions, as Hillaire's own pass does.
 
 fn sphere_direction(i: u32, n: u32) -> vec3<f32> {
     let mu = 1.0 - 2.0 * (f32(i / n) + 0.5) / f32(n);
@@ -8,9 +9,12 @@ fn sphere_direction(i: u32, n: u32) -> vec3<f32> {
     return vec3<f32>(s * cos(phi), s * sin(phi), mu);
 }
 
-@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
-fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
-    let id = dispatched(invocation);
+@compute @workgroup_size(TEXEL_GROUP_SIZE, 1, 1)
+fn main(
+    @builtin(workgroup_id) workgroup: vec3<u32>,
+    @builtin(local_invocation_index) index: u32,
+) {
+    let id = dispatched_texel(workgroup);
     if any(id.xy >= MULTIPLE_SCATTERING_SIZE) || id.z >= batch_count() {
         return;
     }
@@ -27,7 +31,7 @@ fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
     let n = globals.steps_a.y;
     var l_2nd = vec4<f32>(0.0);
     var f_ms = vec4<f32>(0.0);
-    for (var d = 0u; d < n_dir * n_dir; d++) {
+    for (var d = index; d < n_dir * n_dir; d += TEXEL_GROUP_SIZE) {
         let omega = sphere_direction(d, n_dir);
         let mu = omega.z;
         let nu = dot(omega, sun);
@@ -59,8 +63,11 @@ fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
             l_2nd += throughput * sun_t * max(mu_s_g, 0.0) * albedo / PI;
         }
     }
-    let count = f32(n_dir * n_dir);
-    let psi = (l_2nd / count) / (1.0 - f_ms / count);
-    let size = MULTIPLE_SCATTERING_SIZE;
-    multiple_scattering_lut[(layer * size.y + id.y) * size.x + id.x] = psi;
+    let sums = group_sums(index, l_2nd, f_ms);
+    if index == 0u {
+        let count = f32(n_dir * n_dir);
+        let psi = (sums[0] / count) / (1.0 - sums[1] / count);
+        let size = MULTIPLE_SCATTERING_SIZE;
+        multiple_scattering_lut[(layer * size.y + id.y) * size.x + id.x] = psi;
+    }
 }

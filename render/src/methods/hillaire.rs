@@ -15,7 +15,7 @@ pub const MULTIPLE_SCATTERING_PASS: PassSpec = PassSpec::table(
     shader!("hillaire/multiple_scattering.wgsl"),
     &["transmittance"],
     &["multiple-scattering"],
-    Dispatch::Table("multiple-scattering"),
+    Dispatch::TexelGroups("multiple-scattering"),
     Repeat::Once,
 );
 
@@ -35,7 +35,7 @@ pub const METHOD: GpuMethod = GpuMethod {
             shader!("hillaire/ground_irradiance.wgsl"),
             &["transmittance", "multiple-scattering"],
             &["ground-irradiance"],
-            Dispatch::Table("ground-irradiance"),
+            Dispatch::TexelGroups("ground-irradiance"),
             Repeat::Once,
         ),
         PassSpec::table(

@@ -81,6 +81,10 @@ pub enum Dispatch {
     /// One invocation per texel (x, y) of the table with this id, one z per batch; a pass over a
     /// 3D table marches its slices inside each invocation.
     Table(&'static str),
+    /// One workgroup per texel (x, y) of the 2D table with this id, one z per batch: the
+    /// workgroup's invocations share the texel's directions and sum them together, for tables
+    /// of few texels and many directions each (a GPU needs thousands of invocations in flight).
+    TexelGroups(&'static str),
     /// One invocation per texel (x, y, z) of the 3D table with this id, z running over the
     /// slices of every batch in turn.
     Volume(&'static str),
@@ -396,7 +400,7 @@ pub const SKY_INPUTS: Inputs = Inputs::VIEWPOINT
     .union(Inputs::VIEW_SIZE);
 
 /// The WGSL files every pass includes, after the generated prelude.
-pub const COMMON: [Shader; 8] = [
+pub const COMMON: [Shader; 9] = [
     shader!("common/bindings.wgsl"),
     shader!("common/geometry.wgsl"),
     shader!("common/lut.wgsl"),
@@ -405,6 +409,7 @@ pub const COMMON: [Shader; 8] = [
     shader!("common/transmittance.wgsl"),
     shader!("common/ray.wgsl"),
     shader!("common/view.wgsl"),
+    shader!("common/group.wgsl"),
 ];
 
 /// Every real-time model's passes, in registry order.
