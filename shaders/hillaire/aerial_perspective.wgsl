@@ -1,12 +1,19 @@
-// Pass: aerial-perspective volume. One invocation marches one ground-bound direction of the
-// sun-aligned frame and writes (in-scattered radiance, transmittance) at the end of every slice,
-// on past the ground (where the march takes the ground's medium and light), so that a pixel
-// between two rows reads both at its own ground. Twin of
-// model::methods::hillaire::aerial_perspective.
+// Pass: aerial-perspective volume. One workgroup per ground-bound direction of the sun-aligned
+// frame (a column of the volume): its invocations march the slices' segments side by side, on
+// past the ground (where the march takes the ground's medium and light), so that a pixel
+// between two rows reads both at its own ground; then each writes (in-scattered radiance,
+// transmittance) at the end of its slices, gathering the segments in front of them in the
+// order a single march adds them. Twin of model::methods::hillaire::aerial_perspective.
 
-@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
-fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
-    let id = dispatched(invocation);
+var<workgroup> segment_radiance: array<vec4<f32>, AERIAL_PERSPECTIVE_SIZE.z>;
+var<workgroup> segment_transmittance: array<vec4<f32>, AERIAL_PERSPECTIVE_SIZE.z>;
+
+@compute @workgroup_size(TEXEL_GROUP_SIZE, 1, 1)
+fn main(
+    @builtin(workgroup_id) workgroup: vec3<u32>,
+    @builtin(local_invocation_index) index: u32,
+) {
+    let id = dispatched_texel(workgroup);
     if any(id.xy >= AERIAL_PERSPECTIVE_SIZE.xy) || id.z >= batch_count() {
         return;
     }
@@ -18,18 +25,27 @@ fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
     let mu = omega.z;
     let nu = dot(omega, local_sun(mu_s));
     let e = batches[layer].solar_irradiance;
-    var inscattered = vec4<f32>(0.0);
-    var throughput = vec4<f32>(1.0);
-    var start = 0.0;
     let depth = AERIAL_PERSPECTIVE_SIZE.z;
-    for (var k = 0u; k < depth; k++) {
+    for (var k = index; k < depth; k += TEXEL_GROUP_SIZE) {
+        var start = 0.0;
+        if k > 0u {
+            start = aerial_perspective_slice_distance(k - 1u);
+        }
         let end = aerial_perspective_slice_distance(k);
         let l = integrate_inscattering(layer,
             vec4<f32>(h, mu, mu_s, nu), start, end, globals.steps_b.x, SPACING_UNIFORM);
-        inscattered += throughput * l.radiance * e;
-        throughput *= l.transmittance;
-        start = end;
-        let size = AERIAL_PERSPECTIVE_SIZE;
+        segment_radiance[k] = l.radiance * e;
+        segment_transmittance[k] = l.transmittance;
+    }
+    workgroupBarrier();
+    let size = AERIAL_PERSPECTIVE_SIZE;
+    for (var k = index; k < depth; k += TEXEL_GROUP_SIZE) {
+        var inscattered = vec4<f32>(0.0);
+        var throughput = vec4<f32>(1.0);
+        for (var j = 0u; j <= k; j++) {
+            inscattered += throughput * segment_radiance[j];
+            throughput *= segment_transmittance[j];
+        }
         let i = ((layer * depth + k) * size.y + id.y) * size.x + id.x;
         aerial_perspective_inscattering_lut[i] = inscattered;
         aerial_perspective_transmittance_lut[i] = throughput;

@@ -51,7 +51,7 @@ pub const METHOD: GpuMethod = GpuMethod {
             shader!("hillaire/aerial_perspective.wgsl"),
             &["transmittance", "multiple-scattering"],
             &[AP_INSCATTERING, AP_TRANSMITTANCE],
-            Dispatch::Table(AP_INSCATTERING),
+            Dispatch::TexelGroups(AP_INSCATTERING),
             Repeat::Once,
         ),
         PassSpec::sky_marching_from_space(

@@ -81,9 +81,10 @@ pub enum Dispatch {
     /// One invocation per texel (x, y) of the table with this id, one z per batch; a pass over a
     /// 3D table marches its slices inside each invocation.
     Table(&'static str),
-    /// One workgroup per texel (x, y) of the 2D table with this id, one z per batch: the
-    /// workgroup's invocations share the texel's directions and sum them together, for tables
-    /// of few texels and many directions each (a GPU needs thousands of invocations in flight).
+    /// One workgroup per texel (x, y) of the table with this id (per column of a 3D table), one
+    /// z per batch: the workgroup's invocations share the texel's directions or the column's
+    /// slices, for tables of few texels and much work each (a GPU needs thousands of
+    /// invocations in flight).
     TexelGroups(&'static str),
     /// One invocation per texel (x, y, z) of the 3D table with this id, z running over the
     /// slices of every batch in turn.
