@@ -148,6 +148,14 @@ fn overrides_change_the_scene() {
 
     let january = info_json(&["--month", "1"]);
     assert_eq!(january["ozone_column_du"].as_f64(), Some(347.0));
+    // The zonal mean: the southern midlatitudes' January is their summer.
+    let south = info_json(&["--ozone-latitude", "-45", "--month", "1"]);
+    let north = info_json(&["--ozone-latitude", "45", "--month", "1"]);
+    let (south, north) = (
+        south["ozone_column_du"].as_f64().unwrap(),
+        north["ozone_column_du"].as_f64().unwrap(),
+    );
+    assert!(north - south > 30.0, "north {north}, south {south}");
 
     let afgl = info_json(&[
         "--ozone-profile",

@@ -3,7 +3,8 @@
 //! Bogumil et al. (2003) give σ(λ, T) = (C₀ + C₁·ΔT + C₂·ΔT²)·10⁻²⁰ cm², ΔT = T − 273.15 K,
 //! valid for about 203–293 K (the ozone layer is near 220–240 K). Serdyuchenko/Gorshelev et al.
 //! (2014) at 233 K in 10 nm bins is the set Bruneton (2017) uses. Monthly columns are the Arosa
-//! means of Dütsch (1973) used by Guimera et al. (2018).
+//! means of Dütsch (1973) used by Guimera et al. (2018), or a zonal mean by latitude and month
+//! from the AFGL standard atmospheres (Anderson et al. 1986).
 
 use crate::spectrum::Spectrum;
 use crate::table::tables;
@@ -88,9 +89,99 @@ pub fn monthly_column_du(month: u32) -> Option<f64> {
         .map(|i| du[i])
 }
 
+/// Latitudes, degrees, at which the AFGL atmospheres stand: tropical (15° N, the whole year),
+/// midlatitude (45° N) and subarctic (60° N) in January ("winter") and July ("summer"),
+/// as Anderson et al. (1986) define them.
+const AFGL_LATITUDES_DEG: [f64; 3] = [15.0, 45.0, 60.0];
+
+/// (summer, winter) total columns of the AFGL atmospheres at [`AFGL_LATITUDES_DEG`], DU, from
+/// their own ozone profiles (ground to 120 km).
+fn afgl_columns_du() -> &'static [(f64, f64); 3] {
+    use crate::profiles::{AfglProfile, OzoneProfile};
+    static COLUMNS: OnceLock<[(f64, f64); 3]> = OnceLock::new();
+    COLUMNS.get_or_init(|| {
+        let du = |p| {
+            OzoneProfile::Afgl(p)
+                .native_column_du(120_000.0)
+                .unwrap_or(300.0)
+        };
+        [
+            (du(AfglProfile::Tropical), du(AfglProfile::Tropical)),
+            (
+                du(AfglProfile::MidlatitudeSummer),
+                du(AfglProfile::MidlatitudeWinter),
+            ),
+            (
+                du(AfglProfile::SubarcticSummer),
+                du(AfglProfile::SubarcticWinter),
+            ),
+        ]
+    })
+}
+
+/// Zonal-mean total ozone column at `latitude_deg` (−90–90, north positive) in `month`
+/// (1 = January … 12), DU, from the AFGL standard atmospheres (Anderson et al. 1986).
+///
+/// Each AFGL latitude's column runs between its winter value in January and its summer value
+/// in July as a cosine of the month; between the latitudes it is linear in latitude, and held
+/// at the tropical value towards the equator and at the subarctic one towards the pole. The
+/// southern hemisphere takes the northern one's columns six months later (AFGL has no southern
+/// atmospheres), which leaves out the Antarctic spring depletion and the south's weaker
+/// seasonal cycle; and two seasons cannot place the northern maximum in spring (Arosa's is in
+/// April). `None` for a month outside 1–12 or a latitude outside ±90°.
+pub fn zonal_column_du(latitude_deg: f64, month: u32) -> Option<f64> {
+    if !(1..=12).contains(&month) || !(-90.0..=90.0).contains(&latitude_deg) {
+        return None;
+    }
+    let local_month = if latitude_deg < 0.0 {
+        (month + 5) % 12 + 1
+    } else {
+        month
+    };
+    let winter = 0.5 * (1.0 + (2.0 * std::f64::consts::PI * (local_month - 1) as f64 / 12.0).cos());
+    let at = |i: usize| {
+        let (summer, winter_du) = afgl_columns_du()[i];
+        summer + winter * (winter_du - summer)
+    };
+    let a = latitude_deg.abs();
+    let l = AFGL_LATITUDES_DEG;
+    Some(if a <= l[0] {
+        at(0)
+    } else if a >= l[2] {
+        at(2)
+    } else {
+        let i = if a < l[1] { 0 } else { 1 };
+        let t = (a - l[i]) / (l[i + 1] - l[i]);
+        at(i) + t * (at(i + 1) - at(i))
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn zonal_columns_follow_latitude_and_season_in_both_hemispheres() {
+        let du = |lat, m| zonal_column_du(lat, m).unwrap();
+        // The AFGL atmospheres themselves at their own latitudes and months.
+        let [(tropical, _), (mls, mlw), (sas, saw)] = *afgl_columns_du();
+        assert!((du(15.0, 1) - tropical).abs() < 1e-9 && (du(0.0, 7) - tropical).abs() < 1e-9);
+        assert!((du(45.0, 1) - mlw).abs() < 1e-9 && (du(45.0, 7) - mls).abs() < 1e-9);
+        assert!((du(60.0, 1) - saw).abs() < 1e-9 && (du(80.0, 7) - sas).abs() < 1e-9);
+        assert!((280.0..290.0).contains(&tropical), "{tropical}");
+        assert!(mlw - mls > 30.0, "{mlw} {mls}");
+        // Southern midlatitudes in January are in summer: less ozone than the north's winter,
+        // exactly the north's July; Arosa's one station gave the north's January to both.
+        assert!((du(-45.0, 1) - mls).abs() < 1e-9);
+        assert!((du(-45.0, 7) - mlw).abs() < 1e-9);
+        assert!(du(-45.0, 1) < du(45.0, 1) - 30.0);
+        // Between the AFGL latitudes, between their columns; spring between winter and summer.
+        let m = du(30.0, 4);
+        assert!(m > du(15.0, 4).min(du(45.0, 4)) && m < du(15.0, 4).max(du(45.0, 4)));
+        assert!(du(45.0, 4) < mlw && du(45.0, 4) > mls);
+        assert_eq!(zonal_column_du(45.0, 0), None);
+        assert_eq!(zonal_column_du(91.0, 3), None);
+    }
 
     #[test]
     fn chappuis_band_peaks_near_600_nm() {

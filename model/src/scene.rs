@@ -152,6 +152,10 @@ pub enum OzoneColumn {
     Du(f64),
     /// The column of the chosen AFGL profile itself.
     Profile,
+    /// Zonal mean at a latitude (−90–90°, north positive) in a month (1–12), from the AFGL
+    /// standard atmospheres (`ozone::zonal_column_du`). With the sun placed by date and place,
+    /// both follow the sun's (`Scene::tie_ozone_to_sun`).
+    Zonal { latitude_deg: f64, month: u32 },
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -182,6 +186,10 @@ impl OzoneSettings {
             OzoneColumn::Month(m) => ozone::monthly_column_du(m).unwrap_or(300.0),
             OzoneColumn::Du(du) => du,
             OzoneColumn::Profile => self.profile.native_column_du(top_m).unwrap_or(300.0),
+            OzoneColumn::Zonal {
+                latitude_deg,
+                month,
+            } => ozone::zonal_column_du(latitude_deg, month).unwrap_or(300.0),
         }
     }
 }
@@ -861,6 +869,15 @@ impl Scene {
                 "atmosphere.ozone.column",
                 format!("Profile needs an AFGL ozone profile, the profile is {:?}; give Month(m) or Du(x)", o.profile),
             ),
+            OzoneColumn::Zonal {
+                latitude_deg,
+                month,
+            } => {
+                c.limit("atmosphere.ozone.column.Zonal.latitude_deg", latitude_deg, limits::LATITUDE_DEG);
+                if !(1..=12).contains(&month) {
+                    c.fail("atmosphere.ozone.column.Zonal.month", format!("is {month}, allowed 1 to 12"));
+                }
+            }
             _ => {}
         }
         match self.sun {
@@ -962,6 +979,28 @@ impl Scene {
         }
     }
 
+    /// With the sun placed by date and place and a zonal-mean ozone column, gives the column
+    /// the sun's latitude and month, so that the ozone follows the date and place the sky is
+    /// drawn for. Returns whether anything changed.
+    pub fn tie_ozone_to_sun(&mut self) -> bool {
+        let (
+            SunSettings::Date {
+                time, latitude_deg, ..
+            },
+            OzoneColumn::Zonal {
+                latitude_deg: lat,
+                month,
+            },
+        ) = (self.sun, &mut self.atmosphere.ozone.column)
+        else {
+            return false;
+        };
+        let changed = *lat != latitude_deg || *month != time.month;
+        *lat = latitude_deg;
+        *month = time.month;
+        changed
+    }
+
     /// Parses RON text; `file` names the source in messages. A UTF-8 byte-order mark (which
     /// some editors write) is skipped.
     pub fn from_ron(text: &str, file: &Path) -> Result<Scene, SceneError> {
@@ -991,7 +1030,7 @@ impl Scene {
         }
         let mut de =
             ron::Deserializer::from_str(text).map_err(|e| parse_error(e, String::new()))?;
-        let scene: Scene = serde_path_to_error::deserialize(&mut de).map_err(|e| {
+        let mut scene: Scene = serde_path_to_error::deserialize(&mut de).map_err(|e| {
             let path = e.path().to_string();
             let path = if path == "." {
                 String::new()
@@ -1004,6 +1043,7 @@ impl Scene {
         })?;
         de.end()
             .map_err(|e| parse_error(de.span_error(e), String::new()))?;
+        scene.tie_ozone_to_sun();
         scene.validate().map_err(|errors| SceneError::Invalid {
             file: file.into(),
             errors,
@@ -1080,7 +1120,8 @@ impl Scene {
                 .ok_or_else(|| fail(format!("no field `{key}`")))?;
         }
         *node = parsed;
-        let scene: Scene = serde_json::from_value(tree).map_err(|e| fail(e.to_string()))?;
+        let mut scene: Scene = serde_json::from_value(tree).map_err(|e| fail(e.to_string()))?;
+        scene.tie_ozone_to_sun();
         scene
             .validate()
             .map_err(|errors| fail(join_errors(&errors)))?;
@@ -1187,6 +1228,58 @@ mod tests {
                 .is_err()
         );
         assert_eq!(s, before, "a failed override changes nothing");
+    }
+
+    /// With the sun placed by date and place, a zonal-mean ozone column takes the sun's
+    /// latitude and month, from a preset, an override or an edit; placed by angles, it keeps
+    /// its own. Out-of-range latitudes and months are refused.
+    #[test]
+    fn zonal_ozone_follows_the_sun_placed_by_date() {
+        let file = Path::new("zonal.ron");
+        let text = "(atmosphere: (ozone: (column: Zonal(latitude_deg: 45.0, month: 1))), \
+            sun: Date(time: (year: 2024, month: 1, day: 15, hour: 12.0, utc_offset_h: 0.0), \
+            latitude_deg: -45.0, longitude_deg: 0.0))";
+        let s = Scene::from_ron(text, file).unwrap();
+        let column = s.atmosphere.ozone.column;
+        assert_eq!(
+            column,
+            OzoneColumn::Zonal {
+                latitude_deg: -45.0,
+                month: 1
+            }
+        );
+        // Southern summer: less ozone than the north's January.
+        let top_m = s.atmosphere.top_km * 1000.0;
+        let north = OzoneSettings {
+            column: OzoneColumn::Zonal {
+                latitude_deg: 45.0,
+                month: 1,
+            },
+            ..s.atmosphere.ozone.clone()
+        };
+        assert!(s.atmosphere.ozone.column_du(top_m) < north.column_du(top_m) - 30.0);
+
+        let mut t = s.clone();
+        t.set_path("sun.Date.time.month", "7").unwrap();
+        assert_eq!(
+            t.atmosphere.ozone.column,
+            OzoneColumn::Zonal {
+                latitude_deg: -45.0,
+                month: 7
+            }
+        );
+        let mut angles = Scene::default();
+        angles.atmosphere.ozone.column = OzoneColumn::Zonal {
+            latitude_deg: 10.0,
+            month: 3,
+        };
+        assert!(!angles.tie_ozone_to_sun());
+        assert!(angles.validate().is_ok());
+        angles.atmosphere.ozone.column = OzoneColumn::Zonal {
+            latitude_deg: 95.0,
+            month: 13,
+        };
+        assert_eq!(angles.validate().unwrap_err().len(), 2);
     }
 
     #[test]

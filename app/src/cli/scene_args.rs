@@ -43,7 +43,8 @@ pub struct SceneArgs {
     pub aerosol: Option<String>,
     #[arg(long, value_name = "TAU", allow_hyphen_values = true, help = ranged("Aerosol optical depth at 550 nm", limits::AOD550))]
     pub aod550: Option<f64>,
-    /// Month 1–12: sets the total ozone column to that month's mean.
+    /// Month 1–12: sets the total ozone column to that month's mean at Arosa (47° N), or with
+    /// --ozone-latitude the zonal mean at that latitude.
     #[arg(
         long,
         value_name = "1-12",
@@ -51,6 +52,16 @@ pub struct SceneArgs {
         conflicts_with = "ozone_du"
     )]
     pub month: Option<u32>,
+    /// Latitude, degrees north (−90 to 90): sets the total ozone column to the zonal mean
+    /// there (AFGL 1986 climatology) in --month (else the scene's month, else June); with the
+    /// sun placed by date and place, its latitude and month win.
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_hyphen_values = true,
+        conflicts_with = "ozone_du"
+    )]
+    pub ozone_latitude: Option<f64>,
     #[arg(long, value_name = "DU", allow_hyphen_values = true, help = ranged("Total ozone column", limits::OZONE_COLUMN_DU))]
     pub ozone_du: Option<f64>,
     #[arg(long, value_name = "A", allow_hyphen_values = true, help = ranged("Ground albedo", limits::GROUND_ALBEDO))]
@@ -105,6 +116,7 @@ impl SceneArgs {
             }
         };
         self.apply(&mut scene)?;
+        scene.tie_ozone_to_sun();
         scene.validate().map_err(|errors| {
             let list = errors
                 .iter()
@@ -164,8 +176,22 @@ impl SceneArgs {
                 _ => {}
             }
         }
-        if let Some(m) = self.month {
-            atm.ozone.column = OzoneColumn::Month(m);
+        match (self.ozone_latitude, self.month) {
+            (Some(latitude_deg), month) => {
+                let month = month.unwrap_or(match atm.ozone.column {
+                    OzoneColumn::Month(m) | OzoneColumn::Zonal { month: m, .. } => m,
+                    _ => 6,
+                });
+                atm.ozone.column = OzoneColumn::Zonal {
+                    latitude_deg,
+                    month,
+                };
+            }
+            (None, Some(m)) => match &mut atm.ozone.column {
+                OzoneColumn::Zonal { month, .. } => *month = m,
+                column => *column = OzoneColumn::Month(m),
+            },
+            (None, None) => {}
         }
         if let Some(du) = self.ozone_du {
             atm.ozone.column = OzoneColumn::Du(du);

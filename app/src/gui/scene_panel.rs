@@ -103,6 +103,7 @@ pub fn show(
     section(ui, Section::Sun, &mut |ui| sun(ui, &mut s));
     section(ui, Section::Camera, &mut |ui| camera(ui, &mut s));
     section(ui, Section::Rendering, &mut |ui| render(ui, &mut s, meter));
+    s.tie_ozone_to_sun();
 
     if s != *current {
         commands.push(Command::SetScene(Box::new(s)));
@@ -167,11 +168,23 @@ fn aerosol(ui: &mut egui::Ui, s: &mut Scene) {
 }
 
 fn ozone(ui: &mut egui::Ui, s: &mut Scene) {
+    let sun_by_date = matches!(s.sun, SunSettings::Date { .. });
+    let top_m = s.atmosphere.top_km * 1000.0;
     let o = &mut s.atmosphere.ozone;
     let afgl = matches!(o.profile, OzoneProfile::Afgl(_));
     ui.horizontal(|ui| {
         if ui.radio(matches!(o.column, OzoneColumn::Month(_)), "By month").clicked() {
             o.column = OzoneColumn::Month(6);
+        }
+        if ui.radio(matches!(o.column, OzoneColumn::Zonal { .. }), "Zonal mean").clicked() {
+            let month = match o.column {
+                OzoneColumn::Month(m) => m,
+                _ => 6,
+            };
+            o.column = OzoneColumn::Zonal {
+                latitude_deg: 46.8,
+                month,
+            };
         }
         if ui.radio(matches!(o.column, OzoneColumn::Du(_)), "Dobson units").clicked() {
             o.column = OzoneColumn::Du(300.0);
@@ -206,8 +219,35 @@ fn ozone(ui: &mut egui::Ui, s: &mut Scene) {
                 "Total ozone column in Dobson units; the Antarctic ozone hole falls below 220 DU.",
             );
         }
+        OzoneColumn::Zonal {
+            latitude_deg,
+            month,
+        } => {
+            ui.add_enabled_ui(!sun_by_date, |ui| {
+                ui.add(
+                    Slider::new(latitude_deg, limits::LATITUDE_DEG.range())
+                        .suffix("°")
+                        .text("latitude"),
+                )
+                .on_hover_text("Degrees north; the south's seasons run six months behind.");
+                ui.add(
+                    Slider::new(month, 1..=12)
+                        .custom_formatter(|v, _| MONTHS[(v as usize).clamp(1, 12) - 1].to_string())
+                        .text("month"),
+                );
+            })
+            .response
+            .on_hover_text(if sun_by_date {
+                "The sun is placed by date and place: the ozone follows its latitude and month."
+            } else {
+                "Zonal-mean ozone from the AFGL standard atmospheres (Anderson et al. 1986): tropical \
+                 15° N all year, midlatitude 45° N and subarctic 60° N in January and July, between \
+                 them by latitude and month; the south takes the north's seasons six months later."
+            });
+        }
         OzoneColumn::Profile => {}
     }
+    ui.label(format!("Total column: {:.0} DU", o.column_du(top_m)));
     ComboBox::from_label("Vertical profile")
         .selected_text(o.profile.cli_name())
         .show_ui(ui, |ui| {

@@ -131,6 +131,29 @@ fn month_slider_sets_the_ozone_column_and_redraws() {
     assert_eq!(info, Some(347.0), "January at Arosa");
 }
 
+/// Ozone → Zonal mean: the latitude slider moves the column (the southern midlatitudes'
+/// January is their summer) and the view follows.
+#[test]
+fn the_zonal_mean_follows_its_latitude_slider() {
+    use atmoscope_model::scene::OzoneColumn;
+    let mut h = harness();
+    h.get_by_label("Zonal mean").click();
+    h.run();
+    slide_and_see_the_view_change(&mut h, "month", 1.0);
+    slide_and_see_the_view_change(&mut h, "latitude", -45.0);
+    assert_eq!(
+        h.state().scene.atmosphere.ozone.column,
+        OzoneColumn::Zonal {
+            latitude_deg: -45.0,
+            month: 1
+        }
+    );
+    h.get_by_label("Summary per wavelength").click();
+    h.run();
+    let du = h.state().summary.shown().map(|info| info.ozone_column_du);
+    assert!(du.is_some_and(|du| (300.0..340.0).contains(&du)), "{du:?}");
+}
+
 #[test]
 fn loading_a_preset_replaces_the_scene() {
     let mut h = harness();
