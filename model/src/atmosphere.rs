@@ -7,7 +7,7 @@
 //! density has a kink, and at the ray's lowest point.
 
 use crate::aerosol::{
-    self, AerosolType, FREE_TROPOSPHERE_TOP_M, MIXING_LAYER_TOP_M, STRATOSPHERE_TOP_M,
+    self, AerosolType, FREE_TROPOSPHERE_TOP_M, MIXING_LAYER_TOP_M, MiePhase, STRATOSPHERE_TOP_M,
     SharedLayers, TypeOptics, shared_layers,
 };
 use crate::constants::AOD_REFERENCE_NM;
@@ -187,6 +187,8 @@ pub struct Atmosphere {
     pub sun_distance_au: f64,
     pub aerosol_type: AerosolType,
     pub aerosol_phase: AerosolPhase,
+    /// The type's tabulated Mie phase function, where `aerosol_phase` is `Mie`.
+    pub mie_phase: Option<&'static MiePhase>,
     /// Total ozone column actually used, DU.
     pub ozone_column_du: f64,
     air: AirProfile,
@@ -257,6 +259,10 @@ impl Atmosphere {
             sun_distance_au: 1.0,
             aerosol_type: kind,
             aerosol_phase: s.aerosol.phase,
+            mie_phase: match s.aerosol.phase {
+                AerosolPhase::Mie => aerosol::type_phase(kind),
+                _ => None,
+            },
             ozone_column_du,
             air: s.air_profile,
             air_density_scale: s.air_density_scale,
@@ -369,10 +375,8 @@ impl Atmosphere {
 
     /// Aerosol phase function value for scattering-angle cosine `nu`.
     pub fn aerosol_phase(&self, optics: &Optics, nu: f64) -> f64 {
-        match self.aerosol_phase {
-            AerosolPhase::HenyeyGreenstein => phase::henyey_greenstein(nu, optics.aerosol_g),
-            AerosolPhase::CornetteShanks => phase::cornette_shanks(nu, optics.aerosol_g),
-        }
+        self.aerosol_phase
+            .value(self.mie_phase, optics.wavelength_nm, optics.aerosol_g, nu)
     }
 
     /// Rayleigh phase function value for scattering-angle cosine `nu`.

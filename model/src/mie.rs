@@ -20,6 +20,11 @@ pub struct MieEfficiencies {
 
 /// Mie efficiencies for size parameter `x` = 2πr/λ > 0 and relative refractive index `m`.
 pub fn sphere(x: f64, m: Complex64) -> MieEfficiencies {
+    efficiencies(x, &coefficients(x, m))
+}
+
+/// The scattering coefficients (a_n, b_n), n = 1 … n_max.
+fn coefficients(x: f64, m: Complex64) -> Vec<(Complex64, Complex64)> {
     let n_max = (x + 4.0 * x.cbrt() + 2.0).ceil() as usize;
     let mx = m * x;
     // D_n(mx) by downward recurrence from well above n_max.
@@ -34,8 +39,7 @@ pub fn sphere(x: f64, m: Complex64) -> MieEfficiencies {
     let (mut chi_prev, mut chi) = (-x.sin(), x.cos());
     let mut xi_prev;
     let mut xi = Complex64::new(psi, -chi);
-    let (mut q_ext, mut q_sca, mut g_sum) = (0.0, 0.0, 0.0);
-    let (mut a_prev, mut b_prev) = (Complex64::new(0.0, 0.0), Complex64::new(0.0, 0.0));
+    let mut ab = Vec::with_capacity(n_max);
     for n in 1..=n_max {
         let nf = n as f64;
         let psi_next = (2.0 * nf - 1.0) / x * psi - psi_prev;
@@ -50,10 +54,20 @@ pub fn sphere(x: f64, m: Complex64) -> MieEfficiencies {
         let db = d[n] * m + nf / x;
         let a = (da * psi - psi_prev) / (da * xi - xi_prev);
         let b = (db * psi - psi_prev) / (db * xi - xi_prev);
+        ab.push((a, b));
+    }
+    ab
+}
+
+fn efficiencies(x: f64, ab: &[(Complex64, Complex64)]) -> MieEfficiencies {
+    let (mut q_ext, mut q_sca, mut g_sum) = (0.0, 0.0, 0.0);
+    let (mut a_prev, mut b_prev) = (Complex64::new(0.0, 0.0), Complex64::new(0.0, 0.0));
+    for (i, &(a, b)) in ab.iter().enumerate() {
+        let nf = (i + 1) as f64;
         q_ext += (2.0 * nf + 1.0) * (a + b).re;
         q_sca += (2.0 * nf + 1.0) * (a.norm_sqr() + b.norm_sqr());
         g_sum += (2.0 * nf + 1.0) / (nf * (nf + 1.0)) * (a * b.conj()).re;
-        if n > 1 {
+        if i > 0 {
             let np = nf - 1.0;
             g_sum += np * (np + 2.0) / (np + 1.0) * (a_prev * a.conj() + b_prev * b.conj()).re;
         }
@@ -71,6 +85,33 @@ pub fn sphere(x: f64, m: Complex64) -> MieEfficiencies {
             0.0
         },
     }
+}
+
+/// [`sphere`] and the scattered intensity i = (|S₁|² + |S₂|²)/2 at each scattering cosine of
+/// `nus` (unpolarised light; Bohren & Huffman §4.4: S₁, S₂ from the angular functions π_n, τ_n
+/// by upward recurrence). The differential scattering cross-section is i/k², k = 2π/λ, and
+/// its integral over the sphere is Q_sca·πr².
+pub fn sphere_intensity(x: f64, m: Complex64, nus: &[f64]) -> (MieEfficiencies, Vec<f64>) {
+    let ab = coefficients(x, m);
+    let intensity = nus
+        .iter()
+        .map(|&mu| {
+            let (mut s1, mut s2) = (Complex64::new(0.0, 0.0), Complex64::new(0.0, 0.0));
+            let (mut pi_prev, mut pi) = (0.0, 1.0);
+            for (i, &(a, b)) in ab.iter().enumerate() {
+                let nf = (i + 1) as f64;
+                let tau = nf * mu * pi - (nf + 1.0) * pi_prev;
+                let e = (2.0 * nf + 1.0) / (nf * (nf + 1.0));
+                s1 += e * (a * pi + b * tau);
+                s2 += e * (a * tau + b * pi);
+                let pi_next = ((2.0 * nf + 1.0) * mu * pi - (nf + 1.0) * pi_prev) / nf;
+                pi_prev = pi;
+                pi = pi_next;
+            }
+            0.5 * (s1.norm_sqr() + s2.norm_sqr())
+        })
+        .collect();
+    (efficiencies(x, &ab), intensity)
 }
 
 /// A log-normal number size distribution dN/d ln r ∝ exp(−(ln r − ln r_mod)²/(2 ln²σ)),
@@ -125,30 +166,49 @@ impl BulkOptics {
 /// Averages Mie over the distribution at `wavelength_um` with `points` radii evenly spaced in
 /// ln r (Gauss–Legendre would gain little: the integrand's ripples are not smooth in r).
 pub fn lognormal(dist: &LogNormal, wavelength_um: f64, m: Complex64, points: usize) -> BulkOptics {
+    lognormal_scattering(dist, wavelength_um, m, points, &[]).0
+}
+
+/// [`lognormal`] and the distribution's mean differential scattering cross-section per
+/// particle at each scattering cosine of `nus`, µm² sr⁻¹ (divided by `sca_um2` it is the phase
+/// function, normalised to 1 over the sphere).
+pub fn lognormal_scattering(
+    dist: &LogNormal,
+    wavelength_um: f64,
+    m: Complex64,
+    points: usize,
+    nus: &[f64],
+) -> (BulkOptics, Vec<f64>) {
     let (ln_lo, ln_hi) = (dist.r_min_um.ln(), dist.r_max_um.ln());
     let ln_s = dist.sigma.ln();
     let step = (ln_hi - ln_lo) / points as f64;
+    let k = 2.0 * PI / wavelength_um;
     let (mut weight_sum, mut ext, mut sca, mut g_sca) = (0.0, 0.0, 0.0, 0.0);
+    let mut differential = vec![0.0; nus.len()];
     for i in 0..points {
-        // Midpoint rule in ln r.
         let ln_r = ln_lo + (i as f64 + 0.5) * step;
         let w = (-(ln_r - dist.r_mod_um.ln()).powi(2) / (2.0 * ln_s * ln_s)).exp();
         if w < 1e-14 {
             continue;
         }
         let r = ln_r.exp();
-        let e = sphere(2.0 * PI * r / wavelength_um, m);
+        let (e, intensity) = sphere_intensity(k * r, m, nus);
         let area = PI * r * r;
         weight_sum += w;
         ext += w * e.q_ext * area;
         sca += w * e.q_sca * area;
         g_sca += w * e.q_sca * area * e.g;
+        for (d, i) in differential.iter_mut().zip(&intensity) {
+            *d += w * i / (k * k);
+        }
     }
-    BulkOptics {
+    differential.iter_mut().for_each(|d| *d /= weight_sum);
+    let bulk = BulkOptics {
         ext_um2: ext / weight_sum,
         sca_um2: sca / weight_sum,
         g: if sca > 0.0 { g_sca / sca } else { 0.0 },
-    }
+    };
+    (bulk, differential)
 }
 
 #[cfg(test)]
@@ -202,6 +262,40 @@ mod tests {
         // (the book prints Q_sca = 3.10543; our series reproduces it).
         let e = sphere(5.213, Complex64::new(1.55, 0.0));
         assert!((e.q_ext - 3.1054).abs() < 2e-3, "{}", e.q_ext);
+    }
+
+    /// The intensity integrates over the sphere to k²·C_sca = x²·π·Q_sca and its mean cosine
+    /// is g; a small sphere scatters as a dipole, i(0) = i(π) = 2·i(π/2).
+    #[test]
+    fn scattered_intensity_integrates_to_the_cross_section_and_its_mean_cosine_is_g() {
+        let n = 4000;
+        let nus: Vec<f64> = (0..n)
+            .map(|i| -1.0 + 2.0 * (i as f64 + 0.5) / n as f64)
+            .collect();
+        for (x, m) in [
+            (0.05, Complex64::new(1.5, 0.0)),
+            (3.0, Complex64::new(1.53, 0.008)),
+            (25.0, Complex64::new(1.45, 0.0)),
+        ] {
+            let (e, i) = sphere_intensity(x, m, &nus);
+            let d_nu = 2.0 / n as f64;
+            let total: f64 = 2.0 * PI * i.iter().sum::<f64>() * d_nu;
+            let mean_cos: f64 =
+                2.0 * PI * i.iter().zip(&nus).map(|(i, nu)| i * nu).sum::<f64>() * d_nu / total;
+            // k²·C_sca = x²·π·Q_sca (k r = x).
+            let expected = x * x * PI * e.q_sca;
+            assert!(
+                (total / expected - 1.0).abs() < 2e-3,
+                "x {x}: {total} vs {expected}"
+            );
+            assert!(
+                (mean_cos - e.g).abs() < 2e-3,
+                "x {x}: {mean_cos} vs {}",
+                e.g
+            );
+        }
+        let (_, i) = sphere_intensity(0.01, Complex64::new(1.5, 0.0), &[1.0, 0.0, -1.0]);
+        assert!((i[0] / i[2] - 1.0).abs() < 1e-3 && (i[0] / i[1] - 2.0).abs() < 1e-3);
     }
 
     #[test]

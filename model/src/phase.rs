@@ -31,6 +31,41 @@ pub fn cornette_shanks(nu: f64, g: f64) -> f64 {
     3.0 / (8.0 * PI) * (1.0 - g * g) * (1.0 + nu * nu) / ((2.0 + g * g) * denom * denom.sqrt())
 }
 
+/// A phase function tabulated as ln p (sr⁻¹) at θ_i = π·(i/(n−1))², i = 0 … n−1, one row of n
+/// per node (`ln_rows`), at scattering cosine `nu`: ln p linear in u = √(θ/π) within a row, and
+/// p linear between rows ⌊node⌋ and ⌊node⌋ + 1 (`node` a fractional row index, clamped).
+/// Twin of `tabulated_phase` in `shaders/common/phase.wgsl`.
+pub fn tabulated(ln_rows: &[f64], n: usize, node: f64, nu: f64) -> f64 {
+    let rows = ln_rows.len() / n;
+    let u = (nu.clamp(-1.0, 1.0).acos() / PI).sqrt();
+    let x = u * (n - 1) as f64;
+    let i = (x as usize).min(n - 2);
+    let t = x - i as f64;
+    let row = |r: usize| {
+        let l = &ln_rows[r * n..(r + 1) * n];
+        (l[i] + t * (l[i + 1] - l[i])).exp()
+    };
+    let node = node.clamp(0.0, (rows - 1) as f64);
+    let r0 = (node as usize).min(rows - 1);
+    let r1 = (r0 + 1).min(rows - 1);
+    let s = node - r0 as f64;
+    row(r0) + s * (row(r1) - row(r0))
+}
+
+/// ∫ p dΩ of one row of [`tabulated`] (n values of ln p), as it interpolates them: the
+/// midpoint rule on 32 points per interval of u, dΩ = 2π sin θ dθ with θ = π u².
+pub fn tabulated_integral(ln_row: &[f64], n: usize) -> f64 {
+    let steps = 32 * (n - 1);
+    let du = 1.0 / steps as f64;
+    (0..steps)
+        .map(|k| {
+            let u = (k as f64 + 0.5) * du;
+            let theta = PI * u * u;
+            tabulated(ln_row, n, 0.0, theta.cos()) * 2.0 * PI * theta.sin() * 2.0 * PI * u * du
+        })
+        .sum()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

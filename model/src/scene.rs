@@ -95,6 +95,28 @@ pub enum AerosolPhase {
     #[default]
     HenyeyGreenstein,
     CornetteShanks,
+    /// The type's own phase function from the Mie code, tabulated (`aerosol::type_phase`):
+    /// the forward peak and back-scatter a one-parameter function misses. Not for Custom.
+    Mie,
+}
+
+impl AerosolPhase {
+    /// The phase function (sr⁻¹) at scattering cosine `nu` for asymmetry `g`, with the type's
+    /// tabulated Mie phase `mie` at `wavelength_nm` where this is `Mie` (Henyey–Greenstein if
+    /// the type has none).
+    pub fn value(
+        self,
+        mie: Option<&crate::aerosol::MiePhase>,
+        wavelength_nm: f64,
+        g: f64,
+        nu: f64,
+    ) -> f64 {
+        match (self, mie) {
+            (AerosolPhase::CornetteShanks, _) => crate::phase::cornette_shanks(nu, g),
+            (AerosolPhase::Mie, Some(m)) => m.phase(wavelength_nm, nu),
+            _ => crate::phase::henyey_greenstein(nu, g),
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -833,6 +855,14 @@ impl Scene {
             a.aerosol.aod550,
             limits::AOD550,
         );
+        if a.aerosol.phase == AerosolPhase::Mie && a.aerosol.kind == AerosolType::Custom {
+            c.fail(
+                "atmosphere.aerosol.phase",
+                "Mie needs a type built from OPAC components; Custom has none: choose \
+                 HenyeyGreenstein or CornetteShanks"
+                    .to_string(),
+            );
+        }
         let ca = &a.aerosol.custom;
         c.limit(
             "atmosphere.aerosol.custom.single_scattering_albedo",
@@ -1280,6 +1310,17 @@ mod tests {
             month: 13,
         };
         assert_eq!(angles.validate().unwrap_err().len(), 2);
+    }
+
+    /// The Mie phase function comes from a type's OPAC components: Custom has none and is
+    /// refused with it, naming the field; every mixture type takes it.
+    #[test]
+    fn the_mie_phase_needs_a_mixture_type() {
+        let mut s = Scene::default();
+        s.set_path("atmosphere.aerosol.phase", "Mie").unwrap();
+        let e = s.set_path("atmosphere.aerosol.kind", "Custom").unwrap_err();
+        assert!(e.to_string().contains("atmosphere.aerosol.phase"), "{e}");
+        assert_eq!(s.atmosphere.aerosol.kind, AerosolType::Rural);
     }
 
     #[test]

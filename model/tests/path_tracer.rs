@@ -9,7 +9,7 @@ use atmoscope_model::methods::path_tracer::{
 };
 use atmoscope_model::methods::rng::Rng;
 use atmoscope_model::methods::single_scattering;
-use atmoscope_model::scene::{AtmosphereSettings, OzoneColumn};
+use atmoscope_model::scene::{AerosolPhase, AtmosphereSettings, OzoneColumn};
 use glam::DVec3;
 
 /// Mean and standard error of `n` path samples per lane.
@@ -43,7 +43,23 @@ fn single_order_path_tracing_agrees_with_the_exact_integrator() {
     s.aerosol.kind = AerosolType::Rural;
     s.aerosol.aod550 = 0.2;
     s.ground_albedo = 0.3;
-    let atm = Atmosphere::new(&s);
+    single_order_agrees(&s);
+}
+
+/// The same with desert dust's tabulated Mie phase function, whose forward peak the view near
+/// the sun samples.
+#[test]
+fn single_order_path_tracing_agrees_with_the_exact_integrator_under_the_mie_phase() {
+    let mut s = AtmosphereSettings::default();
+    s.aerosol.kind = AerosolType::DesertDust;
+    s.aerosol.aod550 = 0.4;
+    s.aerosol.phase = AerosolPhase::Mie;
+    s.ground_albedo = 0.3;
+    single_order_agrees(&s);
+}
+
+fn single_order_agrees(s: &AtmosphereSettings) {
+    let atm = Atmosphere::new(s);
     let sun = direction_from_angles(25.0, 180.0);
     let settings = PathTracerSettings {
         max_order: Some(1),

@@ -1063,6 +1063,11 @@ impl Engine {
             0,
             bytemuck::cast_slice(&uniforms::profile(&params)),
         );
+        self.queue.write_buffer(
+            &tables.mie_phase,
+            0,
+            bytemuck::cast_slice(&uniforms::mie_phase_rows(&params)),
+        );
         AtmosphereState {
             key,
             params,

@@ -6,7 +6,7 @@ use crate::methods::{
     COMMON, Constant, DISPLAY, GpuMethod, PassSpec, RADIANCE, SKY_ENTRY_POINT, VIEW_PASSES,
 };
 use crate::prelude::{texel_group_size, wgsl_prelude};
-use crate::uniforms::{Batch, Globals};
+use crate::uniforms::{Batch, Globals, MIE_PHASE_ROWS_LEN};
 use atmoscope_model::methods::shared::{PROFILE_SAMPLES, Params};
 use atmoscope_model::methods::{ModelInfo, shared::TableSpec};
 
@@ -131,7 +131,7 @@ impl Pipelines {
         texel_group_size: u32,
     ) -> Pipelines {
         let group0 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("group 0: globals, batches, profile, origin"),
+            label: Some("group 0: globals, batches, profile, origin, Mie phase"),
             entries: &[
                 buffer_entry(0, wgpu::BufferBindingType::Uniform),
                 buffer_entry(1, wgpu::BufferBindingType::Storage { read_only: true }),
@@ -144,6 +144,9 @@ impl Pipelines {
                         min_binding_size: wgpu::BufferSize::new(ORIGIN_BYTES),
                     },
                 ),
+                // A uniform: the sky passes already bind as many storage buffers as a stage
+                // may (8).
+                buffer_entry(4, wgpu::BufferBindingType::Uniform),
             ],
         });
         let passes = method
@@ -289,6 +292,8 @@ pub struct TableBuffers {
     pub origin_stride: u64,
     pub batches: wgpu::Buffer,
     pub profile: wgpu::Buffer,
+    /// The tabulated Mie phase function's rows (`uniforms::mie_phase_rows`).
+    pub mie_phase: wgpu::Buffer,
     pub group0: wgpu::BindGroup,
     tables: Vec<(TableSpec, wgpu::Buffer)>,
     /// Group 1 of each table pass, by pass index (None for the view passes).
@@ -319,6 +324,7 @@ impl TableBuffers {
         );
         let profile = buffer("profile", 16 * u64::from(PROFILE_SAMPLES), input);
         let uniform = wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST;
+        let mie_phase = buffer("Mie phase", 4 * MIE_PHASE_ROWS_LEN as u64, uniform);
         let globals = buffer("globals", std::mem::size_of::<Globals>() as u64, uniform);
         let origin_stride =
             u64::from(device.limits().min_uniform_buffer_offset_alignment).max(ORIGIN_BYTES);
@@ -347,6 +353,10 @@ impl TableBuffers {
                         size: wgpu::BufferSize::new(ORIGIN_BYTES),
                     }),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: mie_phase.as_entire_binding(),
+                },
             ],
         });
         let tables = model
@@ -363,6 +373,7 @@ impl TableBuffers {
             origin_stride,
             batches,
             profile,
+            mie_phase,
             group0,
             tables,
             groups: Vec::new(),

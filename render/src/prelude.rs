@@ -54,6 +54,24 @@ pub fn wgsl_prelude() -> String {
     };
     c("PI", "f32", f(std::f64::consts::PI));
     c("WORKGROUP_SIZE", "u32", format!("{WORKGROUP_SIZE}u"));
+    c(
+        "MIE_PHASE_ANGLES",
+        "u32",
+        format!("{}u", atmoscope_model::aerosol::MIE_PHASE_ANGLES),
+    );
+    c(
+        "MIE_PHASE_ROWS",
+        "u32",
+        format!(
+            "{}u",
+            atmoscope_model::aerosol::MIE_PHASE_WAVELENGTHS_NM.len()
+        ),
+    );
+    c(
+        "MIE_PHASE_VEC4S",
+        "u32",
+        format!("{}u", crate::uniforms::MIE_PHASE_ROWS_LEN / 4),
+    );
     let [tw, th] = shared::transmittance::TRANSMITTANCE_SIZE;
     c(
         "TRANSMITTANCE_SIZE",
@@ -277,6 +295,7 @@ pub fn wgsl_prelude() -> String {
             "PHASE_CORNETTE_SHANKS",
             phase_code(AerosolPhase::CornetteShanks),
         ),
+        ("PHASE_MIE", phase_code(AerosolPhase::Mie)),
         ("DISPLAY_COLOUR", display_code(DisplayMode::Colour)),
         ("DISPLAY_LUMINANCE", display_code(DisplayMode::LUMINANCE)),
     ] {

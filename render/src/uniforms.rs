@@ -2,6 +2,7 @@
 //! codes of the enums the shaders switch on. `shaders/common/bindings.wgsl` declares the same
 //! layouts; a test checks the sizes with naga.
 
+use atmoscope_model::aerosol::{MIE_PHASE_ANGLES, MIE_PHASE_WAVELENGTHS_NM, MiePhase};
 use atmoscope_model::camera::{Camera, Projection, Sees};
 use atmoscope_model::display::{EXPOSURE_SCALE, LUMINANCE_LOG10_RANGE};
 use atmoscope_model::geometry::horizon_beta;
@@ -58,6 +59,7 @@ pub fn phase_code(p: AerosolPhase) -> u32 {
     match p {
         AerosolPhase::HenyeyGreenstein => 0,
         AerosolPhase::CornetteShanks => 1,
+        AerosolPhase::Mie => 2,
     }
 }
 
@@ -163,7 +165,11 @@ impl From<&FrameInputs<'_>> for Globals {
                 }),
             view: [f.size[0], f.size[1], 0, 0],
             options: [
-                phase_code(p.aerosol_phase),
+                // A type without a Mie table (Custom) falls back as the CPU's twin does.
+                phase_code(match (p.aerosol_phase, p.mie_phase) {
+                    (AerosolPhase::Mie, None) => AerosolPhase::HenyeyGreenstein,
+                    (kind, _) => kind,
+                }),
                 p.batches.len() as u32,
                 u32::from(p.has_aerosol()),
                 0,
@@ -213,6 +219,8 @@ pub struct Batch {
     pub to_srgb_g: [f32; 4],
     pub to_srgb_b: [f32; 4],
     pub wavelengths_nm: [f32; 4],
+    /// Each lane's fractional row of the tabulated Mie phase function (`MiePhase::node_at`).
+    pub aerosol_phase_node: [f32; 4],
 }
 
 fn f4(v: [f64; 4]) -> [f32; 4] {
@@ -234,9 +242,26 @@ impl From<&BatchOptics> for Batch {
             to_srgb_g: f4(b.colour.to_srgb[1]),
             to_srgb_b: f4(b.colour.to_srgb[2]),
             wavelengths_nm: f4(b.colour.wavelengths_nm),
+            aerosol_phase_node: f4(b.colour.wavelengths_nm.map(MiePhase::node_at)),
         }
     }
 }
+
+/// The tabulated Mie phase function's rows (ln p) as the shader's `array<f32>`: the type's
+/// where the scene asks for it, else zeros (never read).
+pub fn mie_phase_rows(p: &Params) -> Vec<f32> {
+    match p.mie_phase {
+        Some(m) if p.aerosol_phase == AerosolPhase::Mie => {
+            m.ln_rows.iter().map(|&v| v as f32).collect()
+        }
+        _ => vec![0.0; MIE_PHASE_ROWS_LEN],
+    }
+}
+
+/// Length of the Mie phase rows' buffer (every row of every wavelength), a whole number of
+/// vec4 as a uniform array needs.
+pub const MIE_PHASE_ROWS_LEN: usize = MIE_PHASE_ANGLES * MIE_PHASE_WAVELENGTHS_NM.len();
+const _: () = assert!(MIE_PHASE_ROWS_LEN.is_multiple_of(4));
 
 /// The density profile as the shader's `array<vec4<f32>>`.
 pub fn profile(p: &Params) -> Vec<[f32; 4]> {

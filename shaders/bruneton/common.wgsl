@@ -194,7 +194,7 @@ fn read_single_mie(taps: ScatteringTaps) -> vec4<f32> {
 fn previous_order(b: Batch, layer: u32, t: vec4<f32>, nu: f32) -> vec4<f32> {
     let taps = scattering_taps(layer, t);
     return read_delta_rayleigh(taps) * rayleigh_phase(nu, b.rayleigh_depolarisation)
-        + read_delta_mie(taps) * aerosol_phase(nu, b.aerosol_g);
+        + read_delta_mie(taps) * aerosol_phase(nu, layer);
 }
 
 // ---- irradiance tables: (mu_s, h), affine ----

@@ -49,7 +49,7 @@ fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
             }
             let nu_v = clamp(dot(view, w), -1.0, 1.0);
             j += radiance * (m.rayleigh_scattering * rayleigh_phase(nu_v, b.rayleigh_depolarisation)
-                + m.aerosol_scattering * aerosol_phase(nu_v, b.aerosol_g)) * d_omega;
+                + m.aerosol_scattering * aerosol_phase(nu_v, layer)) * d_omega;
         }
     }
     scattering_density_lut[scattering_index(layer, v.x, v.y, v.z)] = j;

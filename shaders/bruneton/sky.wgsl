@@ -17,7 +17,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     let c = camera.c;
     let t = scattering_taps(layer, scattering_texel(c));
     let inscattered = read_scattering(t) * rayleigh_phase(c.nu, b.rayleigh_depolarisation)
-        + read_single_mie(t) * aerosol_phase(c.nu, b.aerosol_g);
+        + read_single_mie(t) * aerosol_phase(c.nu, layer);
     if c.ground {
         let g = ground_hit(layer, c);
         return inscattered + g.transmittance * ground_radiance(layer, g.mu_s);

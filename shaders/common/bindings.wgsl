@@ -56,6 +56,8 @@ struct Batch {
     to_srgb_b: vec4<f32>,
     // the batch's four wavelengths, nm
     wavelengths_nm: vec4<f32>,
+    // each lane's fractional row of the tabulated Mie phase function (model::aerosol::MiePhase)
+    aerosol_phase_node: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> globals: Globals;
@@ -66,6 +68,13 @@ struct Batch {
 // Where this dispatch starts in its pass's grid (x, y, z; w unused): a pass run in slices across
 // frames is several dispatches, each over part of its rows or layers (render::engine).
 @group(0) @binding(3) var<uniform> origin: vec4<u32>;
+
+// The tabulated Mie phase function: ln p (sr⁻¹) at θ_i = π·(i/(MIE_PHASE_ANGLES − 1))², one row
+// per wavelength of model::aerosol::MIE_PHASE_WAVELENGTHS_NM (zeros unless the scene asks for it),
+// packed four to a vec4 as a uniform array must be.
+@group(0) @binding(4) var<uniform> mie_phase_rows: array<vec4<f32>, MIE_PHASE_VEC4S>;
+
+fn mie_phase_ln(k: u32) -> f32 { return mie_phase_rows[k / 4u][k % 4u]; }
 
 // The invocation's place in the pass's whole grid.
 fn dispatched(invocation: vec3<u32>) -> vec3<u32> { return invocation + origin.xyz; }

@@ -26,7 +26,7 @@ fn integrate_inscattering(
     let r = bottom_radius() + h;
     let b = batches[layer];
     let phase_r = rayleigh_phase(nu, b.rayleigh_depolarisation);
-    let phase_a = aerosol_phase(nu, b.aerosol_g);
+    let phase_a = aerosol_phase(nu, layer);
     var result: Inscattering;
     result.radiance = vec4<f32>(0.0);
     result.transmittance = vec4<f32>(1.0);

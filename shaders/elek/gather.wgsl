@@ -30,7 +30,7 @@ fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
             let phi = (f32(k) + 0.5) * step;
             let nu = clamp(sin_t * cos(phi) * sin_v + cos_t * mu, -1.0, 1.0);
             w_r += rayleigh_phase(nu, b.rayleigh_depolarisation);
-            w_m += aerosol_phase(nu, b.aerosol_g);
+            w_m += aerosol_phase(nu, layer);
         }
         let d_omega = 2.0 * step * step * sin_t;
         rayleigh += read_delta_rayleigh(t) * w_r * d_omega;

@@ -13,7 +13,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     let c = camera.c;
     let t = elek_taps(layer, elek_texel(c.h, c.mu, c.mu_s));
     let inscattered = read_rayleigh_scattering(t) * modified_rayleigh_phase(c.nu)
-        + read_mie_scattering(t) * aerosol_phase(c.nu, b.aerosol_g);
+        + read_mie_scattering(t) * aerosol_phase(c.nu, layer);
     if c.ground {
         let g = ground_hit(layer, c);
         return inscattered + g.transmittance * sunlit_ground(layer, g.mu_s);

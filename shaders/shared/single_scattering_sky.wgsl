@@ -22,7 +22,7 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     let ground = cc.c.ground;
     let b = batches[layer];
     let phase_r = rayleigh_phase(nu, b.rayleigh_depolarisation);
-    let phase_a = aerosol_phase(nu, b.aerosol_g);
+    let phase_a = aerosol_phase(nu, layer);
     let r0 = big_r + h0;
     var t_max = distance_to_top(h0, mu0);
     if ground {

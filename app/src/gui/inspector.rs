@@ -15,7 +15,7 @@ use atmoscope_model::geometry::{Ray, direction_from_angles};
 use atmoscope_model::methods::path_tracer::{LANES, LaneOptics, PathTracer, PathTracerSettings};
 use atmoscope_model::methods::rng::Rng;
 use atmoscope_model::methods::single_scattering::{self, Parts};
-use atmoscope_model::scene::{AerosolPhase, AtmosphereSettings};
+use atmoscope_model::scene::AtmosphereSettings;
 use atmoscope_model::{Scene, phase};
 use eframe::egui;
 use egui_plot::{Legend, Line, Plot, PlotPoints};
@@ -156,10 +156,7 @@ impl AtmospherePlots {
             angles
                 .map(|a| {
                     let nu = a.to_radians().cos();
-                    let p = match atm.aerosol_phase {
-                        AerosolPhase::HenyeyGreenstein => phase::henyey_greenstein(nu, o.aerosol_g),
-                        AerosolPhase::CornetteShanks => phase::cornette_shanks(nu, o.aerosol_g),
-                    };
+                    let p = atm.aerosol_phase(&o, nu);
                     [a, p.log10()]
                 })
                 .collect(),

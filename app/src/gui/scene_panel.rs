@@ -140,9 +140,19 @@ fn aerosol(ui: &mut egui::Ui, s: &mut Scene) {
     ui.horizontal(|ui| {
         ui.radio_value(&mut a.phase, AerosolPhase::HenyeyGreenstein, "Henyey–Greenstein");
         ui.radio_value(&mut a.phase, AerosolPhase::CornetteShanks, "Cornette–Shanks");
+        ui.add_enabled_ui(a.kind != AerosolType::Custom, |ui| {
+            ui.radio_value(&mut a.phase, AerosolPhase::Mie, "Mie");
+        });
     })
     .response
-    .on_hover_text("The angular shape of aerosol scattering: strongly forward, which makes the bright halo around the sun.");
+    .on_hover_text(
+        "The angular shape of aerosol scattering: strongly forward, which makes the bright halo around the sun. \
+         Mie is the type's own, from the Mie code over its particles' sizes (its forward peak and back-scatter); \
+         the other two share only its asymmetry g. The first use of Mie takes a second to compute.",
+    );
+    if a.kind == AerosolType::Custom && a.phase == AerosolPhase::Mie {
+        a.phase = AerosolPhase::HenyeyGreenstein;
+    }
     if a.kind == AerosolType::Custom {
         let c = &mut a.custom;
         ui.add(Slider::new(&mut c.single_scattering_albedo, limits::CUSTOM_AEROSOL_SSA.range()).text("single-scattering albedo"))

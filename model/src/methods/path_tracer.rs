@@ -20,7 +20,6 @@ use crate::atmosphere::{Atmosphere, Optics};
 use crate::constants::SUN_ANGULAR_RADIUS_RAD;
 use crate::geometry::{Ray, sphere_distances};
 use crate::phase;
-use crate::scene::AerosolPhase;
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -563,10 +562,7 @@ impl<'a> PathTracer<'a> {
         if constituent == 0 {
             phase::rayleigh(nu, optics.rayleigh_depolarisation)
         } else {
-            match self.atmosphere.aerosol_phase {
-                AerosolPhase::HenyeyGreenstein => phase::henyey_greenstein(nu, optics.aerosol_g),
-                AerosolPhase::CornetteShanks => phase::cornette_shanks(nu, optics.aerosol_g),
-            }
+            self.atmosphere.aerosol_phase(optics, nu)
         }
     }
 
@@ -581,7 +577,7 @@ impl<'a> PathTracer<'a> {
 
     /// A new direction after scattering by `constituent`, with density proportional to its
     /// phase function (Rayleigh by rejection, aerosols by Henyey–Greenstein inversion, with
-    /// Cornette–Shanks handled through the weight ratio of `phase`).
+    /// Cornette–Shanks and the tabulated Mie phase handled through the weight ratio of `phase`).
     fn sample_phase(
         &self,
         constituent: usize,

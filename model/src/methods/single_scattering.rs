@@ -10,7 +10,6 @@ use crate::atmosphere::{Atmosphere, Optics};
 use crate::geometry::{self, Ray};
 use crate::phase;
 use crate::quadrature::integrate_adaptive;
-use crate::scene::AerosolPhase;
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -50,10 +49,7 @@ pub fn radiance_parts(atm: &Atmosphere, ray: &Ray, sun: DVec3, wavelength_nm: f6
     };
     let nu = ray.direction.dot(sun);
     let p_r = phase::rayleigh(nu, optics.rayleigh_depolarisation);
-    let p_a = match atm.aerosol_phase {
-        AerosolPhase::HenyeyGreenstein => phase::henyey_greenstein(nu, optics.aerosol_g),
-        AerosolPhase::CornetteShanks => phase::cornette_shanks(nu, optics.aerosol_g),
-    };
+    let p_a = atm.aerosol_phase(&optics, nu);
     let view_transmittance = |t: f64| {
         if t <= t0 {
             return 1.0;

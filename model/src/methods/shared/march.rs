@@ -70,7 +70,7 @@ pub fn march_inscattering(
     let rayleigh_phase = b
         .rayleigh_depolarisation
         .map(|rho| phase::rayleigh(nu, rho));
-    let aerosol_phase = b.aerosol_g.map(|g| p.aerosol_phase(nu, g));
+    let aerosol_phase = p.aerosol_phase(layer, nu);
     let mut inscattered = [0.0; LANES];
     let mut throughput = [1.0; LANES];
     for s in 0..steps {

@@ -51,7 +51,7 @@ pub fn rayleigh_phase(p: &Params, layer: usize, nu: f64) -> Lanes {
 
 /// The aerosol phase function per lane of batch `layer` at view–sun cosine `nu`, sr⁻¹.
 pub fn aerosol_phase(p: &Params, layer: usize, nu: f64) -> Lanes {
-    p.batches[layer].aerosol_g.map(|g| p.aerosol_phase(nu, g))
+    p.aerosol_phase(layer, nu)
 }
 
 /// The sun's direction in a local frame where the view azimuth is measured from it: (x, 0, mu_s).

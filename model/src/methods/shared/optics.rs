@@ -4,10 +4,10 @@
 //! buffers (`render::uniforms`).
 
 use super::Lanes;
+use crate::aerosol::MiePhase;
 use crate::atmosphere::{Atmosphere, OpticalDepth};
 use crate::camera::Camera;
 use crate::geometry::direction_from_angles;
-use crate::phase;
 use crate::scene::{AerosolPhase, FittedConstants, Quality, RenderSettings, Scene, WavelengthSet};
 use crate::wavelengths::{LANES, WavelengthBatch, batches};
 
@@ -84,6 +84,8 @@ pub struct Params {
     pub bottom_radius_m: f64,
     pub top_radius_m: f64,
     pub aerosol_phase: AerosolPhase,
+    /// The type's tabulated Mie phase function, where `aerosol_phase` is `Mie`.
+    pub mie_phase: Option<&'static MiePhase>,
     /// Relative air, relative ozone and aerosol (m⁻¹) densities at h = H·(i/(n−1))², and 0.
     pub profile: Vec<[f64; 4]>,
     pub batches: Vec<BatchOptics>,
@@ -185,6 +187,7 @@ impl Params {
             bottom_radius_m: atm.bottom_radius_m,
             top_radius_m: atm.top_radius_m,
             aerosol_phase: atm.aerosol_phase,
+            mie_phase: atm.mie_phase,
             profile,
             batches,
             steps: Steps::for_quality(quality),
@@ -243,12 +246,18 @@ impl Params {
         m
     }
 
-    /// The aerosol phase function of the scene at scattering cosine `nu`, asymmetry `g`.
-    pub fn aerosol_phase(&self, nu: f64, g: f64) -> f64 {
-        match self.aerosol_phase {
-            AerosolPhase::HenyeyGreenstein => phase::henyey_greenstein(nu, g),
-            AerosolPhase::CornetteShanks => phase::cornette_shanks(nu, g),
-        }
+    /// The aerosol phase function of the scene at scattering cosine `nu` for each lane of
+    /// batch `layer`.
+    pub fn aerosol_phase(&self, layer: usize, nu: f64) -> Lanes {
+        let b = &self.batches[layer];
+        std::array::from_fn(|i| {
+            self.aerosol_phase.value(
+                self.mie_phase,
+                b.colour.wavelengths_nm[i],
+                b.aerosol_g[i],
+                nu,
+            )
+        })
     }
 }
 
