@@ -839,11 +839,8 @@ impl Engine {
         {
             Some(i) => i,
             None => {
-                self.pipelines.push(Pipelines::with_texel_group_size(
-                    &self.device,
-                    method,
-                    self.texel_group_size,
-                ));
+                self.pipelines
+                    .push(Pipelines::new(&self.device, method, self.texel_group_size));
                 self.pipelines.len() - 1
             }
         }

@@ -5,7 +5,7 @@
 use crate::methods::{
     COMMON, Constant, DISPLAY, GpuMethod, PassSpec, RADIANCE, SKY_ENTRY_POINT, VIEW_PASSES,
 };
-use crate::prelude::{texel_group_size, wgsl_prelude};
+use crate::prelude::wgsl_prelude;
 use crate::uniforms::{Batch, Globals, MIE_PHASE_ROWS_LEN};
 use atmoscope_model::methods::shared::{PROFILE_SAMPLES, Params};
 use atmoscope_model::methods::{ModelInfo, shared::TableSpec};
@@ -118,18 +118,10 @@ pub struct Pipelines {
 }
 
 impl Pipelines {
-    pub fn new(device: &wgpu::Device, method: &GpuMethod) -> Pipelines {
-        let texel_group = texel_group_size(device.adapter_info().device_type);
-        Self::with_texel_group_size(device, method, texel_group)
-    }
-
-    /// [`Pipelines::new`] with workgroups of `texel_group_size` (a power of two, 1–256) where
-    /// a workgroup shares a texel, whatever the adapter.
-    pub fn with_texel_group_size(
-        device: &wgpu::Device,
-        method: &GpuMethod,
-        texel_group_size: u32,
-    ) -> Pipelines {
+    /// The passes of `method` compiled on `device`, with workgroups of `texel_group_size` (a
+    /// power of two, 1–256; `prelude::texel_group_size` gives the adapter's) where a workgroup
+    /// shares a texel.
+    pub fn new(device: &wgpu::Device, method: &GpuMethod, texel_group_size: u32) -> Pipelines {
         let group0 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("group 0: globals, batches, profile, origin, Mie phase"),
             entries: &[

@@ -247,8 +247,8 @@ impl From<&BatchOptics> for Batch {
     }
 }
 
-/// The tabulated Mie phase function's rows (ln p) as the shader's `array<f32>`: the type's
-/// where the scene asks for it, else zeros (never read).
+/// The tabulated Mie phase function's rows (ln p), four to a vec4 of the shader's uniform: the
+/// type's where the scene asks for it, else zeros (never read).
 pub fn mie_phase_rows(p: &Params) -> Vec<f32> {
     match p.mie_phase {
         Some(m) if p.aerosol_phase == AerosolPhase::Mie => {
