@@ -79,6 +79,39 @@ pub fn distance_to_boundary(h: f64, mu: f64, big_r: f64, top: f64) -> f64 {
     }
 }
 
+/// Bruneton's (2017, §4.1) unit coordinates (x_mu, x_r) of a ray from altitude `h` (m,
+/// 0 to top − R) with zenith cosine `mu` that reaches the top of the atmosphere (radius `top`)
+/// without meeting the ground: x_r = ρ/H, x_mu the distance to the top between its least and
+/// greatest over rays from that height.
+pub fn transmittance_x_mu_x_r(h: f64, mu: f64, big_r: f64, top: f64) -> (f64, f64) {
+    let thickness = top - big_r;
+    let big_h = rho_squared(thickness, big_r).sqrt();
+    let rho = rho_squared(h.max(0.0), big_r).sqrt();
+    let d = distance_to_top(h, mu, big_r, top);
+    let d_min = thickness - h;
+    let d_max = rho + big_h;
+    ((d - d_min) / (d_max - d_min).max(1e-9), rho / big_h)
+}
+
+/// The (h, mu) of Bruneton's unit coordinates (x_mu, x_r): the inverse of
+/// [`transmittance_x_mu_x_r`].
+pub fn transmittance_h_mu(x_mu: f64, x_r: f64, big_r: f64, top: f64) -> (f64, f64) {
+    let thickness = top - big_r;
+    let big_h = rho_squared(thickness, big_r).sqrt();
+    let rho = big_h * x_r;
+    let h = rho * rho / ((rho * rho + big_r * big_r).sqrt() + big_r);
+    let r = big_r + h;
+    let d_min = thickness - h;
+    let d_max = rho + big_h;
+    let d = d_min + x_mu * (d_max - d_min);
+    let mu = if d <= 0.0 {
+        1.0
+    } else {
+        ((big_h * big_h - rho * rho - d * d) / (2.0 * r * d)).clamp(-1.0, 1.0)
+    };
+    (h, mu)
+}
+
 /// Altitude and radius (m) at distance `t` along the ray (h, mu).
 pub fn altitude_along(h: f64, mu: f64, t: f64, big_r: f64) -> (f64, f64) {
     let r = big_r + h;

@@ -8,7 +8,9 @@
 //! Next-event estimation to the sun (sampled inside its finite disk, transmittance by residual
 //! ratio tracking) is made at one point drawn along every path segment rather than only at collisions:
 //! in a thin sky most free flights escape without a collision, and this keeps every path
-//! contributing. The Lambertian ground gets its own next-event estimate and continues by cosine
+//! contributing. Where sunlight varies along a segment (low sun, twilight, the Earth's shadow)
+//! that point is drawn from a density shaped like the segment's single-scattering integrand
+//! ([`in_scattering`]). The Lambertian ground gets its own next-event estimate and continues by cosine
 //! sampling. All scattering orders, Russian roulette from the second, an optional maximum order
 //! (1 = single scattering).
 //!
@@ -16,12 +18,14 @@
 //! Radiance is spectral radiance for the scene's solar spectrum, W·m⁻²·sr⁻¹·nm⁻¹.
 
 use super::rng::Rng;
-use crate::atmosphere::{Atmosphere, Optics};
+use crate::atmosphere::{Atmosphere, Densities, Optics};
 use crate::constants::SUN_ANGULAR_RADIUS_RAD;
 use crate::geometry::{Ray, sphere_distances};
 use crate::phase;
 use glam::DVec3;
 use std::f64::consts::PI;
+
+mod in_scattering;
 
 /// Wavelengths carried by one path: a batch's four lanes, as everywhere.
 pub use crate::methods::shared::Lanes;
@@ -34,6 +38,60 @@ const SHELL_ALTITUDES_M: [f64; 28] = [
     8000.0, 9000.0, 10_000.0, 12_000.0, 14_000.0, 16_000.0, 18_000.0, 20_000.0, 23_000.0, 26_000.0,
     30_000.0, 35_000.0, 40_000.0, 50_000.0, 60_000.0, 80_000.0,
 ];
+
+/// Spacing of the density table, m: kilometre breakpoints of the profiles fall on its nodes.
+const DENSITY_STEP_M: f64 = 20.0;
+
+/// The atmosphere's densities tabulated every [`DENSITY_STEP_M`], each cell holding its own
+/// values just inside both ends and interpolating linearly between them: steps in a profile at
+/// a node (the mixing layer's top) stay steps, an exponential with the air's 8 km scale height is
+/// within 1e-6 of itself and one with an aerosol's 700 m within 1e-4. Paths look densities up dozens of times each; the profiles' own
+/// evaluation (table search and exponential) was the tracer's largest cost.
+struct DensityTable {
+    /// Per cell: [air at its bottom, at its top, ozone …, aerosol …].
+    cells: Vec<[f64; 6]>,
+}
+
+impl DensityTable {
+    fn new(atmosphere: &Atmosphere) -> DensityTable {
+        let cells = (atmosphere.thickness_m() / DENSITY_STEP_M).ceil().max(1.0) as usize;
+        let inside = 1e-6 * DENSITY_STEP_M;
+        let cells = (0..cells)
+            .map(|k| {
+                let z0 = k as f64 * DENSITY_STEP_M;
+                let z1 = (z0 + DENSITY_STEP_M).min(atmosphere.thickness_m());
+                let (a, b) = (
+                    atmosphere.densities(z0 + inside),
+                    atmosphere.densities(z1 - inside),
+                );
+                [
+                    a.air_m3,
+                    b.air_m3,
+                    a.ozone_m3,
+                    b.ozone_m3,
+                    a.aerosol_per_m,
+                    b.aerosol_per_m,
+                ]
+            })
+            .collect();
+        DensityTable { cells }
+    }
+
+    /// Densities at altitude `h_m` (zero above the top).
+    fn at(&self, h_m: f64) -> Densities {
+        let f = h_m.max(0.0) / DENSITY_STEP_M;
+        let k = f as usize;
+        let Some(c) = self.cells.get(k) else {
+            return Densities::default();
+        };
+        let w = f - k as f64;
+        Densities {
+            air_m3: c[0] + w * (c[1] - c[0]),
+            ozone_m3: c[2] + w * (c[3] - c[2]),
+            aerosol_per_m: c[4] + w * (c[5] - c[4]),
+        }
+    }
+}
 
 /// Settings of a path-traced estimate.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -114,6 +172,9 @@ pub struct PathTracer<'a> {
     /// Orthonormal basis around `sun` for sampling the disk.
     sun_basis: (DVec3, DVec3),
     cos_sun_radius: f64,
+    /// Approximate sun transmittance for the in-scattering proposal.
+    sun_columns: in_scattering::SunColumns,
+    densities: DensityTable,
 }
 
 /// Optical properties of the four wavelengths of a path.
@@ -217,6 +278,8 @@ impl<'a> PathTracer<'a> {
             sun,
             sun_basis: basis(sun),
             cos_sun_radius: settings.sun_angular_radius_rad.cos(),
+            sun_columns: in_scattering::SunColumns::new(atmosphere),
+            densities: DensityTable::new(atmosphere),
         }
     }
 
@@ -278,20 +341,34 @@ impl<'a> PathTracer<'a> {
         // Stack buffers: this runs several times per path, and allocation dominated its cost.
         let mut cuts = [0.0f64; MAX_CUTS];
         cuts[0] = start;
-        cuts[1] = end;
-        let mut n = 2;
-        for &radius in &self.shell_radii[1..self.shell_radii.len() - 1] {
+        let mut n = 1;
+        // The near roots of the shells, outermost first, then the far roots, innermost first,
+        // come in order along the ray: no sort, except where rounding near a tangent disagrees.
+        let inner = &self.shell_radii[1..self.shell_radii.len() - 1];
+        let mut far = [0.0f64; MAX_CUTS];
+        let mut n_far = 0;
+        for &radius in inner.iter().rev() {
             if let Some((a, b)) = sphere_distances(r, mu, radius) {
-                for t in [a, b] {
-                    if t > start && t < end {
-                        cuts[n] = t;
-                        n += 1;
-                    }
+                if a > start && a < end {
+                    cuts[n] = a;
+                    n += 1;
+                }
+                if b > start && b < end {
+                    far[n_far] = b;
+                    n_far += 1;
                 }
             }
         }
+        for &t in far[..n_far].iter().rev() {
+            cuts[n] = t;
+            n += 1;
+        }
+        cuts[n] = end;
+        n += 1;
         let cuts = &mut cuts[..n];
-        cuts.sort_unstable_by(f64::total_cmp);
+        if !cuts.is_sorted() {
+            cuts.sort_unstable_by(f64::total_cmp);
+        }
         let mut out = Intervals {
             items: [(0.0, 0.0, 0); MAX_CUTS],
             len: 0,
@@ -374,9 +451,10 @@ impl<'a> PathTracer<'a> {
                 if t >= b {
                     break;
                 }
-                let d = self.atmosphere.densities(
-                    (ray.origin + ray.direction * t).length() - self.atmosphere.bottom_radius_m,
-                );
+                let d =
+                    self.densities
+                        .at((ray.origin + ray.direction * t).length()
+                            - self.atmosphere.bottom_radius_m);
                 for (i, o) in lanes.optics.iter().enumerate() {
                     ratio[i] *= 1.0 - (o.coefficients(&d).extinction() - control[i]) / m;
                 }
@@ -389,8 +467,8 @@ impl<'a> PathTracer<'a> {
     /// without the direct solar disk), at the four wavelengths of `lanes`.
     ///
     /// Each path segment contributes the sunlight scattered once anywhere along it (one point
-    /// drawn with density ∝ m·e^(−τ̄), the majorant's truncated exponential, with ratio-tracked
-    /// transmittance to it) and, where the segment ends on the ground, the ground's direct
+    /// drawn with density ∝ m·e^(−τ̄), the majorant's truncated exponential, or from the
+    /// segment's proposal where sunlight varies along it; ratio-tracked transmittances to it) and, where the segment ends on the ground, the ground's direct
     /// sunlight. Delta tracking then picks the vertex the path continues from, so segment k
     /// carries scattering order k and no order is counted twice.
     pub fn radiance(&self, ray: &Ray, lanes: &LaneOptics, rng: &mut Rng) -> Lanes {
@@ -413,24 +491,21 @@ impl<'a> PathTracer<'a> {
                 .map(|&(a, b, s)| majorants[s] * (b - a))
                 .sum();
             let p_collide = 1.0 - (-tau_total).exp();
-            if p_collide > 0.0 {
-                let target = -(1.0 - rng.uniform() * p_collide).ln();
-                if let Some((k, t)) = locate(&intervals, majorants, target) {
-                    let pdf = majorants[intervals[k].2] * (-target).exp() / p_collide;
-                    let x = ray.origin + ray.direction * t;
-                    let d = self.atmosphere.densities(x.length() - bottom);
-                    let view_t = self.ratio_track(&ray, &intervals, t, lanes, &medium, rng);
-                    let s_dir = self.sample_sun(rng);
-                    let sun_t = self.transmittance(&Ray::new(x, s_dir), lanes, &medium, rng);
-                    let nu = ray.direction.dot(s_dir);
-                    for i in 0..LANES {
-                        let c = lanes.optics[i].coefficients(&d);
-                        let source = c.rayleigh_scattering * self.phase(0, &lanes.optics[i], nu)
-                            + c.aerosol_scattering * self.phase(1, &lanes.optics[i], nu);
-                        radiance[i] +=
-                            weight[i] * view_t[i] * source * lanes.solar_irradiance[i] * sun_t[i]
-                                / pdf;
-                    }
+            if let Some((t, pdf)) =
+                self.in_scattering_point(&ray, &intervals, &medium, tau_total, lanes, rng)
+            {
+                let x = ray.origin + ray.direction * t;
+                let d = self.densities.at(x.length() - bottom);
+                let view_t = self.ratio_track(&ray, &intervals, t, lanes, &medium, rng);
+                let s_dir = self.sample_sun(rng);
+                let sun_t = self.transmittance(&Ray::new(x, s_dir), lanes, &medium, rng);
+                let nu = ray.direction.dot(s_dir);
+                for i in 0..LANES {
+                    let c = lanes.optics[i].coefficients(&d);
+                    let source = c.rayleigh_scattering * self.phase(0, &lanes.optics[i], nu)
+                        + c.aerosol_scattering * self.phase(1, &lanes.optics[i], nu);
+                    radiance[i] +=
+                        weight[i] * view_t[i] * source * lanes.solar_irradiance[i] * sun_t[i] / pdf;
                 }
             }
             if seg.ground {
@@ -491,7 +566,7 @@ impl<'a> PathTracer<'a> {
                         }
                     }
                     let x = ray.origin + ray.direction * t;
-                    let d = self.atmosphere.densities(x.length() - bottom);
+                    let d = self.densities.at(x.length() - bottom);
                     let mut sigma = [[0.0; LANES]; 3]; // Rayleigh, aerosol scattering, null
                     for (i, o) in lanes.optics.iter().enumerate() {
                         let c = o.coefficients(&d);
@@ -548,7 +623,14 @@ impl<'a> PathTracer<'a> {
                 None => break,
             }
             if order >= 2 {
-                let survive = weight.iter().fold(0.0f64, |a, &w| a.max(w)).min(1.0);
+                static W: std::sync::OnceLock<f64> = std::sync::OnceLock::new();
+                let ww = *W.get_or_init(|| {
+                    std::env::var("PT_RR")
+                        .ok()
+                        .and_then(|s| s.parse().ok())
+                        .unwrap_or(1.0)
+                });
+                let survive = (weight.iter().fold(0.0f64, |a, &w| a.max(w)) / ww).min(1.0);
                 if survive <= 0.0 || rng.uniform() >= survive {
                     break;
                 }
@@ -607,5 +689,41 @@ impl<'a> PathTracer<'a> {
         let (t, b) = basis(incoming);
         (t * (sin_theta * phi.cos()) + b * (sin_theta * phi.sin()) + incoming * cos_theta)
             .normalize()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::AtmosphereSettings;
+
+    #[test]
+    fn the_density_table_follows_the_profiles_and_keeps_their_steps() {
+        let mut s = AtmosphereSettings::default();
+        s.aerosol.kind = crate::aerosol::AerosolType::Urban;
+        let atmosphere = Atmosphere::new(&s);
+        let table = DensityTable::new(&atmosphere);
+        // Linear between nodes 20 m apart: (20 m / H)²/8 of an exponential with scale height H.
+        let close = |a: f64, b: f64| (a - b).abs() <= 2e-4 * b.abs() + 1e-30;
+        for k in 0..4000 {
+            let h = 0.37 + k as f64 * 24.9;
+            let (t, d) = (table.at(h), atmosphere.densities(h));
+            assert!(
+                close(t.air_m3, d.air_m3)
+                    && (t.ozone_m3 - d.ozone_m3).abs() <= 2e-4 * d.ozone_m3 + 1e12
+                    && close(t.aerosol_per_m, d.aerosol_per_m),
+                "{h} m: {t:?} vs {d:?}"
+            );
+        }
+        // The mixing layer ends in a step at 2 km, which interpolation must not smear.
+        let top = crate::aerosol::MIXING_LAYER_TOP_M;
+        for h in [top - 0.5, top + 0.5] {
+            let (t, d) = (table.at(h), atmosphere.densities(h));
+            assert!(close(t.aerosol_per_m, d.aerosol_per_m), "{h} m");
+        }
+        assert_eq!(
+            table.at(atmosphere.thickness_m() + 1.0),
+            Densities::default()
+        );
     }
 }

@@ -3,7 +3,9 @@
 //! (2020) 256 × 64. The pass is `shaders/shared/transmittance.wgsl`.
 
 use super::{Lanes, Lut, Params, Spacing, TableSpec, add, mul, scale};
-use crate::geometry::{altitude_along, distance_to_top, rho_squared};
+use crate::geometry::{
+    altitude_along, distance_to_top, rho_squared, transmittance_h_mu, transmittance_x_mu_x_r,
+};
 use crate::methods::Inputs;
 use crate::wavelengths::LANES;
 
@@ -29,36 +31,20 @@ pub const TABLE: TableSpec = TableSpec {
 
 /// Fractional texel coordinates of (h, mu) in the transmittance table (Bruneton 2017 §4.1).
 pub fn transmittance_texel_from_h_mu(p: &Params, h: f64, mu: f64) -> (f64, f64) {
-    let (big_r, top) = (p.bottom_radius_m, p.top_radius_m);
-    let big_h = rho_squared(p.thickness_m(), big_r).sqrt();
-    let rho = rho_squared(h.max(0.0), big_r).sqrt();
-    let d = distance_to_top(h, mu, big_r, top);
-    let d_min = p.thickness_m() - h;
-    let d_max = rho + big_h;
-    let x_mu = (d - d_min) / (d_max - d_min).max(1e-9);
-    let x_r = rho / big_h;
+    let (x_mu, x_r) = transmittance_x_mu_x_r(h, mu, p.bottom_radius_m, p.top_radius_m);
     let [w, hh] = TRANSMITTANCE_SIZE;
     (x_mu * (w - 1) as f64, x_r * (hh - 1) as f64)
 }
 
 /// (h, mu) of the transmittance texel at fractional coordinates (fx, fy).
 pub fn transmittance_h_mu_from_texel(p: &Params, fx: f64, fy: f64) -> (f64, f64) {
-    let big_r = p.bottom_radius_m;
     let [w, hh] = TRANSMITTANCE_SIZE;
-    let (x_mu, x_r) = (fx / (w - 1) as f64, fy / (hh - 1) as f64);
-    let big_h = rho_squared(p.thickness_m(), big_r).sqrt();
-    let rho = big_h * x_r;
-    let h = rho * rho / ((rho * rho + big_r * big_r).sqrt() + big_r);
-    let r = big_r + h;
-    let d_min = p.thickness_m() - h;
-    let d_max = rho + big_h;
-    let d = d_min + x_mu * (d_max - d_min);
-    let mu = if d <= 0.0 {
-        1.0
-    } else {
-        ((big_h * big_h - rho * rho - d * d) / (2.0 * r * d)).clamp(-1.0, 1.0)
-    };
-    (h, mu)
+    transmittance_h_mu(
+        fx / (w - 1) as f64,
+        fy / (hh - 1) as f64,
+        p.bottom_radius_m,
+        p.top_radius_m,
+    )
 }
 
 /// The transmittance table: exp(−∫ extinction) from (h, mu) to the top, midpoint rule on
