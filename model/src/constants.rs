@@ -21,9 +21,15 @@ pub const EARTH_ATMOSPHERE_TOP_M: f64 = 100_000.0;
 /// Angular radius of the sun seen from the Earth, radians (0.2666°).
 pub const SUN_ANGULAR_RADIUS_RAD: f64 = 0.2666 * std::f64::consts::PI / 180.0;
 
-/// Linear limb-darkening coefficient u of the sun's disk, I(μ′)/I(1) = 1 − u(1 − μ′): a
-/// visible-band mean (Neckel & Labs 1994 give ≈ 0.5–0.7 across 430–680 nm).
-pub const SUN_LIMB_DARKENING_U: f64 = 0.6;
+/// Solar limb darkening by wavelength, Hestroffer & Magnan (1998, eq. 5), their one-parameter
+/// law I(μ′)/I(1) = μ′^α fitted to Pierce & Slaughter (1977) and Neckel & Labs (1994):
+/// α = a + b/λ (λ in µm) with (a, b) from [`SUN_LIMB_ALPHA_LONG`] where 1/λ is below
+/// [`SUN_LIMB_ALPHA_BREAK_PER_UM`] (λ above 417 nm), else from [`SUN_LIMB_ALPHA_SHORT`].
+pub const SUN_LIMB_ALPHA_LONG: [f64; 2] = [-0.023, 0.292];
+/// (a, b) of the limb-darkening exponent below 417 nm.
+pub const SUN_LIMB_ALPHA_SHORT: [f64; 2] = [-0.507, 0.441];
+/// Wavenumber (µm⁻¹) between the limb-darkening fits' two ranges.
+pub const SUN_LIMB_ALPHA_BREAK_PER_UM: f64 = 2.4;
 
 /// Visible range over which spectral quantities are integrated, nm (the CIE table's range).
 pub const VISIBLE_MIN_NM: f64 = 360.0;

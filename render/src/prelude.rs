@@ -11,7 +11,8 @@ use crate::views::FALSE_COLOUR_STOPS;
 use atmoscope_model::camera::{Projection, Sees};
 use atmoscope_model::colour::linear_srgb_to_xyz;
 use atmoscope_model::constants::{
-    MAX_LUMINOUS_EFFICACY_LM_PER_W, SUN_ANGULAR_RADIUS_RAD, SUN_LIMB_DARKENING_U,
+    MAX_LUMINOUS_EFFICACY_LM_PER_W, SUN_ANGULAR_RADIUS_RAD, SUN_LIMB_ALPHA_BREAK_PER_UM,
+    SUN_LIMB_ALPHA_LONG, SUN_LIMB_ALPHA_SHORT,
 };
 use atmoscope_model::display;
 use atmoscope_model::methods::hillaire as h;
@@ -209,8 +210,16 @@ pub fn wgsl_prelude() -> String {
         "f32",
         f(display::GLARE_MIN_ANGLE_DEG),
     );
-    c("SUN_LIMB_DARKENING_U", "f32", f(SUN_LIMB_DARKENING_U));
-    c("SUN_LIMB_INSET", "f32", f(shared::sun::SUN_LIMB_INSET));
+    c("SUN_LIMB_ALPHA_LONG_A", "f32", f(SUN_LIMB_ALPHA_LONG[0]));
+    c("SUN_LIMB_ALPHA_LONG_B", "f32", f(SUN_LIMB_ALPHA_LONG[1]));
+    c("SUN_LIMB_ALPHA_SHORT_A", "f32", f(SUN_LIMB_ALPHA_SHORT[0]));
+    c("SUN_LIMB_ALPHA_SHORT_B", "f32", f(SUN_LIMB_ALPHA_SHORT[1]));
+    c(
+        "SUN_LIMB_ALPHA_BREAK_PER_UM",
+        "f32",
+        f(SUN_LIMB_ALPHA_BREAK_PER_UM),
+    );
+    c("LIMB_RINGS", "u32", format!("{}u", shared::sun::LIMB_RINGS));
     c("VERTICAL_RAD", "f32", f(shared::VERTICAL_RAD));
     c(
         "MAX_LUMINOUS_EFFICACY_LM_PER_W",

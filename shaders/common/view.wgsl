@@ -1,5 +1,5 @@
 // What every sky pass shares: the camera's rays and the sun's disk. Twins of
-// model::camera::Camera::ray and model::methods::shared::sun::SunInView::disk_in_pixel.
+// model::camera::Camera::ray and model::methods::shared::sun::SunInView::pixel.
 
 // Pipeline constants: the engine compiles one variant per projection and per camera inside or
 // above the atmosphere, so that no pixel pays for branches the frame cannot take (software
@@ -60,9 +60,19 @@ fn camera_ray(x: f32, y: f32) -> vec4<f32> {
     return vec4<f32>(world, 1.0);
 }
 
-// Linear limb darkening at the fraction x of the disk's radius, normalised to its mean.
-fn limb(x: f32) -> f32 {
-    return (1.0 - SUN_LIMB_DARKENING_U * (1.0 - sqrt(1.0 - x * x))) / (1.0 - SUN_LIMB_DARKENING_U / 3.0);
+// Exponent α of the limb darkening μ′^α at each wavelength (nm); twin of
+// model::methods::shared::sun::limb_exponent.
+fn limb_exponent(wavelengths_nm: vec4<f32>) -> vec4<f32> {
+    let per_um = 1000.0 / wavelengths_nm;
+    let long = SUN_LIMB_ALPHA_LONG_A + SUN_LIMB_ALPHA_LONG_B * per_um;
+    let short = SUN_LIMB_ALPHA_SHORT_A + SUN_LIMB_ALPHA_SHORT_B * per_um;
+    return select(short, long, per_um < vec4<f32>(SUN_LIMB_ALPHA_BREAK_PER_UM));
+}
+
+// Limb darkening with exponents alpha at the fraction x of the disk's radius, normalised to the
+// disk's mean; twin of model::methods::shared::sun::limb.
+fn limb(x: f32, alpha: vec4<f32>) -> vec4<f32> {
+    return pow(vec4<f32>(sqrt(max(1.0 - x * x, 0.0))), alpha) * (alpha + 2.0) * 0.5;
 }
 
 // Area shared by two disks of radii a and b whose centres are d apart; twin of
@@ -87,15 +97,32 @@ fn chord_share(s: f32) -> f32 {
     return 1.0 - (acos(t) - t * sqrt(1.0 - t * t)) / PI;
 }
 
-// The sun's disk averaged over the pixel centred at (x, y), per unit solar irradiance (sr⁻¹),
-// from where the sun falls in the view (globals.sun_view); twin of
-// model::methods::shared::sun::SunInView::disk_in_pixel.
-fn sun_in_pixel(x: f32, y: f32) -> f32 {
+// The sun's disk over one pixel apart from wavelength; twin of
+// model::methods::shared::sun::DiskInPixel (reaches: whether the disk touches the pixel).
+struct DiskInPixel {
+    reaches: bool,
+    overlap: f32,
+    unresolved: f32,
+    blend: f32,
+    ring_x: array<f32, LIMB_RINGS>,
+    ring_weight: array<f32, LIMB_RINGS>,
+}
+
+fn no_disk() -> DiskInPixel {
+    var d: DiskInPixel;
+    d.reaches = false;
+    return d;
+}
+
+// How the sun's disk covers the pixel centred at (x, y), from where the sun falls in the view
+// (globals.sun_view); twin of model::methods::shared::sun::SunInView::pixel.
+fn sun_pixel(x: f32, y: f32) -> DiskInPixel {
+    var d = no_disk();
     let a = SUN_ANGULAR_RADIUS_RAD;
     let wx = globals.sun_view.z;
     let wy = globals.sun_view.w;
     if wx <= 0.0 {
-        return 0.0;
+        return d;
     }
     var dx = x - globals.sun_view.x;
     if PROJECTION == PROJECTION_PANORAMA {
@@ -106,24 +133,52 @@ fn sun_in_pixel(x: f32, y: f32) -> f32 {
     let oy = (y - globals.sun_view.y) * wy;
     let gamma = length(vec2<f32>(ox, oy));
     if gamma >= a + wx + wy {
-        return 0.0;
+        return d;
     }
     let sr = wx * wy;
-    let blend = smoothstep(1.0, 2.0, sqrt(sr) / a);
-    var resolved = 0.0;
-    if blend < 1.0 {
-        let p = sqrt(sr / PI);
-        let l = limb(min(max(gamma - SUN_LIMB_INSET * p, 0.0) / a, 1.0));
-        let fade = min(p / a, 1.0);
-        resolved = (l + (1.0 - l) * fade) * disk_overlap(a, p, gamma) / (PI * a * a) / sr;
+    let p = sqrt(sr / PI);
+    d.reaches = true;
+    d.blend = smoothstep(1.0, 2.0, sqrt(sr) / a);
+    if d.blend < 1.0 {
+        d.overlap = disk_overlap(a, p, gamma) / (PI * a * a) / sr;
+        // Twin of model::methods::shared::sun::limb_rings.
+        let r0 = max(gamma - p, 0.0);
+        let r1 = min(gamma + p, a);
+        if r1 > r0 {
+            var total = 0.0;
+            for (var k = 0u; k < LIMB_RINGS; k++) {
+                let rho = r0 + (f32(k) + 0.5) / f32(LIMB_RINGS) * (r1 - r0);
+                var arc = PI;
+                if rho > p - gamma {
+                    arc = acos(clamp((rho * rho + gamma * gamma - p * p) / (2.0 * rho * gamma),
+                        -1.0, 1.0));
+                }
+                d.ring_x[k] = rho / a;
+                d.ring_weight[k] = arc * rho;
+                total += arc * rho;
+            }
+            for (var k = 0u; k < LIMB_RINGS; k++) {
+                d.ring_weight[k] /= max(total, 1e-30);
+            }
+        }
     }
-    var unresolved = 0.0;
-    if blend > 0.0 {
+    if d.blend > 0.0 {
         let share_x = chord_share(0.5 * wx + ox) - chord_share(-0.5 * wx + ox);
         let share_y = chord_share(0.5 * wy + oy) - chord_share(-0.5 * wy + oy);
-        unresolved = share_x * share_y / sr;
+        d.unresolved = share_x * share_y / sr;
     }
-    return mix(resolved, unresolved, blend);
+    return d;
+}
+
+// Radiance of the disk over its pixel at each of `wavelengths_nm`, per unit solar irradiance
+// (sr⁻¹); twin of model::methods::shared::sun::DiskInPixel::radiance.
+fn disk_radiance(d: DiskInPixel, wavelengths_nm: vec4<f32>) -> vec4<f32> {
+    let alpha = limb_exponent(wavelengths_nm);
+    var l = vec4<f32>(0.0);
+    for (var k = 0u; k < LIMB_RINGS; k++) {
+        l += d.ring_weight[k] * limb(d.ring_x[k], alpha);
+    }
+    return mix(l * d.overlap, vec4<f32>(d.unresolved), d.blend);
 }
 
 // (φ, θ): azimuth from the sun in [0, π] and zenith angle of `dir` at a point whose vertical is

@@ -18,16 +18,17 @@ fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
         textureStore(radiance_out, id.xy, vec4<f32>(0.0));
         return;
     }
-    var disk = 0.0;
+    var disk = no_disk();
     if SUN_DISK {
-        disk = sun_in_pixel(x, y);
+        disk = sun_pixel(x, y);
     }
     var rgb = vec3<f32>(0.0);
     for (var layer = 0u; layer < batch_count(); layer++) {
         var l = radiance(layer, ray.xyz);
-        if SUN_DISK && disk > 0.0 {
+        if SUN_DISK && disk.reaches {
             let sun = sun_through_atmosphere(layer, globals.camera_position.w, globals.sun.w);
-            l += batches[layer].solar_irradiance * sun * disk;
+            l += batches[layer].solar_irradiance * sun
+                * disk_radiance(disk, batches[layer].wavelengths_nm);
         }
         rgb += vec3<f32>(dot(batches[layer].to_srgb_r, l), dot(batches[layer].to_srgb_g, l),
             dot(batches[layer].to_srgb_b, l));

@@ -424,8 +424,10 @@ pub(super) fn outside_sun_disk(scene: &Scene, projection: Projection, w: u32, h:
     let disk = camera.sun_in_view(sun, w, h);
     (0..w * h)
         .map(|i| {
-            disk.as_ref()
-                .is_none_or(|d| d.disk_in_pixel((i % w) as f64 + 0.5, (i / w) as f64 + 0.5) == 0.0)
+            disk.as_ref().is_none_or(|d| {
+                d.pixel((i % w) as f64 + 0.5, (i / w) as f64 + 0.5)
+                    .is_none()
+            })
         })
         .collect()
 }

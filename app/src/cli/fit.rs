@@ -9,7 +9,8 @@ use atmoscope_model::Scene;
 use atmoscope_model::camera::Camera;
 use atmoscope_model::colour::linear_srgb_to_xyz;
 use atmoscope_model::geometry::direction_from_angles;
-use atmoscope_model::methods::hillaire::{self, Params, Tables, sun_disk};
+use atmoscope_model::methods::hillaire::{self, Params, Tables};
+use atmoscope_model::methods::shared::sun::in_sun_disk;
 use atmoscope_model::scene::WavelengthSet;
 use atmoscope_model::views;
 use atmoscope_model::wavelengths::{fit_matrix, garcia_linan_spectral4, to_linear_srgb};
@@ -63,7 +64,7 @@ fn samples(
                 grid,
             )?;
             // Pixels on the sun's disk are left out, so none below carries it.
-            if sun_disk(ray.direction, sun) > 0.0 {
+            if in_sun_disk(ray.direction, sun) {
                 return None;
             }
             let at = (ray.origin, scene.camera.altitude_m);

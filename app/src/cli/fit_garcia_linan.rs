@@ -16,8 +16,9 @@ use atmoscope_model::camera::Camera;
 use atmoscope_model::colour::linear_srgb_to_xyz;
 use atmoscope_model::geometry::direction_from_angles;
 use atmoscope_model::methods::garcia_linan::{Constants, DOMAIN, sky::radiance_marched};
+use atmoscope_model::methods::shared::sun::in_sun_disk;
 use atmoscope_model::methods::shared::transmittance::compute_transmittance_lut;
-use atmoscope_model::methods::shared::{Lut, Params, sun_disk};
+use atmoscope_model::methods::shared::{Lut, Params};
 use atmoscope_model::optimize::nelder_mead;
 use atmoscope_model::scene::WavelengthSet;
 use atmoscope_model::wavelengths::to_linear_srgb;
@@ -152,7 +153,7 @@ fn load(args: &FitGarciaLinanArgs) -> anyhow::Result<Vec<ViewSamples>> {
                 let ray = camera.ray(x, y, w, h)?;
                 let reference = luminance(reference[y as usize * w as usize + x as usize]);
                 let usable =
-                    reference.is_finite() && reference > 0.0 && sun_disk(ray.direction, sun) == 0.0;
+                    reference.is_finite() && reference > 0.0 && !in_sun_disk(ray.direction, sun);
                 usable.then_some((ray.origin, ray.direction, reference))
             })
             .collect();

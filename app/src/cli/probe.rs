@@ -184,7 +184,7 @@ pub fn probe(scene: &Scene, args: &ProbeRequest) -> Probe {
                         let h = scene.camera.altitude_m;
                         let sky = m.radiance(b, (camera.position, h), dir, sun);
                         let mu_s = sun.dot(camera.position.normalize());
-                        let disk = m.sun(b, h, mu_s, sun_disk(dir, sun));
+                        let disk = m.sun(b, h, mu_s, sun_disk(dir, sun, &lanes_nm));
                         std::array::from_fn(|i| sky[i] + disk[i])
                     }),
                     [0.0; LANES],

@@ -204,18 +204,20 @@ pub trait SkyModel: Send + Sync {
     fn table(&self, id: &str) -> Option<&Lut>;
 
     /// Radiance of the sun's disk for batch `layer` seen from altitude `h` (m) with the sun at
-    /// zenith cosine `mu_s`, where the disk's radiance per unit irradiance is `disk` (sr⁻¹:
+    /// zenith cosine `mu_s`, where the disk's radiance per unit irradiance is `disk` (sr⁻¹ per
+    /// lane, limb darkening depending on the wavelength:
     /// `shared::sun_disk` in a single direction, `SunInView::disk_in_pixel` averaged over a
     /// pixel): the solar irradiance through the model's transmittance table along the sun's
     /// own ray, behind the planet's limb or not. The view adds it to every pixel the disk
     /// covers, whatever the pixel's centre sees.
-    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: f64) -> Lanes {
+    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: Lanes) -> Lanes {
         let p = self.params();
-        let Some(t) = self.table("transmittance").filter(|_| disk > 0.0) else {
+        let lit = disk.iter().any(|&d| d > 0.0);
+        let Some(t) = self.table("transmittance").filter(|_| lit) else {
             return [0.0; 4];
         };
         let tr = shared::transmittance::sun_seen_from(p, t, layer, h, mu_s);
-        std::array::from_fn(|i| p.batches[layer].solar_irradiance[i] * tr[i] * disk)
+        std::array::from_fn(|i| p.batches[layer].solar_irradiance[i] * tr[i] * disk[i])
     }
 }
 
@@ -632,11 +634,16 @@ pub fn render_with(
                 None => [0.0; 3],
                 Some(ray) => {
                     let at = (ray.origin, scene.camera.altitude_m);
-                    let disk = sun_in_view
-                        .map_or(0.0, |s| s.disk_in_pixel(x as f64 + 0.5, y as f64 + 0.5));
                     let mu_s = sun.dot(ray.origin.normalize());
                     let lanes: Vec<Lanes> = (0..p.batches.len())
                         .map(|layer| {
+                            let disk = sun_in_view.map_or([0.0; 4], |s| {
+                                s.disk_in_pixel(
+                                    x as f64 + 0.5,
+                                    y as f64 + 0.5,
+                                    &colours[layer].wavelengths_nm,
+                                )
+                            });
                             shared::add(
                                 model.radiance(layer, at, ray.direction, sun),
                                 model.sun(layer, at.1, mu_s, disk),
@@ -666,20 +673,20 @@ mod tests {
         let model = build(&scene, &camera).expect("a real-time model");
         let e = model.params().batches[0].solar_irradiance;
         let sin = |deg: f64| deg.to_radians().sin();
-        let high = model.sun(0, 2.0, sin(30.0), 1.0);
+        let high = model.sun(0, 2.0, sin(30.0), [1.0; 4]);
         assert!(
             (0..3).all(|i| high[i] > 0.3 * e[i] && high[i] < e[i]),
             "{high:?} of {e:?}"
         );
-        assert_eq!(model.sun(0, 2.0, sin(-2.0), 1.0), [0.0; 4]);
-        assert_eq!(model.sun(0, 2.0, sin(30.0), 0.0), [0.0; 4]);
+        assert_eq!(model.sun(0, 2.0, sin(-2.0), [1.0; 4]), [0.0; 4]);
+        assert_eq!(model.sun(0, 2.0, sin(30.0), [0.0; 4]), [0.0; 4]);
         // From 20 000 km: straight up through nothing, straight down behind the planet.
-        let space = model.sun(0, 2e7, 1.0, 1.0);
+        let space = model.sun(0, 2e7, 1.0, [1.0; 4]);
         assert!(
             (0..3).all(|i| (space[i] - e[i]).abs() < 1e-9 * e[i]),
             "{space:?}"
         );
-        assert_eq!(model.sun(0, 2e7, -1.0, 1.0), [0.0; 4]);
+        assert_eq!(model.sun(0, 2e7, -1.0, [1.0; 4]), [0.0; 4]);
     }
 
     #[test]

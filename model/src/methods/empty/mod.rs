@@ -42,12 +42,11 @@ impl SkyModel for Empty {
     }
 
     /// The sun's disk at full strength wherever the planet does not hide it.
-    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: f64) -> Lanes {
+    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: Lanes) -> Lanes {
         let p = &self.params;
         let visible = visible_fraction(h, mu_s, p.bottom_radius_m);
-        p.batches[layer]
-            .solar_irradiance
-            .map(|e| e * visible * disk.max(0.0))
+        let e = p.batches[layer].solar_irradiance;
+        std::array::from_fn(|i| e[i] * visible * disk[i].max(0.0))
     }
 }
 

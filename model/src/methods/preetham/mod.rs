@@ -252,12 +252,12 @@ impl SkyModel for Preetham {
     }
 
     /// The sun's disk through Preetham's direct-beam transmittance at the ground.
-    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: f64) -> Lanes {
+    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: Lanes) -> Lanes {
         let p = &self.params;
         let b = &p.batches[layer];
         let visible = visible_fraction(h, mu_s, p.bottom_radius_m);
         let t = sun_transmittance(b.colour.wavelengths_nm, self.turbidity, mu_s);
-        std::array::from_fn(|i| b.solar_irradiance[i] * t[i] * visible * disk.max(0.0))
+        std::array::from_fn(|i| b.solar_irradiance[i] * t[i] * visible * disk[i].max(0.0))
     }
 }
 

@@ -226,7 +226,7 @@ impl crate::methods::SkyModel for Segments {
         None
     }
 
-    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: f64) -> Lanes {
+    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: Lanes) -> Lanes {
         self.route.sun_disk(&self.params, layer, h, mu_s, disk)
     }
 }

@@ -268,14 +268,14 @@ impl SunRoute {
     }
 
     /// The sun's disk for batch `layer` seen from altitude `h` at zenith cosine `mu_s`, where
-    /// the disk's radiance per unit irradiance is `disk` (sr⁻¹): `SkyModel::sun` of the
-    /// table-free models.
-    pub fn sun_disk(&self, p: &Params, layer: usize, h: f64, mu_s: f64, disk: f64) -> Lanes {
-        if disk <= 0.0 {
+    /// the disk's radiance per unit irradiance is `disk` (sr⁻¹, per lane): `SkyModel::sun` of
+    /// the table-free models.
+    pub fn sun_disk(&self, p: &Params, layer: usize, h: f64, mu_s: f64, disk: Lanes) -> Lanes {
+        if disk.iter().all(|&d| d <= 0.0) {
             return [0.0; 4];
         }
         let tr = self.seen_from(p, layer, h, mu_s);
-        std::array::from_fn(|i| p.batches[layer].solar_irradiance[i] * tr[i] * disk)
+        std::array::from_fn(|i| p.batches[layer].solar_irradiance[i] * tr[i] * disk[i])
     }
 }
 
@@ -352,7 +352,7 @@ impl crate::methods::SkyModel for SingleScattering {
         }
     }
 
-    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: f64) -> Lanes {
+    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: Lanes) -> Lanes {
         self.sun_path.sun_disk(&self.params, layer, h, mu_s, disk)
     }
 }

@@ -1,21 +1,47 @@
-//! The sun's disk: angular size and limb darkening from `crate::constants`.
+//! The sun's disk: angular size and limb darkening by wavelength from `crate::constants`
+//! (Hestroffer & Magnan 1998: the limb is darker in the blue, so the disk's edge reddens).
 
-use crate::constants::{SUN_ANGULAR_RADIUS_RAD, SUN_LIMB_DARKENING_U};
+use super::Lanes;
+use crate::constants::{
+    SUN_ANGULAR_RADIUS_RAD, SUN_LIMB_ALPHA_BREAK_PER_UM, SUN_LIMB_ALPHA_LONG, SUN_LIMB_ALPHA_SHORT,
+};
 use glam::DVec3;
 use std::f64::consts::PI;
 
-/// Radiance of the sun's disk in the single direction `dir` (0 outside it), per unit solar
-/// irradiance, sr⁻¹: limb darkened with the linear law I(μ′) ∝ 1 − u(1 − μ′), normalised to
-/// the disk's mean.
-pub fn sun_disk(dir: DVec3, sun: DVec3) -> f64 {
+/// Radiance of the sun's disk in the single direction `dir` (0 outside it) at each of
+/// `wavelengths_nm`, per unit solar irradiance, sr⁻¹: limb darkened, normalised to the disk's
+/// mean.
+pub fn sun_disk(dir: DVec3, sun: DVec3, wavelengths_nm: &Lanes) -> Lanes {
+    match disk_offset(dir, sun) {
+        Some(gamma) => wavelengths_nm
+            .map(|w| limb(gamma / SUN_ANGULAR_RADIUS_RAD, limb_exponent(w)) / sun_solid_angle()),
+        None => [0.0; 4],
+    }
+}
+
+/// Whether the direction `dir` falls on the sun's disk.
+pub fn in_sun_disk(dir: DVec3, sun: DVec3) -> bool {
+    disk_offset(dir, sun).is_some()
+}
+
+/// Angle (rad) between `dir` and the sun's centre where it is inside the disk.
+fn disk_offset(dir: DVec3, sun: DVec3) -> Option<f64> {
     if dir.dot(sun) <= 0.0 {
-        return 0.0;
+        return None;
     }
     let gamma = dir.cross(sun).length().min(1.0).asin();
-    if gamma >= SUN_ANGULAR_RADIUS_RAD {
-        return 0.0;
-    }
-    limb(gamma / SUN_ANGULAR_RADIUS_RAD) / sun_solid_angle()
+    (gamma < SUN_ANGULAR_RADIUS_RAD).then_some(gamma)
+}
+
+/// Exponent α of the limb darkening I(μ′)/I(1) = μ′^α at `wavelength_nm` (300–1100 nm).
+pub fn limb_exponent(wavelength_nm: f64) -> f64 {
+    let per_um = 1000.0 / wavelength_nm;
+    let [a, b] = if per_um < SUN_LIMB_ALPHA_BREAK_PER_UM {
+        SUN_LIMB_ALPHA_LONG
+    } else {
+        SUN_LIMB_ALPHA_SHORT
+    };
+    a + b * per_um
 }
 
 /// The sun's solid angle, sr.
@@ -24,9 +50,10 @@ fn sun_solid_angle() -> f64 {
     4.0 * PI * half.sin() * half.sin()
 }
 
-/// Linear limb darkening at the fraction `x` of the disk's radius, normalised to its mean.
-fn limb(x: f64) -> f64 {
-    (1.0 - SUN_LIMB_DARKENING_U * (1.0 - (1.0 - x * x).sqrt())) / (1.0 - SUN_LIMB_DARKENING_U / 3.0)
+/// Limb darkening with exponent `alpha` at the fraction `x` of the disk's radius, normalised to
+/// the disk's mean (the mean of μ′^α over the disk is 2/(α + 2)).
+fn limb(x: f64, alpha: f64) -> f64 {
+    (1.0 - x * x).max(0.0).sqrt().powf(alpha) * (alpha + 2.0) / 2.0
 }
 
 /// Where the sun's centre falls in a view: its pixel coordinates (x to the right, y down, pixel
@@ -43,17 +70,25 @@ pub struct SunInView {
 }
 
 impl SunInView {
-    /// Radiance of the sun's disk averaged over the pixel centred at (x, y), per unit solar
-    /// irradiance, sr⁻¹. Every pixel measures the sun from the same centre, so its energy
-    /// summed over the pixels is kept however small the pixels are against it or where it
-    /// falls (it vanished between pixel centres when point-sampled).
+    /// Radiance of the sun's disk averaged over the pixel centred at (x, y) at each of
+    /// `wavelengths_nm`, per unit solar irradiance, sr⁻¹: [`Self::pixel`] then
+    /// [`DiskInPixel::radiance`].
+    pub fn disk_in_pixel(&self, x: f64, y: f64, wavelengths_nm: &Lanes) -> Lanes {
+        self.pixel(x, y)
+            .map_or([0.0; 4], |d| d.radiance(wavelengths_nm))
+    }
+
+    /// How the sun's disk covers the pixel centred at (x, y), None where it does not reach it.
+    /// Every pixel measures the sun from the same centre, so its energy summed over the pixels
+    /// is kept however small the pixels are against it or where it falls (it vanished between
+    /// pixel centres when point-sampled).
     ///
     /// A pixel as wide as the sun's radius or less sees the overlap of the sun with a disk of
-    /// the pixel's area, limb darkening read a little inside the pixel's centre; a pixel twice
-    /// as wide or more, the share of the sun between its edges across times the share between
-    /// its edges along (these shares sum to exactly one over the pixels); in between the two
-    /// are blended. Within 5 % of the sun's energy over any pixel size and offset.
-    pub fn disk_in_pixel(&self, x: f64, y: f64) -> f64 {
+    /// the pixel's area, its limb darkening averaged over that overlap ring by ring; a pixel
+    /// twice as wide or more, the share of the sun between its edges across times the share
+    /// between its edges along (these shares sum to exactly one over the pixels); in between
+    /// the two are blended. Within 4 % of the sun's energy over any pixel size and offset.
+    pub fn pixel(&self, x: f64, y: f64) -> Option<DiskInPixel> {
         let a = SUN_ANGULAR_RADIUS_RAD;
         let (wx, wy) = (self.pixel_width_rad, self.pixel_height_rad);
         let mut dx = x - self.x;
@@ -63,29 +98,28 @@ impl SunInView {
         let (ox, oy) = (dx * wx, (y - self.y) * wy);
         let gamma = ox.hypot(oy);
         if gamma >= a + wx + wy {
-            return 0.0;
+            return None;
         }
         let sr = wx * wy;
         let blend = smoothstep(1.0, 2.0, sr.sqrt() / a);
-        let resolved = if blend < 1.0 {
-            let p = (sr / PI).sqrt();
-            let l = limb(((gamma - SUN_LIMB_INSET * p).max(0.0) / a).min(1.0));
-            let fade = (p / a).min(1.0);
-            (l + (1.0 - l) * fade) * disk_overlap(a, p, gamma) / (PI * a * a) / sr
-        } else {
-            0.0
+        let p = (sr / PI).sqrt();
+        let mut d = DiskInPixel {
+            blend,
+            ..DiskInPixel::default()
         };
-        let unresolved = if blend > 0.0 {
+        if blend < 1.0 {
+            d.overlap = disk_overlap(a, p, gamma) / (PI * a * a) / sr;
+            (d.ring_x, d.ring_weight) = limb_rings(gamma, p);
+        }
+        if blend > 0.0 {
             let inside = |w: f64, o: f64| chord_share(0.5 * w + o) - chord_share(-0.5 * w + o);
-            inside(wx, ox) * inside(wy, oy) / sr
-        } else {
-            0.0
-        };
-        resolved + (unresolved - resolved) * blend
+            d.unresolved = inside(wx, ox) * inside(wy, oy) / sr;
+        }
+        Some(d)
     }
 
     /// The pixels of a `width` × `height` view the disk can reach: columns x0..x1 and rows
-    /// y0..y1 (ends excluded) holding every pixel whose `disk_in_pixel` is not zero, so that a
+    /// y0..y1 (ends excluded) holding every pixel that [`Self::pixel`] reaches, so that a
     /// renderer can draw the disk over those alone. A box that wraps around a panorama's edge
     /// spans the whole width. None when no pixel of the view is reached.
     pub fn pixel_box(&self, width: u32, height: u32) -> Option<[u32; 4]> {
@@ -112,9 +146,72 @@ impl SunInView {
     }
 }
 
-/// How far inside the pixel's centre (in pixel radii) limb darkening is read: the overlap lies
-/// towards the sun's centre (measured best over pixel sizes and offsets).
-pub const SUN_LIMB_INSET: f64 = 0.3;
+/// The sun's disk over one pixel, apart from wavelength (from [`SunInView::pixel`]): the
+/// geometry is the same at every wavelength, only the limb darkening differs.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct DiskInPixel {
+    /// Overlap of the sun with a disk of the pixel's area, per pixel solid angle, sr⁻¹.
+    overlap: f64,
+    /// The sun's share between the pixel's edges, per pixel solid angle, sr⁻¹.
+    unresolved: f64,
+    /// 0 where the pixel resolves the disk, 1 where it is twice as wide as the sun's radius.
+    blend: f64,
+    /// Radii of the rings over which the limb darkening is averaged, fractions of the sun's
+    /// radius (0–1), and their weights (summing to 1 where the pixel's disk meets the sun's).
+    ring_x: [f64; LIMB_RINGS],
+    ring_weight: [f64; LIMB_RINGS],
+}
+
+impl DiskInPixel {
+    /// Radiance at each of `wavelengths_nm` (300–1100 nm), per unit solar irradiance, sr⁻¹.
+    pub fn radiance(&self, wavelengths_nm: &Lanes) -> Lanes {
+        wavelengths_nm.map(|w| {
+            let alpha = limb_exponent(w);
+            let l: f64 = (self.ring_x.iter().zip(&self.ring_weight))
+                .map(|(&x, &weight)| weight * limb(x, alpha))
+                .sum();
+            let resolved = l * self.overlap;
+            resolved + (self.unresolved - resolved) * self.blend
+        })
+    }
+}
+
+/// Rings over which a pixel averages the limb darkening: four, at the midpoints of the radii
+/// the pixel's disk spans, keep the sun's energy within 4 % over pixel sizes and offsets and
+/// give the point value for pixels much smaller than the sun.
+pub const LIMB_RINGS: usize = 4;
+
+/// The rings (radii as fractions of the sun's, and weights) over which a disk of radius `p`
+/// whose centre is `gamma` from the sun's (rad) averages the limb darkening: each ring weighs
+/// the length of its arc inside the pixel's disk.
+fn limb_rings(gamma: f64, p: f64) -> ([f64; LIMB_RINGS], [f64; LIMB_RINGS]) {
+    let a = SUN_ANGULAR_RADIUS_RAD;
+    let (r0, r1) = ((gamma - p).max(0.0), (gamma + p).min(a));
+    let mut x = [0.0; LIMB_RINGS];
+    let mut weight = [0.0; LIMB_RINGS];
+    if r1 <= r0 {
+        return (x, weight);
+    }
+    for (k, (x, weight)) in x.iter_mut().zip(&mut weight).enumerate() {
+        let rho = r0 + (k as f64 + 0.5) / LIMB_RINGS as f64 * (r1 - r0);
+        // Half the arc of the ring inside the pixel's disk: all of it where the ring lies
+        // within that disk.
+        let arc = if rho <= p - gamma {
+            PI
+        } else {
+            ((rho * rho + gamma * gamma - p * p) / (2.0 * rho * gamma))
+                .clamp(-1.0, 1.0)
+                .acos()
+        };
+        *x = rho / a;
+        *weight = arc * rho;
+    }
+    let total: f64 = weight.iter().sum();
+    if total > 0.0 {
+        weight.iter_mut().for_each(|w| *w /= total);
+    }
+    (x, weight)
+}
 
 /// Share of the sun's disk whose offset from its centre along an axis is below `s`, rad.
 fn chord_share(s: f64) -> f64 {
@@ -154,6 +251,9 @@ fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
 mod tests {
     use super::*;
 
+    /// Blue, green, red and near-infrared: both ranges of the limb-darkening fit.
+    const WAVELENGTHS: Lanes = [380.0, 450.0, 550.0, 700.0];
+
     /// No pixel outside `pixel_box` gets any of the disk, over pixel sizes from a twentieth of
     /// the sun's radius to a hundred radii, suns inside, at the edges and outside of the
     /// view, and panoramas whose sun wraps around.
@@ -183,8 +283,11 @@ mod tests {
                             let inside = b.is_some_and(|[x0, y0, x1, y1]| {
                                 (x0..x1).contains(&i) && (y0..y1).contains(&j)
                             });
-                            let d = sun.disk_in_pixel(f64::from(i) + 0.5, f64::from(j) + 0.5);
-                            assert!(inside || d == 0.0, "{size} ({x}, {y}) wrap {wrap}: {i} {j}");
+                            let d = sun.pixel(f64::from(i) + 0.5, f64::from(j) + 0.5);
+                            assert!(
+                                inside || d.is_none(),
+                                "{size} ({x}, {y}) wrap {wrap}: {i} {j}"
+                            );
                         }
                     }
                 }
@@ -197,15 +300,76 @@ mod tests {
         let sun = DVec3::Z;
         let n = 400;
         let a = SUN_ANGULAR_RADIUS_RAD;
-        let mut sum = 0.0;
+        let mut sum = [0.0; 4];
         // Rings of the disk: ∫ L dΩ = Σ L(γ)·2π sin γ dγ.
         for i in 0..n {
             let gamma = (i as f64 + 0.5) / n as f64 * a;
             let dir = DVec3::new(gamma.sin(), 0.0, gamma.cos());
-            sum += sun_disk(dir, sun) * 2.0 * PI * gamma.sin() * a / n as f64;
+            let l = sun_disk(dir, sun, &WAVELENGTHS);
+            for (s, l) in sum.iter_mut().zip(l) {
+                *s += l * 2.0 * PI * gamma.sin() * a / n as f64;
+            }
         }
-        assert!((sum - 1.0).abs() < 1e-3, "{sum}");
-        assert_eq!(sun_disk(DVec3::X, sun), 0.0);
+        assert!(sum.iter().all(|s| (s - 1.0).abs() < 2e-3), "{sum:?}");
+        assert_eq!(sun_disk(DVec3::X, sun, &WAVELENGTHS), [0.0; 4]);
+        assert!(in_sun_disk(sun, sun) && !in_sun_disk(DVec3::X, sun));
+    }
+
+    /// Hestroffer & Magnan's exponent: 0.508 at 550 nm, larger in the blue; the disk's centre
+    /// is brighter than its mean and its edge redder than its centre (a linear law with one
+    /// coefficient for every wavelength, as before, had both the same colour).
+    #[test]
+    fn the_limb_is_darker_and_redder_than_the_centre() {
+        assert!((limb_exponent(550.0) - 0.5079).abs() < 1e-3);
+        assert!((limb_exponent(700.0) - 0.3941).abs() < 1e-3);
+        assert!(limb_exponent(450.0) > limb_exponent(550.0));
+        let sun = DVec3::Z;
+        let a = SUN_ANGULAR_RADIUS_RAD;
+        let at = |x: f64| {
+            sun_disk(
+                DVec3::new((x * a).tan(), 0.0, 1.0).normalize(),
+                sun,
+                &WAVELENGTHS,
+            )
+        };
+        let (centre, edge) = (at(0.0), at(0.95));
+        let mean = 1.0 / (2.0 * PI * (1.0 - a.cos()));
+        for i in 0..4 {
+            assert!(
+                centre[i] > mean && edge[i] < 0.75 * centre[i],
+                "{centre:?} {edge:?}"
+            );
+        }
+        // Red over blue, relative to the centre: larger at the edge.
+        assert!(
+            edge[3] / edge[1] > 1.1 * centre[3] / centre[1],
+            "{centre:?} {edge:?}"
+        );
+    }
+
+    /// A pixel centred on the sun as wide as its radius sees the limb law's exact mean over
+    /// the disk of the pixel's area: ∫₀^q (1 − x²)^(α/2) 2x dx / q², times (α + 2)/2. (Reading
+    /// the law at one point, as before, made it 7 % too dark there.)
+    #[test]
+    fn a_pixel_averages_the_limb_over_the_part_of_the_sun_it_sees() {
+        let a = SUN_ANGULAR_RADIUS_RAD;
+        let sun = SunInView {
+            x: 0.5,
+            y: 0.5,
+            pixel_width_rad: a,
+            pixel_height_rad: a,
+            wrap_width: 0.0,
+        };
+        let got = sun.disk_in_pixel(0.5, 0.5, &WAVELENGTHS);
+        let p = (a * a / PI).sqrt();
+        let q2 = (p / a).powi(2);
+        for (i, w) in WAVELENGTHS.iter().enumerate() {
+            let alpha = limb_exponent(*w);
+            let e = alpha / 2.0 + 1.0;
+            let mean = (1.0 - (1.0 - q2).powf(e)) / (e * q2) * (alpha + 2.0) / 2.0;
+            let want = mean * q2 / (a * a);
+            assert!((got[i] / want - 1.0).abs() < 5e-3, "{w} nm: {} vs {want}", got[i]);
+        }
     }
 
     /// A grid of square pixels of side `side` (rad) around the sun, its centre at `(ox, oy)`
@@ -223,9 +387,9 @@ mod tests {
         let (mut energy, mut peak) = (0.0, 0.0_f64);
         for i in -n..=n {
             for j in -n..=n {
-                let l = sun.disk_in_pixel(i as f64 + 0.5, j as f64 + 0.5);
-                energy += l * side * side;
-                peak = peak.max(l);
+                let l = sun.disk_in_pixel(i as f64 + 0.5, j as f64 + 0.5, &WAVELENGTHS);
+                energy += l[2] * side * side;
+                peak = peak.max(l[2]);
             }
         }
         (energy, peak)
@@ -249,7 +413,7 @@ mod tests {
             for offset in [(0.0, 0.0), (0.5, 0.5), (0.5, 0.0), (0.23, 0.71)] {
                 let (energy, peak) = grid(side, offset);
                 assert!(
-                    (energy - 1.0).abs() < 0.05,
+                    (energy - 1.0).abs() < 0.04,
                     "pixels {:.2} sun radii, offset {offset:?}: energy {energy}",
                     side / a
                 );
@@ -265,12 +429,15 @@ mod tests {
             wrap_width: 0.0,
         };
         let at = 300.0; // pixels from the centre: 0.3 sun radii
-        let point = sun_disk(DVec3::new((0.3 * a).tan(), 0.0, 1.0).normalize(), DVec3::Z);
-        let averaged = small.disk_in_pixel(0.5 + at, 0.5);
-        assert!(
-            (averaged / point - 1.0).abs() < 1e-2,
-            "{averaged} vs {point}"
-        );
+        let dir = DVec3::new((0.3 * a).tan(), 0.0, 1.0).normalize();
+        let point = sun_disk(dir, DVec3::Z, &WAVELENGTHS);
+        let averaged = small.disk_in_pixel(0.5 + at, 0.5, &WAVELENGTHS);
+        for i in 0..4 {
+            assert!(
+                (averaged[i] / point[i] - 1.0).abs() < 1e-2,
+                "{averaged:?} vs {point:?}"
+            );
+        }
     }
 
     #[test]
