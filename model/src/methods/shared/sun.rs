@@ -368,7 +368,11 @@ mod tests {
             let e = alpha / 2.0 + 1.0;
             let mean = (1.0 - (1.0 - q2).powf(e)) / (e * q2) * (alpha + 2.0) / 2.0;
             let want = mean * q2 / (a * a);
-            assert!((got[i] / want - 1.0).abs() < 5e-3, "{w} nm: {} vs {want}", got[i]);
+            assert!(
+                (got[i] / want - 1.0).abs() < 5e-3,
+                "{w} nm: {} vs {want}",
+                got[i]
+            );
         }
     }
 
