@@ -203,8 +203,9 @@ impl PathTracer<'_> {
         if p_collide <= 0.0 {
             return None;
         }
-        let proposal = if self.sunlight_varies(ray, intervals, lanes) {
-            self.proposal(ray, intervals, majorants, tau_total, lanes)
+        let grey = GreyOptics::new(lanes);
+        let proposal = if self.sunlight_varies(ray, intervals, &grey) {
+            self.proposal(ray, intervals, majorants, tau_total, lanes, &grey)
         } else {
             None
         };
@@ -232,11 +233,10 @@ impl PathTracer<'_> {
     /// Whether the sun's transmittance along the segment (at its ends and lowest point) varies by
     /// more than [`SUNLIGHT_SPREAD`]: where it does not, the majorant's exponential already
     /// follows the integrand well and the proposal costs more than it saves.
-    fn sunlight_varies(&self, ray: &Ray, intervals: &Intervals, lanes: &LaneOptics) -> bool {
+    fn sunlight_varies(&self, ray: &Ray, intervals: &Intervals, grey: &GreyOptics) -> bool {
         let (Some(first), Some(last)) = (intervals.first(), intervals.last()) else {
             return false;
         };
-        let grey = GreyOptics::new(lanes);
         let lowest = -ray.origin.dot(ray.direction);
         let (mut least, mut most) = (f64::INFINITY, 0.0f64);
         for t in [first.0, last.1, lowest.clamp(first.0, last.1)] {
@@ -260,6 +260,7 @@ impl PathTracer<'_> {
         majorants: &[f64],
         tau_total: f64,
         lanes: &LaneOptics,
+        grey: &GreyOptics,
     ) -> Option<Proposal> {
         let (start, end) = (intervals.first()?.0, intervals.last()?.1);
         let length = end - start;
@@ -284,7 +285,6 @@ impl PathTracer<'_> {
         }
         let bottom = self.atmosphere.bottom_radius_m;
         let nu = ray.direction.dot(self.sun);
-        let grey = GreyOptics::new(lanes);
         let mean_phase = |c| {
             lanes
                 .optics
