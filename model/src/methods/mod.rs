@@ -635,15 +635,13 @@ pub fn render_with(
                 Some(ray) => {
                     let at = (ray.origin, scene.camera.altitude_m);
                     let mu_s = sun.dot(ray.origin.normalize());
+                    // The disk's geometry once per pixel, its limb darkening per batch.
+                    let disk_here =
+                        sun_in_view.and_then(|s| s.pixel(x as f64 + 0.5, y as f64 + 0.5));
                     let lanes: Vec<Lanes> = (0..p.batches.len())
                         .map(|layer| {
-                            let disk = sun_in_view.map_or([0.0; 4], |s| {
-                                s.disk_in_pixel(
-                                    x as f64 + 0.5,
-                                    y as f64 + 0.5,
-                                    &colours[layer].wavelengths_nm,
-                                )
-                            });
+                            let disk = disk_here
+                                .map_or([0.0; 4], |d| d.radiance(&colours[layer].wavelengths_nm));
                             shared::add(
                                 model.radiance(layer, at, ray.direction, sun),
                                 model.sun(layer, at.1, mu_s, disk),
