@@ -12,7 +12,7 @@
 
 use crate::DisplayMode;
 use crate::methods::{
-    Constant, Dispatch, GpuMethod, HISTOGRAM, METER_PASS, PassSpec, Repeat, gpu_method,
+    Constant, Dispatch, GpuMethod, HISTOGRAM, METER_PASS, PassSpec, RADIANCE, Repeat, gpu_method,
 };
 use crate::passes::{ORIGIN_SLOTS, Pipelines, TableBuffers, Variant};
 use crate::prelude::{WORKGROUP_SIZE, texel_group_size};
@@ -40,6 +40,10 @@ use std::time::{Duration, Instant};
 
 /// Most passes a model may have (the size of the timestamp query set is twice this).
 pub const MAX_PASSES: usize = 64;
+
+/// Bytes before the list of `ExactTiles` in `shaders/common/bindings.wgsl`: the indirect
+/// dispatch's three workgroup counts and the number of tiles.
+const EXACT_TILES_HEADER_BYTES: u64 = 16;
 
 /// How a pass's time was measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -202,6 +206,8 @@ struct FrameSetup {
     bottom_radius_m: f64,
     /// Whether the camera is above the top of the atmosphere.
     above: bool,
+    /// Pixels on a side of the sky pass's interpolated tiles this frame (1: every pixel).
+    sky_tile: u32,
 }
 
 impl FrameSetup {
@@ -254,6 +260,7 @@ impl FrameSetup {
             camera,
             bottom_radius_m: params.bottom_radius_m,
             above: viewpoint.h > params.thickness_m(),
+            sky_tile: 1,
         }
     }
 
@@ -272,6 +279,8 @@ impl FrameSetup {
             Constant::ToneMap => uniforms::tone_map_code(scene.display.tone_map),
             Constant::SunDisk => 1,
             Constant::ViewRegion => uniforms::region_code(Sees::Both),
+            Constant::SkyTile => 1,
+            Constant::SkyTileExact => 0,
         }
     }
 
@@ -286,7 +295,9 @@ impl FrameSetup {
     /// of rows that see sky alone, ground alone or both (`Camera::rows_see`), and one that
     /// takes the sun's disk draws it in one more dispatch over the pixels the disk reaches
     /// (`SunInView::pixel_box`), so that no pixel runs the code of what it cannot see (a
-    /// software GPU runs both sides of every branch). Any other pass is one dispatch.
+    /// software GPU runs both sides of every branch). A frame with tiles (`sky_tile` > 1)
+    /// runs the sky pass in one dispatch of tiles, which decides sky or ground per corner,
+    /// then the sun's disk pixel by pixel. Any other pass is one dispatch.
     fn work(
         &self,
         pipelines: &Pipelines,
@@ -297,20 +308,37 @@ impl FrameSetup {
     ) -> Vec<Work> {
         let grid = grid(pipelines, i, layers, self.size);
         let constants = pipelines.specs().nth(i).map_or(&[][..], |s| s.constants);
-        let variant = |region: Sees, sun: bool| {
+        let variant = |region: Sees, sun: bool, tile: u32, exact: bool| {
             pipelines.variant(i, |c| match c {
                 Constant::SunDisk => u32::from(sun),
                 Constant::ViewRegion => uniforms::region_code(region),
+                Constant::SkyTile => tile,
+                Constant::SkyTileExact => u32::from(exact),
                 other => self.value(other, scene, view),
             })
         };
         let takes = |c: Constant| constants.contains(&c);
         if !takes(Constant::ViewRegion) && !takes(Constant::SunDisk) {
-            return vec![Work::whole(i, variant(Sees::Both, true), grid)];
+            return vec![Work::whole(i, variant(Sees::Both, true, 1, false), grid)];
         }
         let [w, h] = self.size;
         let mut work = Vec::new();
-        if takes(Constant::ViewRegion) && !self.above {
+        let tile = self.sky_tile;
+        if takes(Constant::SkyTile) && tile > 1 {
+            let span = WORKGROUP_SIZE * tile;
+            work.push(Work {
+                tiles: TilePhase::Fill,
+                ..Work::whole(
+                    i,
+                    variant(Sees::Both, false, tile, false),
+                    [w.div_ceil(span), h.div_ceil(span), 1],
+                )
+            });
+            work.push(Work {
+                tiles: TilePhase::Compute,
+                ..Work::whole(i, variant(Sees::Both, false, tile, true), [0; 3])
+            });
+        } else if takes(Constant::ViewRegion) && !self.above {
             let rows = self.camera.rows_see(self.bottom_radius_m, w, h);
             let group_rows: Vec<Sees> = rows
                 .chunks(WORKGROUP_SIZE as usize)
@@ -327,15 +355,16 @@ impl FrameSetup {
                 if group_rows.get(g + 1) != Some(&seen) {
                     work.push(Work {
                         pass: i,
-                        variant: variant(seen, false),
+                        variant: variant(seen, false, 1, false),
                         origin: [0, start as u32 * WORKGROUP_SIZE, 0],
                         groups: [grid[0], (g + 1 - start) as u32, 1],
+                        tiles: TilePhase::None,
                     });
                     start = g + 1;
                 }
             }
         } else {
-            work.push(Work::whole(i, variant(Sees::Both, false), grid));
+            work.push(Work::whole(i, variant(Sees::Both, false, 1, false), grid));
         }
         let sun_box = self
             .camera
@@ -344,9 +373,10 @@ impl FrameSetup {
         if let (true, Some([x0, y0, x1, y1])) = (takes(Constant::SunDisk), sun_box) {
             work.push(Work {
                 pass: i,
-                variant: variant(Sees::Both, true),
+                variant: variant(Sees::Both, true, 1, false),
                 origin: [x0, y0, 0],
                 groups: [groups(x1 - x0), groups(y1 - y0), 1],
+                tiles: TilePhase::None,
             });
         }
         work
@@ -384,9 +414,10 @@ fn plan(
             || spec.direct_inputs(info).intersects(changed)
             || spec.reads.iter().any(|r| written.contains(r));
         if stale {
-            written.extend(spec.writes);
             deferred[i] = !needed[i];
+            // A pass left stale rewrites nothing: its readers are not stale for it.
             if needed[i] {
+                written.extend(spec.writes);
                 run.push(i);
             }
         }
@@ -453,6 +484,18 @@ struct Work {
     variant: Variant,
     origin: [u32; 3],
     groups: [u32; 3],
+    tiles: TilePhase,
+}
+
+/// What a dispatch does with the list of tiles a sky drawn in tiles computes exactly.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum TilePhase {
+    /// Nothing.
+    None,
+    /// Empties it, then fills it (the tiles' corners and their interpolation).
+    Fill,
+    /// Computes its tiles: an indirect dispatch of as many workgroups as it says.
+    Compute,
 }
 
 impl Work {
@@ -462,6 +505,7 @@ impl Work {
             variant,
             origin: [0; 3],
             groups: grid,
+            tiles: TilePhase::None,
         }
     }
 }
@@ -535,6 +579,22 @@ impl Encoder<'_> {
                 // the view's first pixel.
                 encoder.clear_buffer(&self.target.histogram, 0, None);
             }
+            match w.tiles {
+                TilePhase::Fill => encoder.clear_buffer(
+                    &self.target.exact_tiles,
+                    0,
+                    Some(EXACT_TILES_HEADER_BYTES),
+                ),
+                // A dispatch may not bind the buffer that holds its own workgroup counts.
+                TilePhase::Compute => encoder.copy_buffer_to_buffer(
+                    &self.target.exact_tiles,
+                    0,
+                    &self.target.exact_groups,
+                    0,
+                    Some(12),
+                ),
+                TilePhase::None => {}
+            }
             {
                 let timestamp_writes = gpu_timer.map(|t| t.writes(slot as u32));
                 let mut cpass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -554,7 +614,11 @@ impl Encoder<'_> {
                 cpass.set_pipeline(pipeline);
                 cpass.set_bind_group(0, &self.tables.group0, &[offset]);
                 cpass.set_bind_group(1, group, &[]);
-                cpass.dispatch_workgroups(dispatch[0], dispatch[1], dispatch[2]);
+                if w.tiles == TilePhase::Compute {
+                    cpass.dispatch_workgroups_indirect(&self.target.exact_groups, 0);
+                } else {
+                    cpass.dispatch_workgroups(dispatch[0], dispatch[1], dispatch[2]);
+                }
             }
             if fenced {
                 self.queue.submit([encoder.finish()]);
@@ -592,6 +656,10 @@ struct Target {
     display: wgpu::Texture,
     /// The view's luminance histogram (`METER_PASS`).
     histogram: wgpu::Buffer,
+    /// The tiles a sky drawn in tiles computes pixel by pixel (`methods::EXACT_TILES`).
+    exact_tiles: wgpu::Buffer,
+    /// The workgroups of the dispatch that computes them, copied from `exact_tiles`.
+    exact_groups: wgpu::Buffer,
     /// Group 1 of each view pass, by pass index (None for table passes).
     groups: Vec<Option<wgpu::BindGroup>>,
 }
@@ -692,6 +760,10 @@ pub struct Engine {
     deferred: Vec<bool>,
     /// Invocations of a workgroup that shares a texel (`prelude::texel_group_size`).
     texel_group_size: u32,
+    /// Tile of the sky pass in frames that redraw because something changed (1: none).
+    sky_tile: u32,
+    /// Whether the radiance on screen was drawn in tiles (the next still frame redraws it).
+    tiled_on_screen: bool,
 }
 
 impl Engine {
@@ -719,7 +791,30 @@ impl Engine {
             stats: FrameStats::default(),
             deferred: Vec::new(),
             texel_group_size: texel_group_size(device.adapter_info().device_type),
+            sky_tile: 1,
+            tiled_on_screen: false,
         }
+    }
+
+    /// Draws the sky of a frame that redraws because its inputs changed (a view in motion) at
+    /// the corners of `tile` × `tile` tiles, interpolated inside those that are smooth
+    /// (`shaders/views/sky.wgsl`), and the first frame after it whose inputs did not change at
+    /// full resolution, so a still view is exact. 1 (the default) draws every frame at full
+    /// resolution; at most 16.
+    pub fn set_sky_tile(&mut self, tile: u32) {
+        let tile = tile.clamp(1, 16);
+        if tile != self.sky_tile {
+            self.sky_tile = tile;
+            // The list of tiles is sized for the tile: new images, redrawn.
+            self.target = None;
+            self.tiled_on_screen = false;
+        }
+    }
+
+    /// Whether a frame of an unchanged scene would still draw: a rebuild in slices is under
+    /// way, or the frame on screen was drawn in tiles and awaits its full resolution.
+    pub fn settling(&self) -> bool {
+        self.rebuilding() || self.tiled_on_screen
     }
 
     /// Compiles passes that share a texel among a workgroup with workgroups of `n` invocations
@@ -944,8 +1039,18 @@ impl Engine {
         let Some(state) = self.atmosphere.as_ref() else {
             unreachable!("the atmosphere was just built");
         };
-        let frame = FrameSetup::new(scene, view, state, gpu);
+        let mut frame = FrameSetup::new(scene, view, state, gpu);
         let mut changed = frame.snapshot.changes_from(self.last.as_ref());
+        if rebuild_done {
+            // The rebuild drew its view at full resolution.
+            self.tiled_on_screen = false;
+        }
+        let refine = changed.is_empty() && self.tiled_on_screen && progress.is_none();
+        if refine {
+            // The view's images are drawn again, this time at full resolution.
+            changed = Inputs::VIEW_SIZE;
+        }
+        frame.sky_tile = if refine { 1 } else { self.sky_tile };
         if rebuilt || self.target.as_ref().is_none_or(|t| t.size != size) {
             // New images: every pass that writes them must run.
             changed = changed.union(Inputs::VIEW_SIZE);
@@ -954,6 +1059,7 @@ impl Engine {
                 &self.pipelines[0],
                 &state.tables,
                 size,
+                self.sky_tile,
             ));
         }
         if !changed.is_empty() {
@@ -999,6 +1105,13 @@ impl Engine {
             _ => Vec::new(),
         };
         let pipelines = &self.pipelines[0];
+        if pipelines
+            .specs()
+            .enumerate()
+            .any(|(i, s)| s.writes.contains(&RADIANCE) && run.contains(&i))
+        {
+            self.tiled_on_screen = frame.sky_tile > 1;
+        }
         let names: Vec<&'static str> = pipelines.specs().map(|s| s.name).collect();
         let unwanted = self.unwanted();
         let is_table: Vec<bool> = pipelines.specs().map(|s| s.is_table()).collect();
@@ -1089,7 +1202,7 @@ impl Engine {
             .write_buffer(&state.tables.globals, 0, bytemuck::bytes_of(&frame.globals));
         let p = self.pipelines_of(gpu);
         let pipelines = &self.pipelines[p];
-        let target = Target::new(&self.device, pipelines, &state.tables, size);
+        let target = Target::new(&self.device, pipelines, &state.tables, size, self.sky_tile);
         let mut deferred = vec![false; pipelines.len()];
         let ground = frame.shows_ground(view);
         let run = plan(
@@ -1168,6 +1281,7 @@ impl Engine {
             variant: r.variants[pass],
             origin,
             groups,
+            tiles: TilePhase::None,
         };
         encoder.submit(&[work], None);
         let done = Arc::new(AtomicBool::new(false));
@@ -1334,6 +1448,7 @@ impl Target {
         pipelines: &Pipelines,
         tables: &TableBuffers,
         size: [u32; 2],
+        sky_tile: u32,
     ) -> Target {
         let texture = |label, format, view_formats: &[wgpu::TextureFormat]| {
             device.create_texture(&wgpu::TextureDescriptor {
@@ -1370,6 +1485,26 @@ impl Target {
                 | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
+        // Room for every tile of the view; one word when frames are not drawn in tiles.
+        let tiles = if sky_tile > 1 {
+            u64::from(size[0].div_ceil(sky_tile)) * u64::from(size[1].div_ceil(sky_tile))
+        } else {
+            1
+        };
+        let exact_tiles = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("exact tiles"),
+            size: EXACT_TILES_HEADER_BYTES + 4 * tiles,
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_SRC
+                | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let exact_groups = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("exact tiles' workgroups"),
+            size: 12,
+            usage: wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         let groups = pipelines
             .specs()
             .enumerate()
@@ -1385,6 +1520,7 @@ impl Target {
                         Some(wgpu::BindingResource::TextureView(&display_view))
                     }
                     crate::methods::HISTOGRAM => Some(histogram.as_entire_binding()),
+                    crate::methods::EXACT_TILES => Some(exact_tiles.as_entire_binding()),
                     table => tables.buffer(table).map(|b| b.as_entire_binding()),
                 })
             })
@@ -1394,6 +1530,8 @@ impl Target {
             radiance,
             display,
             histogram,
+            exact_tiles,
+            exact_groups,
             groups,
         }
     }

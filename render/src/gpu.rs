@@ -15,6 +15,27 @@ pub enum GpuError {
     NoAdapter(String),
     #[error("the GPU adapter refused a device: {0}")]
     Device(#[from] wgpu::RequestDeviceError),
+    #[error(
+        "the GPU adapter binds {0} storage buffers per shader stage; the engine needs {STORAGE_BUFFERS_PER_STAGE}"
+    )]
+    TooFewStorageBuffers(u32),
+}
+
+/// Storage buffers one shader stage of the engine binds at most: group 0's batches and
+/// profile, up to six tables, and a sky pass's list of tiles to compute exactly. One more
+/// than WebGPU's default limit; native adapters offer more (lavapipe, desktop Vulkan, Metal
+/// and D3D12 at least 16 in practice).
+pub const STORAGE_BUFFERS_PER_STAGE: u32 = 9;
+
+/// The limits the engine asks a device for: `base` (wgpu's defaults, or a window's choice)
+/// with at least [`STORAGE_BUFFERS_PER_STAGE`] storage buffers per shader stage.
+pub fn required_limits(base: wgpu::Limits) -> wgpu::Limits {
+    wgpu::Limits {
+        max_storage_buffers_per_shader_stage: base
+            .max_storage_buffers_per_shader_stage
+            .max(STORAGE_BUFFERS_PER_STAGE),
+        ..base
+    }
 }
 
 /// A device and queue with the adapter they came from.
@@ -40,12 +61,18 @@ impl GpuContext {
             ..Default::default()
         }))
         .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
+        let offered = adapter.limits().max_storage_buffers_per_shader_stage;
+        if offered < STORAGE_BUFFERS_PER_STAGE {
+            return Err(GpuError::TooFewStorageBuffers(offered));
+        }
         let features = adapter.features() & optional_features();
         let (device, queue) =
             pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
                 label: Some("atmoscope headless"),
                 required_features: features,
-                required_limits: wgpu::Limits::default().using_resolution(adapter.limits()),
+                required_limits: required_limits(
+                    wgpu::Limits::default().using_resolution(adapter.limits()),
+                ),
                 ..Default::default()
             }))?;
         Ok(GpuContext {

@@ -10,8 +10,11 @@ use crate::uniforms::{Batch, Globals, MIE_PHASE_ROWS_LEN};
 use atmoscope_model::methods::shared::{PROFILE_SAMPLES, Params};
 use atmoscope_model::methods::{ModelInfo, shared::TableSpec};
 
+/// Most pipeline constants a pass takes.
+pub const MAX_CONSTANTS: usize = 6;
+
 /// Values of a pass's pipeline constants, in the order of its `constants`.
-pub type Variant = [u32; 4];
+pub type Variant = [u32; MAX_CONSTANTS];
 
 fn entry(binding: u32, ty: wgpu::BindingType) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
@@ -178,7 +181,7 @@ impl Pipelines {
         };
         for i in 0..p.passes.len() {
             if p.passes[i].spec.constants.is_empty() {
-                p.ensure(device, i, [0; 4]);
+                p.ensure(device, i, [0; MAX_CONSTANTS]);
             }
         }
         p
@@ -235,7 +238,7 @@ impl Pipelines {
 
     /// The values of pass `i`'s constants for a frame, from every constant's value.
     pub fn variant(&self, i: usize, value: impl Fn(Constant) -> u32) -> Variant {
-        let mut v = [0; 4];
+        let mut v = [0; MAX_CONSTANTS];
         for (slot, &c) in v.iter_mut().zip(self.passes[i].spec.constants) {
             *slot = value(c);
         }

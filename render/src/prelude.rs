@@ -206,6 +206,16 @@ pub fn wgsl_prelude() -> String {
     );
     c("GLARE_K", "f32", f(display::GLARE_K));
     c(
+        "SKY_TILE_CONTRAST",
+        "f32",
+        f(crate::views::SKY_TILE_CONTRAST),
+    );
+    c(
+        "TILE_CORNERS",
+        "u32",
+        format!("{}u", (WORKGROUP_SIZE + 1) * (WORKGROUP_SIZE + 1)),
+    );
+    c(
         "GLARE_MIN_ANGLE_DEG",
         "f32",
         f(display::GLARE_MIN_ANGLE_DEG),

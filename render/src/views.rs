@@ -28,6 +28,15 @@ pub fn false_colour(t: f64) -> [f64; 3] {
     std::array::from_fn(|k| a[k] + (b[k] - a[k]) * f)
 }
 
+/// Pixels on a side of the tiles a view in motion computes at the corners and interpolates
+/// inside (`Engine::set_sky_tile`): a sixteenth of the sky pass's per-pixel work, the full
+/// resolution following in the first still frame.
+pub const MOVING_SKY_TILE: u32 = 4;
+
+/// Largest relative spread of a tile's four corners, per linear sRGB channel, that is still
+/// interpolated ((max − min) ≤ this × max); a tile with more is computed pixel by pixel.
+pub const SKY_TILE_CONTRAST: f64 = 0.2;
+
 /// One view of a scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct View {

@@ -474,6 +474,90 @@ fn each_frame_runs_only_the_passes_whose_inputs_changed() {
     assert!(engine.render(&scene, &view).run.is_empty());
 }
 
+/// A moving frame drawn in tiles (`Engine::set_sky_tile`) stays close to the frame drawn pixel
+/// by pixel, sharp at the horizon, the sun and the fisheye's edge (their tiles are computed
+/// exactly), and the first still frame after it redraws the view at full resolution.
+#[test]
+fn a_moving_frame_in_tiles_is_close_and_the_still_frame_after_it_exact() {
+    let Some(gpu) = context() else { return };
+    let mut horizon = Scene::default();
+    horizon.camera.pitch_deg = 2.0;
+    horizon.sun = SunSettings::Angles {
+        elevation_deg: 4.0,
+        azimuth_deg: 180.0,
+    };
+    horizon.camera.heading_deg = 170.0;
+    let mut space = Scene::default();
+    space.camera.altitude_m = 400_000.0;
+    space.camera.pitch_deg = -70.0;
+    space.camera.fov_deg = 120.0;
+    let cases = [
+        (
+            "horizon and low sun",
+            horizon,
+            Projection::Perspective,
+            160,
+            90,
+        ),
+        ("fisheye", Scene::default(), Projection::Fisheye, 96, 96),
+        ("from 400 km", space, Projection::Perspective, 96, 64),
+    ];
+    for (name, scene, projection, w, h) in cases {
+        for method in [Method::Hillaire, Method::Preetham, Method::Nishita] {
+            let mut scene = scene.clone();
+            scene.render.method = method;
+            if refused(&scene) {
+                continue;
+            }
+            let name = format!("{method:?}, {name}");
+            let view = View::new(projection, w, h);
+            let mut engine = Engine::new(&gpu.device, &gpu.queue);
+            engine.render(&scene, &view);
+            let exact = radiance_image(&engine);
+            let coverage = |e: &Engine| -> Vec<f32> {
+                e.read_radiance()
+                    .expect("read-back")
+                    .iter()
+                    .map(|p| p[3])
+                    .collect()
+            };
+            let exact_coverage = coverage(&engine);
+
+            engine.set_sky_tile(4);
+            let moving = engine.render(&scene, &view).clone();
+            assert!(moving.ran("sky"), "{name}: the moving frame draws");
+            assert!(
+                engine.settling(),
+                "{name}: a frame in tiles awaits its full resolution"
+            );
+            let tiled = radiance_image(&engine);
+            assert_eq!(coverage(&engine), exact_coverage, "{name}: coverage");
+            let de =
+                atmoscope_model::metrics::delta_e2000_map(&tiled, &exact, DisplaySetup::default());
+            let mean = de.iter().sum::<f64>() / de.len() as f64;
+            let max = de.iter().copied().fold(0.0, f64::max);
+            eprintln!("{name}: tiles against every pixel: ΔE2000 mean {mean:.3}, max {max:.3}");
+            assert!(mean < 0.3, "{name}: ΔE2000 mean {mean}");
+            assert!(
+                max < 2.0,
+                "{name}: ΔE2000 max {max} (a tile interpolated across an edge)"
+            );
+
+            let still = engine.render(&scene, &view).clone();
+            eprintln!("{name}: moving {:?} still {:?}", moving.run, still.run);
+            assert_eq!(still.run, vec!["sky", "display"], "{name}: the still frame");
+            assert_eq!(
+                radiance_image(&engine),
+                exact,
+                "{name}: full resolution again"
+            );
+            assert!(!engine.settling(), "{name}");
+            let after = engine.render(&scene, &view).run.clone();
+            assert!(after.is_empty(), "{name}: then nothing, ran {after:?}");
+        }
+    }
+}
+
 #[test]
 fn timing_reports_every_pass_that_ran() {
     let Some(gpu) = context() else { return };

@@ -119,5 +119,16 @@ fn has_aerosol() -> bool { return globals.options.z != 0u; }
 @group(1) @binding(6) var radiance_out: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(7) var radiance_in: texture_2d<f32>;
 @group(1) @binding(8) var display_out: texture_storage_2d<rgba8unorm, write>;
+// The tiles of a moving frame's sky that their corners could not interpolate (views/sky.wgsl):
+// the workgroups of the indirect dispatch that computes them pixel by pixel (x, y, z), their
+// number, then each tile as x | y << 16.
+struct ExactTiles {
+    groups_x: atomic<u32>,
+    groups_y: atomic<u32>,
+    groups_z: atomic<u32>,
+    count: atomic<u32>,
+    tiles: array<u32>,
+}
+@group(1) @binding(23) var<storage, read_write> exact_tiles: ExactTiles;
 // Pixels of the view per bin of log10 luminance (model::display::HISTOGRAM_LOG10_RANGE).
 @group(1) @binding(21) var<storage, read_write> histogram: array<atomic<u32>>;

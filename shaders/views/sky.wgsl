@@ -4,19 +4,42 @@
 // the transmittance along the sun's own ray (shared/sun_disk.wgsl for the table-based models).
 // The sun's disk is added here, averaged over the pixel (twin of model::methods::render_with). Sums the
 // batches into linear sRGB (Y = ∫ȳL dλ) and writes coverage in alpha (0 outside the projection).
+//
+// With SKY_TILE > 1 (the frames of a view in motion, `Engine::set_sky_tile`) the radiance is
+// computed at the corners of tiles of SKY_TILE × SKY_TILE pixels, shared through workgroup
+// memory, and interpolated bilinearly inside a tile whose four corners see the same thing
+// (sky, ground or nothing) and differ by less than SKY_TILE_CONTRAST. Any other tile (the
+// horizon, the edge of a fisheye, a sharp gradient) is appended to `exact_tiles`, and a second,
+// indirect dispatch (SKY_TILE_EXACT) computes those tiles pixel by pixel: a branch would not
+// do, as a software GPU runs both sides of it for every lane. The sun's disk is never
+// interpolated: its pixels are drawn by a third dispatch at SKY_TILE = 1.
 
-@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
-fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
-    let id = dispatched(invocation);
-    if any(id.xy >= globals.view.xy) {
-        return;
+override SKY_TILE: u32 = 1u;
+override SKY_TILE_EXACT: bool = false;
+
+const TILE_CORNERS_PER_SIDE: u32 = WORKGROUP_SIZE + 1u;
+var<workgroup> tile_corners: array<vec4<f32>, TILE_CORNERS>;
+
+const CORNER_NOTHING: f32 = 0.0;
+const CORNER_SKY: f32 = 1.0;
+const CORNER_GROUND: f32 = 2.0;
+
+// Linear sRGB of the sky and ground along `ray` (no sun disk), summed over the batches.
+fn sky_rgb(dir: vec3<f32>) -> vec3<f32> {
+    var rgb = vec3<f32>(0.0);
+    for (var layer = 0u; layer < batch_count(); layer++) {
+        let l = radiance(layer, dir);
+        rgb += vec3<f32>(dot(batches[layer].to_srgb_r, l), dot(batches[layer].to_srgb_g, l),
+            dot(batches[layer].to_srgb_b, l));
     }
-    let x = f32(id.x) + 0.5;
-    let y = f32(id.y) + 0.5;
+    return rgb;
+}
+
+// The pixel centred at (x, y): linear sRGB with the sun's disk where SUN_DISK, coverage in alpha.
+fn pixel(x: f32, y: f32) -> vec4<f32> {
     let ray = camera_ray(x, y);
     if ray.w == 0.0 {
-        textureStore(radiance_out, id.xy, vec4<f32>(0.0));
-        return;
+        return vec4<f32>(0.0);
     }
     var disk = no_disk();
     if SUN_DISK {
@@ -33,5 +56,98 @@ fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
         rgb += vec3<f32>(dot(batches[layer].to_srgb_r, l), dot(batches[layer].to_srgb_g, l),
             dot(batches[layer].to_srgb_b, l));
     }
-    textureStore(radiance_out, id.xy, vec4<f32>(rgb, 1.0));
+    return vec4<f32>(rgb, 1.0);
+}
+
+// A tile corner at pixel-grid point (x, y): linear sRGB without the disk, and what the ray sees.
+fn tile_corner(x: f32, y: f32) -> vec4<f32> {
+    let ray = camera_ray(x, y);
+    if ray.w == 0.0 {
+        return vec4<f32>(0.0, 0.0, 0.0, CORNER_NOTHING);
+    }
+    let up = normalize(globals.camera_position.xyz);
+    let ground = hits_ground(globals.camera_position.w, dot(ray.xyz, up));
+    return vec4<f32>(sky_rgb(ray.xyz), select(CORNER_SKY, CORNER_GROUND, ground));
+}
+
+// Whether a tile may be interpolated from its corners.
+fn tile_is_smooth(a: vec4<f32>, b: vec4<f32>, c: vec4<f32>, d: vec4<f32>) -> bool {
+    if a.w != b.w || a.w != c.w || a.w != d.w {
+        return false;
+    }
+    let hi = max(max(a.rgb, b.rgb), max(c.rgb, d.rgb));
+    let lo = min(min(a.rgb, b.rgb), min(c.rgb, d.rgb));
+    return all(hi - lo <= SKY_TILE_CONTRAST * hi);
+}
+
+@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
+fn main(
+    @builtin(global_invocation_id) invocation: vec3<u32>,
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) local: u32,
+) {
+    if SKY_TILE <= 1u {
+        let id = dispatched(invocation);
+        if all(id.xy < globals.view.xy) {
+            textureStore(radiance_out, id.xy, pixel(f32(id.x) + 0.5, f32(id.y) + 0.5));
+        }
+        return;
+    }
+    if SKY_TILE_EXACT {
+        // One listed tile per invocation.
+        let n = group.x * WORKGROUP_SIZE * WORKGROUP_SIZE + local;
+        if n < atomicLoad(&exact_tiles.count) {
+            let t = exact_tiles.tiles[n];
+            let first = vec2<u32>(t & 0xffffu, t >> 16u) * SKY_TILE;
+            for (var j = 0u; j < SKY_TILE; j++) {
+                for (var i = 0u; i < SKY_TILE; i++) {
+                    let p = first + vec2<u32>(i, j);
+                    if all(p < globals.view.xy) {
+                        textureStore(radiance_out, p, pixel(f32(p.x) + 0.5, f32(p.y) + 0.5));
+                    }
+                }
+            }
+        }
+        return;
+    }
+    // The workgroup's block of WORKGROUP_SIZE × WORKGROUP_SIZE tiles; its corners first.
+    let base = origin.xy + group.xy * (WORKGROUP_SIZE * SKY_TILE);
+    for (var c = local; c < TILE_CORNERS; c += WORKGROUP_SIZE * WORKGROUP_SIZE) {
+        let corner = vec2<u32>(c % TILE_CORNERS_PER_SIDE, c / TILE_CORNERS_PER_SIDE);
+        let p = vec2<f32>(base + corner * SKY_TILE);
+        tile_corners[c] = tile_corner(p.x, p.y);
+    }
+    workgroupBarrier();
+    let cell = vec2<u32>(local % WORKGROUP_SIZE, local / WORKGROUP_SIZE);
+    let first = base + cell * SKY_TILE;
+    if any(first >= globals.view.xy) {
+        return;
+    }
+    let k = cell.y * TILE_CORNERS_PER_SIDE + cell.x;
+    let a = tile_corners[k];
+    let b = tile_corners[k + 1u];
+    let c = tile_corners[k + TILE_CORNERS_PER_SIDE];
+    let d = tile_corners[k + TILE_CORNERS_PER_SIDE + 1u];
+    if !tile_is_smooth(a, b, c, d) {
+        let n = atomicAdd(&exact_tiles.count, 1u);
+        if n < arrayLength(&exact_tiles.tiles) {
+            let t = first / SKY_TILE;
+            exact_tiles.tiles[n] = t.x | (t.y << 16u);
+            atomicMax(&exact_tiles.groups_x, n / (WORKGROUP_SIZE * WORKGROUP_SIZE) + 1u);
+            atomicStore(&exact_tiles.groups_y, 1u);
+            atomicStore(&exact_tiles.groups_z, 1u);
+        }
+        return;
+    }
+    let coverage = select(1.0, 0.0, a.w == CORNER_NOTHING);
+    for (var j = 0u; j < SKY_TILE; j++) {
+        for (var i = 0u; i < SKY_TILE; i++) {
+            let p = first + vec2<u32>(i, j);
+            if all(p < globals.view.xy) {
+                let f = (vec2<f32>(f32(i), f32(j)) + 0.5) / f32(SKY_TILE);
+                let rgb = mix(mix(a.rgb, b.rgb, f.x), mix(c.rgb, d.rgb, f.x), f.y);
+                textureStore(radiance_out, p, vec4<f32>(rgb, coverage));
+            }
+        }
+    }
 }

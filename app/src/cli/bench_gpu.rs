@@ -38,6 +38,11 @@ pub struct GpuBench {
     /// Time passes by fenced CPU wall time even where GPU timestamps exist.
     #[arg(long)]
     pub cpu_timing: bool,
+    /// Tile of the sky pass in moving frames, as the explorer draws them (1: every pixel,
+    /// as before tiles; `sky_still_ms` is always every pixel).
+    #[arg(long, value_name = "PIXELS", default_value_t = atmoscope_render::views::MOVING_SKY_TILE,
+        value_parser = clap::value_parser!(u32).range(1..=16))]
+    pub sky_tile: u32,
     #[arg(long)]
     pub json: bool,
 }
@@ -50,9 +55,14 @@ struct GpuRow {
     /// Median milliseconds of each table pass in a full rebuild.
     lut_ms: Vec<(String, f64)>,
     lut_total_ms: f64,
+    /// Tile of the sky pass in the moving frames (`--sky-tile`).
+    sky_tile: u32,
     /// Median milliseconds of the sky and display passes of a frame with the camera turning.
     sky_ms: f64,
     display_ms: f64,
+    /// Median milliseconds of the sky pass at full resolution, as in the first still frame
+    /// after a move.
+    sky_still_ms: f64,
     frame_gpu_ms: f64,
     /// Median wall time of a turning-camera frame from `render` to the GPU being idle.
     frame_wall_ms: f64,
@@ -164,6 +174,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         }
         let mut engine = Engine::new(&context.device, &context.queue);
         engine.set_timing(true);
+        engine.set_sky_tile(args.sky_tile);
         if args.cpu_timing {
             engine.force_cpu_timing();
         }
@@ -179,6 +190,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             }
         }
         let (mut sky, mut display, mut wall) = (Vec::new(), Vec::new(), Vec::new());
+        let mut sky_still = Vec::new();
         for i in 0..repeats {
             scene.camera.heading_deg = (base.camera.heading_deg + 1.0 + i as f64) % 360.0;
             let start = Instant::now();
@@ -187,6 +199,9 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             wall.push(start.elapsed().as_secs_f64() * 1e3);
             sky.extend(stats.ms("sky"));
             display.extend(stats.ms("display"));
+            // The scene holds still: a frame in tiles is redrawn at full resolution.
+            let still = engine.render(&scene, &view).clone();
+            sky_still.extend(still.ms("sky").or(stats.ms("sky")));
         }
         let sun = base.sun.angles();
         let mut sun_moves = Vec::new();
@@ -231,8 +246,10 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             timing: engine.timing_source().label().into(),
             lut_total_ms,
             lut_ms,
+            sky_tile: args.sky_tile,
             sky_ms,
             display_ms,
+            sky_still_ms: median(sky_still),
             frame_gpu_ms: sky_ms + display_ms,
             frame_wall_ms: median(wall),
             sun_move_ms,
@@ -251,15 +268,17 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::SUCCESS);
     }
     println!(
-        "{w}x{h} perspective, median of {repeats}; times from {}",
-        rows.first().map_or("", |r| r.timing.as_str())
+        "{w}x{h} perspective, median of {repeats}; times from {}; moving frames draw the sky in {t}×{t} tiles, a still frame every pixel",
+        rows.first().map_or("", |r| r.timing.as_str()),
+        t = args.sky_tile
     );
     println!(
-        "{:14} {:12} {:>10} {:>8} {:>8} {:>12} {:>12} {:>9} {:>8}   ×floor: {:>6} {:>6} {:>7}   rebuild: {:>9} {:>16} {:>9}   table passes",
+        "{:14} {:12} {:>10} {:>8} {:>10} {:>8} {:>12} {:>12} {:>9} {:>8}   ×floor: {:>6} {:>6} {:>7}   rebuild: {:>9} {:>16} {:>9}   table passes",
         "method",
         "set",
         "tables",
         "sky",
+        "still sky",
         "display",
         "frame (GPU)",
         "frame (wall)",
@@ -279,11 +298,12 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             .map(|(name, ms)| format!("{name} {ms:.2}"))
             .collect();
         println!(
-            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms {:>6.2} ms {:>5.2} ms          {:>6.1} {:>6.1} {:>7.1}            {:>6.0} ms {:>6.0}/{:>5.0} ms {:>6.0} ms   {}",
+            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>7.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms {:>6.2} ms {:>5.2} ms          {:>6.1} {:>6.1} {:>7.1}            {:>6.0} ms {:>6.0}/{:>5.0} ms {:>6.0} ms   {}",
             r.method,
             r.wavelengths,
             r.lut_total_ms,
             r.sky_ms,
+            r.sky_still_ms,
             r.display_ms,
             r.frame_gpu_ms,
             r.frame_wall_ms,

@@ -83,9 +83,9 @@ impl CompareTab {
         }
     }
 
-    /// Whether any of the three views is building a new atmosphere across frames.
-    pub fn rebuilding(&self) -> bool {
-        self.views.iter().any(GpuView::rebuilding)
+    /// Whether any of the three views needs more frames of the same scene.
+    pub fn settling(&self) -> bool {
+        self.views.iter().any(GpuView::settling)
     }
 
     pub fn new(gpu: &Gpu) -> CompareTab {

@@ -90,6 +90,8 @@ impl GpuView {
         let mut engine = Engine::new(&gpu.device, &gpu.queue);
         engine.set_timing(true);
         engine.set_rebuild_slices(gpu.rebuild_slice);
+        // A view in motion draws its sky in tiles; it sharpens in the first still frame.
+        engine.set_sky_tile(atmoscope_render::views::MOVING_SKY_TILE);
         if gpu.software {
             engine.force_cpu_timing();
         }
@@ -153,11 +155,15 @@ impl GpuView {
         }
     }
 
-    /// Renders like `render`, but finishes a rebuild under way in this frame (for exports,
-    /// which must show the scene as it is now).
+    /// Renders like `render`, but finishes a rebuild under way in this frame and draws every
+    /// pixel (for exports, which must show the scene as it is now, exactly).
     pub fn render_complete(&mut self, scene: &Scene, view: &View) -> &FrameStats {
         self.engine.set_rebuild_slices(None);
         self.render(scene, view);
+        if self.engine.settling() {
+            // The frame was drawn in tiles: the still frame after it draws every pixel.
+            self.render(scene, view);
+        }
         self.engine.set_rebuild_slices(self.gpu.rebuild_slice);
         self.engine.stats()
     }
@@ -168,9 +174,15 @@ impl GpuView {
         self.engine.set_rebuild_slices(slice);
     }
 
-    /// Whether a new atmosphere is being built across frames (keep drawing frames).
+    /// Whether a new atmosphere is being built across frames.
     pub fn rebuilding(&self) -> bool {
         self.engine.rebuilding()
+    }
+
+    /// Whether the view needs more frames of the same scene: a rebuild in slices, or the full
+    /// resolution of a frame drawn in tiles (`Engine::settling`).
+    pub fn settling(&self) -> bool {
+        self.engine.settling()
     }
 
     /// The last GPU fault not yet shown, if any.

@@ -62,9 +62,9 @@ impl Views {
         }
     }
 
-    /// Whether any view is building a new atmosphere across frames.
-    fn rebuilding(&self) -> bool {
-        self.main.rebuilding() || self.compare.as_ref().is_some_and(CompareTab::rebuilding)
+    /// Whether any view needs more frames of the same scene (`GpuView::settling`).
+    fn settling(&self) -> bool {
+        self.main.settling() || self.compare.as_ref().is_some_and(CompareTab::settling)
     }
 }
 
@@ -743,8 +743,8 @@ impl eframe::App for ExplorerApp {
         if self.busy() {
             ctx.request_repaint_after(std::time::Duration::from_millis(250));
         }
-        if self.views.as_ref().is_some_and(Views::rebuilding) {
-            // The next slice of the tables goes with the next frame.
+        if self.views.as_ref().is_some_and(Views::settling) {
+            // The next slice of the tables, or the full resolution, goes with the next frame.
             ctx.request_repaint();
         }
     }
@@ -798,20 +798,26 @@ fn restore(storage: Option<&dyn eframe::Storage>, from_args: Option<Scene>) -> (
     (from_args.or(stored).unwrap_or_default(), layout)
 }
 
-/// Asks the device for timestamp queries where the adapter has them, so the Performance
-/// panel shows GPU time per pass (it falls back to fenced wall time otherwise).
 fn wgpu_options() -> eframe::egui_wgpu::WgpuConfiguration {
-    use eframe::egui_wgpu::{WgpuConfiguration, WgpuSetup, wgpu};
-    let mut config = WgpuConfiguration::default();
-    if let WgpuSetup::CreateNew(create) = &mut config.wgpu_setup {
+    let mut config = eframe::egui_wgpu::WgpuConfiguration::default();
+    ask_for_what_the_engine_uses(&mut config.wgpu_setup);
+    config
+}
+
+/// Asks the window's device for the engine's limits (`gpu::required_limits`) and for timestamp
+/// queries where the adapter has them, so the Performance panel shows GPU time per pass (it
+/// falls back to fenced wall time otherwise).
+pub(crate) fn ask_for_what_the_engine_uses(setup: &mut eframe::egui_wgpu::WgpuSetup) {
+    use eframe::egui_wgpu::{WgpuSetup, wgpu};
+    if let WgpuSetup::CreateNew(create) = setup {
         let base = create.device_descriptor.clone();
         create.device_descriptor = std::sync::Arc::new(move |adapter: &wgpu::Adapter| {
             let mut d = base(adapter);
             d.required_features |= adapter.features() & atmoscope_render::gpu::optional_features();
+            d.required_limits = atmoscope_render::gpu::required_limits(d.required_limits);
             d
         });
     }
-    config
 }
 
 #[cfg(test)]

@@ -19,7 +19,11 @@ fn harness_with(layout: Layout, size: egui::Vec2) -> Harness<'static, ExplorerAp
         // Grids settle their column widths over a few frames, more when timing labels change
         // width from frame to frame on a loaded machine (seen: 15 steps).
         .with_max_steps(24)
-        .wgpu()
+        .wgpu_setup({
+            let mut setup = egui_kittest::wgpu::default_wgpu_setup();
+            super::ask_for_what_the_engine_uses(&mut setup);
+            setup
+        })
         .build_eframe(move |cc| {
             assert!(
                 cc.wgpu_render_state.is_some(),

@@ -59,6 +59,11 @@ pub enum Constant {
     /// What the dispatch's rows see (`REGION_*`): sky or ground alone, decided per row on
     /// the CPU, or both, decided per pixel.
     ViewRegion,
+    /// Pixels on a side of the tiles interpolated from their corners (1: every pixel computed;
+    /// `Engine::set_sky_tile`).
+    SkyTile,
+    /// Whether the dispatch computes, pixel by pixel, the tiles listed in [`EXACT_TILES`].
+    SkyTileExact,
 }
 
 impl Constant {
@@ -71,6 +76,8 @@ impl Constant {
             Constant::ToneMap => "TONE_MAP",
             Constant::SunDisk => "SUN_DISK",
             Constant::ViewRegion => "VIEW_REGION",
+            Constant::SkyTile => "SKY_TILE",
+            Constant::SkyTileExact => "SKY_TILE_EXACT",
         }
     }
 }
@@ -102,13 +109,17 @@ pub enum Repeat {
     PerOrder,
 }
 
-/// Most tables one pass may bind: wgpu's default limit of 8 storage buffers per shader stage
-/// (the engine asks for the default limits) less group 0's batches and profile.
+/// Most tables one pass may bind: the storage buffers per shader stage the engine asks for
+/// (`gpu::STORAGE_BUFFERS_PER_STAGE`) less group 0's batches and profile and the sky pass's
+/// [`EXACT_TILES`].
 pub const MAX_TABLES_PER_PASS: usize = 6;
 
 /// Resources that are not tables: the view's images, written and read by the view passes.
 pub const RADIANCE: &str = "radiance";
 pub const DISPLAY: &str = "display";
+/// The tiles a sky pass drawn in tiles computes pixel by pixel (a storage buffer that is also
+/// the arguments of an indirect dispatch).
+pub const EXACT_TILES: &str = "exact-tiles";
 /// The view's luminance histogram (a storage buffer of `HISTOGRAM_BINS` counts).
 pub const HISTOGRAM: &str = "histogram";
 
@@ -170,7 +181,7 @@ impl PassSpec {
             name: "sky",
             shader,
             reads,
-            writes: &[RADIANCE],
+            writes: &[RADIANCE, EXACT_TILES],
             inputs: SKY_INPUTS,
             dispatch: Dispatch::View,
             constants: &[
@@ -178,6 +189,8 @@ impl PassSpec {
                 Constant::AboveAtmosphere,
                 Constant::SunDisk,
                 Constant::ViewRegion,
+                Constant::SkyTile,
+                Constant::SkyTileExact,
             ],
             repeat: Repeat::Once,
             reads_above_atmosphere: None,
@@ -446,6 +459,7 @@ pub fn binding(id: &str) -> Option<u32> {
     let name = match id {
         RADIANCE => "radiance_out".to_string(),
         DISPLAY => "display_out".to_string(),
+        EXACT_TILES => "exact_tiles".to_string(),
         HISTOGRAM => "histogram".to_string(),
         table => format!("{}_lut", table.replace('-', "_")),
     };
@@ -503,9 +517,8 @@ mod tests {
                 row.id
             );
             let last = gpu.passes.last().expect("passes");
-            assert_eq!(
-                last.writes,
-                &[RADIANCE],
+            assert!(
+                last.writes.contains(&RADIANCE),
                 "{}: the sky pass comes last",
                 row.id
             );
@@ -519,7 +532,7 @@ mod tests {
                 let tables = p
                     .resources()
                     .iter()
-                    .filter(|r| ![RADIANCE, DISPLAY].contains(r))
+                    .filter(|r| ![RADIANCE, DISPLAY, EXACT_TILES].contains(r))
                     .count();
                 assert!(
                     tables <= MAX_TABLES_PER_PASS,
@@ -568,7 +581,11 @@ mod tests {
             .collect::<std::collections::BTreeSet<_>>()
             .into_iter()
             .filter_map(binding)
-            .chain([RADIANCE, DISPLAY].into_iter().filter_map(binding))
+            .chain(
+                [RADIANCE, DISPLAY, EXACT_TILES]
+                    .into_iter()
+                    .filter_map(binding),
+            )
             .chain(binding_of("radiance_in"))
             .collect();
         let n = all.len();
