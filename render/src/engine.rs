@@ -1161,7 +1161,7 @@ impl Engine {
         let Some(gpu) = gpu_method(key.method) else {
             unreachable!("the caller checked the model is a real-time one");
         };
-        let params = Params::new(&Atmosphere::for_scene(&scene), key.wavelengths, key.quality)
+        let params = Params::new(&Atmosphere::for_scene(scene), key.wavelengths, key.quality)
             .with_render(&scene.render);
         let i = self.pipelines_of(gpu);
         let tables = TableBuffers::new(&self.device, &self.pipelines[i], gpu.info(), &params);

@@ -174,11 +174,6 @@ impl GpuView {
         self.engine.set_rebuild_slices(slice);
     }
 
-    /// Whether a new atmosphere is being built across frames.
-    pub fn rebuilding(&self) -> bool {
-        self.engine.rebuilding()
-    }
-
     /// Whether the view needs more frames of the same scene: a rebuild in slices, or the full
     /// resolution of a frame drawn in tiles (`Engine::settling`).
     pub fn settling(&self) -> bool {

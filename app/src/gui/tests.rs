@@ -1007,12 +1007,12 @@ fn a_new_atmosphere_is_built_across_frames_while_the_last_one_shows() {
     h.state_mut().scene.render.wavelengths = atmoscope_model::scene::WavelengthSet::SpectralN(32);
     h.step();
     assert!(
-        views(&h).main.rebuilding(),
+        views(&h).main.engine().rebuilding(),
         "the rebuild runs across frames"
     );
     assert_eq!(generation(&h), drawn, "the last image stays");
     let mut frames = 1;
-    while views(&h).main.rebuilding() {
+    while views(&h).main.engine().rebuilding() {
         assert!(frames < 100_000, "the rebuild finishes");
         std::thread::sleep(std::time::Duration::from_millis(5));
         h.step();
