@@ -296,8 +296,9 @@ impl FrameSetup {
     /// takes the sun's disk draws it in one more dispatch over the pixels the disk reaches
     /// (`SunInView::pixel_box`), so that no pixel runs the code of what it cannot see (a
     /// software GPU runs both sides of every branch). A frame with tiles (`sky_tile` > 1)
-    /// runs the sky pass in one dispatch of tiles, which decides sky or ground per corner,
-    /// then the sun's disk pixel by pixel. Any other pass is one dispatch.
+    /// runs the sky pass as one dispatch of tiles, which decides sky or ground per corner and
+    /// lists the tiles it cannot interpolate, an indirect dispatch over those, then the sun's
+    /// disk pixel by pixel. Any other pass is one dispatch.
     fn work(
         &self,
         pipelines: &Pipelines,
