@@ -806,8 +806,10 @@ impl Engine {
         let tile = tile.clamp(1, 16);
         if tile != self.sky_tile {
             self.sky_tile = tile;
-            // The list of tiles is sized for the tile: new images, redrawn.
+            // The list of tiles is sized for the tile: new images, redrawn (a rebuild under
+            // way would bring images sized for the old one).
             self.target = None;
+            self.rebuild = None;
             self.tiled_on_screen = false;
         }
     }

@@ -34,7 +34,8 @@ pub fn false_colour(t: f64) -> [f64; 3] {
 pub const MOVING_SKY_TILE: u32 = 4;
 
 /// Largest relative spread of a tile's four corners, per linear sRGB channel, that is still
-/// interpolated ((max − min) ≤ this × max); a tile with more is computed pixel by pixel.
+/// interpolated ((max − min) ≤ this × max(|max|, |min|)); a tile with more is computed pixel
+/// by pixel.
 pub const SKY_TILE_CONTRAST: f64 = 0.2;
 
 /// One view of a scene.

@@ -77,7 +77,9 @@ fn tile_is_smooth(a: vec4<f32>, b: vec4<f32>, c: vec4<f32>, d: vec4<f32>) -> boo
     }
     let hi = max(max(a.rgb, b.rgb), max(c.rgb, d.rgb));
     let lo = min(min(a.rgb, b.rgb), min(c.rgb, d.rgb));
-    return all(hi - lo <= SKY_TILE_CONTRAST * hi);
+    // Out-of-gamut colours have negative channels: the spread is measured against the larger
+    // magnitude.
+    return all(hi - lo <= SKY_TILE_CONTRAST * max(abs(hi), abs(lo)));
 }
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
