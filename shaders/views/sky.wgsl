@@ -24,13 +24,17 @@ const CORNER_NOTHING: f32 = 0.0;
 const CORNER_SKY: f32 = 1.0;
 const CORNER_GROUND: f32 = 2.0;
 
-// Linear sRGB of the sky and ground along `ray` (no sun disk), summed over the batches.
+// A batch's radiance in linear sRGB.
+fn batch_srgb(layer: u32, l: vec4<f32>) -> vec3<f32> {
+    return vec3<f32>(dot(batches[layer].to_srgb_r, l), dot(batches[layer].to_srgb_g, l),
+        dot(batches[layer].to_srgb_b, l));
+}
+
+// Linear sRGB of the sky and ground along `dir` (no sun disk), summed over the batches.
 fn sky_rgb(dir: vec3<f32>) -> vec3<f32> {
     var rgb = vec3<f32>(0.0);
     for (var layer = 0u; layer < batch_count(); layer++) {
-        let l = radiance(layer, dir);
-        rgb += vec3<f32>(dot(batches[layer].to_srgb_r, l), dot(batches[layer].to_srgb_g, l),
-            dot(batches[layer].to_srgb_b, l));
+        rgb += batch_srgb(layer, radiance(layer, dir));
     }
     return rgb;
 }
@@ -53,8 +57,7 @@ fn pixel(x: f32, y: f32) -> vec4<f32> {
             l += batches[layer].solar_irradiance * sun
                 * disk_radiance(disk, batches[layer].wavelengths_nm);
         }
-        rgb += vec3<f32>(dot(batches[layer].to_srgb_r, l), dot(batches[layer].to_srgb_g, l),
-            dot(batches[layer].to_srgb_b, l));
+        rgb += batch_srgb(layer, l);
     }
     return vec4<f32>(rgb, 1.0);
 }
