@@ -1,6 +1,7 @@
 // Pass: sky irradiance on horizontal ground per unit solar irradiance, ∫ L·cos θ dΩ over the
 // upper hemisphere on rings about the sun (GROUND_IRRADIANCE_DIRECTIONS: rings at γ = π·u²
-// from the sun, dense near it, × azimuths about it; directions below the horizon skipped). One
+// from the sun, dense near it, × azimuths about it; the half on one side of the sun's vertical
+// plane, counted twice; directions below the horizon skipped). One
 // workgroup per texel, its invocations sharing the directions.
 // Twin of model::methods::hillaire::ground_irradiance.
 
@@ -21,15 +22,17 @@ fn main(
     let n_rings = GROUND_IRRADIANCE_DIRECTIONS.x;
     let n_azimuths = GROUND_IRRADIANCE_DIRECTIONS.y;
     var sum = vec4<f32>(0.0);
-    for (var k = index; k < n_rings * n_azimuths; k += TEXEL_GROUP_SIZE) {
-        let i = k / n_azimuths;
-        let j = k % n_azimuths;
+    // The azimuths on one side of the sun's vertical plane, each standing for its mirror too.
+    let half = n_azimuths / 2u;
+    for (var k = index; k < n_rings * half; k += TEXEL_GROUP_SIZE) {
+        let i = k / half;
+        let j = k % half;
         let u0 = f32(i) / f32(n_rings);
         let u1 = f32(i + 1u) / f32(n_rings);
         let um = 0.5 * (u0 + u1);
         let gamma = PI * um * um;
-        let weight = 2.0 * PI * (cos(PI * u0 * u0) - cos(PI * u1 * u1)) / f32(n_azimuths);
-        let a = 2.0 * PI * (f32(j) + 0.5) / f32(n_azimuths);
+        let weight = 4.0 * PI * (cos(PI * u0 * u0) - cos(PI * u1 * u1)) / f32(n_azimuths);
+        let a = 2.0 * PI * (f32(j) + 0.5) / f32(n_azimuths) - 0.5 * PI;
         let dir = sun * cos(gamma) + (across * cos(a) + up * sin(a)) * sin(gamma);
         let mu = dir.z;
         if mu <= 0.0 {

@@ -1,5 +1,6 @@
 // Pass: multiple-scattering table Ψ_ms(h, mu_s) = L_2nd / (1 − f_ms), per unit solar irradiance
-// (Hillaire 2020 §5.5), with an isotropic phase and the sunlit ground bounce. One workgroup per
+// (Hillaire 2020 §5.5), with an isotropic phase and the sunlit ground bounce, over the directions
+// on one side of the sun's vertical plane (their mirror images see the same). One workgroup per
 // texel, its invocations sharing the directions, as Hillaire's own pass does.
 
 fn sphere_direction(i: u32, n: u32) -> vec3<f32> {
@@ -31,8 +32,10 @@ fn main(
     let n = globals.steps_a.y;
     var l_2nd = vec4<f32>(0.0);
     var f_ms = vec4<f32>(0.0);
-    for (var d = index; d < n_dir * n_dir; d += TEXEL_GROUP_SIZE) {
-        let omega = sphere_direction(d, n_dir);
+    // One side of the sun's vertical plane: a mirror direction has the same mu and nu.
+    let half = n_dir / 2u;
+    for (var d = index; d < n_dir * half; d += TEXEL_GROUP_SIZE) {
+        let omega = sphere_direction((d / half) * n_dir + d % half, n_dir);
         let mu = omega.z;
         let nu = dot(omega, sun);
         let ground = hits_ground(h, mu);
@@ -65,7 +68,7 @@ fn main(
     }
     let sums = group_sums(index, l_2nd, f_ms);
     if index == 0u {
-        let count = f32(n_dir * n_dir);
+        let count = f32(n_dir * half);
         let psi = (sums[0] / count) / (1.0 - sums[1] / count);
         let size = MULTIPLE_SCATTERING_SIZE;
         multiple_scattering_lut[(layer * size.y + id.y) * size.x + id.x] = psi;

@@ -16,9 +16,12 @@ use std::f64::consts::PI;
 pub const GROUND_IRRADIANCE_SIZE: u32 = 64;
 /// Directions of the ground irradiance integral: 16 rings about the sun, at angles
 /// γ = π·u² from it (u the ring's stratum: dense near the sun, where aerosol's forward peak
-/// is), × 16 azimuths about it; those below the horizon are skipped, so about half are
-/// evaluated.
+/// is), × 16 azimuths about it. Only the half on one side of the sun's vertical plane is
+/// integrated (its mirror image has the same zenith angle and angle to the sun), twice over, and
+/// of those the ones below the horizon are skipped. The azimuths are a multiple of 4, so that
+/// half is the same grid's own directions.
 pub const GROUND_IRRADIANCE_DIRECTIONS: [u32; 2] = [16, 16];
+const _: () = assert!(GROUND_IRRADIANCE_DIRECTIONS[1] % 4 == 0);
 
 pub const TABLE: TableSpec = TableSpec {
     id: "ground-irradiance",
@@ -61,38 +64,58 @@ pub(crate) fn compute_ground_irradiance(
     mu_s: f64,
 ) -> Lanes {
     let [n_rings, n_azimuths] = GROUND_IRRADIANCE_DIRECTIONS;
+    let mut sum = [0.0; LANES];
+    for i in 0..n_rings {
+        // Each direction stands for itself and its mirror image.
+        for j in 0..n_azimuths / 2 {
+            let a = 2.0 * PI * (j as f64 + 0.5) / n_azimuths as f64 - 0.5 * PI;
+            let e = direction_irradiance(p, t, ms, layer, mu_s, i, a);
+            sum = add(sum, scale(e, 2.0));
+        }
+    }
+    sum
+}
+
+/// The irradiance on the ground from the direction at azimuth `a` (rad) about the sun on ring
+/// `ring`: L·cos θ times the direction's solid angle; zero below the horizon.
+fn direction_irradiance(
+    p: &Params,
+    t: &Lut,
+    ms: &Lut,
+    layer: usize,
+    mu_s: f64,
+    ring: u32,
+    a: f64,
+) -> Lanes {
+    let [n_rings, n_azimuths] = GROUND_IRRADIANCE_DIRECTIONS;
     let sun = local_sun(mu_s);
     // A frame about the sun (local_sun lies in the x–z plane).
     let across = DVec3::Y;
     let up = sun.cross(across);
-    let mut sum = [0.0; LANES];
-    for i in 0..n_rings {
-        let (u0, u1) = (i as f64 / n_rings as f64, (i + 1) as f64 / n_rings as f64);
-        let gamma = PI * (0.5 * (u0 + u1)).powi(2);
-        let ring_solid_angle = 2.0 * PI * ((PI * u0 * u0).cos() - (PI * u1 * u1).cos());
-        let weight = ring_solid_angle / n_azimuths as f64;
-        for j in 0..n_azimuths {
-            let a = 2.0 * PI * (j as f64 + 0.5) / n_azimuths as f64;
-            let dir = sun * gamma.cos() + (across * a.cos() + up * a.sin()) * gamma.sin();
-            let mu = dir.z;
-            if mu <= 0.0 {
-                continue;
-            }
-            let t_max = distance_to_top(0.0, mu, p.bottom_radius_m, p.top_radius_m);
-            let (l, _) = integrate_inscattering(
-                p,
-                t,
-                ms,
-                layer,
-                (0.0, mu, mu_s, gamma.cos()),
-                (0.0, t_max),
-                p.steps.ground_irradiance,
-                Spacing::Quadratic,
-            );
-            sum = add(sum, scale(l, mu * weight));
-        }
+    let (u0, u1) = (
+        ring as f64 / n_rings as f64,
+        (ring + 1) as f64 / n_rings as f64,
+    );
+    let gamma = PI * (0.5 * (u0 + u1)).powi(2);
+    let ring_solid_angle = 2.0 * PI * ((PI * u0 * u0).cos() - (PI * u1 * u1).cos());
+    let weight = ring_solid_angle / n_azimuths as f64;
+    let dir = sun * gamma.cos() + (across * a.cos() + up * a.sin()) * gamma.sin();
+    let mu = dir.z;
+    if mu <= 0.0 {
+        return [0.0; LANES];
     }
-    sum
+    let t_max = distance_to_top(0.0, mu, p.bottom_radius_m, p.top_radius_m);
+    let (l, _) = integrate_inscattering(
+        p,
+        t,
+        ms,
+        layer,
+        (0.0, mu, mu_s, gamma.cos()),
+        (0.0, t_max),
+        p.steps.ground_irradiance,
+        Spacing::Quadratic,
+    );
+    scale(l, mu * weight)
 }
 
 /// Looks up the sky irradiance on the ground per unit solar irradiance.
@@ -134,6 +157,38 @@ mod tests {
             }
         }
         scale(sum, PI / f64::from(n_theta * n_phi))
+    }
+
+    /// Integrating one side of the sun's vertical plane twice gives the whole grid of rings ×
+    /// azimuths, in haze, sun high and low.
+    #[test]
+    fn the_mirror_half_of_the_azimuths_gives_the_whole_grid() {
+        let mut scene = Scene::default();
+        scene.atmosphere.aerosol.kind = AerosolType::Rural;
+        scene.atmosphere.aerosol.aod550 = 0.3;
+        let p = Params::new(
+            &crate::Atmosphere::for_scene(&scene),
+            WavelengthSet::Spectral4,
+            Quality::Low,
+        );
+        let t = compute_transmittance_lut(&p);
+        let ms = compute_multiple_scattering_lut(&p, &t);
+        let [n_rings, n_azimuths] = GROUND_IRRADIANCE_DIRECTIONS;
+        for mu_s in [0.9, 0.2, 0.02, -0.1] {
+            let mut whole = [0.0; LANES];
+            for i in 0..n_rings {
+                for j in 0..n_azimuths {
+                    let a = 2.0 * PI * (j as f64 + 0.5) / n_azimuths as f64;
+                    whole = add(whole, direction_irradiance(&p, &t, &ms, 0, mu_s, i, a));
+                }
+            }
+            let half = compute_ground_irradiance(&p, &t, &ms, 0, mu_s);
+            for i in 0..LANES {
+                assert!(whole[i] > 0.0, "mu_s {mu_s}, lane {i}");
+                let rel = (half[i] / whole[i] - 1.0).abs();
+                assert!(rel < 1e-12, "mu_s {mu_s}, lane {i}: {rel:e}");
+            }
+        }
     }
 
     /// The rings about the sun catch aerosol's circumsolar peak: within 1.5 % of the converged

@@ -15,8 +15,10 @@ use std::f64::consts::PI;
 /// Multiple-scattering table size (mu_s, h): 64 × 32, twice the paper's 32 texels of mu_s, most
 /// of them in twilight (see [`super::MU_S_AXIS_U`]).
 pub const MULTIPLE_SCATTERING_SIZE: [u32; 2] = [64, 32];
-/// Directions of the multiple-scattering integral: an 8 × 8 stratified sphere (paper: 64).
+/// Directions of the multiple-scattering integral: an 8 × 8 stratified sphere (paper: 64), of
+/// which the half on one side of the sun's vertical plane is marched (even, so the azimuths pair).
 pub const MULTIPLE_SCATTERING_DIRECTIONS_SQRT: u32 = 8;
+const _: () = assert!(MULTIPLE_SCATTERING_DIRECTIONS_SQRT % 2 == 0);
 
 pub const TABLE: TableSpec = TableSpec {
     id: "multiple-scattering",
@@ -70,50 +72,71 @@ pub fn compute_multiple_scattering_lut(p: &Params, t: &Lut) -> Lut {
 }
 
 fn compute_multiple_scattering(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -> Lanes {
+    let n_dir = MULTIPLE_SCATTERING_DIRECTIONS_SQRT;
+    let sun = local_sun(mu_s);
+    let mut l_2nd = [0.0; LANES];
+    let mut f_ms = [0.0; LANES];
+    // The directions on one side of the sun's vertical plane: each one's mirror image has the
+    // same mu and nu, so the same integrand, and needs no march of its own.
+    let half = n_dir / 2;
+    for d in 0..n_dir * half {
+        let omega = sphere_direction((d / half) * n_dir + d % half, n_dir);
+        let (l, f) = direction_terms(p, t, layer, h, mu_s, omega.z, omega.dot(sun));
+        l_2nd = add(l_2nd, l);
+        f_ms = add(f_ms, f);
+    }
+    let count = (n_dir * half) as f64;
+    std::array::from_fn(|i| (l_2nd[i] / count) / (1.0 - f_ms[i] / count))
+}
+
+/// The second-order radiance (isotropic phase, sunlit ground) and the transfer f_ms that one
+/// direction (mu, nu) brings to Ψ_ms at (h, mu_s), before the average over directions.
+fn direction_terms(
+    p: &Params,
+    t: &Lut,
+    layer: usize,
+    h: f64,
+    mu_s: f64,
+    mu: f64,
+    nu: f64,
+) -> (Lanes, Lanes) {
     let big_r = p.bottom_radius_m;
     let r = big_r + h;
-    let sun = local_sun(mu_s);
-    let n_dir = MULTIPLE_SCATTERING_DIRECTIONS_SQRT;
     let isotropic = 1.0 / (4.0 * PI);
     let albedo = p.batches[layer].ground_albedo;
     let mut l_2nd = [0.0; LANES];
     let mut f_ms = [0.0; LANES];
-    for d in 0..n_dir * n_dir {
-        let omega = sphere_direction(d, n_dir);
-        let (mu, nu) = (omega.z, omega.dot(sun));
-        let ground = hits_ground(h, mu, big_r);
-        let t_max = if ground {
-            distance_to_ground(h, mu, big_r)
-        } else {
-            distance_to_top(h, mu, big_r, p.top_radius_m)
-        };
-        let n = p.steps.multiple_scattering;
-        let mut throughput = [1.0; LANES];
-        for s in 0..n {
-            let (t0, t1) = Spacing::Quadratic.segment(0.0, t_max, s, n);
-            let (ts, dt) = (0.5 * (t0 + t1), t1 - t0);
-            let (h_t, r_t) = altitude_along(h, mu, ts, big_r);
-            let mu_s_t = (r * mu_s + ts * nu) / r_t;
-            let m = p.medium(layer, h_t);
-            let weight = mul(throughput, segment_weight(m.extinction, dt));
-            let sca = add(m.rayleigh_scattering, m.aerosol_scattering);
-            let sun_t = sun_transmittance(p, t, layer, h_t, mu_s_t);
-            for i in 0..LANES {
-                l_2nd[i] += weight[i] * sca[i] * isotropic * sun_t[i];
-                f_ms[i] += weight[i] * sca[i];
-                throughput[i] *= (-m.extinction[i] * dt).exp();
-            }
-        }
-        if ground {
-            let mu_s_g = (r * mu_s + t_max * nu) / big_r;
-            let sun_t = sun_transmittance(p, t, layer, 0.0, mu_s_g);
-            for i in 0..LANES {
-                l_2nd[i] += throughput[i] * sun_t[i] * mu_s_g.max(0.0) * albedo[i] / PI;
-            }
+    let ground = hits_ground(h, mu, big_r);
+    let t_max = if ground {
+        distance_to_ground(h, mu, big_r)
+    } else {
+        distance_to_top(h, mu, big_r, p.top_radius_m)
+    };
+    let n = p.steps.multiple_scattering;
+    let mut throughput = [1.0; LANES];
+    for s in 0..n {
+        let (t0, t1) = Spacing::Quadratic.segment(0.0, t_max, s, n);
+        let (ts, dt) = (0.5 * (t0 + t1), t1 - t0);
+        let (h_t, r_t) = altitude_along(h, mu, ts, big_r);
+        let mu_s_t = (r * mu_s + ts * nu) / r_t;
+        let m = p.medium(layer, h_t);
+        let weight = mul(throughput, segment_weight(m.extinction, dt));
+        let sca = add(m.rayleigh_scattering, m.aerosol_scattering);
+        let sun_t = sun_transmittance(p, t, layer, h_t, mu_s_t);
+        for i in 0..LANES {
+            l_2nd[i] += weight[i] * sca[i] * isotropic * sun_t[i];
+            f_ms[i] += weight[i] * sca[i];
+            throughput[i] *= (-m.extinction[i] * dt).exp();
         }
     }
-    let count = (n_dir * n_dir) as f64;
-    std::array::from_fn(|i| (l_2nd[i] / count) / (1.0 - f_ms[i] / count))
+    if ground {
+        let mu_s_g = (r * mu_s + t_max * nu) / big_r;
+        let sun_t = sun_transmittance(p, t, layer, 0.0, mu_s_g);
+        for i in 0..LANES {
+            l_2nd[i] += throughput[i] * sun_t[i] * mu_s_g.max(0.0) * albedo[i] / PI;
+        }
+    }
+    (l_2nd, f_ms)
 }
 
 /// Looks up Ψ_ms at (h, mu_s).
@@ -150,6 +173,32 @@ mod tests {
             for u in crate::methods::hillaire::MU_S_AXIS_U {
                 let texel = u * (size - 1) as f64;
                 assert!((texel - texel.round()).abs() < 1e-9, "{u} on {size} texels");
+            }
+        }
+    }
+
+    /// Marching one side of the sun's vertical plane gives Ψ_ms of the whole sphere of
+    /// directions, at the ground (where half the sphere hits it) and above, sun up and down.
+    #[test]
+    fn the_mirror_half_of_the_directions_gives_the_whole_sphere() {
+        let p = params();
+        let t = crate::methods::hillaire::compute_transmittance_lut(&p);
+        let n = MULTIPLE_SCATTERING_DIRECTIONS_SQRT;
+        for (h, mu_s) in [(0.0, 0.8), (0.0, -0.1), (3000.0, 0.05), (30_000.0, -0.08)] {
+            let sun = local_sun(mu_s);
+            let (mut l, mut f) = ([0.0; LANES], [0.0; LANES]);
+            for d in 0..n * n {
+                let omega = sphere_direction(d, n);
+                let (dl, df) = direction_terms(&p, &t, 0, h, mu_s, omega.z, omega.dot(sun));
+                (l, f) = (add(l, dl), add(f, df));
+            }
+            let count = (n * n) as f64;
+            let whole: Lanes = std::array::from_fn(|i| (l[i] / count) / (1.0 - f[i] / count));
+            let half = compute_multiple_scattering(&p, &t, 0, h, mu_s);
+            for i in 0..LANES {
+                assert!(whole[i] > 0.0, "h {h}, mu_s {mu_s}, lane {i}");
+                let rel = (half[i] / whole[i] - 1.0).abs();
+                assert!(rel < 1e-12, "h {h}, mu_s {mu_s}, lane {i}: {rel:e}");
             }
         }
     }
