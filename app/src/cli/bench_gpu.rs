@@ -38,11 +38,10 @@ pub struct GpuBench {
     /// Time passes by fenced CPU wall time even where GPU timestamps exist.
     #[arg(long)]
     pub cpu_timing: bool,
-    /// Tile of the sky pass in moving frames, as the explorer draws them (1: every pixel,
-    /// as before tiles; `sky_still_ms` is always every pixel).
-    #[arg(long, value_name = "PIXELS", default_value_t = atmoscope_render::views::MOVING_SKY_TILE,
-        value_parser = clap::value_parser!(u32).range(1..=16))]
-    pub sky_tile: u32,
+    /// Tile of the sky pass in moving frames (1: every pixel; `sky_still_ms` is always every
+    /// pixel). Default: the explorer's for the adapter, 4 on a software adapter, 1 on a GPU.
+    #[arg(long, value_name = "PIXELS", value_parser = clap::value_parser!(u32).range(1..=16))]
+    pub sky_tile: Option<u32>,
     #[arg(long)]
     pub json: bool,
 }
@@ -148,6 +147,9 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
     let base = args.scene.scene()?;
     let context = gpu()?;
     eprintln!("adapter: {}", context.describe());
+    let sky_tile = args.sky_tile.unwrap_or_else(|| {
+        atmoscope_render::views::moving_sky_tile(context.device.adapter_info().device_type)
+    });
     let (w, h) = args.size;
     let view = View::new(Projection::Perspective, w, h);
     let repeats = args.repeats.max(1);
@@ -174,7 +176,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         }
         let mut engine = Engine::new(&context.device, &context.queue);
         engine.set_timing(true);
-        engine.set_sky_tile(args.sky_tile);
+        engine.set_sky_tile(sky_tile);
         if args.cpu_timing {
             engine.force_cpu_timing();
         }
@@ -246,7 +248,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             timing: engine.timing_source().label().into(),
             lut_total_ms,
             lut_ms,
-            sky_tile: args.sky_tile,
+            sky_tile,
             sky_ms,
             display_ms,
             sky_still_ms: median(sky_still),
@@ -270,7 +272,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
     println!(
         "{w}x{h} perspective, median of {repeats}; times from {}; moving frames draw the sky in {t}×{t} tiles, a still frame every pixel",
         rows.first().map_or("", |r| r.timing.as_str()),
-        t = args.sky_tile
+        t = sky_tile
     );
     println!(
         "{:14} {:12} {:>10} {:>8} {:>10} {:>8} {:>12} {:>12} {:>9} {:>8}   ×floor: {:>6} {:>6} {:>7}   rebuild: {:>9} {:>16} {:>9}   table passes",

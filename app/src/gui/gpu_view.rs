@@ -90,8 +90,11 @@ impl GpuView {
         let mut engine = Engine::new(&gpu.device, &gpu.queue);
         engine.set_timing(true);
         engine.set_rebuild_slices(gpu.rebuild_slice);
-        // A view in motion draws its sky in tiles; it sharpens in the first still frame.
-        engine.set_sky_tile(atmoscope_render::views::MOVING_SKY_TILE);
+        // On a software adapter a view in motion draws its sky in tiles; it sharpens in the
+        // first still frame.
+        engine.set_sky_tile(atmoscope_render::views::moving_sky_tile(
+            gpu.device.adapter_info().device_type,
+        ));
         if gpu.software {
             engine.force_cpu_timing();
         }
