@@ -31,7 +31,7 @@ pub fn false_colour(t: f64) -> [f64; 3] {
 /// Pixels on a side of the tiles a view in motion computes at the corners and interpolates
 /// inside (`Engine::set_sky_tile`), by adapter; the full resolution follows in the first still
 /// frame. On a CPU adapter (lavapipe) 4 × 4 tiles, a sixteenth of the per-pixel work, made the
-/// sky pass 2.3–10× faster (1280×720). On a GPU (an H200) they made it 0.7–1.25× as fast: a
+/// sky pass 2.3–10× faster (1280×720). On a GPU (an H200) they made it 0.7–1.26× as fast: a
 /// sixteenth of the invocations no longer fill the chip, and the exact tiles' second dispatch
 /// costs more than the pixels it spares, so a GPU draws every pixel.
 pub fn moving_sky_tile(device_type: wgpu::DeviceType) -> u32 {
