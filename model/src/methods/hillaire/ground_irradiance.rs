@@ -159,20 +159,27 @@ mod tests {
         scale(sum, PI / f64::from(n_theta * n_phi))
     }
 
+    /// Spectral4 parameters of the default scene under `kind` aerosol at `aod` (550 nm), with
+    /// its transmittance and multiple-scattering tables.
+    fn hazy(kind: AerosolType, aod: f64, quality: Quality) -> (Params, Lut, Lut) {
+        let mut scene = Scene::default();
+        scene.atmosphere.aerosol.kind = kind;
+        scene.atmosphere.aerosol.aod550 = aod;
+        let p = Params::new(
+            &crate::Atmosphere::for_scene(&scene),
+            WavelengthSet::Spectral4,
+            quality,
+        );
+        let t = compute_transmittance_lut(&p);
+        let ms = compute_multiple_scattering_lut(&p, &t);
+        (p, t, ms)
+    }
+
     /// Integrating one side of the sun's vertical plane twice gives the whole grid of rings ×
     /// azimuths, in haze, sun high and low.
     #[test]
     fn the_mirror_half_of_the_azimuths_gives_the_whole_grid() {
-        let mut scene = Scene::default();
-        scene.atmosphere.aerosol.kind = AerosolType::Rural;
-        scene.atmosphere.aerosol.aod550 = 0.3;
-        let p = Params::new(
-            &crate::Atmosphere::for_scene(&scene),
-            WavelengthSet::Spectral4,
-            Quality::Low,
-        );
-        let t = compute_transmittance_lut(&p);
-        let ms = compute_multiple_scattering_lut(&p, &t);
+        let (p, t, ms) = hazy(AerosolType::Rural, 0.3, Quality::Low);
         let [n_rings, n_azimuths] = GROUND_IRRADIANCE_DIRECTIONS;
         for mu_s in [0.9, 0.2, 0.02, -0.1] {
             let mut whole = [0.0; LANES];
@@ -201,16 +208,7 @@ mod tests {
             (AerosolType::Rural, 0.5),
             (AerosolType::DesertDust, 0.5),
         ] {
-            let mut scene = Scene::default();
-            scene.atmosphere.aerosol.kind = kind;
-            scene.atmosphere.aerosol.aod550 = aod;
-            let p = Params::new(
-                &crate::Atmosphere::for_scene(&scene),
-                WavelengthSet::Spectral4,
-                Quality::Medium,
-            );
-            let t = compute_transmittance_lut(&p);
-            let ms = compute_multiple_scattering_lut(&p, &t);
+            let (p, t, ms) = hazy(kind, aod, Quality::Medium);
             for deg in [60.0f64, 10.0, 5.0, 2.0, -3.0] {
                 let mu_s = deg.to_radians().sin();
                 let (got, want) = (
