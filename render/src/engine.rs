@@ -115,6 +115,8 @@ impl FrameStats {
 pub enum EngineError {
     #[error("nothing has been rendered yet")]
     NotRendered,
+    #[error("the view is in motion: its radiance comes with the next still frame")]
+    InMotion,
     #[error("the model has no table `{0}`")]
     NoSuchTable(String),
     /// The model is offline, or refuses this view (a message says why).
@@ -208,6 +210,12 @@ struct FrameSetup {
     above: bool,
     /// Pixels on a side of the sky pass's interpolated tiles this frame (1: every pixel).
     sky_tile: u32,
+    /// Whether the sky pass writes the radiance image: all but a frame in tiles that nothing
+    /// meters.
+    write_radiance: bool,
+    /// Whether the sky pass runs in bands of what the rows see, the sun's disk apart
+    /// (`Engine::set_view_bands`), or as one dispatch.
+    bands: bool,
 }
 
 impl FrameSetup {
@@ -261,6 +269,8 @@ impl FrameSetup {
             bottom_radius_m: params.bottom_radius_m,
             above: viewpoint.h > params.thickness_m(),
             sky_tile: 1,
+            write_radiance: true,
+            bands: true,
         }
     }
 
@@ -281,6 +291,8 @@ impl FrameSetup {
             Constant::ViewRegion => uniforms::region_code(Sees::Both),
             Constant::SkyTile => 1,
             Constant::SkyTileExact => 0,
+            Constant::Glare => u32::from(scene.display.glare && view.mode == DisplayMode::Colour),
+            Constant::WriteRadiance => u32::from(self.write_radiance),
         }
     }
 
@@ -298,7 +310,8 @@ impl FrameSetup {
     /// software GPU runs both sides of every branch). A frame with tiles (`sky_tile` > 1)
     /// runs the sky pass as one dispatch of tiles, which decides sky or ground per corner and
     /// lists the tiles it cannot interpolate, an indirect dispatch over those, then the sun's
-    /// disk pixel by pixel. Any other pass is one dispatch.
+    /// disk pixel by pixel. Without bands (`Engine::set_view_bands`) a frame at full
+    /// resolution is one dispatch, as is any other pass.
     fn work(
         &self,
         pipelines: &Pipelines,
@@ -319,13 +332,14 @@ impl FrameSetup {
             })
         };
         let takes = |c: Constant| constants.contains(&c);
-        if !takes(Constant::ViewRegion) && !takes(Constant::SunDisk) {
+        let tile = self.sky_tile;
+        let tiled = takes(Constant::SkyTile) && tile > 1;
+        if (!takes(Constant::ViewRegion) && !takes(Constant::SunDisk)) || (!self.bands && !tiled) {
             return vec![Work::whole(i, variant(Sees::Both, true, 1, false), grid)];
         }
         let [w, h] = self.size;
         let mut work = Vec::new();
-        let tile = self.sky_tile;
-        if takes(Constant::SkyTile) && tile > 1 {
+        if tiled {
             let span = WORKGROUP_SIZE * tile;
             work.push(Work {
                 tiles: TilePhase::Fill,
@@ -414,7 +428,12 @@ fn plan(
         let stale = deferred[i]
             || spec.direct_inputs(info).intersects(changed)
             || spec.reads.iter().any(|r| written.contains(r));
-        if stale {
+        // A view pass whose every output an earlier pass of this frame wrote with the frame's
+        // inputs (the sky pass draws the display image too) has nothing left to do.
+        let covered = !spec.is_table() && spec.writes.iter().all(|w| written.contains(w));
+        if covered {
+            deferred[i] = false;
+        } else if stale {
             deferred[i] = !needed[i];
             // A pass left stale rewrites nothing: its readers are not stale for it.
             if needed[i] {
@@ -763,8 +782,13 @@ pub struct Engine {
     texel_group_size: u32,
     /// Tile of the sky pass in frames that redraw because something changed (1: none).
     sky_tile: u32,
-    /// Whether the radiance on screen was drawn in tiles (the next still frame redraws it).
+    /// Whether the view on screen was drawn in tiles (the next still frame redraws it).
     tiled_on_screen: bool,
+    /// Whether the radiance image holds the view on screen (a frame in tiles that nothing
+    /// meters draws the display image alone).
+    radiance_current: bool,
+    /// Whether the sky pass runs in bands (`set_view_bands`).
+    view_bands: bool,
 }
 
 impl Engine {
@@ -794,6 +818,8 @@ impl Engine {
             texel_group_size: texel_group_size(device.adapter_info().device_type),
             sky_tile: 1,
             tiled_on_screen: false,
+            radiance_current: true,
+            view_bands: true,
         }
     }
 
@@ -812,6 +838,15 @@ impl Engine {
             self.rebuild = None;
             self.tiled_on_screen = false;
         }
+    }
+
+    /// Draws the sky pass in bands of rows that see sky alone, ground alone or both, and the
+    /// sun's disk in a dispatch of its own, each compiled without the code its pixels cannot
+    /// need (on, the default: a software GPU runs both sides of every branch), or as one
+    /// dispatch that decides per pixel (a GPU, where a branch costs a warp that takes both
+    /// sides and each dispatch a fixed time: `views::view_bands`). The images are the same.
+    pub fn set_view_bands(&mut self, on: bool) {
+        self.view_bands = on;
     }
 
     /// Whether a frame of an unchanged scene would still draw: a rebuild in slices is under
@@ -1047,13 +1082,20 @@ impl Engine {
         if rebuild_done {
             // The rebuild drew its view at full resolution.
             self.tiled_on_screen = false;
+            self.radiance_current = true;
         }
-        let refine = changed.is_empty() && self.tiled_on_screen && progress.is_none();
+        // A still frame after one in tiles, or one that changes only the display (whose pass
+        // would read a radiance image the tiles did not write), draws the view again at full
+        // resolution.
+        let refine = self.tiled_on_screen
+            && progress.is_none()
+            && Inputs::DISPLAY.union(changed) == Inputs::DISPLAY;
         if refine {
-            // The view's images are drawn again, this time at full resolution.
-            changed = Inputs::VIEW_SIZE;
+            changed = changed.union(Inputs::VIEW_SIZE);
         }
         frame.sky_tile = if refine { 1 } else { self.sky_tile };
+        frame.write_radiance = frame.sky_tile <= 1 || self.metering;
+        frame.bands = self.view_bands;
         if rebuilt || self.target.as_ref().is_none_or(|t| t.size != size) {
             // New images: every pass that writes them must run.
             changed = changed.union(Inputs::VIEW_SIZE);
@@ -1114,6 +1156,7 @@ impl Engine {
             .any(|(i, s)| s.writes.contains(&RADIANCE) && run.contains(&i))
         {
             self.tiled_on_screen = frame.sky_tile > 1;
+            self.radiance_current = frame.write_radiance;
         }
         let names: Vec<&'static str> = pipelines.specs().map(|s| s.name).collect();
         let unwanted = self.unwanted();
@@ -1370,9 +1413,14 @@ impl Engine {
         })
     }
 
-    /// Reads the linear radiance back, row-major from the top row.
+    /// Reads the linear radiance back, row-major from the top row; [`EngineError::InMotion`]
+    /// while the view on screen was drawn in tiles without it (the next frame, still, draws
+    /// it).
     pub fn read_radiance(&self) -> Result<Vec<[f32; 4]>, EngineError> {
         let t = self.radiance_texture().ok_or(EngineError::NotRendered)?;
+        if !self.radiance_current {
+            return Err(EngineError::InMotion);
+        }
         Ok(capture(&self.device, || {
             read_texture_f32x4(&self.device, &self.queue, t)
         })??)

@@ -3,7 +3,7 @@
 //! the model's tables (vec4 texels in the order of `model::methods::shared::Lut`).
 
 use crate::methods::{
-    COMMON, Constant, DISPLAY, GpuMethod, PassSpec, RADIANCE, SKY_ENTRY_POINT, VIEW_PASSES,
+    COMMON, Constant, DISPLAY, GpuMethod, PassSpec, RADIANCE, SKY_ENTRY_POINT, TONE, VIEW_PASSES,
 };
 use crate::prelude::wgsl_prelude;
 use crate::uniforms::{Batch, Globals, MIE_PHASE_ROWS_LEN};
@@ -11,7 +11,7 @@ use atmoscope_model::methods::shared::{PROFILE_SAMPLES, Params};
 use atmoscope_model::methods::{ModelInfo, shared::TableSpec};
 
 /// Most pipeline constants a pass takes.
-pub const MAX_CONSTANTS: usize = 6;
+pub const MAX_CONSTANTS: usize = 10;
 
 /// Values of a pass's pipeline constants, in the order of its `constants`.
 pub type Variant = [u32; MAX_CONSTANTS];
@@ -97,6 +97,9 @@ pub fn shader_source(method: &GpuMethod, pass: &PassSpec, texel_group_size: u32)
         for part in method.common {
             s.push_str(part.source);
         }
+    }
+    if pass.writes.contains(&DISPLAY) {
+        s.push_str(TONE.source);
     }
     s.push_str(pass.shader.source);
     if pass.writes.contains(&RADIANCE) {

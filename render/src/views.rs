@@ -41,6 +41,14 @@ pub fn moving_sky_tile(device_type: wgpu::DeviceType) -> u32 {
     }
 }
 
+/// Whether the sky pass runs in bands of what the rows see with the sun's disk apart
+/// (`Engine::set_view_bands`), by adapter: on a CPU adapter, which runs both sides of every
+/// branch for every lane, yes; on a GPU, where each dispatch costs a fixed time and a branch
+/// only the warps that straddle it, one dispatch.
+pub fn view_bands(device_type: wgpu::DeviceType) -> bool {
+    device_type == wgpu::DeviceType::Cpu
+}
+
 /// Largest relative spread of a tile's four corners, per linear sRGB channel, that is still
 /// interpolated ((max − min) ≤ this × max(|max|, |min|)); a tile with more is computed pixel
 /// by pixel.

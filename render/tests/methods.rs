@@ -6,15 +6,17 @@
 mod common;
 
 use atmoscope_model::camera::{Camera, Projection};
-use atmoscope_model::colour::linear_srgb_to_xyz;
+use atmoscope_model::colour::{linear_srgb_to_xyz, srgb_decode};
 use atmoscope_model::methods::shared::Lut;
 use atmoscope_model::methods::{self, CannotDraw, ModelInfo};
 use atmoscope_model::metrics::{DisplaySetup, compare};
-use atmoscope_model::scene::{FittedConstants, Method, Quality, Scene, SunSettings, WavelengthSet};
+use atmoscope_model::scene::{
+    FittedConstants, Method, Quality, Scene, SunSettings, ToneMap, WavelengthSet,
+};
 use atmoscope_render::methods::{DISPLAY_PASS, GPU_METHODS, Repeat, gpu_method};
 use atmoscope_render::passes::shader_source;
 use atmoscope_render::uniforms::{Batch, Globals};
-use atmoscope_render::{Engine, EngineError, View};
+use atmoscope_render::{Engine, EngineError, FrameStats, View};
 use common::context;
 
 /// The scene with `model`'s method.
@@ -164,6 +166,27 @@ fn radiance_image(engine: &Engine) -> Vec<[f64; 3]> {
         .expect("read-back")
         .iter()
         .map(|p| [p[0], p[1], p[2]].map(f64::from))
+        .collect()
+}
+
+/// The passes a frame that draws everything runs: all but the display pass, whose image the
+/// sky pass draws too.
+fn every_pass_but_display(stats: &FrameStats) -> Vec<&'static str> {
+    stats
+        .passes
+        .iter()
+        .copied()
+        .filter(|&p| p != DISPLAY_PASS.name)
+        .collect()
+}
+
+/// The displayed image as linear colour (its sRGB bytes decoded).
+fn displayed_image(engine: &Engine) -> Vec<[f64; 3]> {
+    engine
+        .read_display()
+        .expect("read-back")
+        .chunks_exact(4)
+        .map(|p| std::array::from_fn(|c| srgb_decode(f64::from(p[c]) / 255.0)))
         .collect()
 }
 
@@ -378,8 +401,9 @@ fn each_frame_runs_only_the_passes_whose_inputs_changed() {
         "sky-view",
         "aerial-perspective",
         "sky",
-        "display",
     ];
+    // The sky pass draws the display image too: the display pass waits for a frame that
+    // changes the display alone.
     assert_eq!(run(&mut engine, &scene, &view), all.clone(), "first frame");
     let stats = engine.render(&scene, &view).clone();
     assert!(
@@ -387,22 +411,14 @@ fn each_frame_runs_only_the_passes_whose_inputs_changed() {
         "an unchanged frame ran {:?}",
         stats.run
     );
-    assert_eq!(stats.skipped.len(), all.len());
+    assert_eq!(stats.skipped.len(), all.len() + 1);
 
     scene.camera.heading_deg += 40.0;
     scene.camera.pitch_deg += 10.0;
     scene.camera.fov_deg = 90.0;
-    assert_eq!(
-        run(&mut engine, &scene, &view),
-        vec!["sky", "display"],
-        "turning"
-    );
+    assert_eq!(run(&mut engine, &scene, &view), vec!["sky"], "turning");
     view.projection = Projection::Fisheye;
-    assert_eq!(
-        run(&mut engine, &scene, &view),
-        vec!["sky", "display"],
-        "projection"
-    );
+    assert_eq!(run(&mut engine, &scene, &view), vec!["sky"], "projection");
 
     scene.display.exposure_ev += 1.0;
     assert_eq!(run(&mut engine, &scene, &view), vec!["display"], "exposure");
@@ -424,11 +440,7 @@ fn each_frame_runs_only_the_passes_whose_inputs_changed() {
         elevation_deg,
         azimuth_deg: azimuth_deg + 20.0,
     };
-    assert_eq!(
-        run(&mut engine, &scene, &view),
-        vec!["sky", "display"],
-        "sun azimuth"
-    );
+    assert_eq!(run(&mut engine, &scene, &view), vec!["sky"], "sun azimuth");
     scene.sun = SunSettings::Angles {
         elevation_deg: elevation_deg - 10.0,
         azimuth_deg,
@@ -438,18 +450,14 @@ fn each_frame_runs_only_the_passes_whose_inputs_changed() {
     let moved = run(&mut engine, &scene, &view);
     assert_eq!(
         moved,
-        vec!["sky-view", "sky", "display"],
+        vec!["sky-view", "sky"],
         "sun elevation, no ground in view"
     );
     scene.camera.altitude_m = 5000.0;
     assert_eq!(run(&mut engine, &scene, &view), moved, "altitude");
 
     view.width = 40;
-    assert_eq!(
-        run(&mut engine, &scene, &view),
-        vec!["sky", "display"],
-        "size"
-    );
+    assert_eq!(run(&mut engine, &scene, &view), vec!["sky"], "size");
 
     let without_ground: Vec<_> = all
         .iter()
@@ -462,7 +470,7 @@ fn each_frame_runs_only_the_passes_whose_inputs_changed() {
     scene.camera.pitch_deg = -10.0;
     assert_eq!(
         run(&mut engine, &scene, &view),
-        vec!["ground-irradiance", "aerial-perspective", "sky", "display"],
+        vec!["ground-irradiance", "aerial-perspective", "sky"],
         "the ground comes into view"
     );
     scene.render.wavelengths = WavelengthSet::Rgb3;
@@ -514,14 +522,22 @@ fn a_moving_frame_in_tiles_is_close_and_the_still_frame_after_it_exact() {
             let mut engine = Engine::new(&gpu.device, &gpu.queue);
             engine.render(&scene, &view);
             let exact = radiance_image(&engine);
-            let coverage = |e: &Engine| -> Vec<f32> {
-                e.read_radiance()
-                    .expect("read-back")
-                    .iter()
-                    .map(|p| p[3])
-                    .collect()
+            let exact_shown = displayed_image(&engine);
+            let close = |what: &str, image: &[[f64; 3]], exact: &[[f64; 3]], setup| {
+                let de = atmoscope_model::metrics::delta_e2000_map(image, exact, setup);
+                let mean = de.iter().sum::<f64>() / de.len() as f64;
+                let max = de.iter().copied().fold(0.0, f64::max);
+                eprintln!("{name}: {what} in tiles: ΔE2000 mean {mean:.3}, max {max:.3}");
+                assert!(mean < 0.3, "{name}: {what}: ΔE2000 mean {mean}");
+                assert!(
+                    max < 2.0,
+                    "{name}: {what}: ΔE2000 max {max} (a tile interpolated across an edge)"
+                );
             };
-            let exact_coverage = coverage(&engine);
+            let as_shown = DisplaySetup {
+                tone_map: ToneMap::Linear,
+                ..DisplaySetup::default()
+            };
 
             engine.set_sky_tile(4);
             let moving = engine.render(&scene, &view).clone();
@@ -530,30 +546,108 @@ fn a_moving_frame_in_tiles_is_close_and_the_still_frame_after_it_exact() {
                 engine.settling(),
                 "{name}: a frame in tiles awaits its full resolution"
             );
-            let tiled = radiance_image(&engine);
-            assert_eq!(coverage(&engine), exact_coverage, "{name}: coverage");
-            let de =
-                atmoscope_model::metrics::delta_e2000_map(&tiled, &exact, DisplaySetup::default());
-            let mean = de.iter().sum::<f64>() / de.len() as f64;
-            let max = de.iter().copied().fold(0.0, f64::max);
-            eprintln!("{name}: tiles against every pixel: ΔE2000 mean {mean:.3}, max {max:.3}");
-            assert!(mean < 0.3, "{name}: ΔE2000 mean {mean}");
             assert!(
-                max < 2.0,
-                "{name}: ΔE2000 max {max} (a tile interpolated across an edge)"
+                matches!(engine.read_radiance(), Err(EngineError::InMotion)),
+                "{name}: no radiance in motion unless metered"
+            );
+            close(
+                "displayed",
+                &displayed_image(&engine),
+                &exact_shown,
+                as_shown,
             );
 
             let still = engine.render(&scene, &view).clone();
             eprintln!("{name}: moving {:?} still {:?}", moving.run, still.run);
-            assert_eq!(still.run, vec!["sky", "display"], "{name}: the still frame");
+            assert_eq!(still.run, vec!["sky"], "{name}: the still frame");
             assert_eq!(
                 radiance_image(&engine),
                 exact,
                 "{name}: full resolution again"
             );
+            assert_eq!(displayed_image(&engine), exact_shown, "{name}: as shown");
             assert!(!engine.settling(), "{name}");
             let after = engine.render(&scene, &view).run.clone();
             assert!(after.is_empty(), "{name}: then nothing, ran {after:?}");
+
+            // The meter reads the radiance of every frame: in motion too.
+            engine.set_metering(true);
+            let mut turned = scene.clone();
+            turned.camera.heading_deg += 1.0;
+            engine.render(&turned, &view);
+            engine.render(&scene, &view);
+            assert!(engine.settling(), "{name}: metered, in tiles");
+            close(
+                "metered radiance",
+                &radiance_image(&engine),
+                &exact,
+                DisplaySetup::default(),
+            );
+            // A change of the display alone after tiles draws the view at full resolution.
+            let mut brighter = scene.clone();
+            brighter.display.exposure_ev += 1.0;
+            assert_eq!(
+                engine.render(&brighter, &view).run,
+                vec!["sky", "meter"],
+                "{name}: display after tiles"
+            );
+            assert_eq!(radiance_image(&engine), exact, "{name}: exact after tiles");
+        }
+    }
+}
+
+/// A GPU draws the sky in one dispatch that decides sky, ground and the sun's disk per pixel
+/// (`Engine::set_view_bands(false)`), a software GPU in bands of rows with the disk apart: the
+/// same image, at the horizon, the sun and from space, still and in tiles.
+#[test]
+fn the_sky_in_one_dispatch_is_the_sky_in_bands() {
+    let Some(gpu) = context() else { return };
+    let mut horizon = Scene::default();
+    let sun = horizon.sun.angles();
+    horizon.camera.heading_deg = sun.azimuth_deg + 10.0;
+    horizon.camera.pitch_deg = sun.elevation_deg - 10.0;
+    horizon.camera.fov_deg = 80.0;
+    let mut space = horizon.clone();
+    space.camera.altitude_m = 400_000.0;
+    space.camera.pitch_deg = -30.0;
+    let view = View::new(Projection::Perspective, 64, 36);
+    for (name, scene) in [("horizon", horizon), ("space", space)] {
+        for method in [Method::Hillaire, Method::Nishita] {
+            let mut scene = scene.clone();
+            scene.render.method = method;
+            let name = format!("{method:?}, {name}");
+            let mut images = Vec::new();
+            for bands in [true, false] {
+                let mut engine = Engine::new(&gpu.device, &gpu.queue);
+                engine.set_view_bands(bands);
+                let stats = engine.render(&scene, &view).clone();
+                assert!(stats.ran("sky"), "{name}");
+                images.push((
+                    radiance_image(&engine),
+                    engine.read_display().expect("display"),
+                ));
+            }
+            let (banded, whole) = (&images[0], &images[1]);
+            // Relative to each value, down to the median's size (the sun's disk is 10⁴–10⁵
+            // times the sky: a fraction of the peak would let the sky be anything).
+            let mut sizes: Vec<f64> = banded.0.iter().flatten().map(|v| v.abs()).collect();
+            sizes.sort_by(f64::total_cmp);
+            let median = sizes[sizes.len() / 2];
+            let worst = banded
+                .0
+                .iter()
+                .flatten()
+                .zip(whole.0.iter().flatten())
+                .map(|(a, b)| (a - b).abs() / b.abs().max(median))
+                .fold(0.0, f64::max);
+            assert!(median > 0.0 && worst < 1e-4, "{name}: {worst} apart");
+            let steps = banded
+                .1
+                .iter()
+                .zip(&whole.1)
+                .map(|(a, b)| a.abs_diff(*b))
+                .max();
+            assert!(steps <= Some(1), "{name}: displayed {steps:?} steps apart");
         }
     }
 }
@@ -570,7 +664,8 @@ fn timing_reports_every_pass_that_ran() {
         )
         .clone();
     assert_eq!(stats.timing_source, Some(engine.timing_source()));
-    assert_eq!(stats.timings_ms.len(), stats.passes.len());
+    assert_eq!(stats.timings_ms.len(), stats.run.len());
+    assert_eq!(stats.run, every_pass_but_display(&stats));
     assert!(
         stats
             .timings_ms
@@ -600,14 +695,14 @@ fn order_gathering_models_rebuild_no_table_when_the_sun_or_the_camera_moves() {
             .count();
         let id = model.id;
         let first = engine.render(&scene, &view).clone();
-        assert_eq!(first.run, first.passes, "{id}");
-        let once = first.passes.len() - looped;
+        assert_eq!(first.run, every_pass_but_display(&first), "{id}");
+        let once = every_pass_but_display(&first).len() - looped;
         assert_eq!(
             first.dispatched,
             once + looped * 3,
             "{id}: orders 2, 3 and 4"
         );
-        let view_only = vec!["sky", "display"];
+        let view_only = vec!["sky"];
         scene.sun = SunSettings::Angles {
             elevation_deg: 5.0,
             azimuth_deg: 200.0,
@@ -624,7 +719,8 @@ fn order_gathering_models_rebuild_no_table_when_the_sun_or_the_camera_moves() {
         scene.render.scattering_orders = 1;
         let single = engine.render(&scene, &view).clone();
         assert_eq!(single.dispatched, once, "{id}: one order, no loop");
-        assert_eq!(single.skipped.len(), looped, "{id}");
+        // The order loop's passes and the display pass, whose image the sky pass drew.
+        assert_eq!(single.skipped.len(), looped + 1, "{id}");
         scene.render.scattering_orders = 10;
         assert_eq!(
             engine.render(&scene, &view).dispatched,
@@ -650,7 +746,11 @@ fn fitted_constants_reach_the_gpu_and_rebuild_the_tables() {
     for choice in [FittedConstants::Published, FittedConstants::Refit] {
         scene.render.fitted_constants = choice;
         let stats = engine.render(&scene, &view).clone();
-        assert_eq!(stats.run, stats.passes, "{choice:?}: every table rebuilt");
+        assert_eq!(
+            stats.run,
+            every_pass_but_display(&stats),
+            "{choice:?}: every table rebuilt"
+        );
         let gpu_image = radiance_image(&engine);
         let cpu_image = methods::render(&scene, view.projection, w, h).expect("real-time");
         let (c, _) = compare(&gpu_image, &cpu_image, w, h, DisplaySetup::default());
@@ -684,9 +784,8 @@ fn from_above_the_atmosphere_the_view_tables_wait_until_a_view_needs_them() {
                 "multiple-scattering",
                 "ground-irradiance",
                 "sky",
-                "display",
             ],
-            "garcia-linan" => &["transmittance", "sky", "display"],
+            "garcia-linan" => &["transmittance", "sky"],
             // No view tables to leave stale: the same passes everywhere.
             "bruneton" | "elek" | "nishita" | "trapezoid" | "schuler" | "galaj-taylor"
             | "galaj-spline" | "flat" | "raymarched" | "empty" => {
@@ -694,14 +793,13 @@ fn from_above_the_atmosphere_the_view_tables_wait_until_a_view_needs_them() {
             }
             // The same passes from space: the sky pass marches every pixel anyway.
             "nishita-ms" | "trapezoid-ms" | "schuler-ms" | "galaj-taylor-ms" => {
-                &["transmittance", "multiple-scattering", "sky", "display"]
+                &["transmittance", "multiple-scattering", "sky"]
             }
             "galaj-spline-ms" => &[
                 "galaj-spline-mesh",
                 "transmittance",
                 "multiple-scattering",
                 "sky",
-                "display",
             ],
             other => panic!("state what {other} runs from space"),
         };
@@ -717,14 +815,14 @@ fn from_above_the_atmosphere_the_view_tables_wait_until_a_view_needs_them() {
         };
         assert_eq!(
             engine.render(&scene, &view).run,
-            vec!["sky", "display"],
+            vec!["sky"],
             "{}: the sun moves in space",
             model.id
         );
         scene.camera.altitude_m = 1000.0;
         let down = engine.render(&scene, &view).clone();
         assert!(
-            down.passes
+            every_pass_but_display(&down)
                 .iter()
                 .filter(|p| !from_space.contains(p))
                 .all(|p| down.run.contains(p)),
@@ -748,7 +846,8 @@ fn every_model_skips_its_tables_when_only_the_view_or_the_display_changes() {
         let mut scene = with(model, &Scene::default());
         let first = engine.render(&scene, &view).clone();
         assert_eq!(
-            first.run, first.passes,
+            first.run,
+            every_pass_but_display(&first),
             "{}: a new model runs every pass",
             model.id
         );
@@ -760,7 +859,7 @@ fn every_model_skips_its_tables_when_only_the_view_or_the_display_changes() {
         scene.camera.heading_deg += 30.0;
         assert_eq!(
             engine.render(&scene, &view).run,
-            vec!["sky", "display"],
+            vec!["sky"],
             "{}",
             model.id
         );
@@ -773,7 +872,12 @@ fn every_model_skips_its_tables_when_only_the_view_or_the_display_changes() {
         );
         scene.atmosphere.ground_albedo = 0.5;
         let stats = engine.render(&scene, &view).clone();
-        assert_eq!(stats.run, stats.passes, "{}: albedo", model.id);
+        assert_eq!(
+            stats.run,
+            every_pass_but_display(&stats),
+            "{}: albedo",
+            model.id
+        );
     }
     let mut offline = Scene::default();
     offline.render.method = Method::PathTracer;
@@ -1050,7 +1154,6 @@ fn the_display_adds_the_glare_of_its_cpu_twin_around_the_sun() {
     use atmoscope_model::display::{display_balanced, glare, sun_irradiance_rgb, to_u8};
     use atmoscope_model::geometry::direction_from_angles;
     use atmoscope_model::methods::shared::Params;
-    use atmoscope_model::scene::ToneMap;
     let Some(gpu) = context() else { return };
     let (w, h) = (48u32, 27u32);
     let view = View::new(Projection::Perspective, w, h);
@@ -1119,7 +1222,7 @@ fn the_display_adds_the_glare_of_its_cpu_twin_around_the_sun() {
 #[test]
 fn the_display_pass_matches_its_cpu_twin_for_every_tone_map() {
     use atmoscope_model::display::{display_balanced, to_u8, to_u8_dithered};
-    use atmoscope_model::scene::{ToneMap, WhiteBalance};
+    use atmoscope_model::scene::WhiteBalance;
     let Some(gpu) = context() else { return };
     let (w, h) = (48u32, 27u32);
     let view = View::new(Projection::Perspective, w, h);
@@ -1175,6 +1278,52 @@ fn the_display_pass_matches_its_cpu_twin_for_every_tone_map() {
             (mean(&bytes[0]) - mean(&bytes[1])).abs() < 0.3,
             "{tone_map:?}"
         );
+    }
+}
+
+/// The sky pass draws the display image as the display pass does from its radiance: every tone
+/// map, with glare and without, and the luminance map, within a step (the same f32 code in two
+/// shaders), in a twentieth of the bytes at most.
+#[test]
+fn the_sky_pass_displays_what_the_display_pass_shows() {
+    let Some(gpu) = context() else { return };
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    let mut scene = Scene::default();
+    let sun = scene.sun.angles();
+    scene.camera.heading_deg = sun.azimuth_deg + 10.0;
+    scene.camera.pitch_deg = sun.elevation_deg - 5.0;
+    scene.display.exposure_ev = 1.0;
+    let colour = View::new(Projection::Perspective, 48, 27);
+    engine.render(&scene, &colour);
+    for (view, tone_map, glare) in ToneMap::ALL
+        .into_iter()
+        .flat_map(|t| [(colour, t, false), (colour, t, true)])
+        .chain([(colour.luminance(), ToneMap::Exponential, false)])
+    {
+        let name = format!("{:?} {tone_map:?}, glare {glare}", view.mode);
+        scene.display.tone_map = tone_map;
+        scene.display.glare = glare;
+        scene.camera.heading_deg += 0.5;
+        assert_eq!(engine.render(&scene, &view).run, vec!["sky"], "{name}");
+        let by_sky = engine.read_display().expect("display");
+        scene.display.exposure_ev += 1.0;
+        engine.render(&scene, &view);
+        scene.display.exposure_ev -= 1.0;
+        assert_eq!(engine.render(&scene, &view).run, vec!["display"], "{name}");
+        let by_pass = engine.read_display().expect("display");
+        let steps: Vec<u8> = by_sky
+            .iter()
+            .zip(&by_pass)
+            .map(|(a, b)| a.abs_diff(*b))
+            .collect();
+        let worst = steps.iter().copied().max().unwrap_or(0);
+        let differ = steps.iter().filter(|&&d| d > 0).count();
+        assert!(
+            worst <= 1 && differ * DIFFER_AT_MOST_ONE_IN <= steps.len(),
+            "{name}: {worst} steps, {differ} of {} bytes",
+            steps.len()
+        );
+        assert!(by_sky.iter().any(|&b| b > 0), "{name}: an image");
     }
 }
 

@@ -13,16 +13,33 @@
 // indirect dispatch (SKY_TILE_EXACT) computes those tiles pixel by pixel: a branch would not
 // do, as a software GPU runs both sides of it for every lane. The sun's disk is never
 // interpolated: its pixels are drawn by a third dispatch at SKY_TILE = 1.
+//
+// The pass writes the view as displayed (views/tone.wgsl) beside its radiance, so a frame that
+// redraws the sky runs no display pass. A frame in tiles interpolates the displayed colours of
+// the corners and, unless WRITE_RADIANCE (the meter reads it), leaves the radiance image as the
+// last frame at full resolution drew it: a software GPU spends most of a tiled frame writing
+// 16-byte pixels. The engine then redraws the view at full resolution before anything reads the
+// radiance.
 
 override SKY_TILE: u32 = 1u;
 override SKY_TILE_EXACT: bool = false;
+override WRITE_RADIANCE: bool = true;
 
 const TILE_CORNERS_PER_SIDE: u32 = WORKGROUP_SIZE + 1u;
 var<workgroup> tile_corners: array<vec4<f32>, TILE_CORNERS>;
+var<workgroup> tile_corners_shown: array<vec3<f32>, TILE_CORNERS>;
 
 const CORNER_NOTHING: f32 = 0.0;
 const CORNER_SKY: f32 = 1.0;
 const CORNER_GROUND: f32 = 2.0;
+
+// Writes pixel p's radiance l (unless WRITE_RADIANCE is off) and its displayed colour.
+fn store(p: vec2<u32>, l: vec4<f32>) {
+    if WRITE_RADIANCE {
+        textureStore(radiance_out, p, l);
+    }
+    textureStore(display_out, p, displayed(p, l));
+}
 
 // A batch's radiance in linear sRGB.
 fn batch_srgb(layer: u32, l: vec4<f32>) -> vec3<f32> {
@@ -94,7 +111,7 @@ fn main(
     if SKY_TILE <= 1u {
         let id = dispatched(invocation);
         if all(id.xy < globals.view.xy) {
-            textureStore(radiance_out, id.xy, pixel(f32(id.x) + 0.5, f32(id.y) + 0.5));
+            store(id.xy, pixel(f32(id.x) + 0.5, f32(id.y) + 0.5));
         }
         return;
     }
@@ -108,7 +125,7 @@ fn main(
                 for (var i = 0u; i < SKY_TILE; i++) {
                     let p = first + vec2<u32>(i, j);
                     if all(p < globals.view.xy) {
-                        textureStore(radiance_out, p, pixel(f32(p.x) + 0.5, f32(p.y) + 0.5));
+                        store(p, pixel(f32(p.x) + 0.5, f32(p.y) + 0.5));
                     }
                 }
             }
@@ -120,7 +137,9 @@ fn main(
     for (var c = local; c < TILE_CORNERS; c += WORKGROUP_SIZE * WORKGROUP_SIZE) {
         let corner = vec2<u32>(c % TILE_CORNERS_PER_SIDE, c / TILE_CORNERS_PER_SIDE);
         let p = vec2<f32>(base + corner * SKY_TILE);
-        tile_corners[c] = tile_corner(p.x, p.y);
+        let l = tile_corner(p.x, p.y);
+        tile_corners[c] = l;
+        tile_corners_shown[c] = select(shown(p.x, p.y, l.rgb), vec3<f32>(0.0), l.w == CORNER_NOTHING);
     }
     workgroupBarrier();
     let cell = vec2<u32>(local % WORKGROUP_SIZE, local / WORKGROUP_SIZE);
@@ -145,13 +164,21 @@ fn main(
         return;
     }
     let coverage = select(1.0, 0.0, a.w == CORNER_NOTHING);
+    let sa = tile_corners_shown[k];
+    let sb = tile_corners_shown[k + 1u];
+    let sc = tile_corners_shown[k + TILE_CORNERS_PER_SIDE];
+    let sd = tile_corners_shown[k + TILE_CORNERS_PER_SIDE + 1u];
     for (var j = 0u; j < SKY_TILE; j++) {
         for (var i = 0u; i < SKY_TILE; i++) {
             let p = first + vec2<u32>(i, j);
             if all(p < globals.view.xy) {
                 let f = (vec2<f32>(f32(i), f32(j)) + 0.5) / f32(SKY_TILE);
-                let rgb = mix(mix(a.rgb, b.rgb, f.x), mix(c.rgb, d.rgb, f.x), f.y);
-                textureStore(radiance_out, p, vec4<f32>(rgb, coverage));
+                if WRITE_RADIANCE {
+                    let rgb = mix(mix(a.rgb, b.rgb, f.x), mix(c.rgb, d.rgb, f.x), f.y);
+                    textureStore(radiance_out, p, vec4<f32>(rgb, coverage));
+                }
+                let shown_rgb = mix(mix(sa, sb, f.x), mix(sc, sd, f.x), f.y);
+                textureStore(display_out, p, dithered(p, shown_rgb));
             }
         }
     }

@@ -42,6 +42,10 @@ pub struct GpuBench {
     /// pixel). Default: the explorer's for the adapter, 4 on a software adapter, 1 on a GPU.
     #[arg(long, value_name = "PIXELS", value_parser = clap::value_parser!(u32).range(1..=16))]
     pub sky_tile: Option<u32>,
+    /// Whether the sky pass runs in bands of what the rows see, the sun's disk apart, or as
+    /// one dispatch. Default: the explorer's for the adapter, bands on a software adapter.
+    #[arg(long, value_name = "true|false")]
+    pub bands: Option<bool>,
     #[arg(long)]
     pub json: bool,
 }
@@ -56,17 +60,21 @@ struct GpuRow {
     lut_total_ms: f64,
     /// Tile of the sky pass in the moving frames (`--sky-tile`).
     sky_tile: u32,
-    /// Median milliseconds of the sky and display passes of a frame with the camera turning.
+    /// Whether the sky pass ran in bands (`--bands`).
+    view_bands: bool,
+    /// Median milliseconds of the sky pass of a frame with the camera turning (it draws the
+    /// display image too), and of the display pass in a frame that changes only the exposure.
     sky_ms: f64,
     display_ms: f64,
     /// Median milliseconds of the sky pass at full resolution, as in the first still frame
     /// after a move.
     sky_still_ms: f64,
+    /// Median of every pass a frame with the camera turning runs.
     frame_gpu_ms: f64,
     /// Median wall time of a turning-camera frame from `render` to the GPU being idle.
     frame_wall_ms: f64,
     /// Median of every pass a change of the sun's elevation runs (the tables it invalidates,
-    /// the sky and the display).
+    /// and the sky, which draws the display image too).
     sun_move_ms: f64,
     /// Median of the floor pass: a trivial full-screen pass of the same size and output
     /// format, timed the same way in the same run.
@@ -147,9 +155,13 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
     let base = args.scene.scene()?;
     let context = gpu()?;
     eprintln!("adapter: {}", context.describe());
-    let sky_tile = args.sky_tile.unwrap_or_else(|| {
-        atmoscope_render::views::moving_sky_tile(context.device.adapter_info().device_type)
-    });
+    let device_type = context.device.adapter_info().device_type;
+    let sky_tile = args
+        .sky_tile
+        .unwrap_or_else(|| atmoscope_render::views::moving_sky_tile(device_type));
+    let view_bands = args
+        .bands
+        .unwrap_or_else(|| atmoscope_render::views::view_bands(device_type));
     let (w, h) = args.size;
     let view = View::new(Projection::Perspective, w, h);
     let repeats = args.repeats.max(1);
@@ -177,6 +189,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         let mut engine = Engine::new(&context.device, &context.queue);
         engine.set_timing(true);
         engine.set_sky_tile(sky_tile);
+        engine.set_view_bands(view_bands);
         if args.cpu_timing {
             engine.force_cpu_timing();
         }
@@ -191,7 +204,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
                 times.extend(stats.ms(pass));
             }
         }
-        let (mut sky, mut display, mut wall) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut sky, mut frame, mut wall) = (Vec::new(), Vec::new(), Vec::new());
         let mut sky_still = Vec::new();
         for i in 0..repeats {
             scene.camera.heading_deg = (base.camera.heading_deg + 1.0 + i as f64) % 360.0;
@@ -200,11 +213,17 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             engine.wait();
             wall.push(start.elapsed().as_secs_f64() * 1e3);
             sky.extend(stats.ms("sky"));
-            display.extend(stats.ms("display"));
+            frame.push(stats.timings_ms.iter().map(|(_, ms)| ms).sum::<f64>());
             // The scene holds still: a frame in tiles is redrawn at full resolution.
             let still = engine.render(&scene, &view).clone();
             sky_still.extend(still.ms("sky").or(stats.ms("sky")));
         }
+        let mut display = Vec::new();
+        for i in 0..repeats {
+            scene.display.exposure_ev = base.display.exposure_ev + 0.01 * (i + 1) as f64;
+            display.extend(engine.render(&scene, &view).ms("display"));
+        }
+        scene.display.exposure_ev = base.display.exposure_ev;
         let sun = base.sun.angles();
         let mut sun_moves = Vec::new();
         for i in 0..repeats {
@@ -238,7 +257,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             .into_iter()
             .map(|(p, v)| (p.to_string(), median(v)))
             .collect();
-        let (sky_ms, display_ms) = (median(sky), median(display));
+        let (sky_ms, display_ms, frame_ms) = (median(sky), median(display), median(frame));
         // + 0.0: an empty sum is −0.0, which would print as "-0.00" for a table-free model.
         let lut_total_ms: f64 = lut_ms.iter().map(|(_, ms)| ms).sum::<f64>() + 0.0;
         let sun_move_ms = median(sun_moves);
@@ -249,14 +268,15 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             lut_total_ms,
             lut_ms,
             sky_tile,
+            view_bands,
             sky_ms,
             display_ms,
             sky_still_ms: median(sky_still),
-            frame_gpu_ms: sky_ms + display_ms,
+            frame_gpu_ms: frame_ms,
             frame_wall_ms: median(wall),
             sun_move_ms,
             floor_ms,
-            frame_floors: (sky_ms + display_ms) / floor_ms,
+            frame_floors: frame_ms / floor_ms,
             sun_move_floors: sun_move_ms / floor_ms,
             tables_floors: lut_total_ms / floor_ms,
             rebuild_whole_ms,
@@ -270,8 +290,13 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::SUCCESS);
     }
     println!(
-        "{w}x{h} perspective, median of {repeats}; times from {}; moving frames draw the sky in {t}×{t} tiles, a still frame every pixel",
+        "{w}x{h} perspective, median of {repeats}; times from {}; moving frames draw the sky in {t}×{t} tiles, a still frame every pixel; the sky pass {}",
         rows.first().map_or("", |r| r.timing.as_str()),
+        if view_bands {
+            "in bands, the sun's disk apart"
+        } else {
+            "in one dispatch"
+        },
         t = sky_tile
     );
     println!(

@@ -90,11 +90,11 @@ impl GpuView {
         let mut engine = Engine::new(&gpu.device, &gpu.queue);
         engine.set_timing(true);
         engine.set_rebuild_slices(gpu.rebuild_slice);
-        // On a software adapter a view in motion draws its sky in tiles; it sharpens in the
-        // first still frame.
-        engine.set_sky_tile(atmoscope_render::views::moving_sky_tile(
-            gpu.device.adapter_info().device_type,
-        ));
+        // On a software adapter a view in motion draws its sky in tiles (it sharpens in the
+        // first still frame) and in bands; on a GPU every pixel, in one dispatch.
+        let device_type = gpu.device.adapter_info().device_type;
+        engine.set_sky_tile(atmoscope_render::views::moving_sky_tile(device_type));
+        engine.set_view_bands(atmoscope_render::views::view_bands(device_type));
         if gpu.software {
             engine.force_cpu_timing();
         }

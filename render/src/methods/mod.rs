@@ -64,6 +64,12 @@ pub enum Constant {
     SkyTile,
     /// Whether the dispatch computes, pixel by pixel, the tiles listed in [`EXACT_TILES`].
     SkyTileExact,
+    /// Whether the display adds the veiling glare around the sun (`display.glare`, colour
+    /// only).
+    Glare,
+    /// Whether the sky pass writes [`RADIANCE`]: always but in a frame drawn in tiles that
+    /// nothing meters, which writes the display image alone.
+    WriteRadiance,
 }
 
 impl Constant {
@@ -78,6 +84,8 @@ impl Constant {
             Constant::ViewRegion => "VIEW_REGION",
             Constant::SkyTile => "SKY_TILE",
             Constant::SkyTileExact => "SKY_TILE_EXACT",
+            Constant::Glare => "GLARE",
+            Constant::WriteRadiance => "WRITE_RADIANCE",
         }
     }
 }
@@ -175,13 +183,15 @@ impl PassSpec {
     }
 
     /// A model's sky pass: draws the view from the tables it reads, compiled per projection
-    /// and per camera inside or above the atmosphere.
+    /// and per camera inside or above the atmosphere. It writes the radiance and the view as
+    /// displayed, so the display pass runs only in frames that leave the sky as it was; the
+    /// display settings are not among its inputs for the same reason.
     pub const fn sky(shader: Shader, reads: &'static [&'static str]) -> PassSpec {
         PassSpec {
             name: "sky",
             shader,
             reads,
-            writes: &[RADIANCE, EXACT_TILES],
+            writes: &[RADIANCE, DISPLAY, EXACT_TILES],
             inputs: SKY_INPUTS,
             dispatch: Dispatch::View,
             constants: &[
@@ -191,6 +201,10 @@ impl PassSpec {
                 Constant::ViewRegion,
                 Constant::SkyTile,
                 Constant::SkyTileExact,
+                Constant::DisplayMode,
+                Constant::ToneMap,
+                Constant::Glare,
+                Constant::WriteRadiance,
             ],
             repeat: Repeat::Once,
             reads_above_atmosphere: None,
@@ -291,7 +305,9 @@ impl GpuMethod {
     }
 }
 
-/// The display pass every model ends with: radiance → exposure, tone map, sRGB or false colour.
+/// The display pass every model ends with: radiance → exposure, tone map, sRGB or false colour
+/// (`shaders/views/tone.wgsl`, which the sky pass applies too). It runs in frames that change
+/// the display but not the sky: a frame whose sky pass ran has its display image already.
 pub const DISPLAY_PASS: PassSpec = PassSpec {
     name: "display",
     shader: shader!("views/display.wgsl"),
@@ -303,6 +319,7 @@ pub const DISPLAY_PASS: PassSpec = PassSpec {
     constants: &[
         Constant::DisplayMode,
         Constant::ToneMap,
+        Constant::Glare,
         Constant::Projection,
     ],
     repeat: Repeat::Once,
@@ -406,6 +423,10 @@ pub const SUN_DISK_FROM_TABLE: Shader = shader!("shared/sun_disk.wgsl");
 
 /// The entry point every sky pass ends with; the pass's own file defines `radiance(layer, dir)`.
 pub const SKY_ENTRY_POINT: Shader = shader!("views/sky.wgsl");
+
+/// What the display shows of a pixel's radiance, included by every pass that writes
+/// [`DISPLAY`] (the sky pass and the display pass) before the pass's own file.
+pub const TONE: Shader = shader!("views/tone.wgsl");
 
 /// What every sky pass reads besides its tables.
 pub const SKY_INPUTS: Inputs = Inputs::VIEWPOINT
