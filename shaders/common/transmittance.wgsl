@@ -35,6 +35,13 @@ fn transmittance(layer: u32, h: f32, mu: f32) -> vec4<f32> {
         transmittance_lut[t.i.w], t.w);
 }
 
+// Transmittance straight up from the ground, T(0, 1): the table's first texel, where its
+// mapping puts h = 0, mu = 1. One read where a look-up costs four and their blend; twin of
+// shared::transmittance::ground_to_top.
+fn transmittance_ground_to_top(layer: u32) -> vec4<f32> {
+    return transmittance_lut[layer * TRANSMITTANCE_SIZE.x * TRANSMITTANCE_SIZE.y];
+}
+
 // The fraction of the sun's disk above the horizon seen from altitude h with the sun at zenith
 // cosine mu_s (Earth's shadow with its penumbra); twin of shared::sun::visible_fraction.
 fn sun_visible_fraction(h: f32, mu_s: f32) -> f32 {

@@ -21,7 +21,7 @@ fn ground_solid_angle(h: f32) -> f32 {
 fn ground_bounce(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
     let albedo = batches[layer].ground_albedo;
     let t_ground_sun = sun_transmittance(layer, 0.0, mu_s);
-    let t_vertical = min(transmittance(layer, 0.0, 1.0) / max(transmittance(layer, h, 1.0), vec4<f32>(1e-30)),
+    let t_vertical = min(transmittance_ground_to_top(layer) / max(transmittance(layer, h, 1.0), vec4<f32>(1e-30)),
         vec4<f32>(1.0));
     let k = ground_solid_angle(h) / (4.0 * PI) * max(mu_s, 0.0) / PI;
     return k * albedo * t_ground_sun * t_vertical;

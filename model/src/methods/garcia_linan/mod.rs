@@ -146,7 +146,7 @@ pub fn ground_solid_angle(h: f64, big_r: f64) -> f64 {
 pub fn ground_bounce(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -> Lanes {
     let albedo = p.batches[layer].ground_albedo;
     let t_ground_sun = sun_transmittance(p, t, layer, 0.0, mu_s);
-    let t_up_ground = transmittance::transmittance(p, t, layer, 0.0, 1.0);
+    let t_up_ground = transmittance::ground_to_top(t, layer);
     let t_up_here = transmittance::transmittance(p, t, layer, h, 1.0);
     let k = ground_solid_angle(h, p.bottom_radius_m) / (4.0 * PI) * mu_s.max(0.0) / PI;
     std::array::from_fn(|i| {

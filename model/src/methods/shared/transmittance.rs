@@ -76,6 +76,12 @@ pub fn transmittance(p: &Params, t: &Lut, layer: usize, h: f64, mu: f64) -> Lane
     t.bilinear(layer, fx, fy, 0)
 }
 
+/// Transmittance straight up from the ground, T(0, 1): the table's first texel, where its
+/// mapping puts h = 0, mu = 1 (one read where a look-up blends four).
+pub fn ground_to_top(t: &Lut, layer: usize) -> Lanes {
+    t.texel(layer, 0, 0, 0)
+}
+
 /// Transmittance to the sun from (h, mu_s), times the visible fraction of the sun's disk above
 /// the horizon (Earth's shadow with its penumbra, as in Bruneton 2017).
 pub fn sun_transmittance(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -> Lanes {
@@ -177,6 +183,29 @@ mod tests {
             assert!((h2 - h).abs() < 1e-6 * (1.0 + h), "h {h} -> {h2}");
             assert!((mu2 - mu).abs() < 1e-9, "mu {mu} -> {mu2} at h {h}");
         }
+    }
+
+    /// The first texel is the look-up at h = 0, mu = 1, in every layer (the GPU's
+    /// `transmittance_ground_to_top` reads it so).
+    #[test]
+    fn the_first_texel_is_the_transmittance_straight_up_from_the_ground() {
+        let scene = Scene::default();
+        let p = Params::new(
+            &Atmosphere::for_scene(&scene),
+            WavelengthSet::SpectralN(8),
+            Quality::Low,
+        );
+        let t = compute_transmittance_lut(&p);
+        assert_eq!(transmittance_texel_from_h_mu(&p, 0.0, 1.0), (0.0, 0.0));
+        for layer in 0..p.batches.len() {
+            let (corner, lookup) = (
+                ground_to_top(&t, layer),
+                transmittance(&p, &t, layer, 0.0, 1.0),
+            );
+            assert_eq!(corner, lookup, "layer {layer}");
+            assert!(corner.iter().all(|&v| v > 0.0 && v < 1.0), "{corner:?}");
+        }
+        assert_ne!(ground_to_top(&t, 0), ground_to_top(&t, 1));
     }
 
     #[test]
