@@ -339,8 +339,10 @@ impl<'a> PathTracer<'a> {
     fn intervals(&self, ray: &Ray, start: f64, end: f64) -> Intervals {
         let (r, mu) = ray.r_mu();
         // Stack buffers: this runs several times per path, and allocation dominated its cost.
-        let mut cuts = [0.0f64; MAX_CUTS];
-        cuts[0] = start;
+        // Each cut carries the change of shell index across it: −1 where the ray goes down
+        // through a shell boundary (its near root), +1 where it comes back up (its far root).
+        let mut cuts = [(0.0f64, 0isize); MAX_CUTS];
+        cuts[0] = (start, 0);
         let mut n = 1;
         // The near roots of the shells, outermost first, then the far roots, innermost first,
         // come in order along the ray: no sort, except where rounding near a tangent disagrees.
@@ -350,7 +352,7 @@ impl<'a> PathTracer<'a> {
         for &radius in inner.iter().rev() {
             if let Some((a, b)) = sphere_distances(r, mu, radius) {
                 if a > start && a < end {
-                    cuts[n] = a;
+                    cuts[n] = (a, -1);
                     n += 1;
                 }
                 if b > start && b < end {
@@ -360,32 +362,49 @@ impl<'a> PathTracer<'a> {
             }
         }
         for &t in far[..n_far].iter().rev() {
-            cuts[n] = t;
+            cuts[n] = (t, 1);
             n += 1;
         }
-        cuts[n] = end;
+        cuts[n] = (end, 0);
         n += 1;
         let cuts = &mut cuts[..n];
-        if !cuts.is_sorted() {
-            cuts.sort_unstable_by(f64::total_cmp);
+        // In order, each interval's shell follows from the first one's and the cuts between;
+        // where rounding put cuts out of order, each interval's middle decides.
+        let ordered = cuts.is_sorted_by(|a, b| a.0 <= b.0);
+        if !ordered {
+            cuts.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
         }
         let mut out = Intervals {
             items: [(0.0, 0.0, 0); MAX_CUTS],
             len: 0,
         };
+        let mut shell: Option<isize> = None;
+        let mut crossed = 0;
         for w in cuts.windows(2) {
-            if w[1] > w[0] {
-                let mid = crate::geometry::radius_at(r, mu, 0.5 * (w[0] + w[1]));
-                let shell = self
-                    .shell_radii
-                    .partition_point(|&s| s <= mid)
-                    .saturating_sub(1)
-                    .min(self.shells.len() - 1);
-                out.items[out.len] = (w[0], w[1], shell);
+            crossed += w[0].1;
+            let (a, b) = (w[0].0, w[1].0);
+            if b > a {
+                let s = match shell {
+                    Some(s) if ordered => s + crossed,
+                    _ => self.shell_at(r, mu, 0.5 * (a + b)) as isize,
+                };
+                shell = Some(s);
+                crossed = 0;
+                let s = s.clamp(0, self.shells.len() as isize - 1) as usize;
+                out.items[out.len] = (a, b, s);
                 out.len += 1;
             }
         }
         out
+    }
+
+    /// The shell holding the point at distance `t` along the ray from (r, mu).
+    fn shell_at(&self, r: f64, mu: f64, t: f64) -> usize {
+        let radius = crate::geometry::radius_at(r, mu, t);
+        self.shell_radii
+            .partition_point(|&s| s <= radius)
+            .saturating_sub(1)
+            .min(self.shells.len() - 1)
     }
 
     /// Transmittance along the ray from its origin out of the atmosphere; zero when the ray
@@ -696,6 +715,55 @@ impl<'a> PathTracer<'a> {
 mod tests {
     use super::*;
     use crate::scene::AtmosphereSettings;
+
+    /// Each interval's shell, carried from cut to cut, is the shell of its middle, for rays
+    /// from the ground, the sky and space, up, down, level and grazing shell boundaries; the
+    /// intervals tile the segment.
+    #[test]
+    fn intervals_carry_the_shell_of_their_middle() {
+        let atmosphere = Atmosphere::new(&AtmosphereSettings::default());
+        let tracer = PathTracer::new(&atmosphere, DVec3::Z, PathTracerSettings::default());
+        let bottom = atmosphere.bottom_radius_m;
+        let mut rng = Rng::new(7, 0, 0);
+        let mut checked = 0;
+        for k in 0..4000 {
+            let h = match k % 4 {
+                0 => 0.5,
+                1 => rng.uniform() * 20_000.0,
+                2 => rng.uniform() * atmosphere.thickness_m(),
+                _ => SHELL_ALTITUDES_M[k % SHELL_ALTITUDES_M.len()] + 1e-3,
+            };
+            // Every kind of direction, and some a hair below the horizon (grazing shells).
+            let mu = if k % 3 == 0 {
+                -1e-4 * rng.uniform()
+            } else {
+                2.0 * rng.uniform() - 1.0
+            };
+            let ray = Ray::new(
+                DVec3::new(0.0, 0.0, bottom + h),
+                DVec3::new((1.0 - mu * mu).sqrt(), 0.0, mu),
+            );
+            let Some(seg) = tracer.segment(&ray) else {
+                continue;
+            };
+            let (r, mu) = ray.r_mu();
+            let intervals = tracer.intervals(&ray, seg.start, seg.end);
+            assert_eq!(intervals[0].0, seg.start);
+            assert_eq!(intervals[intervals.len() - 1].1, seg.end);
+            for w in intervals.windows(2) {
+                assert_eq!(w[0].1, w[1].0, "intervals meet");
+            }
+            for &(a, b, shell) in intervals.iter() {
+                assert_eq!(
+                    shell,
+                    tracer.shell_at(r, mu, 0.5 * (a + b)),
+                    "h {h}, mu {mu}: [{a}, {b}]"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked > 40_000, "{checked}");
+    }
 
     #[test]
     fn the_density_table_follows_the_profiles_and_keeps_their_steps() {
