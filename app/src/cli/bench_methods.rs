@@ -498,7 +498,7 @@ struct Header<'a> {
 fn summary_markdown(configs: &[Config], h: &Header) -> String {
     let mut s = String::from("# Sky models: run time against error\n\n");
     s += &format!(
-        "Adapter: {}. Frame time: sky and display passes of a {}×{} frame, median of up to {} (fewer after 2 s; {}){}. \
+        "Adapter: {}. Frame time: the passes of a {}×{} frame with the camera turning (the sky pass draws the displayed image too), median of up to {} (fewer after 2 s; {}){}. \
          Precompute: the table passes of a full rebuild, timed the same way (median of up to 3, fewer after 2 s). \
          Error against path-traced references of {} view(s): {}. Measured in {:.0} s.\n\n",
         h.adapter,
