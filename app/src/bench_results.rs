@@ -33,7 +33,7 @@ pub struct Row {
     pub view: String,
     /// The table passes of a full rebuild for the view's scene, ms.
     pub precompute_ms: f64,
-    /// The sky and display passes of a frame with the camera turning, ms; None where the run
+    /// The passes of a frame with the camera turning (the sky pass, drawing the display image), ms; None where the run
     /// timed no frame on this view (`--full` times frames on the quick views only).
     pub frame_ms: Option<f64>,
     /// GPU memory of the model's tables, bytes.

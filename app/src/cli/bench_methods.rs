@@ -1,6 +1,6 @@
 //! `atmoscope bench methods`: every model × wavelength set × quality over views of the suite,
 //! run time against error on one chart. Per view it measures the table precompute (the table
-//! passes of a full rebuild), a frame with the camera turning (sky and display passes), the tables' memory,
+//! passes of a full rebuild), a frame with the camera turning (the passes it runs), the tables' memory,
 //! and the error of the view against its path-traced reference (ΔE2000 mean and p95, HDR-FLIP,
 //! relative RMSE of luminance outside the sun's disk); it writes `results.csv`, `summary.md` and the Pareto chart
 //! (`pareto.svg`, `pareto.png`) of frame time against mean ΔE2000.
