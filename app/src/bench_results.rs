@@ -33,8 +33,9 @@ pub struct Row {
     pub view: String,
     /// The table passes of a full rebuild for the view's scene, ms.
     pub precompute_ms: f64,
-    /// The passes of a frame with the camera turning (the sky pass, drawing the display image), ms; None where the run
-    /// timed no frame on this view (`--full` times frames on the quick views only).
+    /// The passes of a frame with the camera turning (the sky pass, which draws the displayed
+    /// image too), ms; None where the run timed no frame on this view (`--full` times frames
+    /// on the quick views only).
     pub frame_ms: Option<f64>,
     /// GPU memory of the model's tables, bytes.
     pub table_bytes: u64,

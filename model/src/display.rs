@@ -8,7 +8,8 @@
 //! Optional veiling glare around the sun ([`glare`]): the Stiles–Holladay law of disability
 //! glare as the CIE gives it (CIE 146:2002), the radiance a bright source adds by scattering in
 //! the eye, 10·E/θ² (θ in degrees from the source, E its irradiance at the eye).
-//! The GPU's display pass (`shaders/views/display.wgsl`) is the f32 twin of this module.
+//! `shaders/views/tone.wgsl`, which the sky pass and the display pass apply, is the f32 twin of
+//! this module.
 
 use crate::colour::srgb_encode;
 use crate::scene::ToneMap;

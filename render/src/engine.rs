@@ -826,8 +826,10 @@ impl Engine {
     /// Draws the sky of a frame that redraws because its inputs changed (a view in motion) at
     /// the corners of `tile` × `tile` tiles, interpolated inside those that are smooth
     /// (`shaders/views/sky.wgsl`), and the first frame after it whose inputs did not change at
-    /// full resolution, so a still view is exact. 1 (the default) draws every frame at full
-    /// resolution; at most 16.
+    /// full resolution, so a still view is exact. Such a frame writes the displayed image
+    /// alone unless the engine meters (`set_metering`): a frame that changes only the display
+    /// after it redraws the view at full resolution too, and `read_radiance` waits for that.
+    /// 1 (the default) draws every frame at full resolution; at most 16.
     pub fn set_sky_tile(&mut self, tile: u32) {
         let tile = tile.clamp(1, 16);
         if tile != self.sky_tile {
@@ -1084,12 +1086,15 @@ impl Engine {
             self.tiled_on_screen = false;
             self.radiance_current = true;
         }
-        // A still frame after one in tiles, or one that changes only the display (whose pass
-        // would read a radiance image the tiles did not write), draws the view again at full
-        // resolution.
-        let refine = self.tiled_on_screen
-            && progress.is_none()
-            && Inputs::DISPLAY.union(changed) == Inputs::DISPLAY;
+        // The view is drawn again at full resolution by a still frame after one in tiles, and
+        // by a frame that changes only the display or meters while the radiance image is not
+        // the one on screen (a frame in tiles left it unwritten): the display and meter passes
+        // would read it. The latter holds during a rebuild in slices too.
+        let display_only = Inputs::DISPLAY.union(changed) == Inputs::DISPLAY;
+        let still_after_tiles = self.tiled_on_screen && progress.is_none() && changed.is_empty();
+        let radiance_read =
+            !self.radiance_current && (changed.intersects(Inputs::DISPLAY) || self.metering);
+        let refine = display_only && (still_after_tiles || radiance_read);
         if refine {
             changed = changed.union(Inputs::VIEW_SIZE);
         }
@@ -1365,7 +1370,7 @@ impl Engine {
         if let Some(l) = metered {
             shown.display.exposure_ev =
                 atmoscope_model::display::metered_exposure_ev(l, scene.display.compensation_ev);
-            // Only the display pass runs again.
+            // Only the display pass runs again (with tiles, after one at full resolution).
             self.try_render(&shown, view)?;
         }
         Ok((shown, metered))

@@ -194,7 +194,7 @@ impl From<&FrameInputs<'_>> for Globals {
             ],
             glare: f
                 .glare
-                .map_or([0.0; 4], |e| [e[0] as f32, e[1] as f32, e[2] as f32, 1.0]),
+                .map_or([0.0; 4], |e| [e[0] as f32, e[1] as f32, e[2] as f32, 0.0]),
             white_balance: f
                 .balance
                 .map(|r| [r[0] as f32, r[1] as f32, r[2] as f32, 0.0]),

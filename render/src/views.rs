@@ -18,7 +18,7 @@ pub const FALSE_COLOUR_STOPS: [[f64; 3]; 9] = [
     [0.48, 0.02, 0.01],
 ];
 
-/// Display sRGB of position `t` ∈ [0, 1] on the false-colour scale (twin of display.wgsl).
+/// Display sRGB of position `t` ∈ [0, 1] on the false-colour scale (twin of views/tone.wgsl).
 pub fn false_colour(t: f64) -> [f64; 3] {
     let n = FALSE_COLOUR_STOPS.len();
     let x = t.clamp(0.0, 1.0) * (n - 1) as f64;

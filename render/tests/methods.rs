@@ -495,6 +495,8 @@ fn a_moving_frame_in_tiles_is_close_and_the_still_frame_after_it_exact() {
         azimuth_deg: 180.0,
     };
     horizon.camera.heading_deg = 170.0;
+    // The glare's 1/θ² around the sun, in view, must not be smeared by the tiles either.
+    horizon.display.glare = true;
     let mut space = Scene::default();
     space.camera.altitude_m = 400_000.0;
     space.camera.pitch_deg = -70.0;
@@ -570,10 +572,26 @@ fn a_moving_frame_in_tiles_is_close_and_the_still_frame_after_it_exact() {
             let after = engine.render(&scene, &view).run.clone();
             assert!(after.is_empty(), "{name}: then nothing, ran {after:?}");
 
-            // The meter reads the radiance of every frame: in motion too.
-            engine.set_metering(true);
+            // A change of the display alone after tiles draws the view at full resolution: the
+            // display pass would read a radiance image the tiles did not write.
             let mut turned = scene.clone();
             turned.camera.heading_deg += 1.0;
+            engine.render(&turned, &view);
+            turned.display.exposure_ev += 1.0;
+            assert_eq!(
+                engine.render(&turned, &view).run,
+                vec!["sky"],
+                "{name}: exposure after tiles"
+            );
+            assert!(
+                engine.read_radiance().is_ok() && !engine.settling(),
+                "{name}"
+            );
+            engine.render(&scene, &view);
+            engine.render(&scene, &view);
+
+            // The meter reads the radiance of every frame: in motion too.
+            engine.set_metering(true);
             engine.render(&turned, &view);
             engine.render(&scene, &view);
             assert!(engine.settling(), "{name}: metered, in tiles");
@@ -583,13 +601,19 @@ fn a_moving_frame_in_tiles_is_close_and_the_still_frame_after_it_exact() {
                 &exact,
                 DisplaySetup::default(),
             );
-            // A change of the display alone after tiles draws the view at full resolution.
+            // Metered tiles wrote their radiance: a change of the display alone reads it, and
+            // the still frame after it draws the view at full resolution.
             let mut brighter = scene.clone();
             brighter.display.exposure_ev += 1.0;
             assert_eq!(
                 engine.render(&brighter, &view).run,
+                vec!["display"],
+                "{name}: display after metered tiles"
+            );
+            assert_eq!(
+                engine.render(&brighter, &view).run,
                 vec!["sky", "meter"],
-                "{name}: display after tiles"
+                "{name}: still after metered tiles"
             );
             assert_eq!(radiance_image(&engine), exact, "{name}: exact after tiles");
         }
@@ -598,7 +622,7 @@ fn a_moving_frame_in_tiles_is_close_and_the_still_frame_after_it_exact() {
 
 /// A GPU draws the sky in one dispatch that decides sky, ground and the sun's disk per pixel
 /// (`Engine::set_view_bands(false)`), a software GPU in bands of rows with the disk apart: the
-/// same image, at the horizon, the sun and from space, still and in tiles.
+/// same image, at the horizon, the sun and from space.
 #[test]
 fn the_sky_in_one_dispatch_is_the_sky_in_bands() {
     let Some(gpu) = context() else { return };
@@ -1104,6 +1128,17 @@ fn a_rebuild_in_slices_gives_the_same_tables_as_a_whole_one() {
             .fold(0.0, f64::max);
         assert!(worst <= 1e-6, "{}: {worst}", model.id);
         assert_ne!(radiance_image(&sliced), old_image, "{}", model.id);
+        // The displayed image comes from the sky pass's slices: the same within a step.
+        let (a, b) = (
+            sliced.read_display().expect("display"),
+            whole.read_display().expect("display"),
+        );
+        let steps = a.iter().zip(&b).map(|(x, y)| x.abs_diff(*y)).max();
+        assert!(
+            steps <= Some(1),
+            "{}: displayed {steps:?} steps apart",
+            model.id
+        );
     }
 }
 
@@ -1172,9 +1207,23 @@ fn the_display_adds_the_glare_of_its_cpu_twin_around_the_sun() {
     );
     scene.display.glare = true;
     engine.render(&scene, &view);
-    let radiance = engine.read_radiance().expect("radiance");
     let shown = engine.read_display().expect("display");
+    // A fresh engine draws the view with its sky pass, which draws the glare too.
+    let mut fresh = Engine::new(&gpu.device, &gpu.queue);
+    fresh.render(&scene, &view);
+    let radiance = fresh.read_radiance().expect("radiance");
     assert_eq!(radiance, plain_radiance, "glare never reaches the radiance");
+    let steps = fresh
+        .read_display()
+        .expect("display")
+        .iter()
+        .zip(&shown)
+        .map(|(a, b)| a.abs_diff(*b))
+        .max();
+    assert!(
+        steps <= Some(1),
+        "the sky pass's glare: {steps:?} steps from the display pass's"
+    );
     assert_ne!(shown, plain, "glare shows");
     let p = Params::new(
         &atmoscope_model::Atmosphere::for_scene(&scene),

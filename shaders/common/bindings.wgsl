@@ -32,8 +32,8 @@ struct Globals {
     steps_b: vec4<u32>,
     // exposure scale, log10 luminance min and max (cd/m²), 1 to dither the 8-bit image (else 0)
     display: vec4<f32>,
-    // the sun's irradiance at the camera (linear sRGB, W/m²) and 1 where the display adds its
-    // veiling glare (model::display::glare), else 0
+    // the sun's irradiance at the camera (linear sRGB, W/m²) where the display adds its veiling
+    // glare (the GLARE pipeline constant; model::display::glare), else 0; w unused
     glare: vec4<f32>,
     // white balance matrix rows on linear sRGB (model::white_balance), w unused
     white_balance: array<vec4<f32>, 3>,

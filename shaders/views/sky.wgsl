@@ -18,8 +18,10 @@
 // redraws the sky runs no display pass. A frame in tiles interpolates the displayed colours of
 // the corners and, unless WRITE_RADIANCE (the meter reads it), leaves the radiance image as the
 // last frame at full resolution drew it: a software GPU spends most of a tiled frame writing
-// 16-byte pixels. The engine then redraws the view at full resolution before anything reads the
-// radiance.
+// 16-byte pixels. The engine then redraws the view at full resolution before the display or
+// meter pass reads the radiance (Engine::read_radiance waits for it too). With glare, whose
+// 1/θ² is steep near the sun, a tile is interpolated only where the corners' displayed colours
+// are smooth as well.
 
 override SKY_TILE: u32 = 1u;
 override SKY_TILE_EXACT: bool = false;
@@ -95,8 +97,13 @@ fn tile_is_smooth(a: vec4<f32>, b: vec4<f32>, c: vec4<f32>, d: vec4<f32>) -> boo
     if a.w != b.w || a.w != c.w || a.w != d.w {
         return false;
     }
-    let hi = max(max(a.rgb, b.rgb), max(c.rgb, d.rgb));
-    let lo = min(min(a.rgb, b.rgb), min(c.rgb, d.rgb));
+    return spread_is_small(a.rgb, b.rgb, c.rgb, d.rgb);
+}
+
+// Whether four colours differ by at most SKY_TILE_CONTRAST per channel.
+fn spread_is_small(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>, d: vec3<f32>) -> bool {
+    let hi = max(max(a, b), max(c, d));
+    let lo = min(min(a, b), min(c, d));
     // Out-of-gamut colours have negative channels: the spread is measured against the larger
     // magnitude.
     return all(hi - lo <= SKY_TILE_CONTRAST * max(abs(hi), abs(lo)));
@@ -152,7 +159,11 @@ fn main(
     let b = tile_corners[k + 1u];
     let c = tile_corners[k + TILE_CORNERS_PER_SIDE];
     let d = tile_corners[k + TILE_CORNERS_PER_SIDE + 1u];
-    if !tile_is_smooth(a, b, c, d) {
+    let sa = tile_corners_shown[k];
+    let sb = tile_corners_shown[k + 1u];
+    let sc = tile_corners_shown[k + TILE_CORNERS_PER_SIDE];
+    let sd = tile_corners_shown[k + TILE_CORNERS_PER_SIDE + 1u];
+    if !tile_is_smooth(a, b, c, d) || (GLARE && !spread_is_small(sa, sb, sc, sd)) {
         let n = atomicAdd(&exact_tiles.count, 1u);
         if n < arrayLength(&exact_tiles.tiles) {
             let t = first / SKY_TILE;
@@ -164,10 +175,6 @@ fn main(
         return;
     }
     let coverage = select(1.0, 0.0, a.w == CORNER_NOTHING);
-    let sa = tile_corners_shown[k];
-    let sb = tile_corners_shown[k + 1u];
-    let sc = tile_corners_shown[k + TILE_CORNERS_PER_SIDE];
-    let sd = tile_corners_shown[k + TILE_CORNERS_PER_SIDE + 1u];
     for (var j = 0u; j < SKY_TILE; j++) {
         for (var i = 0u; i < SKY_TILE; i++) {
             let p = first + vec2<u32>(i, j);

@@ -64,7 +64,12 @@ impl Views {
 
     /// Whether any view needs more frames of the same scene (`GpuView::settling`).
     fn settling(&self) -> bool {
-        self.main.settling() || self.compare.as_ref().is_some_and(CompareTab::settling)
+        self.main.settling()
+            || self.compare.as_ref().is_some_and(CompareTab::settling)
+            || self
+                .reference
+                .as_ref()
+                .is_some_and(|r| r.realtime().settling())
     }
 }
 

@@ -507,6 +507,23 @@ pub fn binding_of(name: &str) -> Option<u32> {
 mod tests {
     use super::*;
 
+    /// No pass takes more pipeline constants than a variant holds (`passes::MAX_CONSTANTS`): one
+    /// more would be dropped and compiled at its default.
+    #[test]
+    fn no_pass_takes_more_constants_than_a_variant_holds() {
+        for method in GPU_METHODS {
+            for pass in method.passes.iter().chain(&VIEW_PASSES) {
+                assert!(
+                    pass.constants.len() <= crate::passes::MAX_CONSTANTS,
+                    "{:?} {}: {} constants",
+                    method.method,
+                    pass.name,
+                    pass.constants.len()
+                );
+            }
+        }
+    }
+
     #[test]
     fn every_real_time_model_of_the_registry_has_passes_and_every_table_a_writer() {
         for row in methods::realtime() {
