@@ -648,14 +648,7 @@ impl<'a> PathTracer<'a> {
                 None => break,
             }
             if order >= 2 {
-                static W: std::sync::OnceLock<f64> = std::sync::OnceLock::new();
-                let ww = *W.get_or_init(|| {
-                    std::env::var("PT_RR")
-                        .ok()
-                        .and_then(|s| s.parse().ok())
-                        .unwrap_or(1.0)
-                });
-                let survive = (weight.iter().fold(0.0f64, |a, &w| a.max(w)) / ww).min(1.0);
+                let survive = weight.iter().fold(0.0f64, |a, &w| a.max(w)).min(1.0);
                 if survive <= 0.0 || rng.uniform() >= survive {
                     break;
                 }
