@@ -23,6 +23,8 @@ use common::context;
 fn with(model: &ModelInfo, scene: &Scene) -> Scene {
     let mut s = scene.clone();
     s.render.method = model.method;
+    // Every branch of an order loop has run by the fourth order; more only cost time here.
+    s.render.scattering_orders = s.render.scattering_orders.min(4);
     s
 }
 
@@ -721,10 +723,11 @@ fn order_gathering_models_rebuild_no_table_when_the_sun_or_the_camera_moves() {
         let first = engine.render(&scene, &view).clone();
         assert_eq!(first.run, every_pass_but_display(&first), "{id}");
         let once = every_pass_but_display(&first).len() - looped;
+        let orders = scene.render.scattering_orders as usize;
         assert_eq!(
             first.dispatched,
-            once + looped * 3,
-            "{id}: orders 2, 3 and 4"
+            once + looped * (orders - 1),
+            "{id}: orders 2 to {orders}"
         );
         let view_only = vec!["sky"];
         scene.sun = SunSettings::Angles {

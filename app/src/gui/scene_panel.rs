@@ -533,7 +533,8 @@ fn render(ui: &mut egui::Ui, s: &mut Scene, meter: Option<&exposure::Reading>) {
         )
         .on_hover_text(
             "How many orders of scattering the model gathers one by one when it builds its tables: 1 is single \
-             scattering only; each order costs one more pass of every table. The reference uses 4.",
+             scattering only; each order costs one more pass of every table. Bruneton's reference uses 4; \
+             the default is 6, since a hazy sky still gains a tenth of its blue near the horizon past the fourth.",
         );
     }
     if current.refittable {

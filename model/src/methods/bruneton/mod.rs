@@ -43,8 +43,10 @@ use glam::DVec3;
 
 /// View–sun cosine (nu) slices of the scattering tables.
 pub const SCATTERING_NU: u32 = 8;
-/// Sun zenith cosine (mu_s) texels per nu slice.
-pub const SCATTERING_MU_S: u32 = 16;
+/// Sun zenith cosine (mu_s) texels per nu slice: the reference's 32. Scattering falls steeply
+/// with mu_s in twilight, and 16 texels (2.4° apart there) read single scattering 1.6–2.9
+/// times too bright with the sun 6° down.
+pub const SCATTERING_MU_S: u32 = 32;
 /// View zenith cosine (mu) texels: the ground half, then the sky half.
 pub const SCATTERING_MU: u32 = 64;
 /// Altitude (r) slices.
@@ -556,7 +558,7 @@ mod tests {
             let c = scattering_coords(&p, x, y, z);
             let v = scattering(&p, &lut, 0, c);
             // nu may have been clamped into its allowed range; x then lands between slices.
-            if (c.nu - (-1.0 + 2.0 * (x / 16) as f64 / 7.0)).abs() < 1e-12 {
+            if (c.nu - (-1.0 + 2.0 * (x / SCATTERING_MU_S as usize) as f64 / 7.0)).abs() < 1e-12 {
                 assert!((v[0] - x as f64).abs() < 1e-6, "{x} {y} {z}: {v:?}");
             }
             assert!((v[1] - y as f64).abs() < 1e-6 && (v[2] - z as f64).abs() < 1e-6);
@@ -627,6 +629,44 @@ mod tests {
                     "{elevation}° {azimuth}° {} nm: {:+.2} %",
                     wavelengths[i],
                     100.0 * e
+                );
+            }
+        }
+    }
+
+    /// Single scattering with the sun 6° below the horizon, looked up between mu_s texels,
+    /// against the exact integral: it falls steeply with mu_s there, and 16 texels (2.4° apart in
+    /// twilight) read 1.6–2.9 times too much light towards the sun and 3.3 times away from it.
+    #[test]
+    fn twilight_single_scattering_follows_the_exact_integral() {
+        let scene = Scene::default();
+        let atm = Atmosphere::for_scene(&scene);
+        let wavelengths = [440.0, 550.0, 680.0, 680.0];
+        let p =
+            Params::at_wavelengths(&atm, &wavelengths, Quality::Medium).with_scattering_orders(1);
+        let tables = Tables::compute(&p);
+        let sun = direction_from_angles(-6.0, 0.0);
+        let position = DVec3::new(0.0, 0.0, atm.bottom_radius_m + 1.0);
+        for (elevation, azimuth, most) in [
+            (90.0, 0.0, 1.4),
+            (45.0, 0.0, 1.4),
+            (10.0, 0.0, 1.4),
+            (45.0, 180.0, 1.7),
+        ] {
+            let dir = direction_from_angles(elevation, azimuth);
+            let model = tables.radiance(0, (position, 1.0), dir, sun);
+            for i in 0..3 {
+                let exact = crate::methods::single_scattering::radiance(
+                    &atm,
+                    &Ray::new(position, dir),
+                    sun,
+                    wavelengths[i],
+                );
+                let ratio = model[i] / exact;
+                assert!(
+                    (0.8..most).contains(&ratio),
+                    "{elevation}° {azimuth}° {} nm: table / exact = {ratio:.3}",
+                    wavelengths[i]
                 );
             }
         }
