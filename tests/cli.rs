@@ -648,6 +648,62 @@ fn fit_wavelengths_beats_the_published_matrix_and_writes_csv() {
     assert_eq!(csv.lines().filter(|l| !l.starts_with('#')).count(), 13);
 }
 
+/// `--hold-out` reports each view under the matrix of the half it was left out of, beside the
+/// matrix fitted on all of them; it writes nothing and needs a view in each half.
+#[test]
+fn fit_wavelengths_judges_the_matrix_on_views_held_out_of_the_fit() {
+    let views = "fisheye-sun30,ground-noon,fisheye-sun5";
+    let args = |extra: &[&'static str]| {
+        let mut a = vec![
+            "fit-wavelengths",
+            "--hold-out",
+            "--grid",
+            "6",
+            "--spectral",
+            "spectral8",
+        ];
+        a.extend_from_slice(extra);
+        a
+    };
+    let o = atmoscope(&args(&["--views", views, "--json"]));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rows: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
+    let rows = rows.as_array().expect("one row per view");
+    let names: Vec<&str> = rows.iter().map(|r| r["view"].as_str().unwrap()).collect();
+    // In the suite's order, alternating halves.
+    assert_eq!(names, ["ground-noon", "fisheye-sun30", "fisheye-sun5"]);
+    let halves: Vec<&str> = rows.iter().map(|r| r["half"].as_str().unwrap()).collect();
+    assert_eq!(halves, ["A", "B", "A"]);
+    let pair = |r: &serde_json::Value, key: &str| -> [f64; 2] {
+        let v = r[key].as_array().expect(key);
+        [v[0].as_f64().unwrap(), v[1].as_f64().unwrap()]
+    };
+    let mut differ = false;
+    for r in rows {
+        let (held, all) = (pair(r, "held_out"), pair(r, "fitted_on_all"));
+        for [mean, p95] in [held, all] {
+            assert!(
+                (0.0..5.0).contains(&mean) && (0.0..10.0).contains(&p95),
+                "{r}"
+            );
+        }
+        differ |= held != all;
+    }
+    // Each view is judged under the other half's matrix, not the one fitted on it.
+    assert!(differ, "{rows:?}");
+    let text = atmoscope(&args(&["--views", views]));
+    assert!(stdout(&text).contains("held out: worst view mean"));
+    let one = atmoscope(&args(&["--views", "ground-noon"]));
+    assert!(!one.status.success());
+    assert!(
+        stderr(&one).contains("at least two views"),
+        "{}",
+        stderr(&one)
+    );
+    let both = atmoscope(&args(&["--views", views, "--out", "/tmp/never.csv"]));
+    assert!(!both.status.success(), "--hold-out writes no matrix");
+}
+
 #[test]
 fn fit_garcia_linan_reports_before_and_after_and_writes_csv() {
     let dir = std::env::temp_dir().join(format!("atmoscope-fitgl-{}", std::process::id()));

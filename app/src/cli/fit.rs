@@ -11,11 +11,13 @@ use atmoscope_model::colour::linear_srgb_to_xyz;
 use atmoscope_model::geometry::direction_from_angles;
 use atmoscope_model::methods::hillaire::{self, Params, Tables};
 use atmoscope_model::methods::shared::sun::in_sun_disk;
+use atmoscope_model::metrics::{DisplaySetup, delta_e2000_map, percentile};
 use atmoscope_model::scene::WavelengthSet;
 use atmoscope_model::views;
 use atmoscope_model::wavelengths::{fit_matrix, garcia_linan_spectral4, to_linear_srgb};
 use clap::Args;
 use rayon::prelude::*;
+use serde::Serialize;
 use std::fmt::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -34,6 +36,14 @@ pub struct FitArgs {
     /// Write the matrix as CSV here (the model embeds model/data/spectral4_fitted_matrix.csv).
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
+    /// Judge the fit out of sample instead of writing a matrix: fit on every other view of
+    /// the chosen ones (half A: the 1st, 3rd, …) and report each view's ΔE2000 under the
+    /// matrix of the half it is not in, beside the matrix fitted on all of them.
+    #[arg(long, conflicts_with = "out")]
+    pub hold_out: bool,
+    /// With --hold-out: the rows as JSON.
+    #[arg(long, requires = "hold_out")]
+    pub json: bool,
 }
 
 type Sample = ([f64; 4], [f64; 3]);
@@ -77,17 +87,102 @@ fn samples(
         .collect()
 }
 
+/// The matrix applied to one direction's four lanes: linear sRGB.
+fn apply(m: &[[f64; 4]; 3], l: &[f64; 4]) -> [f64; 3] {
+    std::array::from_fn(|r| (0..4).map(|k| m[r][k] * l[k]).sum())
+}
+
+/// Mean and 95th percentile of ΔE2000 between the matrix's colours and SpectralN's over the
+/// samples, display-referred as the view shows them.
+fn delta_e(m: &[[f64; 4]; 3], samples: &[Sample], setup: DisplaySetup) -> [f64; 2] {
+    let test: Vec<[f64; 3]> = samples.iter().map(|(l, _)| apply(m, l)).collect();
+    let reference: Vec<[f64; 3]> = samples.iter().map(|&(_, c)| c).collect();
+    let de = delta_e2000_map(&test, &reference, setup);
+    [
+        de.iter().sum::<f64>() / de.len().max(1) as f64,
+        percentile(&de, 0.95),
+    ]
+}
+
+/// One view's samples and how it is displayed.
+struct ViewSamples {
+    name: String,
+    setup: DisplaySetup,
+    samples: Vec<Sample>,
+}
+
+#[derive(Serialize)]
+struct HoldOutRow {
+    view: String,
+    /// "A" or "B": the half the view belongs to; its ΔE is under the other half's matrix.
+    half: &'static str,
+    /// [mean, p95] ΔE2000 under the matrix fitted on the other half.
+    held_out: [f64; 2],
+    /// [mean, p95] ΔE2000 under the matrix fitted on every chosen view.
+    fitted_on_all: [f64; 2],
+}
+
+/// Fits on each half of `views`, reports each view under the other half's matrix.
+fn hold_out(views: &[ViewSamples], all: &[[f64; 4]; 3], json: bool) -> anyhow::Result<ExitCode> {
+    if views.len() < 2 {
+        bail!("--hold-out needs at least two views (one per half)");
+    }
+    let half = |h: usize| -> anyhow::Result<[[f64; 4]; 3]> {
+        let samples: Vec<Sample> = views
+            .iter()
+            .skip(h)
+            .step_by(2)
+            .flat_map(|v| v.samples.iter().copied())
+            .collect();
+        fit_matrix(&samples)
+            .with_context(|| format!("half {} alone does not determine a matrix", ["A", "B"][h]))
+    };
+    let matrices = [half(0)?, half(1)?];
+    let rows: Vec<HoldOutRow> = views
+        .iter()
+        .enumerate()
+        .map(|(i, v)| HoldOutRow {
+            view: v.name.clone(),
+            half: ["A", "B"][i % 2],
+            held_out: delta_e(&matrices[1 - i % 2], &v.samples, v.setup),
+            fitted_on_all: delta_e(all, &v.samples, v.setup),
+        })
+        .collect();
+    if json {
+        println!("{}", serde_json::to_string_pretty(&rows)?);
+        return Ok(ExitCode::SUCCESS);
+    }
+    println!(
+        "ΔE2000 mean / p95 of Spectral4 against the spectral set, display-referred at each view's exposure:\n\
+         under the matrix fitted on the other half of the views (held out), and on all of them"
+    );
+    println!(
+        "{:20} half  {:>15}  {:>15}",
+        "view", "held out", "fitted on all"
+    );
+    for r in &rows {
+        println!(
+            "{:20} {:4}  {:>6.2} / {:>6.2}  {:>6.2} / {:>6.2}",
+            r.view, r.half, r.held_out[0], r.held_out[1], r.fitted_on_all[0], r.fitted_on_all[1]
+        );
+    }
+    let worst = |k: usize| rows.iter().map(|r| r.held_out[k]).fold(0.0f64, f64::max);
+    println!(
+        "held out: worst view mean {:.2}, worst view p95 {:.2}, mean over views {:.2}",
+        worst(0),
+        worst(1),
+        rows.iter().map(|r| r.held_out[0]).sum::<f64>() / rows.len() as f64
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
 /// Mean relative error of luminance-weighted colour: |M·l − c| / Y(c).
 fn mean_error(m: &[[f64; 4]; 3], samples: &[Sample]) -> f64 {
     let errors: Vec<f64> = samples
         .iter()
         .map(|(l, c)| {
-            let e: f64 = (0..3)
-                .map(|r| {
-                    let v: f64 = (0..4).map(|k| m[r][k] * l[k]).sum();
-                    (v - c[r]).powi(2)
-                })
-                .sum();
+            let v = apply(m, l);
+            let e: f64 = (0..3).map(|r| (v[r] - c[r]).powi(2)).sum();
             e.sqrt() / linear_srgb_to_xyz(*c).y
         })
         .collect();
@@ -101,20 +196,35 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     for name in &args.views {
         views::find(name).with_context(|| format!("--views: no view {name}"))?;
     }
-    let mut all = Vec::new();
     let chosen = views::suite()
         .iter()
         .filter(|v| args.views.is_empty() || args.views.contains(&v.name));
+    let mut per_view = Vec::new();
     for v in chosen {
         let scene = v.apply(&Scene::default());
         let s = samples(&scene, v.projection, args.grid.max(2), args.spectral);
         eprintln!("{}: {} samples", v.name, s.len());
-        all.extend(
-            s.into_iter()
-                .filter(|(_, c)| linear_srgb_to_xyz(*c).y > 0.0),
-        );
+        per_view.push(ViewSamples {
+            name: v.name.clone(),
+            setup: DisplaySetup {
+                exposure_ev: scene.display.exposure_ev,
+                tone_map: scene.display.tone_map,
+                ..DisplaySetup::default()
+            },
+            samples: s
+                .into_iter()
+                .filter(|(_, c)| linear_srgb_to_xyz(*c).y > 0.0)
+                .collect(),
+        });
     }
+    let all: Vec<Sample> = per_view
+        .iter()
+        .flat_map(|v| v.samples.iter().copied())
+        .collect();
     let m = fit_matrix(&all).context("the samples do not determine a matrix")?;
+    if args.hold_out {
+        return hold_out(&per_view, &m, args.json);
+    }
     let (_, published) = garcia_linan_spectral4();
     println!(
         "{} samples; mean relative colour error against {:?}: published matrix {:.4}, fitted {:.4}",
