@@ -1,6 +1,8 @@
 //! `atmoscope fit-wavelengths`: refits the Spectral4 matrix (García Liñán 2023's method, done by
 //! this project) against SpectralN renders of the Hillaire method over the view suite, and
-//! writes it as the CSV the model embeds (`model/data/spectral4_fitted_matrix.csv`).
+//! writes it as the CSV the model embeds (`model/data/spectral4_fitted_matrix.csv`); with
+//! `--hold-out` it judges the fit out of sample instead, each half of the views under the matrix
+//! fitted on the other.
 
 use super::render::parse_wavelengths;
 use anyhow::{Context, bail};
