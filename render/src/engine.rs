@@ -293,6 +293,7 @@ impl FrameSetup {
             Constant::SkyTileExact => 0,
             Constant::Glare => u32::from(scene.display.glare && view.mode == DisplayMode::Colour),
             Constant::WriteRadiance => u32::from(self.write_radiance),
+            Constant::FirstOrder => 1,
         }
     }
 
@@ -315,11 +316,12 @@ impl FrameSetup {
     fn work(
         &self,
         pipelines: &Pipelines,
-        i: usize,
+        step: Step,
         layers: u32,
         scene: &Scene,
         view: &View,
     ) -> Vec<Work> {
+        let i = step.pass;
         let grid = grid(pipelines, i, layers, self.size);
         let constants = pipelines.specs().nth(i).map_or(&[][..], |s| s.constants);
         let variant = |region: Sees, sun: bool, tile: u32, exact: bool| {
@@ -328,6 +330,7 @@ impl FrameSetup {
                 Constant::ViewRegion => uniforms::region_code(region),
                 Constant::SkyTile => tile,
                 Constant::SkyTileExact => u32::from(exact),
+                Constant::FirstOrder => step.first_order(),
                 other => self.value(other, scene, view),
             })
         };
@@ -539,7 +542,7 @@ struct Rebuild {
     deferred: Vec<bool>,
     variants: Vec<Variant>,
     /// The passes to run, in order, the order loop unrolled.
-    run: Vec<usize>,
+    run: Vec<Step>,
     /// The next slice: index into `run`, and first workgroup along the pass's slice axis.
     next: (usize, u32),
     /// Units per slice of each pass, steered towards the target time (passes differ in cost
@@ -1131,11 +1134,12 @@ impl Engine {
             self.unwanted(),
             &mut self.deferred,
         );
-        let run = with_order_loop(&run, pipelines, state.params.scattering_orders);
+        let steps = with_order_loop(&run, pipelines, state.params.scattering_orders);
+        let ran_pass = |i: usize| steps.iter().any(|s| s.pass == i);
         let layers = state.params.batches.len() as u32;
-        let work: Vec<Work> = run
+        let work: Vec<Work> = steps
             .iter()
-            .flat_map(|&i| frame.work(pipelines, i, layers, scene, view))
+            .flat_map(|&step| frame.work(pipelines, step, layers, scene, view))
             .collect();
         for w in &work {
             self.pipelines[0].ensure(&self.device, w.pass, w.variant);
@@ -1158,7 +1162,7 @@ impl Engine {
         if pipelines
             .specs()
             .enumerate()
-            .any(|(i, s)| s.writes.contains(&RADIANCE) && run.contains(&i))
+            .any(|(i, s)| s.writes.contains(&RADIANCE) && ran_pass(i))
         {
             self.tiled_on_screen = frame.sky_tile > 1;
             self.radiance_current = frame.write_radiance;
@@ -1167,7 +1171,7 @@ impl Engine {
         let unwanted = self.unwanted();
         let is_table: Vec<bool> = pipelines.specs().map(|s| s.is_table()).collect();
         // Each pass once, in order, however often the order loop ran it; its times summed.
-        let ran: Vec<usize> = (0..names.len()).filter(|i| run.contains(i)).collect();
+        let ran: Vec<usize> = (0..names.len()).filter(|&i| ran_pass(i)).collect();
         let timings_ms: Vec<(&'static str, f64)> = ran
             .iter()
             .filter(|&&i| timings_ms.iter().any(|(j, _)| *j == i))
@@ -1183,7 +1187,7 @@ impl Engine {
         self.last = Some(frame.snapshot);
         self.stats = FrameStats {
             method: state.key.method,
-            timing_source: (self.measure && !run.is_empty()).then(|| self.timing_source()),
+            timing_source: (self.measure && !steps.is_empty()).then(|| self.timing_source()),
             skipped: (0..names.len())
                 .filter(|i| !ran.contains(i) && !unwanted.contains(&names[*i]))
                 .map(|i| names[i])
@@ -1194,7 +1198,7 @@ impl Engine {
                 .map(|&i| names[i])
                 .collect(),
             run: ran.iter().map(|&i| names[i]).collect(),
-            dispatched: run.len(),
+            dispatched: steps.len(),
             passes: names
                 .iter()
                 .copied()
@@ -1269,7 +1273,7 @@ impl Engine {
         let layers = state.params.batches.len() as u32;
         let total_units = run
             .iter()
-            .map(|&i| u64::from(units(grid(pipelines, i, layers, size))))
+            .map(|s| u64::from(units(grid(pipelines, s.pass, layers, size))))
             .sum();
         Rebuild {
             state,
@@ -1313,8 +1317,15 @@ impl Engine {
             r.in_flight = None;
         }
         let (k, unit) = r.next;
-        let &pass = r.run.get(k)?;
-        self.pipelines[p].ensure(&self.device, pass, r.variants[pass]);
+        let &step = r.run.get(k)?;
+        let pass = step.pass;
+        let variant = self.pipelines[p].with_constant(
+            pass,
+            r.variants[pass],
+            Constant::FirstOrder,
+            step.first_order(),
+        );
+        self.pipelines[p].ensure(&self.device, pass, variant);
         let layers = r.state.params.batches.len() as u32;
         let pipelines = &self.pipelines[p];
         let grid = grid(pipelines, pass, layers, r.target.size);
@@ -1329,7 +1340,7 @@ impl Engine {
         let (origin, groups, _) = slice(grid, unit, count);
         let work = Work {
             pass,
-            variant: r.variants[pass],
+            variant,
             origin,
             groups,
             tiles: TilePhase::None,
@@ -1470,15 +1481,31 @@ fn map_u64(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Option<Vec<u64>> {
     Some(ticks)
 }
 
+/// One pass to encode, and the scattering order it computes when it is in an order loop (0
+/// when it is not).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Step {
+    pass: usize,
+    order: u32,
+}
+
+impl Step {
+    /// The value of [`Constant::FirstOrder`]: whether the deltas this step reads are single
+    /// scattering (outside an order loop, or at its order 2).
+    fn first_order(self) -> u32 {
+        u32::from(self.order <= 2)
+    }
+}
+
 /// The passes to encode: `run` (pass indices in order) with each stretch of consecutive
 /// order-loop passes repeated once per scattering order from 2 to `orders`.
-fn with_order_loop(run: &[usize], pipelines: &Pipelines, orders: u32) -> Vec<usize> {
+fn with_order_loop(run: &[usize], pipelines: &Pipelines, orders: u32) -> Vec<Step> {
     let specs: Vec<&PassSpec> = pipelines.specs().collect();
     let mut out = Vec::with_capacity(run.len());
     let mut group: Vec<usize> = Vec::new();
-    let flush = |group: &mut Vec<usize>, out: &mut Vec<usize>| {
-        for _ in 2..=orders {
-            out.extend_from_slice(group);
+    let flush = |group: &mut Vec<usize>, out: &mut Vec<Step>| {
+        for order in 2..=orders {
+            out.extend(group.iter().map(|&pass| Step { pass, order }));
         }
         group.clear();
     };
@@ -1487,7 +1514,7 @@ fn with_order_loop(run: &[usize], pipelines: &Pipelines, orders: u32) -> Vec<usi
             group.push(i);
         } else {
             flush(&mut group, &mut out);
-            out.push(i);
+            out.push(Step { pass: i, order: 0 });
         }
     }
     flush(&mut group, &mut out);

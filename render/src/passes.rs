@@ -248,6 +248,21 @@ impl Pipelines {
         v
     }
 
+    /// `variant` of pass `i` with constant `c` set to `value` (unchanged if the pass does not
+    /// take `c`).
+    pub fn with_constant(
+        &self,
+        i: usize,
+        mut variant: Variant,
+        c: Constant,
+        value: u32,
+    ) -> Variant {
+        if let Some(slot) = self.passes[i].spec.constants.iter().position(|&k| k == c) {
+            variant[slot] = value;
+        }
+        variant
+    }
+
     /// A bind group for pass `i` over `resources` (each binding's resource, by id).
     pub fn bind<'a>(
         &self,

@@ -105,96 +105,97 @@ fn scattering_index(layer: u32, x: u32, y: u32, z: u32) -> u32 {
     return ((layer * SCATTERING_SIZE.z + z) * SCATTERING_SIZE.y + y) * SCATTERING_SIZE.x + x;
 }
 
-// The sixteen texels a look-up blends: trilinear in (mu_s, mu, r) in the two nu slices around
-// nu, then linear in nu.
-struct ScatteringTaps {
-    index: array<u32, 16>,
-    weight: array<f32, 16>,
+// The cell of sixteen texels a look-up blends: trilinear in (mu_s, mu, r) in the two nu slices
+// around nu, then linear in nu. Tap k (bits: nu, r, mu, mu_s) is computed where it is read, so
+// the readers below hold no array of sixteen indices: a GPU would keep a dynamically indexed
+// array in slow per-invocation memory.
+struct ScatteringCell {
+    // The index of the texel at the cell's lower corner.
+    base: u32,
+    // Index offsets to the upper texel along nu, r, mu and mu_s (0 where an axis is clamped).
+    offset: vec4<u32>,
+    // Weights of the upper texel along the same axes.
+    t: vec4<f32>,
 }
 
-fn scattering_taps(layer: u32, t: vec4<f32>) -> ScatteringTaps {
+fn scattering_cell(layer: u32, t: vec4<f32>) -> ScatteringCell {
     let f_nu = clamp(t.y, 0.0, f32(SCATTERING_NU - 1u));
     let s0 = min(u32(floor(f_nu)), SCATTERING_NU - 2u);
-    let t_nu = f_nu - f32(s0);
     let j = depth_taps(SCATTERING_MU_S, t.x);
     let y = depth_taps(SCATTERING_SIZE.y, t.z);
     let z = depth_taps(SCATTERING_SIZE.z, t.w);
-    var taps: ScatteringTaps;
-    var k = 0u;
-    for (var a = 0u; a < 2u; a++) {
-        let s = s0 + a;
-        let ws = select(1.0 - t_nu, t_nu, a == 1u);
-        for (var b = 0u; b < 2u; b++) {
-            let zi = u32(select(z.x, z.y, b == 1u));
-            let wz = select(1.0 - z.z, z.z, b == 1u);
-            for (var c = 0u; c < 2u; c++) {
-                let yi = u32(select(y.x, y.y, c == 1u));
-                let wy = select(1.0 - y.z, y.z, c == 1u);
-                for (var d = 0u; d < 2u; d++) {
-                    let ji = u32(select(j.x, j.y, d == 1u));
-                    let wx = select(1.0 - j.z, j.z, d == 1u);
-                    taps.index[k] = scattering_index(layer, s * SCATTERING_MU_S + ji, yi, zi);
-                    taps.weight[k] = ws * wz * wy * wx;
-                    k++;
-                }
-            }
-        }
-    }
-    return taps;
+    var cell: ScatteringCell;
+    cell.base = scattering_index(layer, s0 * SCATTERING_MU_S + u32(j.x), u32(y.x), u32(z.x));
+    cell.offset = vec4<u32>(
+        SCATTERING_MU_S,
+        (u32(z.y) - u32(z.x)) * SCATTERING_SIZE.y * SCATTERING_SIZE.x,
+        (u32(y.y) - u32(y.x)) * SCATTERING_SIZE.x,
+        u32(j.y) - u32(j.x),
+    );
+    cell.t = vec4<f32>(f_nu - f32(s0), z.z, y.z, j.z);
+    return cell;
 }
 
-// One reader per table: WGSL passes no storage buffer to a function.
-fn read_delta_rayleigh(taps: ScatteringTaps) -> vec4<f32> {
-    var t = taps;
+struct Tap {
+    index: u32,
+    weight: f32,
+}
+
+fn cell_tap(cell: ScatteringCell, k: u32) -> Tap {
+    let upper = vec4<u32>(k >> 3u, (k >> 2u) & 1u, (k >> 1u) & 1u, k & 1u);
+    let w = select(1.0 - cell.t, cell.t, upper == vec4<u32>(1u));
+    return Tap(cell.base + dot(upper, cell.offset), w.x * w.y * w.z * w.w);
+}
+
+// One reader per table or pair of tables read together: WGSL passes no storage buffer to a
+// function.
+fn read_scattering_density(cell: ScatteringCell) -> vec4<f32> {
     var v = vec4<f32>(0.0);
     for (var k = 0u; k < 16u; k++) {
-        v += t.weight[k] * delta_rayleigh_lut[t.index[k]];
+        let tap = cell_tap(cell, k);
+        v += tap.weight * scattering_density_lut[tap.index];
     }
     return v;
 }
 
-fn read_delta_mie(taps: ScatteringTaps) -> vec4<f32> {
-    var t = taps;
-    var v = vec4<f32>(0.0);
+// The scattering sum and the single Mie, blended over the same cell.
+struct Inscattered {
+    scattering: vec4<f32>,
+    single_mie: vec4<f32>,
+}
+
+fn read_scattering(cell: ScatteringCell) -> Inscattered {
+    var v = Inscattered(vec4<f32>(0.0), vec4<f32>(0.0));
     for (var k = 0u; k < 16u; k++) {
-        v += t.weight[k] * delta_mie_lut[t.index[k]];
+        let tap = cell_tap(cell, k);
+        v.scattering += tap.weight * scattering_lut[tap.index];
+        v.single_mie += tap.weight * single_mie_lut[tap.index];
     }
     return v;
 }
 
-fn read_scattering_density(taps: ScatteringTaps) -> vec4<f32> {
-    var t = taps;
-    var v = vec4<f32>(0.0);
-    for (var k = 0u; k < 16u; k++) {
-        v += t.weight[k] * scattering_density_lut[t.index[k]];
-    }
-    return v;
-}
-
-fn read_scattering(taps: ScatteringTaps) -> vec4<f32> {
-    var t = taps;
-    var v = vec4<f32>(0.0);
-    for (var k = 0u; k < 16u; k++) {
-        v += t.weight[k] * scattering_lut[t.index[k]];
-    }
-    return v;
-}
-
-fn read_single_mie(taps: ScatteringTaps) -> vec4<f32> {
-    var t = taps;
-    var v = vec4<f32>(0.0);
-    for (var k = 0u; k < 16u; k++) {
-        v += t.weight[k] * single_mie_lut[t.index[k]];
-    }
-    return v;
-}
+// Whether the order loop's pass reads single scattering (order 2), whose deltas have a Mie
+// part; at later orders that part is zero, and reading it would double the look-ups.
+override FIRST_ORDER: bool = true;
 
 // The order held by the delta tables arriving from the direction at fractional texel t with
 // view–sun cosine nu: R·P_R(ν) + M·P_M(ν).
 fn previous_order(b: Batch, layer: u32, t: vec4<f32>, nu: f32) -> vec4<f32> {
-    let taps = scattering_taps(layer, t);
-    return read_delta_rayleigh(taps) * rayleigh_phase(nu, b.rayleigh_depolarisation)
-        + read_delta_mie(taps) * aerosol_phase(nu, layer);
+    let cell = scattering_cell(layer, t);
+    var rayleigh = vec4<f32>(0.0);
+    var mie = vec4<f32>(0.0);
+    for (var k = 0u; k < 16u; k++) {
+        let tap = cell_tap(cell, k);
+        rayleigh += tap.weight * delta_rayleigh_lut[tap.index];
+        if FIRST_ORDER {
+            mie += tap.weight * delta_mie_lut[tap.index];
+        }
+    }
+    let radiance = rayleigh * rayleigh_phase(nu, b.rayleigh_depolarisation);
+    if FIRST_ORDER {
+        return radiance + mie * aerosol_phase(nu, layer);
+    }
+    return radiance;
 }
 
 // ---- irradiance tables: (mu_s, h), affine ----

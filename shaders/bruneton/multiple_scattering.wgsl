@@ -24,7 +24,7 @@ fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
         p.mu_s = at.z;
         p.nu = c.nu;
         p.ground = c.ground;
-        let j = read_scattering_density(scattering_taps(layer, scattering_texel(p)));
+        let j = read_scattering_density(scattering_cell(layer, scattering_texel(p)));
         s += sample.y * j * transmittance_between(layer, c.h, c.mu, d);
     }
     let k = scattering_index(layer, v.x, v.y, v.z);

@@ -15,9 +15,9 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
         return vec4<f32>(0.0);
     }
     let c = camera.c;
-    let t = scattering_taps(layer, scattering_texel(c));
-    let inscattered = read_scattering(t) * rayleigh_phase(c.nu, b.rayleigh_depolarisation)
-        + read_single_mie(t) * aerosol_phase(c.nu, layer);
+    let s = read_scattering(scattering_cell(layer, scattering_texel(c)));
+    let inscattered = s.scattering * rayleigh_phase(c.nu, b.rayleigh_depolarisation)
+        + s.single_mie * aerosol_phase(c.nu, layer);
     if c.ground {
         let g = ground_hit(layer, c);
         return inscattered + g.transmittance * ground_radiance(layer, g.mu_s);

@@ -4,7 +4,8 @@
 //! `atmoscope_model::methods::bruneton::<pass>`.
 
 use super::{
-    Dispatch, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS, shader,
+    Constant, Dispatch, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS,
+    shader,
 };
 use atmoscope_model::scene::Method;
 
@@ -39,22 +40,28 @@ pub const METHOD: GpuMethod = GpuMethod {
             Dispatch::Volume(SCATTERING),
             Repeat::Once,
         ),
-        PassSpec::table(
-            "scattering-density",
-            shader!("bruneton/scattering_density.wgsl"),
-            &[T, DELTA_RAYLEIGH, DELTA_MIE, DELTA_IRRADIANCE],
-            &[DENSITY],
-            Dispatch::Volume(DENSITY),
-            Repeat::PerOrder,
-        ),
-        PassSpec::table(
-            "indirect-irradiance",
-            shader!("bruneton/indirect_irradiance.wgsl"),
-            &[DELTA_RAYLEIGH, DELTA_MIE, IRRADIANCE],
-            &[DELTA_IRRADIANCE, IRRADIANCE],
-            Dispatch::Table(IRRADIANCE),
-            Repeat::PerOrder,
-        ),
+        PassSpec {
+            constants: &[Constant::FirstOrder],
+            ..PassSpec::table(
+                "scattering-density",
+                shader!("bruneton/scattering_density.wgsl"),
+                &[T, DELTA_RAYLEIGH, DELTA_MIE, DELTA_IRRADIANCE],
+                &[DENSITY],
+                Dispatch::Volume(DENSITY),
+                Repeat::PerOrder,
+            )
+        },
+        PassSpec {
+            constants: &[Constant::FirstOrder],
+            ..PassSpec::table(
+                "indirect-irradiance",
+                shader!("bruneton/indirect_irradiance.wgsl"),
+                &[DELTA_RAYLEIGH, DELTA_MIE, IRRADIANCE],
+                &[DELTA_IRRADIANCE, IRRADIANCE],
+                Dispatch::Table(IRRADIANCE),
+                Repeat::PerOrder,
+            )
+        },
         PassSpec::table(
             "multiple-scattering",
             shader!("bruneton/multiple_scattering.wgsl"),

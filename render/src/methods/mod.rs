@@ -70,6 +70,9 @@ pub enum Constant {
     /// Whether the sky pass writes [`RADIANCE`]: always but in a frame drawn in tiles that
     /// nothing meters, which writes the display image alone.
     WriteRadiance,
+    /// Whether an order loop's pass reads single scattering (order 2), whose deltas have a Mie
+    /// part; at later orders that part is zero and goes unread.
+    FirstOrder,
 }
 
 impl Constant {
@@ -86,6 +89,7 @@ impl Constant {
             Constant::SkyTileExact => "SKY_TILE_EXACT",
             Constant::Glare => "GLARE",
             Constant::WriteRadiance => "WRITE_RADIANCE",
+            Constant::FirstOrder => "FIRST_ORDER",
         }
     }
 }

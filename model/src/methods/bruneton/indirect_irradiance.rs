@@ -2,19 +2,13 @@
 //! horizontal surface, the delta tables integrated over the upper hemisphere (midpoint rule),
 //! added to the sky-irradiance sum. Twin of `shaders/bruneton/indirect_irradiance.wgsl`.
 
-use super::{Lanes, Lut, Params, mu_s_texel, mu_texel, nu_texel, previous_order, r_texel};
+use super::{Deltas, Lanes, Params, mu_s_texel, mu_texel, nu_texel, previous_order, r_texel};
 use crate::wavelengths::LANES;
 use glam::DVec3;
 use std::f64::consts::FRAC_PI_2;
 
 /// Sky irradiance of the order held by the delta tables, W·m⁻²·nm⁻¹.
-pub fn indirect_irradiance(
-    p: &Params,
-    delta: (&Lut, &Lut),
-    layer: usize,
-    h: f64,
-    mu_s: f64,
-) -> Lanes {
+pub fn indirect_irradiance(p: &Params, delta: Deltas, layer: usize, h: f64, mu_s: f64) -> Lanes {
     let n = p.steps.sphere_directions;
     let step = FRAC_PI_2 / f64::from(n);
     let sun = DVec3::new((1.0 - mu_s * mu_s).max(0.0).sqrt(), 0.0, mu_s);

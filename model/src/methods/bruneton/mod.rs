@@ -15,9 +15,12 @@
 //!   multiple scattering ([`scattering_density`], [`indirect_irradiance`],
 //!   [`multiple_scattering`]).
 //!
-//! One departure from the reference keeps the order loop free of branches: after order 2 the
-//! delta tables hold the previous order as "Rayleigh-like" radiance over the Rayleigh phase and
-//! a zero Mie part, so every order reads the previous one as R·P_R(ν) + M·P_M(ν).
+//! One departure from the reference keeps the order loop's passes the same at every order:
+//! after order 2 the delta tables hold the previous order as "Rayleigh-like" radiance over the
+//! Rayleigh phase and a zero Mie part, so every order reads the previous one as
+//! R·P_R(ν) + M·P_M(ν) — the Mie part at order 2 only ([`Deltas`]; on the GPU a pipeline
+//! constant), as it is zero after: from order 3 on the scattering density, the precompute's
+//! largest pass, makes half the look-ups.
 //!
 //! The mappings put texel centres on the ends of each axis (fractional texel = x·(n − 1)), the
 //! same placement as the reference's half-texel offsets. The medium, phase functions and sun are
@@ -340,19 +343,24 @@ pub fn scattering(p: &Params, lut: &Lut, layer: usize, c: Coords) -> Lanes {
     ScatteringTaps::new(p, layer, c).read(lut)
 }
 
+/// The delta tables an order reads: the previous order's Rayleigh-like part, and its Mie part
+/// while that is single scattering (order 2; later orders have none, and none is read).
+pub type Deltas<'a> = (&'a Lut, Option<&'a Lut>);
+
 /// The radiance of the order held by the delta tables arriving from the direction at
 /// fractional texel `texel` whose view–sun cosine is `nu`: R·P_R(ν) + M·P_M(ν).
-pub fn previous_order(
-    p: &Params,
-    delta: (&Lut, &Lut),
-    layer: usize,
-    texel: [f64; 4],
-    nu: f64,
-) -> Lanes {
+pub fn previous_order(p: &Params, delta: Deltas, layer: usize, texel: [f64; 4], nu: f64) -> Lanes {
     let taps = ScatteringTaps::at(layer, texel);
-    let (r, m) = (taps.read(delta.0), taps.read(delta.1));
-    let (pr, pm) = (rayleigh_phase(p, layer, nu), aerosol_phase(p, layer, nu));
-    std::array::from_fn(|i| r[i] * pr[i] + m[i] * pm[i])
+    let r = taps.read(delta.0);
+    let pr = rayleigh_phase(p, layer, nu);
+    let mut l: Lanes = std::array::from_fn(|i| r[i] * pr[i]);
+    if let Some(mie) = delta.1 {
+        let (m, pm) = (taps.read(mie), aerosol_phase(p, layer, nu));
+        for i in 0..LANES {
+            l[i] += m[i] * pm[i];
+        }
+    }
+    l
 }
 
 /// Fractional texel coordinates of (h, mu_s) in an irradiance table.
@@ -415,12 +423,13 @@ impl Tables {
         let mut scattering = delta_rayleigh.clone();
         let single_mie = delta_mie.clone();
         let mut scattering_density = zeros(&SCATTERING_DENSITY, layers);
-        for _order in 2..=p.scattering_orders {
+        for order in 2..=p.scattering_orders {
+            let deltas = (&delta_rayleigh, (order == 2).then_some(&delta_mie));
             scattering_density = Lut::from_spec(&SCATTERING_DENSITY, layers, |layer, z, y, x| {
                 scattering_density::scattering_density(
                     p,
                     &t,
-                    (&delta_rayleigh, &delta_mie),
+                    deltas,
                     &delta_irradiance,
                     layer,
                     scattering_coords(p, x, y, z),
@@ -428,13 +437,7 @@ impl Tables {
             });
             delta_irradiance = Lut::from_spec(&DELTA_IRRADIANCE, layers, |layer, _, y, x| {
                 let (h, mu_s) = irradiance_h_mu_s_from_texel(p, x as f64, y as f64);
-                indirect_irradiance::indirect_irradiance(
-                    p,
-                    (&delta_rayleigh, &delta_mie),
-                    layer,
-                    h,
-                    mu_s,
-                )
+                indirect_irradiance::indirect_irradiance(p, deltas, layer, h, mu_s)
             });
             irradiance = irradiance.plus(&delta_irradiance);
             delta_rayleigh = Lut::from_spec(&DELTA_RAYLEIGH, layers, |layer, z, y, x| {

@@ -5,7 +5,7 @@
 //! `shaders/bruneton/scattering_density.wgsl`.
 
 use super::{
-    Coords, Lanes, Lut, Params, aerosol_phase, irradiance, mu_s_texel, mu_texel, nu_texel,
+    Coords, Deltas, Lanes, Lut, Params, aerosol_phase, irradiance, mu_s_texel, mu_texel, nu_texel,
     previous_order, r_texel, rayleigh_phase,
 };
 use crate::geometry::{distance_to_ground, hits_ground};
@@ -34,7 +34,7 @@ pub fn local_frame(c: &Coords) -> (DVec3, DVec3) {
 pub fn scattering_density(
     p: &Params,
     t: &Lut,
-    delta: (&Lut, &Lut),
+    delta: Deltas,
     delta_irradiance: &Lut,
     layer: usize,
     c: Coords,
