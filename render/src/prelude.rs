@@ -130,6 +130,7 @@ pub fn wgsl_prelude() -> String {
         format!("vec2<u32>({iw}u, {ih}u)"),
     );
     c("BRUNETON_MU_S_MIN", "f32", f(bruneton::MU_S_MIN));
+    c("BRUNETON_MU_S_FADE", "f32", f(bruneton::MU_S_FADE));
     let [ex, ey, ez] = elek::SIZE;
     c(
         "ELEK_SIZE",

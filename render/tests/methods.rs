@@ -16,7 +16,7 @@ use atmoscope_model::scene::{
 use atmoscope_render::methods::{DISPLAY_PASS, GPU_METHODS, Repeat, gpu_method};
 use atmoscope_render::passes::shader_source;
 use atmoscope_render::uniforms::{Batch, Globals};
-use atmoscope_render::{Engine, EngineError, FrameStats, View};
+use atmoscope_render::{Engine, EngineError, FrameStats, GpuContext, View};
 use common::context;
 
 /// The scene with `model`'s method.
@@ -237,42 +237,82 @@ fn rendered_views_match_the_cpu_twin() {
     ];
     for ((name, scene, projection, w, h), model) in cases
         .iter()
-        .flat_map(|c| methods::realtime().map(move |m| (c.clone(), m)))
+        .flat_map(|c| methods::realtime().map(move |m| (c, m)))
     {
-        let scene = with(model, &scene);
+        let scene = with(model, scene);
         if refused(&scene) {
             continue;
         }
         let name = format!("{} {name}", model.id);
-        let mut engine = Engine::new(&gpu.device, &gpu.queue);
-        engine.render(&scene, &View::new(projection, w, h));
-        let gpu_image = radiance_image(&engine);
-        let cpu_image = methods::render(&scene, projection, w, h).expect("a real-time model");
-        let (c, _) = compare(&gpu_image, &cpu_image, w, h, DisplaySetup::default());
-        let off = gpu_image
-            .iter()
-            .zip(&cpu_image)
-            .filter(|(g, c)| {
-                let (lg, lc) = (luminance(**g), luminance(**c));
-                (lg - lc).abs() > 0.01 * lc.abs() + 1e-6
-            })
-            .count();
-        eprintln!(
-            "{name}: ΔE2000 mean {:.3}, p95 {:.3}; {off} of {} pixels off by > 1 % in luminance",
-            c.delta_e2000_mean,
-            c.delta_e2000_p95,
-            gpu_image.len()
-        );
-        assert!(
-            c.delta_e2000_mean < 0.3,
-            "{name}: ΔE2000 mean {}",
-            c.delta_e2000_mean
-        );
-        assert!(
-            off * 100 <= gpu_image.len(),
-            "{name}: {off} pixels differ by more than 1 % in luminance"
-        );
+        assert_render_matches_the_twin(&gpu, &name, &scene, *projection, *w, *h);
     }
+}
+
+/// The GPU's render of `scene` against the CPU twin's: ΔE2000 mean under 0.3 and at most 1 %
+/// of the pixels off by more than 1 % in luminance. Returns the GPU's radiance image.
+fn assert_render_matches_the_twin(
+    gpu: &GpuContext,
+    name: &str,
+    scene: &Scene,
+    projection: Projection,
+    w: u32,
+    h: u32,
+) -> Vec<[f64; 3]> {
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    engine.render(scene, &View::new(projection, w, h));
+    let gpu_image = radiance_image(&engine);
+    let cpu_image = methods::render(scene, projection, w, h).expect("a real-time model");
+    let (c, _) = compare(&gpu_image, &cpu_image, w, h, DisplaySetup::default());
+    let off = gpu_image
+        .iter()
+        .zip(&cpu_image)
+        .filter(|(g, c)| {
+            let (lg, lc) = (luminance(**g), luminance(**c));
+            (lg - lc).abs() > 0.01 * lc.abs() + 1e-6
+        })
+        .count();
+    eprintln!(
+        "{name}: ΔE2000 mean {:.3}, p95 {:.3}; {off} of {} pixels off by > 1 % in luminance",
+        c.delta_e2000_mean,
+        c.delta_e2000_p95,
+        gpu_image.len()
+    );
+    assert!(
+        c.delta_e2000_mean < 0.3,
+        "{name}: ΔE2000 mean {}",
+        c.delta_e2000_mean
+    );
+    assert!(
+        off * 100 <= gpu_image.len(),
+        "{name}: {off} pixels differ by more than 1 % in luminance"
+    );
+    gpu_image
+}
+
+/// Bruneton from space with the sun past its tables' 102° where the rays enter the air
+/// (Leenman's orbit at dawn: the night side, the terminator and the limb beyond it): the
+/// look-up from where each ray comes back to 102°, and the dark beyond, as the twin has them.
+#[test]
+fn bruneton_past_its_tables_edge_matches_the_cpu_twin() {
+    let Some(gpu) = context() else { return };
+    let view = atmoscope_model::views::find("orbit-dawn").expect("a suite view");
+    let bruneton = methods::info(Method::Bruneton);
+    let scene = with(bruneton, &view.apply(&Scene::default()));
+    assert!(!refused(&scene));
+    let image = assert_render_matches_the_twin(
+        &gpu,
+        "bruneton orbit-dawn",
+        &scene,
+        view.projection,
+        48,
+        27,
+    );
+    let dark = image.iter().filter(|&&p| luminance(p) == 0.0).count();
+    let lit = image.iter().filter(|&&p| luminance(p) > 0.0).count();
+    assert!(
+        dark > 0 && lit > 0,
+        "the night side dark ({dark} pixels), the limb lit ({lit})"
+    );
 }
 
 #[test]

@@ -62,6 +62,10 @@ pub const IRRADIANCE_SIZE: [u32; 2] = [64, 16];
 /// Cosine of the largest sun zenith angle the scattering tables cover (102°, the reference's
 /// choice for Earth: twilight down to 12° below the horizon).
 pub const MU_S_MIN: f64 = -0.207_911_690_817_759_3;
+/// Width of the band of sun zenith cosines below [`MU_S_MIN`] (about 1.2°) over which the sky
+/// pass fades from the look-up clamped at `MU_S_MIN` to the look-up from where the ray reaches
+/// it (`sky::lit_distance`), so that nothing jumps as the sun crosses the tables' edge.
+pub const MU_S_FADE: f64 = 0.02;
 
 /// Where the model is meant to work: everywhere from the ground to space, with the sun down to
 /// 12° below the horizon (the tables' mu_s range).
@@ -669,6 +673,48 @@ mod tests {
                 assert!(
                     (0.8..most).contains(&ratio),
                     "{elevation}° {azimuth}° {} nm: table / exact = {ratio:.3}",
+                    wavelengths[i]
+                );
+            }
+        }
+    }
+
+    /// From space, with the sun past the tables' 102° where the rays enter the air: straight
+    /// down onto the night side is dark, air and ground (a look-up clamped at 102° read the
+    /// light of 102° in both), and rays over the limb towards the day side, lit past the
+    /// terminator, come within a few times the exact single scattering (3.2–4.1× at Low: the
+    /// tables' own error for grazing rays at their edge; clamped, 84–680×).
+    #[test]
+    fn from_space_the_night_side_is_dark_and_the_limb_lit_past_the_terminator() {
+        let scene = Scene::default();
+        let atm = Atmosphere::for_scene(&scene);
+        let wavelengths = [440.0, 550.0, 680.0, 680.0];
+        let h = 400_000.0;
+        let position = DVec3::new(0.0, 0.0, atm.bottom_radius_m + h);
+        // 30° below the horizon at the camera, 19° where the limb ray enters the air, 3° where
+        // it leaves.
+        let sun = direction_from_angles(-30.0, 0.0);
+        let mut p = Params::at_wavelengths(&atm, &wavelengths, Quality::Low);
+        p.steps.sphere_directions = 4;
+        let two_orders = Tables::compute(&p.clone().with_scattering_orders(2));
+        let night = two_orders.radiance(0, (position, h), DVec3::NEG_Z, sun);
+        assert!(night.iter().all(|&l| l == 0.0), "night side: {night:?}");
+
+        let one_order = Tables::compute(&p.with_scattering_orders(1));
+        for elevation in [-18.5, -19.0, -19.5] {
+            let limb = direction_from_angles(elevation, 0.0);
+            let model = one_order.radiance(0, (position, h), limb, sun);
+            for i in 0..3 {
+                let exact = crate::methods::single_scattering::radiance(
+                    &atm,
+                    &Ray::new(position, limb),
+                    sun,
+                    wavelengths[i],
+                );
+                let ratio = model[i] / exact;
+                assert!(
+                    (0.5..6.0).contains(&ratio),
+                    "limb at {elevation}°, {} nm: table / exact = {ratio:.3} ({exact:.3e})",
                     wavelengths[i]
                 );
             }
