@@ -208,6 +208,9 @@ struct FrameSetup {
     bottom_radius_m: f64,
     /// Whether the camera is above the top of the atmosphere.
     above: bool,
+    /// Whether a view ray may start with the sun below Bruneton's tables (from above the
+    /// atmosphere, or with the sun that low at the camera).
+    sun_below_tables: bool,
     /// Pixels on a side of the sky pass's interpolated tiles this frame (1: every pixel).
     sky_tile: u32,
     /// Whether the sky pass writes the radiance image: all but a frame in tiles that nothing
@@ -268,6 +271,8 @@ impl FrameSetup {
             camera,
             bottom_radius_m: params.bottom_radius_m,
             above: viewpoint.h > params.thickness_m(),
+            sun_below_tables: viewpoint.h > params.thickness_m()
+                || viewpoint.mu_s < atmoscope_model::methods::bruneton::MU_S_MIN,
             sky_tile: 1,
             write_radiance: true,
             bands: true,
@@ -294,6 +299,7 @@ impl FrameSetup {
             Constant::Glare => u32::from(scene.display.glare && view.mode == DisplayMode::Colour),
             Constant::WriteRadiance => u32::from(self.write_radiance),
             Constant::FirstOrder => 1,
+            Constant::SunBelowTables => u32::from(self.sun_below_tables),
         }
     }
 

@@ -11,7 +11,7 @@ use atmoscope_model::methods::shared::{PROFILE_SAMPLES, Params};
 use atmoscope_model::methods::{ModelInfo, shared::TableSpec};
 
 /// Most pipeline constants a pass takes.
-pub const MAX_CONSTANTS: usize = 10;
+pub const MAX_CONSTANTS: usize = 11;
 
 /// Values of a pass's pipeline constants, in the order of its `constants`.
 pub type Variant = [u32; MAX_CONSTANTS];

@@ -38,33 +38,32 @@ fn lit_distance(c: Coords) -> f32 {
     return select(-1.0, d, d <= ray_length(c));
 }
 
-fn look_up(layer: u32, c: Coords) -> vec4<f32> {
-    let b = batches[layer];
-    let s = read_scattering(scattering_cell(layer, scattering_texel(c)));
-    return s.scattering * rayleigh_phase(c.nu, b.rayleigh_depolarisation) + s.single_mie * aerosol_phase(c.nu, layer);
-}
+// Whether a ray of the view may start with the sun below the tables (from above the atmosphere,
+// or with the sun that low at the camera); the engine sets it per frame.
+override SUN_BELOW_TABLES: bool = true;
 
-// The tables' in-scattered radiance along the ray of c; with the sun beyond the tables' edge,
-// looked up from where the ray reaches it (twin of bruneton::sky::inscattered).
+// The tables' in-scattered radiance along the ray of c; beyond their range, read where the sun
+// comes back to 102° along the ray, or at the edge faded to dark. One look-up either way (a
+// software GPU runs both sides of a branch). Twin of bruneton::sky::inscattered.
 fn inscattered(layer: u32, c: Coords) -> vec4<f32> {
-    if c.mu_s >= BRUNETON_MU_S_MIN {
-        return look_up(layer, c);
+    let b = batches[layer];
+    var at = c;
+    var factor = vec4<f32>(1.0);
+    if SUN_BELOW_TABLES && c.mu_s < BRUNETON_MU_S_MIN {
+        let d = lit_distance(c);
+        if d >= 0.0 {
+            let p = along(c, d);
+            at.h = p.x;
+            at.mu = p.y;
+            at.mu_s = p.z;
+            factor = transmittance_between(layer, c.h, c.mu, d);
+        } else {
+            factor = vec4<f32>(edge_fade(c.mu_s));
+        }
     }
-    var lit = vec4<f32>(0.0);
-    let d = lit_distance(c);
-    if d >= 0.0 {
-        let at = along(c, d);
-        var p = c;
-        p.h = at.x;
-        p.mu = at.y;
-        p.mu_s = at.z;
-        lit = transmittance_between(layer, c.h, c.mu, d) * look_up(layer, p);
-    }
-    let fade = edge_fade(c.mu_s);
-    if fade == 0.0 {
-        return lit;
-    }
-    return fade * look_up(layer, c) + (1.0 - fade) * lit;
+    let s = read_scattering(scattering_cell(layer, scattering_texel(at)));
+    return factor * (s.scattering * rayleigh_phase(c.nu, b.rayleigh_depolarisation)
+        + s.single_mie * aerosol_phase(c.nu, layer));
 }
 
 fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {

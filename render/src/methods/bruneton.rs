@@ -4,8 +4,8 @@
 //! `atmoscope_model::methods::bruneton::<pass>`.
 
 use super::{
-    Constant, Dispatch, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS,
-    shader,
+    Constant, Dispatch, GpuMethod, PassSpec, Repeat, SKY_CONSTANTS, SUN_DISK_FROM_TABLE,
+    TRANSMITTANCE_PASS, shader,
 };
 use atmoscope_model::scene::Method;
 
@@ -17,6 +17,17 @@ const DELTA_MIE: &str = "delta-mie";
 const SCATTERING: &str = "scattering";
 const SINGLE_MIE: &str = "single-mie";
 const DENSITY: &str = "scattering-density";
+
+/// The sky pass's constants, and whether a ray may start with the sun below the tables.
+const SKY_CONSTANTS_BELOW_TABLES: [Constant; 11] = {
+    let mut c = [Constant::SunBelowTables; 11];
+    let mut i = 0;
+    while i < SKY_CONSTANTS.len() {
+        c[i] = SKY_CONSTANTS[i];
+        i += 1;
+    }
+    c
+};
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Bruneton,
@@ -70,9 +81,12 @@ pub const METHOD: GpuMethod = GpuMethod {
             Dispatch::Volume(SCATTERING),
             Repeat::PerOrder,
         ),
-        PassSpec::sky(
-            shader!("bruneton/sky.wgsl"),
-            &[T, SCATTERING, SINGLE_MIE, IRRADIANCE],
-        ),
+        PassSpec {
+            constants: &SKY_CONSTANTS_BELOW_TABLES,
+            ..PassSpec::sky(
+                shader!("bruneton/sky.wgsl"),
+                &[T, SCATTERING, SINGLE_MIE, IRRADIANCE],
+            )
+        },
     ],
 };

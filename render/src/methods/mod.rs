@@ -73,6 +73,9 @@ pub enum Constant {
     /// Whether an order loop's pass reads single scattering (order 2), whose deltas have a Mie
     /// part; at later orders that part is zero and goes unread.
     FirstOrder,
+    /// Whether a view ray may start with the sun below Bruneton's tables (102° from the
+    /// zenith): only then does its sky pass carry the code for such rays.
+    SunBelowTables,
 }
 
 impl Constant {
@@ -90,9 +93,24 @@ impl Constant {
             Constant::Glare => "GLARE",
             Constant::WriteRadiance => "WRITE_RADIANCE",
             Constant::FirstOrder => "FIRST_ORDER",
+            Constant::SunBelowTables => "SUN_BELOW_TABLES",
         }
     }
 }
+
+/// The pipeline constants of every sky pass ([`PassSpec::sky`]).
+pub const SKY_CONSTANTS: [Constant; 10] = [
+    Constant::Projection,
+    Constant::AboveAtmosphere,
+    Constant::SunDisk,
+    Constant::ViewRegion,
+    Constant::SkyTile,
+    Constant::SkyTileExact,
+    Constant::DisplayMode,
+    Constant::ToneMap,
+    Constant::Glare,
+    Constant::WriteRadiance,
+];
 
 /// How many workgroups a pass runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -198,18 +216,7 @@ impl PassSpec {
             writes: &[RADIANCE, DISPLAY, EXACT_TILES],
             inputs: SKY_INPUTS,
             dispatch: Dispatch::View,
-            constants: &[
-                Constant::Projection,
-                Constant::AboveAtmosphere,
-                Constant::SunDisk,
-                Constant::ViewRegion,
-                Constant::SkyTile,
-                Constant::SkyTileExact,
-                Constant::DisplayMode,
-                Constant::ToneMap,
-                Constant::Glare,
-                Constant::WriteRadiance,
-            ],
+            constants: &SKY_CONSTANTS,
             repeat: Repeat::Once,
             reads_above_atmosphere: None,
             reads_for_ground: &[],

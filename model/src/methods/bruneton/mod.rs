@@ -63,8 +63,9 @@ pub const IRRADIANCE_SIZE: [u32; 2] = [64, 16];
 /// choice for Earth: twilight down to 12° below the horizon).
 pub const MU_S_MIN: f64 = -0.207_911_690_817_759_3;
 /// Width of the band of sun zenith cosines below [`MU_S_MIN`] (about 1.2°) over which the sky
-/// pass fades from the look-up clamped at `MU_S_MIN` to the look-up from where the ray reaches
-/// it (`sky::lit_distance`), so that nothing jumps as the sun crosses the tables' edge.
+/// pass fades the look-up clamped at `MU_S_MIN` to dark for a ray that never reaches the
+/// tables' range (`sky::lit_distance`) and the sky irradiance, so that nothing jumps as the sun
+/// crosses the tables' edge.
 pub const MU_S_FADE: f64 = 0.02;
 
 /// Where the model is meant to work: everywhere from the ground to space, with the sun down to

@@ -7,10 +7,10 @@
 //! the air as dark. A ray that starts beyond that, which a camera in space looking at the night
 //! side or at the limb from behind the terminator sees, would read the light of 102° if the
 //! look-up clamped; instead it is looked up from the point where the sun's zenith angle along
-//! the ray comes back to 102°, through the transmittance to there, and is dark if it never does
-//! (the air before that point counted as dark, as the tables count it). The sky-irradiance
-//! table, whose orders were gathered from clamped look-ups, lights the ground there with the
-//! skylight of 102° as well; it fades to dark over the same band.
+//! the ray comes back to 102°, through the transmittance to there (the air before that point
+//! counted as dark, as the tables count it), and a ray that never gets there fades to dark
+//! within 1.2° past the edge. The sky-irradiance table, whose orders were gathered from clamped
+//! look-ups, lights the ground there with the skylight of 102° as well; it fades the same way.
 
 use super::{
     Coords, Lanes, MU_S_FADE, MU_S_MIN, Params, ScatteringTaps, Tables, aerosol_phase, irradiance,
@@ -55,34 +55,28 @@ pub fn edge_fade(mu_s: f64) -> f64 {
 }
 
 /// The in-scattered radiance of the tables along the ray of `c` (the scattering sum times the
-/// Rayleigh phase plus single Mie times the aerosol phase), with the sun below the tables'
-/// range handled as the module says.
+/// Rayleigh phase plus single Mie times the aerosol phase). Beyond the tables' range it is read
+/// where the sun comes back to 102° along the ray, through the transmittance to there — at the
+/// edge that point is `c` itself, so nothing jumps — and a ray that never gets there reads the
+/// edge, faded to dark over [`MU_S_FADE`]. One look-up either way.
 fn inscattered(tables: &Tables, layer: usize, c: Coords) -> Lanes {
     let p: &Params = &tables.params;
-    let look_up = |c: Coords| -> Lanes {
-        let taps = ScatteringTaps::new(p, layer, c);
-        let (s, s_mie) = (taps.read(&tables.scattering), taps.read(&tables.single_mie));
-        let (pr, pm) = (
-            rayleigh_phase(p, layer, c.nu),
-            aerosol_phase(p, layer, c.nu),
-        );
-        std::array::from_fn(|i| s[i] * pr[i] + s_mie[i] * pm[i])
-    };
-    if c.mu_s >= MU_S_MIN {
-        return look_up(c);
-    }
-    let lit = lit_distance(p, &c).map_or([0.0; LANES], |d| {
+    let (at, factor) = if c.mu_s >= MU_S_MIN {
+        (c, [1.0; LANES])
+    } else if let Some(d) = lit_distance(p, &c) {
         let (h, mu, mu_s) = along(p, &c, d);
         let t = transmittance_between(p, &tables.transmittance, layer, (c.h, c.mu), d);
-        let s = look_up(Coords { h, mu, mu_s, ..c });
-        std::array::from_fn(|i| t[i] * s[i])
-    });
-    let fade = edge_fade(c.mu_s);
-    if fade == 0.0 {
-        return lit;
-    }
-    let clamped = look_up(c);
-    std::array::from_fn(|i| fade * clamped[i] + (1.0 - fade) * lit[i])
+        (Coords { h, mu, mu_s, ..c }, t)
+    } else {
+        (c, [edge_fade(c.mu_s); LANES])
+    };
+    let taps = ScatteringTaps::new(p, layer, at);
+    let (s, s_mie) = (taps.read(&tables.scattering), taps.read(&tables.single_mie));
+    let (pr, pm) = (
+        rayleigh_phase(p, layer, c.nu),
+        aerosol_phase(p, layer, c.nu),
+    );
+    std::array::from_fn(|i| factor[i] * (s[i] * pr[i] + s_mie[i] * pm[i]))
 }
 
 /// The radiance of one batch seen from `at` (position from the planet's centre and altitude,
