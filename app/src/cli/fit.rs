@@ -14,10 +14,11 @@ use atmoscope_model::geometry::direction_from_angles;
 use atmoscope_model::methods::hillaire::{self, Params, Tables};
 use atmoscope_model::methods::shared::sun::in_sun_disk;
 use atmoscope_model::metrics::{DisplaySetup, delta_e2000_map, percentile};
+use atmoscope_model::optimize::nelder_mead;
 use atmoscope_model::scene::WavelengthSet;
 use atmoscope_model::views;
 use atmoscope_model::wavelengths::{fit_matrix, garcia_linan_spectral4, to_linear_srgb};
-use clap::Args;
+use clap::{Args, ValueEnum};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::fmt::Write;
@@ -46,6 +47,49 @@ pub struct FitArgs {
     /// With --hold-out: the rows as JSON.
     #[arg(long, requires = "hold_out")]
     pub json: bool,
+    /// What the fit minimises.
+    #[arg(long, value_enum, default_value = "least-squares")]
+    pub objective: Objective,
+}
+
+/// What `fit-wavelengths` minimises.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Objective {
+    /// Colour error relative to luminance, squared (weights 1/Y²): a linear solve.
+    LeastSquares,
+    /// ΔE2000 itself, as each view is displayed: every view's mean over 0.5 plus its 95th
+    /// percentile over 1.5 (the bounds the issue set), summed over the views; Nelder–Mead from
+    /// the least-squares matrix.
+    De2000,
+}
+
+/// The matrix of `objective` over `views`.
+fn fit(views: &[&ViewSamples], objective: Objective) -> Option<[[f64; 4]; 3]> {
+    let all: Vec<Sample> = views
+        .iter()
+        .flat_map(|v| v.samples.iter().copied())
+        .collect();
+    let m = fit_matrix(&all)?;
+    if objective == Objective::LeastSquares {
+        return Some(m);
+    }
+    let unflatten = |x: &[f64]| -> [[f64; 4]; 3] {
+        std::array::from_fn(|r| std::array::from_fn(|k| x[4 * r + k]))
+    };
+    let cost = |x: &[f64]| -> f64 {
+        let m = unflatten(x);
+        views
+            .par_iter()
+            .map(|v| {
+                let [mean, p95] = delta_e(&m, &v.samples, v.setup);
+                mean / 0.5 + p95 / 1.5
+            })
+            .sum()
+    };
+    let start: Vec<f64> = m.iter().flatten().copied().collect();
+    let step: Vec<f64> = start.iter().map(|v| 0.05 * v.abs() + 1e-4).collect();
+    let (x, _) = nelder_mead(cost, &start, &step, 1e-9, 6000);
+    Some(unflatten(&x))
 }
 
 type Sample = ([f64; 4], [f64; 3]);
@@ -125,18 +169,18 @@ struct HoldOutRow {
 }
 
 /// Fits on each half of `views`, reports each view under the other half's matrix.
-fn hold_out(views: &[ViewSamples], all: &[[f64; 4]; 3], json: bool) -> anyhow::Result<ExitCode> {
+fn hold_out(
+    views: &[ViewSamples],
+    all: &[[f64; 4]; 3],
+    objective: Objective,
+    json: bool,
+) -> anyhow::Result<ExitCode> {
     if views.len() < 2 {
         bail!("--hold-out needs at least two views (one per half)");
     }
     let half = |h: usize| -> anyhow::Result<[[f64; 4]; 3]> {
-        let samples: Vec<Sample> = views
-            .iter()
-            .skip(h)
-            .step_by(2)
-            .flat_map(|v| v.samples.iter().copied())
-            .collect();
-        fit_matrix(&samples)
+        let chosen: Vec<&ViewSamples> = views.iter().skip(h).step_by(2).collect();
+        fit(&chosen, objective)
             .with_context(|| format!("half {} alone does not determine a matrix", ["A", "B"][h]))
     };
     let matrices = [half(0)?, half(1)?];
@@ -223,9 +267,10 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
         .iter()
         .flat_map(|v| v.samples.iter().copied())
         .collect();
-    let m = fit_matrix(&all).context("the samples do not determine a matrix")?;
+    let chosen: Vec<&ViewSamples> = per_view.iter().collect();
+    let m = fit(&chosen, args.objective).context("the samples do not determine a matrix")?;
     if args.hold_out {
-        return hold_out(&per_view, &m, args.json);
+        return hold_out(&per_view, &m, args.objective, args.json);
     }
     let (_, published) = garcia_linan_spectral4();
     println!(
@@ -238,9 +283,16 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     let mut csv = String::from(
         "# Spectral4 matrix: linear sRGB (rows R, G, B) from spectral radiance at 630/560/490/430 nm (lanes 0-3).\n",
     );
+    let (flag, how) = match args.objective {
+        Objective::LeastSquares => ("", "weighted least squares (weights 1/Y²)"),
+        Objective::De2000 => (
+            " --objective de2000",
+            "ΔE2000 as each view is displayed (Nelder–Mead from weighted least squares)",
+        ),
+    };
     writeln!(
         csv,
-        "# Fitted by Atmoscope (`atmoscope fit-wavelengths --spectral spectral{} --grid {}`): weighted least squares (weights 1/Y²)\n\
+        "# Fitted by Atmoscope (`atmoscope fit-wavelengths --spectral spectral{} --grid {}{flag}`): {how}\n\
          # against Hillaire-method {:?} renders of views of presets/views/suite.ron ({}; sun disk excluded), as García Liñán (2023) did against full spectral renders.",
         match args.spectral {
             WavelengthSet::SpectralN(n) => n,
