@@ -263,6 +263,7 @@ impl FrameSetup {
                 })
             }),
         });
+        let above = viewpoint.h > params.thickness_m();
         FrameSetup {
             snapshot,
             globals,
@@ -270,8 +271,8 @@ impl FrameSetup {
             size,
             camera,
             bottom_radius_m: params.bottom_radius_m,
-            above: viewpoint.h > params.thickness_m(),
-            sun_below_tables: viewpoint.h > params.thickness_m()
+            above,
+            sun_below_tables: above
                 || viewpoint.mu_s < atmoscope_model::methods::bruneton::MU_S_MIN,
             sky_tile: 1,
             write_radiance: true,
