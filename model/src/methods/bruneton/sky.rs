@@ -8,9 +8,11 @@
 //! side or at the limb from behind the terminator sees, would read the light of 102° if the
 //! look-up clamped; instead it is looked up from the point where the sun's zenith angle along
 //! the ray comes back to 102°, through the transmittance to there (the air before that point
-//! counted as dark, as the tables count it), and a ray that never gets there fades to dark
-//! within 1.2° past the edge. The sky-irradiance table, whose orders were gathered from clamped
-//! look-ups, lights the ground there with the skylight of 102° as well; it fades the same way.
+//! counted as dark, as the tables count it: the paper's light-shaft construction, Eq. 13, with
+//! the dark stretch at the start of the ray instead of its end), and a ray that never gets
+//! there fades to dark within 1.2° past the edge. The sky-irradiance table, whose orders were
+//! gathered from clamped look-ups, lights the ground there with the skylight of 102° as well;
+//! it fades the same way.
 
 use super::{
     Coords, Lanes, MU_S_FADE, MU_S_MIN, Params, ScatteringTaps, Tables, aerosol_phase, irradiance,
