@@ -5,7 +5,7 @@
 use crate::methods::{
     COMMON, Constant, DISPLAY, GpuMethod, PassSpec, RADIANCE, SKY_ENTRY_POINT, TONE, VIEW_PASSES,
 };
-use crate::prelude::wgsl_prelude;
+use crate::prelude::{march_split, wgsl_prelude};
 use crate::uniforms::{Batch, Globals, MIE_PHASE_ROWS_LEN};
 use atmoscope_model::methods::shared::{PROFILE_SAMPLES, Params};
 use atmoscope_model::methods::{ModelInfo, shared::TableSpec};
@@ -88,7 +88,8 @@ fn pass_layout(pass: &PassSpec) -> Vec<wgpu::BindGroupLayoutEntry> {
 pub fn shader_source(method: &GpuMethod, pass: &PassSpec, texel_group_size: u32) -> String {
     let mut s = wgsl_prelude();
     s.push_str(&format!(
-        "const TEXEL_GROUP_SIZE: u32 = {texel_group_size}u;\n"
+        "const TEXEL_GROUP_SIZE: u32 = {texel_group_size}u;\nconst MARCH_SPLIT: u32 = {}u;\n",
+        march_split(texel_group_size)
     ));
     for part in COMMON {
         s.push_str(part.source);

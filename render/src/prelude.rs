@@ -21,11 +21,12 @@ use atmoscope_model::methods::{bruneton, elek, galaj_spline};
 use atmoscope_model::scene::{AerosolPhase, ToneMap};
 use std::fmt::Write;
 
-/// Workgroup edge of every compute pass (WORKGROUP_SIZE × WORKGROUP_SIZE × 1).
+/// Workgroup edge of every compute pass (WORKGROUP_SIZE × WORKGROUP_SIZE × 1, or × the
+/// [`march_split`] in z).
 pub const WORKGROUP_SIZE: u32 = 8;
 
-/// Invocations of a workgroup that shares one texel's directions (`Dispatch::TexelGroups`), by
-/// adapter. A GPU wants thousands of invocations in flight: with 64, Hillaire's table rebuild ran
+/// Invocations of a workgroup that shares one texel's directions or slices
+/// (`Dispatch::TexelGroups`; × the [`march_split`] where they split their marches), by adapter. A GPU wants thousands of invocations in flight: with 64, Hillaire's table rebuild ran
 /// 15× faster on an H100 than with one invocation per texel, with 16 only 7.7×. A CPU adapter
 /// (lavapipe) gains nothing past its SIMD width and pays for every barrier: 16 runs as fast as
 /// one invocation per texel there, 64 costs 13 % more.
@@ -34,6 +35,19 @@ pub fn texel_group_size(device_type: wgpu::DeviceType) -> u32 {
         wgpu::DeviceType::Cpu => 16,
         _ => 64,
     }
+}
+
+/// Parts a texel's march is split into, each marched by its own invocation and joined in
+/// order (`common/group.wgsl`), for the passes whose tables have fewer texels than a GPU keeps
+/// in flight: the transmittance and Hillaire's sky view (workgroups of 8 × 8 texels × the
+/// split), and Hillaire's multiple scattering and ground irradiance, whose texel groups grow to
+/// `texel_group_size` × the split so that each direction's march has several invocations. A
+/// sixteenth of the texel group: 4 on a GPU, 1 on lavapipe (no split, no barrier); never more
+/// than 256 invocations to a workgroup.
+pub fn march_split(texel_group_size: u32) -> u32 {
+    (texel_group_size / 16)
+        .clamp(1, 4)
+        .min((256 / texel_group_size.max(1)).max(1))
 }
 
 /// A WGSL float literal for `v`.

@@ -1185,13 +1185,16 @@ fn a_rebuild_in_slices_gives_the_same_tables_as_a_whole_one() {
     }
 }
 
-/// Tables whose texels are shared by a workgroup (`Dispatch::TexelGroups`) come out the same,
-/// up to f32 rounding of the sums' order, whatever the workgroup's size: 16 as on lavapipe, 64
-/// as on a GPU (more invocations than the aerial perspective's 32 slices), and 1 (one
-/// invocation per texel, the old layout).
+/// Tables whose texels are shared by a workgroup (`Dispatch::TexelGroups`) or whose marches are
+/// split across invocations (`prelude::march_split`) come out the same, up to f32 rounding of
+/// the sums' order, whatever the workgroup's size: 16 as on lavapipe (no split), 64 as on a GPU
+/// (more invocations than the aerial perspective's 32 slices; marches in four parts), and 1
+/// (one invocation per texel, the old layout).
 #[test]
 fn texel_groups_of_any_size_give_the_same_tables() {
-    const TABLES: [&str; 4] = [
+    const TABLES: [&str; 6] = [
+        "transmittance",
+        "sky-view",
         "multiple-scattering",
         "ground-irradiance",
         "aerial-perspective-inscattering",

@@ -19,6 +19,20 @@ fn integrate_inscattering(
     steps: u32,
     spacing: u32,
 ) -> Inscattering {
+    return integrate_inscattering_steps(layer, start, t0, t1, vec2<u32>(0u, steps), steps, spacing);
+}
+
+// Steps [run.x, run.y) of that march: their radiance from their own start and their
+// transmittance (a part of a split march, split_join below).
+fn integrate_inscattering_steps(
+    layer: u32,
+    start: vec4<f32>,
+    t0: f32,
+    t1: f32,
+    run: vec2<u32>,
+    steps: u32,
+    spacing: u32,
+) -> Inscattering {
     let h = start.x;
     let mu = start.y;
     let mu_s = start.z;
@@ -30,7 +44,7 @@ fn integrate_inscattering(
     var result: Inscattering;
     result.radiance = vec4<f32>(0.0);
     result.transmittance = vec4<f32>(1.0);
-    for (var s = 0u; s < steps; s++) {
+    for (var s = run.x; s < run.y; s++) {
         let seg = march_segment(spacing, t0, t1, s, steps);
         let dt = seg.y - seg.x;
         let ts = 0.5 * (seg.x + seg.y);
@@ -50,3 +64,23 @@ fn integrate_inscattering(
     return result;
 }
 
+// A texel's parts of an in-scattering march joined in order: each part's radiance (from its own
+// start) dimmed by the transmittance of the parts before it. From uniform control flow
+// (common/group.wgsl has the split's layout).
+fn split_join(index: u32, part: Inscattering) -> Inscattering {
+    if MARCH_SPLIT == 1u {
+        return part;
+    }
+    split_a[index] = part.radiance;
+    split_b[index] = part.transmittance;
+    workgroupBarrier();
+    var joined: Inscattering;
+    joined.radiance = vec4<f32>(0.0);
+    joined.transmittance = vec4<f32>(1.0);
+    for (var k = 0u; k < MARCH_SPLIT; k++) {
+        let j = index % SPLIT_TEXELS + k * SPLIT_TEXELS;
+        joined.radiance += joined.transmittance * split_a[j];
+        joined.transmittance *= split_b[j];
+    }
+    return joined;
+}

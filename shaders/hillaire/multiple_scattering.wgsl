@@ -1,7 +1,17 @@
 // Pass: multiple-scattering table Ψ_ms(h, mu_s) = L_2nd / (1 − f_ms), per unit solar irradiance
 // (Hillaire 2020 §5.5), with an isotropic phase and the sunlit ground bounce, over the directions
 // on one side of the sun's vertical plane (their mirror images see the same). One workgroup per
-// texel, its invocations sharing the directions, as Hillaire's own pass does.
+// texel, its invocations sharing the directions, as Hillaire's own pass does; a workgroup of
+// more invocations than directions (256 on a GPU, for 32) splits each direction's march into
+// MS_PARTS runs of steps, joined in order before the sums.
+
+const MS_DIRECTIONS: u32 = MULTIPLE_SCATTERING_DIRECTIONS_SQRT * MULTIPLE_SCATTERING_DIRECTIONS_SQRT / 2u;
+const MS_PARTS: u32 = select(1u, WIDE_GROUP_SIZE / MS_DIRECTIONS, WIDE_GROUP_SIZE >= 2u * MS_DIRECTIONS);
+
+// Each invocation's run of its direction: L_2nd and f_ms from the run's start, its transmittance.
+var<workgroup> part_l: array<vec4<f32>, WIDE_GROUP_SIZE>;
+var<workgroup> part_f: array<vec4<f32>, WIDE_GROUP_SIZE>;
+var<workgroup> part_t: array<vec4<f32>, WIDE_GROUP_SIZE>;
 
 fn sphere_direction(i: u32, n: u32) -> vec3<f32> {
     let mu = 1.0 - 2.0 * (f32(i / n) + 0.5) / f32(n);
@@ -10,16 +20,14 @@ fn sphere_direction(i: u32, n: u32) -> vec3<f32> {
     return vec3<f32>(s * cos(phi), s * sin(phi), mu);
 }
 
-@compute @workgroup_size(TEXEL_GROUP_SIZE, 1, 1)
+@compute @workgroup_size(WIDE_GROUP_SIZE, 1, 1)
 fn main(
     @builtin(workgroup_id) workgroup: vec3<u32>,
     @builtin(local_invocation_index) index: u32,
 ) {
     let id = dispatched_texel(workgroup);
-    if any(id.xy >= MULTIPLE_SCATTERING_SIZE) || id.z >= batch_count() {
-        return;
-    }
-    let layer = id.z;
+    let inside = all(id.xy < MULTIPLE_SCATTERING_SIZE) && id.z < batch_count();
+    let layer = min(id.z, batch_count() - 1u);
     let hm = multiple_scattering_h_mu_s_from_texel(vec2<f32>(id.xy));
     let h = hm.x;
     let mu_s = hm.y;
@@ -34,7 +42,9 @@ fn main(
     var f_ms = vec4<f32>(0.0);
     // One side of the sun's vertical plane: a mirror direction has the same mu and nu.
     let half = n_dir / 2u;
-    for (var d = index; d < n_dir * half; d += TEXEL_GROUP_SIZE) {
+    let part = index / MS_DIRECTIONS;
+    for (var d = index % MS_DIRECTIONS; inside && part < MS_PARTS && d < MS_DIRECTIONS;
+        d += WIDE_GROUP_SIZE) {
         let omega = sphere_direction((d / half) * n_dir + d % half, n_dir);
         let mu = omega.z;
         let nu = dot(omega, sun);
@@ -46,7 +56,8 @@ fn main(
             t_max = distance_to_top(h, mu);
         }
         var throughput = vec4<f32>(1.0);
-        for (var s = 0u; s < n; s++) {
+        let run = vec2<u32>(part * n / MS_PARTS, (part + 1u) * n / MS_PARTS);
+        for (var s = run.x; s < run.y; s++) {
             let seg = march_segment(SPACING_QUADRATIC, 0.0, t_max, s, n);
             let ts = 0.5 * (seg.x + seg.y);
             let dt = seg.y - seg.x;
@@ -60,17 +71,50 @@ fn main(
             f_ms += weight * sca;
             throughput *= exp(-m.extinction * dt);
         }
-        if ground {
-            let mu_s_g = (r * mu_s + t_max * nu) / bottom_radius();
-            let sun_t = sun_transmittance(layer, 0.0, mu_s_g);
-            l_2nd += throughput * sun_t * max(mu_s_g, 0.0) * albedo / PI;
+        if MS_PARTS > 1u {
+            // Joined below, where the first run adds the ground behind the last.
+            part_l[index] = l_2nd;
+            part_f[index] = f_ms;
+            part_t[index] = throughput;
+        } else if ground {
+            l_2nd += throughput * ground_bounce(layer, r, mu_s, t_max, nu, albedo);
+        }
+    }
+    if MS_PARTS > 1u {
+        workgroupBarrier();
+        // The first run of each direction sums them all; the others add nothing more.
+        l_2nd = vec4<f32>(0.0);
+        f_ms = vec4<f32>(0.0);
+        if inside && part == 0u {
+            let d = index;
+            let omega = sphere_direction((d / half) * n_dir + d % half, n_dir);
+            var throughput = vec4<f32>(1.0);
+            for (var k = 0u; k < MS_PARTS; k++) {
+                let j = index + k * MS_DIRECTIONS;
+                l_2nd += throughput * part_l[j];
+                f_ms += throughput * part_f[j];
+                throughput *= part_t[j];
+            }
+            if hits_ground(h, omega.z) {
+                let nu = dot(omega, sun);
+                l_2nd += throughput
+                    * ground_bounce(layer, r, mu_s, distance_to_ground(h, omega.z), nu, albedo);
+            }
         }
     }
     let sums = group_sums(index, l_2nd, f_ms);
-    if index == 0u {
+    if inside && index == 0u {
         let count = f32(n_dir * half);
         let psi = (sums[0] / count) / (1.0 - sums[1] / count);
         let size = MULTIPLE_SCATTERING_SIZE;
         multiple_scattering_lut[(layer * size.y + id.y) * size.x + id.x] = psi;
     }
+}
+
+// The sunlit ground's bounce seen at the end of a ray of length t_max that hits it, per unit
+// of the transmittance to there.
+fn ground_bounce(layer: u32, r: f32, mu_s: f32, t_max: f32, nu: f32, albedo: vec4<f32>) -> vec4<f32> {
+    let mu_s_g = (r * mu_s + t_max * nu) / bottom_radius();
+    let sun_t = sun_transmittance(layer, 0.0, mu_s_g);
+    return sun_t * max(mu_s_g, 0.0) * albedo / PI;
 }
