@@ -39,10 +39,10 @@ pub fn texel_group_size(device_type: wgpu::DeviceType) -> u32 {
 
 /// Parts a texel's march is split into, each marched by its own invocation and joined in
 /// order (`common/group.wgsl`), for the passes whose tables have fewer texels than a GPU keeps
-/// in flight: the transmittance and Hillaire's sky view (workgroups of 8 × 8 texels × the
-/// split), and Hillaire's multiple scattering and ground irradiance, whose texel groups grow to
-/// `texel_group_size` × the split so that each direction's march has several invocations. A
-/// sixteenth of the texel group: 4 on a GPU, 1 on lavapipe (no split, no barrier); never more
+/// in flight: the transmittance, Hillaire's sky view and García Liñán's sky texture (workgroups
+/// of 8 × 8 texels × the split), and Hillaire's ground irradiance, whose texel groups grow to
+/// `texel_group_size` × the split so that each of its 128 directions has several invocations.
+/// A sixteenth of the texel group: 4 on a GPU, 1 on lavapipe (no split, no barrier); never more
 /// than 256 invocations to a workgroup.
 pub fn march_split(texel_group_size: u32) -> u32 {
     (texel_group_size / 16)

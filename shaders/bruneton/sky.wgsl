@@ -39,7 +39,8 @@ fn lit_distance(c: Coords) -> f32 {
 }
 
 // Whether a ray of the view may start with the sun below the tables (from above the atmosphere,
-// or with the sun that low at the camera); the engine sets it per frame.
+// or with the sun that low at the camera); the engine sets it per frame. When not, every ray
+// starts at the camera, and the look-up reads the tables' slices there.
 override SUN_BELOW_TABLES: bool = true;
 
 // The tables' in-scattered radiance along the ray of c; beyond their range, read where the sun
@@ -61,9 +62,26 @@ fn inscattered(layer: u32, c: Coords) -> vec4<f32> {
             factor = vec4<f32>(edge_fade(c.mu_s));
         }
     }
-    let s = read_scattering(scattering_cell(layer, scattering_texel(at)));
+    var s: Inscattered;
+    if SUN_BELOW_TABLES {
+        s = read_scattering(scattering_cell(layer, scattering_texel(at)));
+    } else {
+        s = read_camera_slice(layer, c);
+    }
     return factor * (s.scattering * rayleigh_phase(c.nu, b.rayleigh_depolarisation)
         + s.single_mie * aerosol_phase(c.nu, layer));
+}
+
+// The tables at the camera (camera_slice.wgsl) for a ray that starts there: what the 4D
+// look-up gives, from four texels of each. Twin of bruneton::camera_slice::camera_slice.
+fn read_camera_slice(layer: u32, c: Coords) -> Inscattered {
+    let size = vec2<u32>(SCATTERING_NU, SCATTERING_SIZE.y);
+    let t = taps(size, layer, vec2<f32>(nu_texel(c.nu), mu_texel(c.h, c.mu, c.ground)));
+    return Inscattered(
+        blend(camera_scattering_lut[t.i.x], camera_scattering_lut[t.i.y],
+            camera_scattering_lut[t.i.z], camera_scattering_lut[t.i.w], t.w),
+        blend(camera_single_mie_lut[t.i.x], camera_single_mie_lut[t.i.y],
+            camera_single_mie_lut[t.i.z], camera_single_mie_lut[t.i.w], t.w));
 }
 
 fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {

@@ -114,6 +114,9 @@ fn has_aerosol() -> bool { return globals.options.z != 0u; }
 @group(1) @binding(18) var<storage, read_write> gathered_mie_lut: array<vec4<f32>>;
 @group(1) @binding(19) var<storage, read_write> rayleigh_scattering_lut: array<vec4<f32>>;
 @group(1) @binding(20) var<storage, read_write> mie_scattering_lut: array<vec4<f32>>;
+// Bruneton's scattering tables at the camera (bruneton/camera_slice.wgsl).
+@group(1) @binding(24) var<storage, read_write> camera_scattering_lut: array<vec4<f32>>;
+@group(1) @binding(25) var<storage, read_write> camera_single_mie_lut: array<vec4<f32>>;
 // Gałaj's spline mesh (galaj_spline/mesh.wgsl).
 @group(1) @binding(22) var<storage, read_write> galaj_spline_mesh_lut: array<vec4<f32>>;
 @group(1) @binding(6) var radiance_out: texture_storage_2d<rgba32float, write>;

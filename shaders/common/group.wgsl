@@ -1,20 +1,22 @@
 // Sums across a workgroup, for the passes dispatched one workgroup per texel whose invocations
-// share the texel's directions and split their marches (render::methods::Dispatch::TexelGroups:
-// Hillaire's multiple scattering and ground irradiance), in workgroups of WIDE_GROUP_SIZE.
+// share the texel's directions (render::methods::Dispatch::TexelGroups): workgroups of
+// TEXEL_GROUP_SIZE, or WIDE_GROUP_SIZE where each direction's march is split in parts as well
+// (Hillaire's ground irradiance).
 
 const WIDE_GROUP_SIZE: u32 = TEXEL_GROUP_SIZE * MARCH_SPLIT;
 
 var<workgroup> group_a: array<vec4<f32>, WIDE_GROUP_SIZE>;
 var<workgroup> group_b: array<vec4<f32>, WIDE_GROUP_SIZE>;
 
-// The workgroup's sums of every invocation's a and b, returned to each invocation; `index` is
-// the invocation's local_invocation_index (workgroups of WIDE_GROUP_SIZE). Call it from uniform
-// control flow (it waits at barriers): a tree of log2(WIDE_GROUP_SIZE) steps.
-fn group_sums(index: u32, a: vec4<f32>, b: vec4<f32>) -> array<vec4<f32>, 2> {
+// The sums of every invocation's a and b over a workgroup of `size` invocations (a power of
+// two, at most WIDE_GROUP_SIZE), returned to each; `index` is the invocation's
+// local_invocation_index. Call it from uniform control flow with a constant size (it waits at
+// barriers): a tree of log2(size) steps.
+fn group_sums(size: u32, index: u32, a: vec4<f32>, b: vec4<f32>) -> array<vec4<f32>, 2> {
     group_a[index] = a;
     group_b[index] = b;
     workgroupBarrier();
-    for (var stride = WIDE_GROUP_SIZE / 2u; stride > 0u; stride /= 2u) {
+    for (var stride = size / 2u; stride > 0u; stride /= 2u) {
         if index < stride {
             group_a[index] += group_a[index + stride];
             group_b[index] += group_b[index + stride];

@@ -65,7 +65,7 @@ fn main(
             sum *= max(d.x, 0.0) * d.z;
         }
     }
-    let sums = group_sums(index, sum, vec4<f32>(0.0));
+    let sums = group_sums(WIDE_GROUP_SIZE, index, sum, vec4<f32>(0.0));
     if inside && index == 0u {
         ground_irradiance_lut[id.z * GROUND_IRRADIANCE_SIZE + id.x] = sums[0];
     }

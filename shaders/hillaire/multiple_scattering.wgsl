@@ -2,16 +2,16 @@
 // (Hillaire 2020 §5.5), with an isotropic phase and the sunlit ground bounce, over the directions
 // on one side of the sun's vertical plane (their mirror images see the same). One workgroup per
 // texel, its invocations sharing the directions, as Hillaire's own pass does; a workgroup of
-// more invocations than directions (256 on a GPU, for 32) splits each direction's march into
+// more invocations than directions (64 on a GPU, for 32) splits each direction's march into
 // MS_PARTS runs of steps, joined in order before the sums.
 
 const MS_DIRECTIONS: u32 = MULTIPLE_SCATTERING_DIRECTIONS_SQRT * MULTIPLE_SCATTERING_DIRECTIONS_SQRT / 2u;
-const MS_PARTS: u32 = select(1u, WIDE_GROUP_SIZE / MS_DIRECTIONS, WIDE_GROUP_SIZE >= 2u * MS_DIRECTIONS);
+const MS_PARTS: u32 = select(1u, TEXEL_GROUP_SIZE / MS_DIRECTIONS, TEXEL_GROUP_SIZE >= 2u * MS_DIRECTIONS);
 
 // Each invocation's run of its direction: L_2nd and f_ms from the run's start, its transmittance.
-var<workgroup> part_l: array<vec4<f32>, WIDE_GROUP_SIZE>;
-var<workgroup> part_f: array<vec4<f32>, WIDE_GROUP_SIZE>;
-var<workgroup> part_t: array<vec4<f32>, WIDE_GROUP_SIZE>;
+var<workgroup> part_l: array<vec4<f32>, TEXEL_GROUP_SIZE>;
+var<workgroup> part_f: array<vec4<f32>, TEXEL_GROUP_SIZE>;
+var<workgroup> part_t: array<vec4<f32>, TEXEL_GROUP_SIZE>;
 
 fn sphere_direction(i: u32, n: u32) -> vec3<f32> {
     let mu = 1.0 - 2.0 * (f32(i / n) + 0.5) / f32(n);
@@ -20,7 +20,7 @@ fn sphere_direction(i: u32, n: u32) -> vec3<f32> {
     return vec3<f32>(s * cos(phi), s * sin(phi), mu);
 }
 
-@compute @workgroup_size(WIDE_GROUP_SIZE, 1, 1)
+@compute @workgroup_size(TEXEL_GROUP_SIZE, 1, 1)
 fn main(
     @builtin(workgroup_id) workgroup: vec3<u32>,
     @builtin(local_invocation_index) index: u32,
@@ -44,7 +44,7 @@ fn main(
     let half = n_dir / 2u;
     let part = index / MS_DIRECTIONS;
     for (var d = index % MS_DIRECTIONS; inside && part < MS_PARTS && d < MS_DIRECTIONS;
-        d += WIDE_GROUP_SIZE) {
+        d += TEXEL_GROUP_SIZE) {
         let omega = sphere_direction((d / half) * n_dir + d % half, n_dir);
         let mu = omega.z;
         let nu = dot(omega, sun);
@@ -102,7 +102,7 @@ fn main(
             }
         }
     }
-    let sums = group_sums(index, l_2nd, f_ms);
+    let sums = group_sums(TEXEL_GROUP_SIZE, index, l_2nd, f_ms);
     if inside && index == 0u {
         let count = f32(n_dir * half);
         let psi = (sums[0] / count) / (1.0 - sums[1] / count);

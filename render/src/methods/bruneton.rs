@@ -17,6 +17,8 @@ const DELTA_MIE: &str = "delta-mie";
 const SCATTERING: &str = "scattering";
 const SINGLE_MIE: &str = "single-mie";
 const DENSITY: &str = "scattering-density";
+const CAMERA_SCATTERING: &str = "camera-scattering";
+const CAMERA_SINGLE_MIE: &str = "camera-single-mie";
 
 /// The sky pass's constants, and whether a ray may start with the sun below the tables.
 const SKY_CONSTANTS_BELOW_TABLES: [Constant; 11] = {
@@ -81,11 +83,28 @@ pub const METHOD: GpuMethod = GpuMethod {
             Dispatch::Volume(SCATTERING),
             Repeat::PerOrder,
         ),
+        PassSpec::table(
+            "camera-slice",
+            shader!("bruneton/camera_slice.wgsl"),
+            &[SCATTERING, SINGLE_MIE],
+            &[CAMERA_SCATTERING, CAMERA_SINGLE_MIE],
+            Dispatch::Table(CAMERA_SCATTERING),
+            Repeat::Once,
+        ),
         PassSpec {
             constants: &SKY_CONSTANTS_BELOW_TABLES,
+            // Above the atmosphere rays start where they enter it: no camera slices.
+            reads_above_atmosphere: Some(&[T, SCATTERING, SINGLE_MIE, IRRADIANCE]),
             ..PassSpec::sky(
                 shader!("bruneton/sky.wgsl"),
-                &[T, SCATTERING, SINGLE_MIE, IRRADIANCE],
+                &[
+                    T,
+                    SCATTERING,
+                    SINGLE_MIE,
+                    IRRADIANCE,
+                    CAMERA_SCATTERING,
+                    CAMERA_SINGLE_MIE,
+                ],
             )
         },
     ],

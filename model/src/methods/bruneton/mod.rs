@@ -2,8 +2,8 @@
 //! Bruneton's 2017 reference implementation: the f64 CPU twin of the passes in
 //! `shaders/bruneton/`.
 //!
-//! Tables (every one depends on the atmosphere only, so moving the sun or the camera rebuilds
-//! none):
+//! Tables (every one but the camera slices depends on the atmosphere only, so moving the sun
+//! or the camera rebuilds only those):
 //! - transmittance (h, mu), shared with the other table-based models;
 //! - scattering (r, mu, mu_s, nu) in 4D, packed into a 3D table of nu slices side by side:
 //!   single Rayleigh plus every higher order (divided by the Rayleigh phase, which the look-up
@@ -13,7 +13,9 @@
 //! - the deltas of the current order (radiance, irradiance, scattering density J), which the
 //!   order loop rewrites: orders 2..N each run scattering density → indirect irradiance →
 //!   multiple scattering ([`scattering_density`], [`indirect_irradiance`],
-//!   [`multiple_scattering`]).
+//!   [`multiple_scattering`]);
+//! - the scattering and single-Mie tables at the camera's altitude and sun, 2D slices of the 4D
+//!   ones that the sky pass reads with a quarter of the texels ([`camera_slice`]).
 //!
 //! One departure from the reference keeps the order loop's passes the same at every order:
 //! after order 2 the delta tables hold the previous order as "Rayleigh-like" radiance over the
@@ -27,6 +29,7 @@
 //! the scene's, as for every model. The ground is the only surface, so aerial perspective is the
 //! ground half of the scattering table (in-scattering between the camera and the ground).
 
+pub mod camera_slice;
 pub mod direct_irradiance;
 pub mod indirect_irradiance;
 pub mod multiple_scattering;
@@ -150,7 +153,7 @@ pub const SCATTERING_DENSITY: TableSpec =
     scattering_table("scattering-density", "scattering density J (last order)");
 
 /// Every table of the method, in pass order.
-pub const TABLES: [TableSpec; 8] = [
+pub const TABLES: [TableSpec; 10] = [
     transmittance::TABLE,
     DELTA_IRRADIANCE,
     IRRADIANCE,
@@ -159,6 +162,8 @@ pub const TABLES: [TableSpec; 8] = [
     SCATTERING,
     SINGLE_MIE,
     SCATTERING_DENSITY,
+    camera_slice::CAMERA_SCATTERING,
+    camera_slice::CAMERA_SINGLE_MIE,
 ];
 
 /// √(top² − R²): the distance from the ground to the top along the horizontal.
@@ -408,12 +413,15 @@ pub struct Tables {
     pub scattering: Lut,
     pub single_mie: Lut,
     pub scattering_density: Lut,
+    /// The scattering and single-Mie tables at the viewpoint ([`camera_slice`]).
+    pub camera_scattering: Lut,
+    pub camera_single_mie: Lut,
 }
 
 impl Tables {
     /// The transmittance, the single-scattering and direct-irradiance deltas, then orders
-    /// 2..=`p.scattering_orders` one by one.
-    pub fn compute(p: &Params) -> Tables {
+    /// 2..=`p.scattering_orders` one by one; then the slices at `vp`.
+    pub fn compute(p: &Params, vp: Viewpoint) -> Tables {
         let layers = p.batches.len();
         let t = compute_transmittance_lut(p);
         let mut delta_irradiance = Lut::from_spec(&DELTA_IRRADIANCE, layers, |layer, _, y, x| {
@@ -457,6 +465,7 @@ impl Tables {
             delta_mie = zeros(&DELTA_MIE, layers);
             scattering = scattering.plus(&delta_rayleigh);
         }
+        let slice = |spec, lut| camera_slice::compute_camera_slice(p, spec, lut, vp);
         Tables {
             params: p.clone(),
             transmittance: t,
@@ -464,6 +473,8 @@ impl Tables {
             irradiance,
             delta_rayleigh,
             delta_mie,
+            camera_scattering: slice(&camera_slice::CAMERA_SCATTERING, &scattering),
+            camera_single_mie: slice(&camera_slice::CAMERA_SINGLE_MIE, &single_mie),
             scattering,
             single_mie,
             scattering_density,
@@ -490,15 +501,16 @@ impl SkyModel for Tables {
             "scattering" => &self.scattering,
             "single-mie" => &self.single_mie,
             "scattering-density" => &self.scattering_density,
+            "camera-scattering" => &self.camera_scattering,
+            "camera-single-mie" => &self.camera_single_mie,
             _ => return None,
         })
     }
 }
 
-/// Builds the method's CPU twin (the registry's constructor); the tables do not depend on the
-/// viewpoint.
-pub fn build(params: &Params, _: Viewpoint) -> Box<dyn SkyModel> {
-    Box::new(Tables::compute(params))
+/// Builds the method's CPU twin (the registry's constructor).
+pub fn build(params: &Params, vp: Viewpoint) -> Box<dyn SkyModel> {
+    Box::new(Tables::compute(params, vp))
 }
 
 #[cfg(test)]
@@ -511,6 +523,9 @@ mod tests {
     use crate::methods::rng::Rng;
     use crate::methods::shared::optics::tests::params;
     use crate::scene::{Quality, Scene};
+
+    /// The camera slices' viewpoint where a test reads only the 4D tables.
+    const GROUND_NOON: Viewpoint = Viewpoint { h: 0.0, mu_s: 1.0 };
 
     #[test]
     fn scattering_and_irradiance_mappings_round_trip() {
@@ -585,7 +600,7 @@ mod tests {
         let atm = Atmosphere::for_scene(&scene);
         let wavelengths = [450.0, 550.0, 650.0, 650.0];
         let p = Params::at_wavelengths(&atm, &wavelengths, Quality::High).with_scattering_orders(4);
-        let tables = Tables::compute(&p);
+        let tables = Tables::compute(&p, GROUND_NOON);
         let sun = direction_from_angles(30.0, 0.0);
         let position = DVec3::new(0.0, 0.0, atm.bottom_radius_m + 1.0);
         let tracer = PathTracer::new(
@@ -652,7 +667,7 @@ mod tests {
         let wavelengths = [440.0, 550.0, 680.0, 680.0];
         let p =
             Params::at_wavelengths(&atm, &wavelengths, Quality::Medium).with_scattering_orders(1);
-        let tables = Tables::compute(&p);
+        let tables = Tables::compute(&p, GROUND_NOON);
         let sun = direction_from_angles(-6.0, 0.0);
         let position = DVec3::new(0.0, 0.0, atm.bottom_radius_m + 1.0);
         for (elevation, azimuth, most) in [
@@ -697,11 +712,11 @@ mod tests {
         let sun = direction_from_angles(-30.0, 0.0);
         let mut p = Params::at_wavelengths(&atm, &wavelengths, Quality::Low);
         p.steps.sphere_directions = 4;
-        let two_orders = Tables::compute(&p.clone().with_scattering_orders(2));
+        let two_orders = Tables::compute(&p.clone().with_scattering_orders(2), GROUND_NOON);
         let night = two_orders.radiance(0, (position, h), DVec3::NEG_Z, sun);
         assert!(night.iter().all(|&l| l == 0.0), "night side: {night:?}");
 
-        let one_order = Tables::compute(&p.with_scattering_orders(1));
+        let one_order = Tables::compute(&p.with_scattering_orders(1), GROUND_NOON);
         for elevation in [-18.5, -19.0, -19.5] {
             let limb = direction_from_angles(elevation, 0.0);
             let model = one_order.radiance(0, (position, h), limb, sun);
@@ -727,7 +742,7 @@ mod tests {
         let mut p = params();
         p.steps.sphere_directions = 6;
         let radiance = |orders: u32| {
-            let t = Tables::compute(&p.clone().with_scattering_orders(orders));
+            let t = Tables::compute(&p.clone().with_scattering_orders(orders), GROUND_NOON);
             let position = DVec3::new(0.0, 0.0, p.bottom_radius_m + 100.0);
             let dir = direction_from_angles(40.0, 90.0);
             let sun = direction_from_angles(20.0, 0.0);
