@@ -188,20 +188,31 @@ impl Stress {
         }
     }
 
-    /// The CPU twin for `scene`, built again only when its tables would differ.
+    /// The CPU twin for `scene`, built again only when its tables would differ, and moved to
+    /// the scene's viewpoint where only the tables there would (`SkyModel::move_to`).
     fn twin(&mut self, scene: &Scene, camera: &Camera) -> &dyn SkyModel {
         let model = methods::info(scene.render.method);
-        let same = |kept: &Scene| {
-            kept.atmosphere == scene.atmosphere
-                && kept.render == scene.render
-                && (!model.reads_viewpoint()
-                    || (kept.camera.altitude_m == scene.camera.altitude_m && kept.sun == scene.sun))
+        let same_atmosphere =
+            |kept: &Scene| kept.atmosphere == scene.atmosphere && kept.render == scene.render;
+        let same_viewpoint = |kept: &Scene| {
+            !model.reads_viewpoint()
+                || (kept.camera.altitude_m == scene.camera.altitude_m && kept.sun == scene.sun)
         };
-        let i = match self
+        let kept = self
             .twins
             .iter()
-            .position(|(m, kept, _)| *m == model.method && same(kept))
-        {
+            .position(|(m, kept, _)| *m == model.method && same_atmosphere(kept));
+        let moved = kept.filter(|&i| {
+            let (_, kept, twin) = &mut self.twins[i];
+            same_viewpoint(kept) || {
+                let moved = twin.move_to(methods::shared::viewpoint(scene, camera));
+                if moved {
+                    *kept = scene.clone();
+                }
+                moved
+            }
+        });
+        let i = match moved {
             Some(i) => i,
             None => {
                 self.twins.retain(|(m, _, _)| *m != model.method);

@@ -203,6 +203,13 @@ pub trait SkyModel: Send + Sync {
     /// One of the model's tables by its registry id.
     fn table(&self, id: &str) -> Option<&Lut>;
 
+    /// Moves the twin to viewpoint `vp` by rebuilding only what depends on it, where that is
+    /// cheap next to the rest (Bruneton's camera slices); false where the model cannot, and the
+    /// caller builds it again.
+    fn move_to(&mut self, _vp: Viewpoint) -> bool {
+        false
+    }
+
     /// Radiance of the sun's disk for batch `layer` seen from altitude `h` (m) with the sun at
     /// zenith cosine `mu_s`, where the disk's radiance per unit irradiance is `disk` (sr⁻¹ per
     /// lane, limb darkening depending on the wavelength:

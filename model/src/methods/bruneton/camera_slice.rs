@@ -75,9 +75,41 @@ pub fn camera_slice(p: &Params, slice: &Lut, layer: usize, c: Coords) -> Lanes {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{SCATTERING, scattering};
+    use super::super::{SCATTERING, Tables, scattering};
     use super::*;
+    use crate::methods::SkyModel;
     use crate::methods::shared::optics::tests::params;
+
+    /// A twin moved to another viewpoint reads there what the 4D tables read, for both tables.
+    #[test]
+    fn a_twin_moved_to_a_viewpoint_slices_its_tables_there() {
+        let p = params().with_scattering_orders(1);
+        let mut tables = Tables::compute(&p, Viewpoint { h: 0.0, mu_s: 1.0 });
+        let vp = Viewpoint {
+            h: 8000.0,
+            mu_s: 0.1,
+        };
+        let before = tables.camera_scattering.clone();
+        assert!(tables.move_to(vp));
+        assert_ne!(tables.camera_scattering.data, before.data);
+        let c = Coords {
+            h: vp.h,
+            mu: 0.2,
+            mu_s: vp.mu_s,
+            nu: 0.5,
+            ground: false,
+        };
+        for (slice, lut) in [
+            (&tables.camera_scattering, &tables.scattering),
+            (&tables.camera_single_mie, &tables.single_mie),
+        ] {
+            let (a, b) = (camera_slice(&p, slice, 0, c), scattering(&p, lut, 0, c));
+            assert!(b[0] > 0.0);
+            for l in 0..LANES {
+                assert!((a[l] - b[l]).abs() <= 1e-12 * b[l], "{a:?} against {b:?}");
+            }
+        }
+    }
 
     /// From a viewpoint inside the atmosphere, the slice's look-up gives the 4D look-up for
     /// every direction, at texel centres and between them, on the ground half and the sky half.

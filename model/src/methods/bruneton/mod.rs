@@ -465,20 +465,29 @@ impl Tables {
             delta_mie = zeros(&DELTA_MIE, layers);
             scattering = scattering.plus(&delta_rayleigh);
         }
-        let slice = |spec, lut| camera_slice::compute_camera_slice(p, spec, lut, vp);
-        Tables {
+        let mut tables = Tables {
             params: p.clone(),
             transmittance: t,
             delta_irradiance,
             irradiance,
             delta_rayleigh,
             delta_mie,
-            camera_scattering: slice(&camera_slice::CAMERA_SCATTERING, &scattering),
-            camera_single_mie: slice(&camera_slice::CAMERA_SINGLE_MIE, &single_mie),
             scattering,
             single_mie,
             scattering_density,
-        }
+            camera_scattering: zeros(&camera_slice::CAMERA_SCATTERING, layers),
+            camera_single_mie: zeros(&camera_slice::CAMERA_SINGLE_MIE, layers),
+        };
+        tables.slice_at(vp);
+        tables
+    }
+
+    /// The camera slices at `vp`.
+    fn slice_at(&mut self, vp: Viewpoint) {
+        let p = &self.params;
+        let slice = |spec, lut| camera_slice::compute_camera_slice(p, spec, lut, vp);
+        self.camera_scattering = slice(&camera_slice::CAMERA_SCATTERING, &self.scattering);
+        self.camera_single_mie = slice(&camera_slice::CAMERA_SINGLE_MIE, &self.single_mie);
     }
 }
 
@@ -505,6 +514,11 @@ impl SkyModel for Tables {
             "camera-single-mie" => &self.camera_single_mie,
             _ => return None,
         })
+    }
+
+    fn move_to(&mut self, vp: Viewpoint) -> bool {
+        self.slice_at(vp);
+        true
     }
 }
 
