@@ -782,6 +782,8 @@ pub struct Engine {
     slice_units: Vec<(Method, Vec<u32>)>,
     target: Option<Target>,
     last: Option<Snapshot>,
+    /// Inputs the next frame treats as changed whatever the scene (`invalidate_inputs`).
+    forced: Inputs,
     timer: Timer,
     measure: bool,
     stats: FrameStats,
@@ -821,6 +823,7 @@ impl Engine {
             slice_units: Vec::new(),
             target: None,
             last: None,
+            forced: Inputs::NONE,
             timer,
             measure: false,
             stats: FrameStats::default(),
@@ -868,8 +871,9 @@ impl Engine {
     }
 
     /// Compiles passes that share a texel among a workgroup with workgroups of `n` invocations
-    /// (a power of two, 1–256) instead of the adapter's choice; the tables come out the same up
-    /// to f32 rounding, only the speed differs. Forgets every compiled pass and table.
+    /// (a power of two, 1–256) instead of the adapter's choice, and splits marches as that size
+    /// does (`prelude::march_split`); the tables come out the same up to f32 rounding, only the
+    /// speed differs. Forgets every compiled pass and table.
     pub fn set_texel_group_size(&mut self, n: u32) {
         self.texel_group_size = n.clamp(1, 256).next_power_of_two();
         self.pipelines.clear();
@@ -883,6 +887,12 @@ impl Engine {
     /// Forgets the previous frame, so the next one runs every pass (a full rebuild).
     pub fn invalidate(&mut self) {
         self.last = None;
+    }
+
+    /// Makes the next frame run what it would if `inputs` had changed (e.g. the viewpoint:
+    /// the view tables), whatever the scene.
+    pub fn invalidate_inputs(&mut self, inputs: Inputs) {
+        self.forced = self.forced.union(inputs);
     }
 
     /// How a new atmosphere is built once one is on screen: `None` (the default) builds
@@ -1090,7 +1100,10 @@ impl Engine {
             unreachable!("the atmosphere was just built");
         };
         let mut frame = FrameSetup::new(scene, view, state, gpu);
-        let mut changed = frame.snapshot.changes_from(self.last.as_ref());
+        let mut changed = frame
+            .snapshot
+            .changes_from(self.last.as_ref())
+            .union(std::mem::replace(&mut self.forced, Inputs::NONE));
         if rebuild_done {
             // The rebuild drew its view at full resolution.
             self.tiled_on_screen = false;

@@ -26,8 +26,9 @@ use std::fmt::Write;
 pub const WORKGROUP_SIZE: u32 = 8;
 
 /// Invocations of a workgroup that shares one texel's directions or slices
-/// (`Dispatch::TexelGroups`; × the [`march_split`] where they split their marches), by adapter. A GPU wants thousands of invocations in flight: with 64, Hillaire's table rebuild ran
-/// 15× faster on an H100 than with one invocation per texel, with 16 only 7.7×. A CPU adapter
+/// (`Dispatch::TexelGroups`; × the [`march_split`] where they split their marches), by
+/// adapter. A GPU wants thousands of invocations in flight: with 64, Hillaire's table rebuild
+/// ran 15× faster on an H100 than with one invocation per texel, with 16 only 7.7×. A CPU adapter
 /// (lavapipe) gains nothing past its SIMD width and pays for every barrier: 16 runs as fast as
 /// one invocation per texel there, 64 costs 13 % more.
 pub fn texel_group_size(device_type: wgpu::DeviceType) -> u32 {

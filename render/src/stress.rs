@@ -198,21 +198,21 @@ impl Stress {
             !model.reads_viewpoint()
                 || (kept.camera.altitude_m == scene.camera.altitude_m && kept.sun == scene.sun)
         };
-        let kept = self
+        let mut reusable = None;
+        if let Some(i) = self
             .twins
             .iter()
-            .position(|(m, kept, _)| *m == model.method && same_atmosphere(kept));
-        let moved = kept.filter(|&i| {
+            .position(|(m, kept, _)| *m == model.method && same_atmosphere(kept))
+        {
             let (_, kept, twin) = &mut self.twins[i];
-            same_viewpoint(kept) || {
-                let moved = twin.move_to(methods::shared::viewpoint(scene, camera));
-                if moved {
-                    *kept = scene.clone();
-                }
-                moved
+            if same_viewpoint(kept) {
+                reusable = Some(i);
+            } else if twin.move_to(methods::shared::viewpoint(scene, camera)) {
+                *kept = scene.clone();
+                reusable = Some(i);
             }
-        });
-        let i = match moved {
+        }
+        let i = match reusable {
             Some(i) => i,
             None => {
                 self.twins.retain(|(m, _, _)| *m != model.method);

@@ -69,6 +69,52 @@ fn every_shader_parses_validates_and_matches_the_rust_layouts() {
     }
 }
 
+/// Every pass, at every texel-group size the engine allows (`Engine::set_texel_group_size`:
+/// powers of two to 256, and the march split that follows), validates, uses at most the 16 KiB
+/// of workgroup memory every Vulkan device offers (the engine asks for no more), and has at
+/// most 256 invocations to a workgroup.
+#[test]
+fn every_pass_fits_the_workgroup_limits_at_every_group_size() {
+    let limits = wgpu::Limits::default();
+    for n in (0..=8).map(|k| 1u32 << k) {
+        for (method, pass) in GPU_METHODS
+            .iter()
+            .flat_map(|m| m.passes.iter().chain([&DISPLAY_PASS]).map(move |p| (m, p)))
+        {
+            let file = pass.shader.path;
+            let src = shader_source(method, pass, n);
+            let module = naga::front::wgsl::parse_str(&src)
+                .unwrap_or_else(|e| panic!("{file}: {}", e.emit_to_string(&src)));
+            let info = naga::valid::Validator::new(
+                naga::valid::ValidationFlags::all(),
+                naga::valid::Capabilities::default(),
+            )
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{file} at {n}: {}", e.emit_to_string(&src)));
+            for (i, entry) in module.entry_points.iter().enumerate() {
+                let used = info.get_entry_point(i);
+                let bytes: u32 = module
+                    .global_variables
+                    .iter()
+                    .filter(|(h, v)| {
+                        v.space == naga::AddressSpace::WorkGroup && !used[*h].is_empty()
+                    })
+                    .map(|(_, v)| module.types[v.ty].inner.size(module.to_ctx()))
+                    .sum();
+                assert!(
+                    bytes <= limits.max_compute_workgroup_storage_size,
+                    "{file} at {n}: {bytes} bytes of workgroup memory"
+                );
+                let invocations: u32 = entry.workgroup_size.iter().product();
+                assert!(
+                    invocations <= limits.max_compute_invocations_per_workgroup,
+                    "{file} at {n}: {invocations} invocations"
+                );
+            }
+        }
+    }
+}
+
 /// Worst |gpu − cpu| / (|cpu| + floor·max|cpu|) over every texel and lane.
 fn worst_error(gpu: &[[f32; 4]], cpu: &Lut, floor: f64) -> (f64, usize) {
     assert_eq!(gpu.len(), cpu.data.len(), "table sizes differ");
@@ -794,6 +840,10 @@ fn order_gathering_models_rebuild_only_their_view_tables_when_the_sun_or_the_cam
             azimuth_deg: 200.0,
         };
         assert_eq!(engine.render(&scene, &view).run, view_only, "{id}: sun");
+        // The same when only told that the viewpoint changed (`bench methods` times the view
+        // tables so).
+        engine.invalidate_inputs(methods::Inputs::VIEWPOINT);
+        assert_eq!(engine.render(&scene, &view).run, view_only, "{id}: told");
         for altitude_m in [10_000.0, 400_000.0, 2.0] {
             scene.camera.altitude_m = altitude_m;
             let expected = if altitude_m > 100_000.0 {
@@ -860,9 +910,10 @@ fn fitted_constants_reach_the_gpu_and_rebuild_the_tables() {
     );
 }
 
-/// From above the atmosphere the models that march every pixel leave the view tables they do
-/// not read stale, and build them when the camera comes back down: the image is then the same
-/// as a fresh engine's.
+/// From above the atmosphere the models that march every pixel (or, as Bruneton's, read their
+/// 4D tables instead of their slices at the camera) leave the view tables they do not read
+/// stale, and build them when the camera comes back down: the image is then the same as a
+/// fresh engine's.
 #[test]
 fn from_above_the_atmosphere_the_view_tables_wait_until_a_view_needs_them() {
     let Some(gpu) = context() else { return };
@@ -877,9 +928,18 @@ fn from_above_the_atmosphere_the_view_tables_wait_until_a_view_needs_them() {
                 "sky",
             ],
             "garcia-linan" => &["transmittance", "sky"],
+            "bruneton" => &[
+                "transmittance",
+                "direct-irradiance",
+                "single-scattering",
+                "scattering-density",
+                "indirect-irradiance",
+                "multiple-scattering",
+                "sky",
+            ],
             // No view tables to leave stale: the same passes everywhere.
-            "bruneton" | "elek" | "nishita" | "trapezoid" | "schuler" | "galaj-taylor"
-            | "galaj-spline" | "flat" | "raymarched" | "empty" => {
+            "elek" | "nishita" | "trapezoid" | "schuler" | "galaj-taylor" | "galaj-spline"
+            | "flat" | "raymarched" | "empty" => {
                 continue;
             }
             // The same passes from space: the sky pass marches every pixel anyway.
@@ -896,6 +956,8 @@ fn from_above_the_atmosphere_the_view_tables_wait_until_a_view_needs_them() {
         };
         let mut engine = Engine::new(&gpu.device, &gpu.queue);
         let mut scene = with(model, &Scene::default());
+        // Bruneton's precompute is long on a software adapter; what waits is the same.
+        scene.render.quality = Quality::Low;
         scene.camera.altitude_m = 400_000.0;
         scene.camera.pitch_deg = -60.0;
         let first = engine.render(&scene, &view).clone();
@@ -1212,8 +1274,8 @@ fn a_rebuild_in_slices_gives_the_same_tables_as_a_whole_one() {
 /// Tables whose texels are shared by a workgroup (`Dispatch::TexelGroups`) or whose marches are
 /// split across invocations (`prelude::march_split`) come out the same, up to f32 rounding of
 /// the sums' order, whatever the workgroup's size: 16 as on lavapipe (no split), 64 as on a GPU
-/// (more invocations than the aerial perspective's 32 slices; marches in parts), and 1 (one
-/// invocation per texel, the old layout).
+/// (more invocations than the aerial perspective's 32 slices; marches in parts), every other
+/// size the engine allows up to 256, and 1 (one invocation per texel, the old layout).
 #[test]
 fn texel_groups_of_any_size_give_the_same_tables() {
     const TABLES: [(Method, &str); 7] = [
@@ -1238,7 +1300,7 @@ fn texel_groups_of_any_size_give_the_same_tables() {
         })
     };
     let reference = read(1);
-    for n in [16, 64] {
+    for n in [16, 32, 64, 128, 256] {
         for ((_, table), (a, b)) in TABLES.iter().zip(read(n).iter().zip(&reference)) {
             assert_eq!(a.len(), b.len());
             let worst = a

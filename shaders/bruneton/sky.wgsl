@@ -73,7 +73,8 @@ fn inscattered(layer: u32, c: Coords) -> vec4<f32> {
 }
 
 // The tables at the camera (camera_slice.wgsl) for a ray that starts there: what the 4D
-// look-up gives, from four texels of each. Twin of bruneton::camera_slice::camera_slice.
+// look-up gives, from four texels of each. Twin of bruneton::camera_slice::camera_slice; the
+// CPU sky reads the 4D tables, the same value.
 fn read_camera_slice(layer: u32, c: Coords) -> Inscattered {
     let size = vec2<u32>(SCATTERING_NU, SCATTERING_SIZE.y);
     let t = taps(size, layer, vec2<f32>(nu_texel(c.nu), mu_texel(c.h, c.mu, c.ground)));

@@ -1,7 +1,9 @@
 // Sums across a workgroup, for the passes dispatched one workgroup per texel whose invocations
 // share the texel's directions (render::methods::Dispatch::TexelGroups): workgroups of
-// TEXEL_GROUP_SIZE, or WIDE_GROUP_SIZE where each direction's march is split in parts as well
-// (Hillaire's ground irradiance).
+// TEXEL_GROUP_SIZE (Hillaire's multiple scattering, which splits each direction's march when
+// the group has twice as many invocations as directions), or WIDE_GROUP_SIZE (his ground
+// irradiance, whose 128 directions need the wider group for that). Those passes keep each
+// run's partial results in group_a and group_b before the sums.
 
 const WIDE_GROUP_SIZE: u32 = TEXEL_GROUP_SIZE * MARCH_SPLIT;
 
@@ -43,9 +45,9 @@ fn dispatched_split(workgroup: vec3<u32>, local: vec3<u32>) -> vec3<u32> {
     return vec3<u32>(workgroup.xy * WORKGROUP_SIZE + local.xy, workgroup.z) + origin.xyz;
 }
 
-// Steps [first, last) of n for part `part` (local_invocation_id.z).
-fn split_steps(part: u32, n: u32) -> vec2<u32> {
-    return vec2<u32>(part * n / MARCH_SPLIT, (part + 1u) * n / MARCH_SPLIT);
+// Steps [first, last) of n for run `part` of `parts` of a march.
+fn march_run(part: u32, parts: u32, n: u32) -> vec2<u32> {
+    return vec2<u32>(part * n / parts, (part + 1u) * n / parts);
 }
 
 // The sum over a texel's parts of each part's `value`; `index` is local_invocation_index.

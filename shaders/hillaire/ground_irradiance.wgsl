@@ -3,15 +3,12 @@
 // from the sun, dense near it, × azimuths about it; the half on one side of the sun's vertical
 // plane, counted twice; directions below the horizon skipped). One workgroup per texel, its
 // invocations sharing the directions; a workgroup of more invocations than directions (256 on
-// a GPU, for 128) splits each direction's march into GI_PARTS runs of steps, joined in order.
+// a GPU, for 128) splits each direction's march into RUNS runs of steps, joined in order.
 // Twin of model::methods::hillaire::ground_irradiance.
 
-const GI_DIRECTIONS: u32 = GROUND_IRRADIANCE_DIRECTIONS.x * (GROUND_IRRADIANCE_DIRECTIONS.y / 2u);
-const GI_PARTS: u32 = select(1u, WIDE_GROUP_SIZE / GI_DIRECTIONS, WIDE_GROUP_SIZE >= 2u * GI_DIRECTIONS);
-
-// Each invocation's run of its direction: radiance from the run's start, its transmittance.
-var<workgroup> part_l: array<vec4<f32>, WIDE_GROUP_SIZE>;
-var<workgroup> part_t: array<vec4<f32>, WIDE_GROUP_SIZE>;
+// The directions marched: one side of the sun's vertical plane.
+const DIRECTIONS: u32 = GROUND_IRRADIANCE_DIRECTIONS.x * (GROUND_IRRADIANCE_DIRECTIONS.y / 2u);
+const RUNS: u32 = select(1u, WIDE_GROUP_SIZE / DIRECTIONS, WIDE_GROUP_SIZE >= 2u * DIRECTIONS);
 
 @compute @workgroup_size(WIDE_GROUP_SIZE, 1, 1)
 fn main(
@@ -31,8 +28,8 @@ fn main(
     var sum = vec4<f32>(0.0);
     // The azimuths on one side of the sun's vertical plane, each standing for its mirror too.
     let half = n_azimuths / 2u;
-    let part = index / GI_DIRECTIONS;
-    for (var k = index % GI_DIRECTIONS; inside && part < GI_PARTS && k < GI_DIRECTIONS;
+    let part = index / DIRECTIONS;
+    for (var k = index % DIRECTIONS; inside && part < RUNS && k < DIRECTIONS;
         k += WIDE_GROUP_SIZE) {
         let d = ground_irradiance_direction(k, sun, across, up);
         var l: Inscattering;
@@ -40,30 +37,33 @@ fn main(
         l.transmittance = vec4<f32>(1.0);
         if d.x > 0.0 {
             let t_max = distance_to_top(0.0, d.x);
-            let run = vec2<u32>(part * n / GI_PARTS, (part + 1u) * n / GI_PARTS);
+            let run = march_run(part, RUNS, n);
             l = integrate_inscattering_steps(id.z,
                 vec4<f32>(0.0, d.x, mu_s, d.y), 0.0, t_max, run, n, SPACING_QUADRATIC);
         }
-        if GI_PARTS > 1u {
-            part_l[index] = l.radiance;
-            part_t[index] = l.transmittance;
+        if RUNS > 1u {
+            // Each run's radiance from its start and its transmittance, joined below.
+            group_a[index] = l.radiance;
+            group_b[index] = l.transmittance;
         } else {
             sum += l.radiance * (d.x * d.z);
         }
     }
-    if GI_PARTS > 1u {
+    if RUNS > 1u {
         workgroupBarrier();
         // The first run of each direction joins them all; the others add nothing.
         sum = vec4<f32>(0.0);
         if inside && part == 0u {
             var throughput = vec4<f32>(1.0);
-            for (var j = 0u; j < GI_PARTS; j++) {
-                sum += throughput * part_l[index + j * GI_DIRECTIONS];
-                throughput *= part_t[index + j * GI_DIRECTIONS];
+            for (var j = 0u; j < RUNS; j++) {
+                sum += throughput * group_a[index + j * DIRECTIONS];
+                throughput *= group_b[index + j * DIRECTIONS];
             }
             let d = ground_irradiance_direction(index, sun, across, up);
             sum *= max(d.x, 0.0) * d.z;
         }
+        // The sums below rewrite group_a and group_b.
+        workgroupBarrier();
     }
     let sums = group_sums(WIDE_GROUP_SIZE, index, sum, vec4<f32>(0.0));
     if inside && index == 0u {

@@ -3,15 +3,14 @@
 // on one side of the sun's vertical plane (their mirror images see the same). One workgroup per
 // texel, its invocations sharing the directions, as Hillaire's own pass does; a workgroup of
 // more invocations than directions (64 on a GPU, for 32) splits each direction's march into
-// MS_PARTS runs of steps, joined in order before the sums.
+// RUNS runs of steps, joined in order before the sums.
 
-const MS_DIRECTIONS: u32 = MULTIPLE_SCATTERING_DIRECTIONS_SQRT * MULTIPLE_SCATTERING_DIRECTIONS_SQRT / 2u;
-const MS_PARTS: u32 = select(1u, TEXEL_GROUP_SIZE / MS_DIRECTIONS, TEXEL_GROUP_SIZE >= 2u * MS_DIRECTIONS);
+// The directions marched: one side of the sun's vertical plane.
+const DIRECTIONS: u32 = MULTIPLE_SCATTERING_DIRECTIONS_SQRT * MULTIPLE_SCATTERING_DIRECTIONS_SQRT / 2u;
+const RUNS: u32 = select(1u, TEXEL_GROUP_SIZE / DIRECTIONS, TEXEL_GROUP_SIZE >= 2u * DIRECTIONS);
 
-// Each invocation's run of its direction: L_2nd and f_ms from the run's start, its transmittance.
-var<workgroup> part_l: array<vec4<f32>, TEXEL_GROUP_SIZE>;
-var<workgroup> part_f: array<vec4<f32>, TEXEL_GROUP_SIZE>;
-var<workgroup> part_t: array<vec4<f32>, TEXEL_GROUP_SIZE>;
+// Each invocation's run's transmittance; its L_2nd and f_ms wait in group_a and group_b.
+var<workgroup> run_transmittance: array<vec4<f32>, TEXEL_GROUP_SIZE>;
 
 fn sphere_direction(i: u32, n: u32) -> vec3<f32> {
     let mu = 1.0 - 2.0 * (f32(i / n) + 0.5) / f32(n);
@@ -42,8 +41,8 @@ fn main(
     var f_ms = vec4<f32>(0.0);
     // One side of the sun's vertical plane: a mirror direction has the same mu and nu.
     let half = n_dir / 2u;
-    let part = index / MS_DIRECTIONS;
-    for (var d = index % MS_DIRECTIONS; inside && part < MS_PARTS && d < MS_DIRECTIONS;
+    let part = index / DIRECTIONS;
+    for (var d = index % DIRECTIONS; inside && part < RUNS && d < DIRECTIONS;
         d += TEXEL_GROUP_SIZE) {
         let omega = sphere_direction((d / half) * n_dir + d % half, n_dir);
         let mu = omega.z;
@@ -56,7 +55,7 @@ fn main(
             t_max = distance_to_top(h, mu);
         }
         var throughput = vec4<f32>(1.0);
-        let run = vec2<u32>(part * n / MS_PARTS, (part + 1u) * n / MS_PARTS);
+        let run = march_run(part, RUNS, n);
         for (var s = run.x; s < run.y; s++) {
             let seg = march_segment(SPACING_QUADRATIC, 0.0, t_max, s, n);
             let ts = 0.5 * (seg.x + seg.y);
@@ -71,16 +70,16 @@ fn main(
             f_ms += weight * sca;
             throughput *= exp(-m.extinction * dt);
         }
-        if MS_PARTS > 1u {
+        if RUNS > 1u {
             // Joined below, where the first run adds the ground behind the last.
-            part_l[index] = l_2nd;
-            part_f[index] = f_ms;
-            part_t[index] = throughput;
+            group_a[index] = l_2nd;
+            group_b[index] = f_ms;
+            run_transmittance[index] = throughput;
         } else if ground {
             l_2nd += throughput * ground_bounce(layer, r, mu_s, t_max, nu, albedo);
         }
     }
-    if MS_PARTS > 1u {
+    if RUNS > 1u {
         workgroupBarrier();
         // The first run of each direction sums them all; the others add nothing more.
         l_2nd = vec4<f32>(0.0);
@@ -89,11 +88,11 @@ fn main(
             let d = index;
             let omega = sphere_direction((d / half) * n_dir + d % half, n_dir);
             var throughput = vec4<f32>(1.0);
-            for (var k = 0u; k < MS_PARTS; k++) {
-                let j = index + k * MS_DIRECTIONS;
-                l_2nd += throughput * part_l[j];
-                f_ms += throughput * part_f[j];
-                throughput *= part_t[j];
+            for (var k = 0u; k < RUNS; k++) {
+                let j = index + k * DIRECTIONS;
+                l_2nd += throughput * group_a[j];
+                f_ms += throughput * group_b[j];
+                throughput *= run_transmittance[j];
             }
             if hits_ground(h, omega.z) {
                 let nu = dot(omega, sun);
@@ -101,6 +100,8 @@ fn main(
                     * ground_bounce(layer, r, mu_s, distance_to_ground(h, omega.z), nu, albedo);
             }
         }
+        // The sums below rewrite group_a and group_b.
+        workgroupBarrier();
     }
     let sums = group_sums(TEXEL_GROUP_SIZE, index, l_2nd, f_ms);
     if inside && index == 0u {

@@ -23,7 +23,7 @@ fn main(
         let t_max = distance_to_boundary(h, mu);
         let n = globals.steps_a.w;
         part = integrate_inscattering_steps(id.z, vec4<f32>(h, mu, mu_s, nu), 0.0, t_max,
-            split_steps(local.z, n), n, SPACING_QUADRATIC);
+            march_run(local.z, MARCH_SPLIT, n), n, SPACING_QUADRATIC);
     }
     let l = split_join(index, part);
     if inside && local.z == 0u {

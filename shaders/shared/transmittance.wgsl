@@ -15,7 +15,7 @@ fn main(
         let hm = transmittance_h_mu_from_texel(vec2<f32>(id.xy));
         let t_max = distance_to_top(hm.x, hm.y);
         let b = batches[id.z];
-        let run = split_steps(local.z, n);
+        let run = march_run(local.z, MARCH_SPLIT, n);
         for (var i = run.x; i < run.y; i++) {
             let seg = march_segment(SPACING_QUADRATIC, 0.0, t_max, i, n);
             let at = altitude_along(hm.x, hm.y, 0.5 * (seg.x + seg.y));

@@ -399,7 +399,7 @@ pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
     let name = |(m, s): (Method, WavelengthSet)| format!("{}/{}", super::method_id(m), set_name(s));
     let mut rows = Vec::new();
     // One engine per run, kept across views: a table whose inputs a view leaves unchanged is
-    // not rebuilt (Bruneton's, which depend on the atmosphere alone, are built once).
+    // not rebuilt (Bruneton's 4D tables, which depend on the atmosphere alone, are built once).
     let mut engines: Vec<Engine> = runs
         .iter()
         .map(|_| Engine::new(&context.device, &context.queue))

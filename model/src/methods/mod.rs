@@ -323,7 +323,7 @@ pub const MODELS: &[ModelInfo] = &[
         id: "bruneton",
         label: "Bruneton & Neyret 2008",
         citation: "E. Bruneton, F. Neyret (2008), Precomputed Atmospheric Scattering, Computer Graphics Forum 27(4); parameterisation of E. Bruneton's 2017 reference implementation",
-        summary: "4D scattering tables (altitude, view, sun, view–sun angle) with every order up to N gathered one by one at precompute time, and sky irradiance; no table depends on the sun or the camera.",
+        summary: "4D scattering tables (altitude, view, sun, view–sun angle) with every order up to N gathered one by one at precompute time, and sky irradiance; only their 2D slices at the camera depend on the sun or the camera's altitude.",
         domain: bruneton::DOMAIN,
         tables: &bruneton::TABLES,
         gathers_orders: true,

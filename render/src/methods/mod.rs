@@ -115,8 +115,9 @@ pub const SKY_CONSTANTS: [Constant; 10] = [
 /// How many workgroups a pass runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Dispatch {
-    /// One invocation per texel (x, y) of the table with this id, one z per batch; a pass over a
-    /// 3D table marches its slices inside each invocation.
+    /// One invocation per texel (x, y) of the table with this id (× the march split,
+    /// `prelude::march_split`, in the passes that split their marches), one z per batch; a
+    /// pass over a 3D table marches its slices inside each invocation.
     Table(&'static str),
     /// One workgroup per texel (x, y) of the table with this id (per column of a 3D table), one
     /// z per batch: the workgroup's invocations share the texel's directions or the column's
@@ -171,7 +172,8 @@ pub struct PassSpec {
     pub constants: &'static [Constant],
     pub repeat: Repeat,
     /// What the pass reads when the camera is above the atmosphere, where it reads less (a sky
-    /// pass that marches every pixel instead of looking up the view tables); None: `reads`.
+    /// pass that marches every pixel instead of looking up the view tables, or reads the 4D
+    /// tables instead of their slices at the camera); None: `reads`.
     /// The engine leaves the passes that only the other reads need stale until they are.
     pub reads_above_atmosphere: Option<&'static [&'static str]>,
     /// What the pass reads only for pixels that see the ground: a view without ground leaves
