@@ -10,6 +10,11 @@ struct Inscattering {
     transmittance: vec4<f32>,
 }
 
+// A march of no steps: no radiance, full transmittance (where sums and joins start).
+fn nothing_marched() -> Inscattering {
+    return Inscattering(vec4<f32>(0.0), vec4<f32>(1.0));
+}
+
 // (h, mu, mu_s, nu) start the ray; the march covers [t0, t1].
 fn integrate_inscattering(
     layer: u32,
@@ -41,9 +46,7 @@ fn integrate_inscattering_steps(
     let b = batches[layer];
     let phase_r = rayleigh_phase(nu, b.rayleigh_depolarisation);
     let phase_a = aerosol_phase(nu, layer);
-    var result: Inscattering;
-    result.radiance = vec4<f32>(0.0);
-    result.transmittance = vec4<f32>(1.0);
+    var result = nothing_marched();
     for (var s = run.x; s < run.y; s++) {
         let seg = march_segment(spacing, t0, t1, s, steps);
         let dt = seg.y - seg.x;
@@ -74,9 +77,7 @@ fn split_join(index: u32, part: Inscattering) -> Inscattering {
     split_a[index] = part.radiance;
     split_b[index] = part.transmittance;
     workgroupBarrier();
-    var joined: Inscattering;
-    joined.radiance = vec4<f32>(0.0);
-    joined.transmittance = vec4<f32>(1.0);
+    var joined = nothing_marched();
     for (var k = 0u; k < MARCH_SPLIT; k++) {
         let j = index % SPLIT_TEXELS + k * SPLIT_TEXELS;
         joined.radiance += joined.transmittance * split_a[j];

@@ -32,9 +32,7 @@ fn main(
     for (var k = index % DIRECTIONS; inside && part < RUNS && k < DIRECTIONS;
         k += WIDE_GROUP_SIZE) {
         let d = ground_irradiance_direction(k, sun, across, up);
-        var l: Inscattering;
-        l.radiance = vec4<f32>(0.0);
-        l.transmittance = vec4<f32>(1.0);
+        var l = nothing_marched();
         if d.x > 0.0 {
             let t_max = distance_to_top(0.0, d.x);
             let run = march_run(part, RUNS, n);

@@ -10,9 +10,7 @@ fn main(
 ) {
     let id = dispatched_split(workgroup, local);
     let inside = all(id.xy < SKY_VIEW_SIZE) && id.z < batch_count();
-    var part: Inscattering;
-    part.radiance = vec4<f32>(0.0);
-    part.transmittance = vec4<f32>(1.0);
+    var part = nothing_marched();
     if inside {
         let h = globals.camera_position.w;
         let mu_s = globals.sun.w;
