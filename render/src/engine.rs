@@ -411,12 +411,14 @@ impl FrameSetup {
 /// The passes to run (indices in order) when `changed` inputs changed: a pass is stale when an
 /// input it reads changed, a table it reads was just rewritten or it was left stale before
 /// (`deferred`); it runs when the view needs what it writes (from above the atmosphere a
-/// marching sky pass reads fewer tables, and a view without ground none of those only the
-/// ground's pixels read), and otherwise stays marked in `deferred`.
+/// marching sky pass reads fewer tables, Bruneton's sky no camera slices there or with the sun
+/// below its tables, and a view without ground none of those only the ground's pixels read),
+/// and otherwise stays marked in `deferred`.
 fn plan(
     pipelines: &Pipelines,
     changed: Inputs,
     above: bool,
+    sun_below_tables: bool,
     ground: bool,
     unwanted: &[&str],
     deferred: &mut [bool],
@@ -429,7 +431,7 @@ fn plan(
         let wanted = !spec.is_table() && !unwanted.contains(&spec.name);
         if wanted || spec.writes.iter().any(|w| needed_resources.contains(w)) {
             needed[i] = true;
-            needed_resources.extend(spec.reads_where(above, ground));
+            needed_resources.extend(spec.reads_where(above, sun_below_tables, ground));
         }
     }
     let mut written: Vec<&str> = Vec::new();
@@ -1150,6 +1152,7 @@ impl Engine {
             pipelines,
             changed,
             frame.above,
+            frame.sun_below_tables,
             ground,
             self.unwanted(),
             &mut self.deferred,
@@ -1284,6 +1287,7 @@ impl Engine {
             pipelines,
             Inputs::ALL,
             frame.above,
+            frame.sun_below_tables,
             ground,
             self.unwanted(),
             &mut deferred,

@@ -857,6 +857,19 @@ fn order_gathering_models_rebuild_only_their_view_tables_when_the_sun_or_the_cam
                 "{id}: {altitude_m} m"
             );
         }
+        // With the sun below Bruneton's tables at the camera (nautical twilight at −15°) the
+        // sky reads the 4D tables, so the slices wait; they are made when the sun comes back.
+        for (elevation_deg, expected) in [(-15.0, vec!["sky"]), (5.0, view_only.clone())] {
+            scene.sun = SunSettings::Angles {
+                elevation_deg,
+                azimuth_deg: 200.0,
+            };
+            assert_eq!(
+                engine.render(&scene, &view).run,
+                expected,
+                "{id}: sun at {elevation_deg}°"
+            );
+        }
         scene.render.scattering_orders = 1;
         let single = engine.render(&scene, &view).clone();
         assert_eq!(single.dispatched, once, "{id}: one order, no loop");

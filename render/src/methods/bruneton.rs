@@ -20,6 +20,9 @@ const DENSITY: &str = "scattering-density";
 const CAMERA_SCATTERING: &str = "camera-scattering";
 const CAMERA_SINGLE_MIE: &str = "camera-single-mie";
 
+/// What the sky pass reads where no view ray starts at the camera with the sun in the tables.
+const WITHOUT_CAMERA_SLICES: &[&str] = &[T, SCATTERING, SINGLE_MIE, IRRADIANCE];
+
 /// The sky pass's constants, and whether a ray may start with the sun below the tables.
 const SKY_CONSTANTS_BELOW_TABLES: [Constant; 11] = {
     let mut c = [Constant::SunBelowTables; 11];
@@ -93,8 +96,10 @@ pub const METHOD: GpuMethod = GpuMethod {
         ),
         PassSpec {
             constants: &SKY_CONSTANTS_BELOW_TABLES,
-            // Above the atmosphere rays start where they enter it: no camera slices.
-            reads_above_atmosphere: Some(&[T, SCATTERING, SINGLE_MIE, IRRADIANCE]),
+            // Above the atmosphere rays start where they enter it, and with the sun below the
+            // tables at the camera they read past the tables' edge: no camera slices in either.
+            reads_above_atmosphere: Some(WITHOUT_CAMERA_SLICES),
+            reads_with_sun_below_tables: Some(WITHOUT_CAMERA_SLICES),
             ..PassSpec::sky(
                 shader!("bruneton/sky.wgsl"),
                 &[

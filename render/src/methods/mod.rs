@@ -176,6 +176,10 @@ pub struct PassSpec {
     /// tables instead of their slices at the camera); None: `reads`.
     /// The engine leaves the passes that only the other reads need stale until they are.
     pub reads_above_atmosphere: Option<&'static [&'static str]>,
+    /// What the pass reads when a view ray may start with the sun below Bruneton's tables
+    /// (`Constant::SunBelowTables`), where it reads the 4D tables instead of their slices at
+    /// the camera; None: `reads`. Left stale the same way.
+    pub reads_with_sun_below_tables: Option<&'static [&'static str]>,
     /// What the pass reads only for pixels that see the ground: a view without ground leaves
     /// the passes that only these need stale until a view shows the ground.
     pub reads_for_ground: &'static [&'static str],
@@ -202,6 +206,7 @@ impl PassSpec {
             constants: &[],
             repeat,
             reads_above_atmosphere: None,
+            reads_with_sun_below_tables: None,
             reads_for_ground: &[],
         }
     }
@@ -221,6 +226,7 @@ impl PassSpec {
             constants: &SKY_CONSTANTS,
             repeat: Repeat::Once,
             reads_above_atmosphere: None,
+            reads_with_sun_below_tables: None,
             reads_for_ground: &[],
         }
     }
@@ -246,11 +252,20 @@ impl PassSpec {
         }
     }
 
-    /// What the pass reads with the camera above the atmosphere or not, in a view that shows
-    /// the ground or not.
-    pub fn reads_where(&self, above_atmosphere: bool, ground_in_view: bool) -> Vec<&'static str> {
-        let reads = match self.reads_above_atmosphere {
-            Some(r) if above_atmosphere => r,
+    /// What the pass reads with the camera above the atmosphere or not, with the sun below
+    /// Bruneton's tables for some view ray or not, in a view that shows the ground or not.
+    pub fn reads_where(
+        &self,
+        above_atmosphere: bool,
+        sun_below_tables: bool,
+        ground_in_view: bool,
+    ) -> Vec<&'static str> {
+        let reads = match (
+            self.reads_above_atmosphere,
+            self.reads_with_sun_below_tables,
+        ) {
+            (Some(r), _) if above_atmosphere => r,
+            (_, Some(r)) if sun_below_tables => r,
             _ => self.reads,
         };
         reads
@@ -337,6 +352,7 @@ pub const DISPLAY_PASS: PassSpec = PassSpec {
     ],
     repeat: Repeat::Once,
     reads_above_atmosphere: None,
+    reads_with_sun_below_tables: None,
     reads_for_ground: &[],
 };
 
@@ -352,6 +368,7 @@ pub const METER_PASS: PassSpec = PassSpec {
     constants: &[],
     repeat: Repeat::Once,
     reads_above_atmosphere: None,
+    reads_with_sun_below_tables: None,
     reads_for_ground: &[],
 };
 
@@ -369,6 +386,7 @@ pub const TRANSMITTANCE_PASS: PassSpec = PassSpec {
     constants: &[],
     repeat: Repeat::Once,
     reads_above_atmosphere: None,
+    reads_with_sun_below_tables: None,
     reads_for_ground: &[],
 };
 
@@ -591,9 +609,12 @@ mod tests {
                     row.id,
                     p.name
                 );
-                let above = p.reads_where(true, true);
+                let fewer = [
+                    p.reads_where(true, true, true),
+                    p.reads_where(false, true, true),
+                ];
                 assert!(
-                    above.iter().all(|r| p.reads.contains(r)),
+                    fewer.iter().flatten().all(|r| p.reads.contains(r)),
                     "{}: {} reads from space what it does not declare",
                     row.id,
                     p.name
