@@ -276,6 +276,69 @@ impl Camera {
             y: across(0.0, 1.0),
         }
     }
+
+    /// The share (0–1) of pixel (x, y)'s square that the projection shows: 1 except across
+    /// the fisheye's rim, where it is the exact area of the square inside the circle.
+    pub fn pixel_coverage(&self, x: u32, y: u32, width: u32, height: u32) -> f64 {
+        if self.projection != Projection::Fisheye {
+            return 1.0;
+        }
+        let (w, h) = (width as f64, height as f64);
+        let size = w.min(h);
+        // The pixel in the coordinates where the fisheye is the unit disk (as in `ray`).
+        let (x0, x1) = (
+            (2.0 * x as f64 - w) / size,
+            (2.0 * (x + 1) as f64 - w) / size,
+        );
+        let (y0, y1) = (
+            (h - 2.0 * (y + 1) as f64) / size,
+            (h - 2.0 * y as f64) / size,
+        );
+        let farthest = x0.abs().max(x1.abs()).hypot(y0.abs().max(y1.abs()));
+        let nearest = (x0.max(0.0) + x1.min(0.0)).hypot(y0.max(0.0) + y1.min(0.0));
+        if farthest <= 1.0 {
+            1.0
+        } else if nearest >= 1.0 {
+            0.0
+        } else {
+            (disk_rectangle_area(x0, x1, y0, y1) / ((x1 - x0) * (y1 - y0))).clamp(0.0, 1.0)
+        }
+    }
+}
+
+/// Area of the rectangle [x0, x1] × [y0, y1] inside the unit disk, exactly: the width of the
+/// overlap at abscissa x is min(y1, s) − max(y0, −s) with s = √(1 − x²), integrated in closed
+/// form between the abscissas where a bound of the rectangle meets the circle.
+fn disk_rectangle_area(x0: f64, x1: f64, y0: f64, y1: f64) -> f64 {
+    let (a, b) = (x0.max(-1.0), x1.min(1.0));
+    if a >= b || y0 >= 1.0 || y1 <= -1.0 {
+        return 0.0;
+    }
+    // ∫ √(1 − x²) dx.
+    let under_arc = |x: f64| 0.5 * (x * (1.0 - x * x).max(0.0).sqrt() + x.clamp(-1.0, 1.0).asin());
+    let mut cuts = vec![a, b];
+    for y in [y0, y1] {
+        if y.abs() < 1.0 {
+            let c = (1.0 - y * y).sqrt();
+            cuts.extend([-c, c].into_iter().filter(|&t| t > a && t < b));
+        }
+    }
+    cuts.sort_by(f64::total_cmp);
+    let mut area = 0.0;
+    for piece in cuts.windows(2) {
+        let (p, q) = (piece[0], piece[1]);
+        let m = 0.5 * (p + q);
+        let s = (1.0 - m * m).max(0.0).sqrt();
+        // On each piece each bound is either the rectangle's side or the arc throughout (the
+        // arc where it touches a side at the middle: a tangent side).
+        let arc = under_arc(q) - under_arc(p);
+        let top = if s <= y1 { arc } else { y1 * (q - p) };
+        let bottom = if -s >= y0 { -arc } else { y0 * (q - p) };
+        if s.min(y1) > (-s).max(y0) {
+            area += top - bottom;
+        }
+    }
+    area
 }
 
 /// A pixel's extent on the sky: world vectors across its width and height, rad long.
@@ -457,6 +520,51 @@ mod tests {
         let expected = direction_from_angles(30.0, 90.0);
         assert!((ray.direction - expected).length() < 1e-12);
         assert!((ray.origin.length() - (R + 10.0)).abs() < 1e-6);
+    }
+
+    /// The fisheye's pixels cover the circle: whole inside, nothing outside, and across the
+    /// rim the share a fine grid of sub-pixel points finds inside; together π/4 of the square.
+    #[test]
+    fn fisheye_pixels_cover_exactly_the_circle() {
+        for (w, h) in [(32, 32), (41, 23)] {
+            let cam = Camera::new(&settings(1.0), R, Projection::Fisheye);
+            let mut total = 0.0;
+            let mut rim = 0;
+            for y in 0..h {
+                for x in 0..w {
+                    let c = cam.pixel_coverage(x, y, w, h);
+                    total += c;
+                    if c > 0.0 && c < 1.0 {
+                        rim += 1;
+                        let n = 200;
+                        let inside = (0..n * n)
+                            .filter(|k| {
+                                let (u, v) = ((k % n) as f64 + 0.5, (k / n) as f64 + 0.5);
+                                let (px, py) = (x as f64 + u / n as f64, y as f64 + v / n as f64);
+                                cam.ray(px, py, w, h).is_some()
+                            })
+                            .count();
+                        let grid = inside as f64 / (n * n) as f64;
+                        assert!(
+                            (c - grid).abs() < 2e-3,
+                            "{w}×{h} ({x}, {y}): {c} vs grid {grid}"
+                        );
+                    } else {
+                        // A pixel wholly in or out: its centre says which.
+                        let centre = cam.ray(x as f64 + 0.5, y as f64 + 0.5, w, h).is_some();
+                        assert_eq!(c, if centre { 1.0 } else { 0.0 }, "{w}×{h} ({x}, {y})");
+                    }
+                }
+            }
+            let size = w.min(h) as f64;
+            assert!(rim > 0);
+            assert!(
+                (total - PI / 4.0 * size * size).abs() < 1e-9 * size * size,
+                "{w}×{h}: {total}"
+            );
+        }
+        let perspective = Camera::new(&settings(1.0), R, Projection::Perspective);
+        assert_eq!(perspective.pixel_coverage(0, 0, 8, 8), 1.0);
     }
 
     #[test]

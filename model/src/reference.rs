@@ -19,6 +19,13 @@ use crate::scene::Scene;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
+/// Least share of a pixel the projection covers for which paths are drawn inside it only.
+const MIN_COVERAGE: f64 = 0.01;
+
+/// Most draws of a point inside a partly covered pixel: at `MIN_COVERAGE`, all miss with a
+/// probability of 0.99^10000 ≈ 2e-44.
+const MAX_REDRAWS: usize = 10_000;
+
 /// Draws the wavelengths of a path with density ∝ x̄ + ȳ + z̄ + floor over 360–830 nm.
 #[derive(Debug, Clone)]
 pub struct WavelengthSampler {
@@ -177,11 +184,25 @@ impl ReferenceRender {
                 }
                 for (x, pixel) in row.iter_mut().enumerate() {
                     let index = (y as u64) * w as u64 + x as u64;
+                    // Across the fisheye's rim a path drawn outside the circle would add a zero:
+                    // noise of the pixel's shape, not of the sky. Paths are drawn inside it
+                    // instead and weighed by the share it covers, the same mean. Below
+                    // `MIN_COVERAGE` the redraws would cost more than the zeros.
+                    let coverage = camera.pixel_coverage(x as u32, y as u32, w, h);
+                    let inside_only = (MIN_COVERAGE..1.0).contains(&coverage);
+                    let share = if inside_only { coverage } else { 1.0 };
                     for _ in 0..spp {
                         let mut rng = Rng::new(seed, index, pixel.samples);
                         pixel.samples += 1;
-                        let (jx, jy) = (rng.uniform(), rng.uniform());
-                        let Some(ray) = camera.ray(x as f64 + jx, y as f64 + jy, w, h) else {
+                        let mut ray = None;
+                        for _ in 0..if inside_only { MAX_REDRAWS } else { 1 } {
+                            let (jx, jy) = (rng.uniform(), rng.uniform());
+                            ray = camera.ray(x as f64 + jx, y as f64 + jy, w, h);
+                            if ray.is_some() {
+                                break;
+                            }
+                        }
+                        let Some(ray) = ray else {
                             continue;
                         };
                         pixel.covered = true;
@@ -191,7 +212,7 @@ impl ReferenceRender {
                         let mut xyz = [0.0; 3];
                         for i in 0..LANES {
                             let wl = lanes.wavelengths_nm[i];
-                            let v = l[i] / (LANES as f64 * pdf[i]);
+                            let v = share * l[i] / (LANES as f64 * pdf[i]);
                             xyz[0] += v * cmf.x.sample(wl);
                             xyz[1] += v * cmf.y.sample(wl);
                             xyz[2] += v * cmf.z.sample(wl);
@@ -313,6 +334,67 @@ mod tests {
         );
         assert!(!r.run_pass(100, &cancel));
         assert_eq!(r.samples_per_pixel(), 0);
+    }
+
+    /// A pixel across the fisheye's rim, drawn inside the circle and weighed by its coverage,
+    /// has the mean of paths drawn over the whole pixel with zeros outside, and less noise.
+    #[test]
+    fn rim_pixels_keep_their_mean_and_lose_the_noise_of_their_shape() {
+        let scene = Scene::default();
+        let settings = PathTracerSettings {
+            max_order: Some(1),
+            ..PathTracerSettings::default()
+        };
+        let size = 12;
+        let mut r = ReferenceRender::new(&scene, Projection::Fisheye, size, size, 5, settings);
+        let spp = 6000;
+        r.run_pass(spp, &AtomicBool::new(false));
+        let tracer = PathTracer::new(&r.atmosphere, r.sun, settings);
+        let cmf = cie1931();
+        let sampler = WavelengthSampler::default();
+        let mut checked = 0;
+        for (k, pixel) in r.pixels().iter().enumerate() {
+            let (x, y) = ((k as u32 % size), (k as u32 / size));
+            let coverage = r.camera.pixel_coverage(x, y, size, size);
+            if !(0.1..0.7).contains(&coverage) {
+                continue;
+            }
+            // The whole pixel, zeros outside the circle.
+            let (mut sum, mut sum_sq) = (0.0, 0.0);
+            for n in 0..spp as u64 {
+                let mut rng = Rng::new(99, k as u64, n);
+                let (jx, jy) = (rng.uniform(), rng.uniform());
+                let (wavelengths, pdf) = sampler.sample(rng.uniform());
+                let Some(ray) = r.camera.ray(x as f64 + jx, y as f64 + jy, size, size) else {
+                    continue;
+                };
+                let lanes = LaneOptics::new(&r.atmosphere, wavelengths);
+                let l = tracer.radiance(&ray, &lanes, &mut rng);
+                let v: f64 = (0..LANES)
+                    .map(|i| l[i] * cmf.y.sample(wavelengths[i]) / (LANES as f64 * pdf[i]))
+                    .sum();
+                sum += v;
+                sum_sq += v * v;
+            }
+            let n = spp as f64;
+            let plain = sum / n;
+            let plain_se = ((sum_sq / n - plain * plain) / (n - 1.0)).sqrt();
+            let rim = pixel.xyz().y;
+            let rim_se = pixel.relative_standard_error() * rim;
+            let z = (rim - plain) / rim_se.hypot(plain_se);
+            assert!(
+                z.abs() < 4.0,
+                "({x}, {y}) covered {coverage:.2}: {rim} ± {rim_se} vs {plain} ± {plain_se}"
+            );
+            assert!(
+                rim_se / rim < 0.8 * plain_se / plain,
+                "({x}, {y}) covered {coverage:.2}: noise {} vs {} over the whole pixel",
+                rim_se / rim,
+                plain_se / plain
+            );
+            checked += 1;
+        }
+        assert!(checked >= 8, "{checked} rim pixels checked");
     }
 
     #[test]
