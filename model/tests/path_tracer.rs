@@ -64,6 +64,7 @@ fn single_order_agrees(s: &AtmosphereSettings) {
     let settings = PathTracerSettings {
         max_order: Some(1),
         sun_angular_radius_rad: 1e-6,
+        ..PathTracerSettings::default()
     };
     let pt = PathTracer::new(&atm, sun, settings);
     let lanes = LaneOptics::new(&atm, [440.0, 520.0, 610.0, 700.0]);
@@ -102,6 +103,7 @@ fn single_order_path_tracing_agrees_with_the_exact_integrator_at_low_sun() {
     let settings = PathTracerSettings {
         max_order: Some(1),
         sun_angular_radius_rad: 1e-6,
+        ..PathTracerSettings::default()
     };
     let lanes = LaneOptics::new(&atm, [440.0, 520.0, 610.0, 700.0]);
     let cases = [
@@ -125,6 +127,41 @@ fn single_order_path_tracing_agrees_with_the_exact_integrator_at_low_sun() {
                 lanes.wavelengths_nm[i],
                 mean[i],
                 se[i]
+            );
+        }
+    }
+}
+
+/// At low sun a share of scattering directions is drawn around the sun: the estimate is the
+/// one that draws every direction from the phase function, within the noise (a mixture density
+/// that left out either part would brighten or darken the higher orders).
+#[test]
+fn directions_drawn_around_the_sun_change_the_noise_not_the_sky() {
+    let atm = Atmosphere::new(&AtmosphereSettings::default());
+    let lanes = LaneOptics::new(&atm, [440.0, 520.0, 610.0, 700.0]);
+    let phase_only = PathTracerSettings {
+        sunward_share: 0.0,
+        ..PathTracerSettings::default()
+    };
+    for (elevation, ray) in [
+        (2.0, at_altitude(&atm, 1.0, 85.0, 45.0)),
+        (5.0, at_altitude(&atm, 1.0, 10.0, 150.0)),
+    ] {
+        let sun = direction_from_angles(elevation, 180.0);
+        let guided = PathTracer::new(&atm, sun, PathTracerSettings::default());
+        let (mean, se) = estimate(&guided, &ray, &lanes, 40_000, 23);
+        let plain = PathTracer::new(&atm, sun, phase_only);
+        let (mean_0, se_0) = estimate(&plain, &ray, &lanes, 40_000, 29);
+        for i in 0..LANES {
+            let z = (mean[i] - mean_0[i]) / se[i].hypot(se_0[i]);
+            assert!(
+                z.abs() < 3.5,
+                "sun {elevation}°, λ {}: around the sun {} ± {}, phase only {} ± {} (z = {z:.2})",
+                lanes.wavelengths_nm[i],
+                mean[i],
+                se[i],
+                mean_0[i],
+                se_0[i]
             );
         }
     }

@@ -1,14 +1,17 @@
 //! Where along a path segment to look for sunlight scattered into the path.
 //!
-//! Drawing the point in proportion to the majorant's extinction (what delta tracking does) wastes
-//! most points where light does not come from: in ozone, which absorbs and does not scatter, in
-//! the Earth's shadow at low sun, and away from the aerosol's forward peak. So each segment gets
+//! The point is drawn from the exponential of the lanes' mean extinction along the segment,
+//! which follows the single-scattering integrand where sunlight is the same all along it. (The
+//! majorant's exponential, what delta tracking uses, falls as fast as the bluest lane's bound:
+//! along a level ray it put most points within a few kilometres and gave the rare far ones
+//! weights 30–80 times the mean.) It still wastes most points where light does not come from:
+//! in the Earth's shadow at low sun, and away from the aerosol's forward peak. So each segment gets
 //! a piecewise-constant density shaped like its single-scattering integrand — scattering times
 //! phase, the view's transmittance and the sun's — estimated at the midpoints of a few
 //! sub-intervals from wavelength-independent sun columns ([`SunColumns`]). That density is only a
 //! proposal: the point's contribution is still weighed with ratio-tracked transmittances and
 //! divided by the density it was drawn with, so the estimate stays unbiased. A share of points is
-//! drawn from the majorant's exponential as before (one-sample mixture, Veach 1997 §9.2), which
+//! drawn from the exponential as before (one-sample mixture, Veach 1997 §9.2), which
 //! keeps the density positive wherever the proposal's approximations (the tabulated sun, the
 //! midpoint view optical depth) say too little.
 
@@ -23,7 +26,7 @@ use crate::methods::shared::sun::visible_fraction;
 /// Sub-intervals of a segment's proposal density.
 const SUB_INTERVALS: usize = 16;
 
-/// Share of in-scattering points drawn from the majorant's exponential rather than the proposal.
+/// Share of in-scattering points drawn from the exponential rather than the proposal.
 const DEFENSIVE_SHARE: f64 = 0.15;
 
 /// Least ratio of the sun's transmittance between points of a segment below which it gets the
@@ -172,14 +175,15 @@ impl Proposal {
     }
 }
 
-/// Majorant optical depth from the segment's start to `t`, and the majorant at `t`.
-fn majorant_depth(intervals: &[(f64, f64, usize)], majorants: &[f64], t: f64) -> (f64, f64) {
+/// Optical depth of the per-shell extinctions `rates` from the segment's start to `t`, and the
+/// rate at `t`.
+fn depth_to(intervals: &[(f64, f64, usize)], rates: &[f64], t: f64) -> (f64, f64) {
     let mut acc = 0.0;
     for &(a, b, s) in intervals {
         if t <= b {
-            return (acc + majorants[s] * (t - a).max(0.0), majorants[s]);
+            return (acc + rates[s] * (t - a).max(0.0), rates[s]);
         }
-        acc += majorants[s] * (b - a);
+        acc += rates[s] * (b - a);
     }
     (acc, 0.0)
 }
@@ -197,15 +201,16 @@ impl PathTracer<'_> {
         lanes: &LaneOptics,
         rng: &mut Rng,
     ) -> Option<(f64, f64)> {
-        let majorants = &medium.majorant;
-        let p_collide = 1.0 - (-tau_total).exp();
         let (first, last) = (intervals.first()?, intervals.last()?);
-        if p_collide <= 0.0 {
+        let rates = &medium.in_scattering_rate;
+        let tau_rates: f64 = intervals.iter().map(|&(a, b, s)| rates[s] * (b - a)).sum();
+        let p_rates = 1.0 - (-tau_rates).exp();
+        if p_rates <= 0.0 || tau_total <= 0.0 {
             return None;
         }
         let grey = GreyOptics::new(lanes);
         let proposal = if self.sunlight_varies(ray, intervals, &grey) {
-            self.proposal(ray, intervals, majorants, tau_total, lanes, &grey)
+            self.proposal(ray, intervals, &medium.majorant, tau_total, lanes, &grey)
         } else {
             None
         };
@@ -217,21 +222,21 @@ impl PathTracer<'_> {
         let t = match &proposal {
             Some(p) if rng.uniform() >= share => p.sample(rng.uniform()),
             _ => {
-                let target = -(1.0 - rng.uniform() * p_collide).ln();
-                let (k, t) = super::locate(intervals, majorants, target)?;
+                let target = -(1.0 - rng.uniform() * p_rates).ln();
+                let (k, t) = super::locate(intervals, rates, target)?;
                 t.clamp(intervals[k].0, intervals[k].1)
             }
         };
         let t = t.clamp(first.0, last.1);
-        let (depth, m) = majorant_depth(intervals, majorants, t);
-        let pdf_majorant = m * (-depth).exp() / p_collide;
+        let (depth, rate) = depth_to(intervals, rates, t);
+        let pdf_exponential = rate * (-depth).exp() / p_rates;
         let pdf =
-            share * pdf_majorant + (1.0 - share) * proposal.as_ref().map_or(0.0, |p| p.pdf(t));
+            share * pdf_exponential + (1.0 - share) * proposal.as_ref().map_or(0.0, |p| p.pdf(t));
         (pdf > 0.0).then_some((t, pdf))
     }
 
     /// Whether the sun's transmittance along the segment (at its ends and lowest point) varies by
-    /// more than [`SUNLIGHT_SPREAD`]: where it does not, the majorant's exponential already
+    /// more than [`SUNLIGHT_SPREAD`]: where it does not, the exponential already
     /// follows the integrand well and the proposal costs more than it saves.
     fn sunlight_varies(&self, ray: &Ray, intervals: &Intervals, grey: &GreyOptics) -> bool {
         let (Some(first), Some(last)) = (intervals.first(), intervals.last()) else {
