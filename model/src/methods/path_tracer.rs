@@ -12,8 +12,8 @@
 //! that point is drawn from a density shaped like the segment's single-scattering integrand
 //! ([`in_scattering`]). Scattering directions come from the phase function, and at low sun a
 //! share of them from a lobe around the sun ([`SUNWARD_SHARE`]). The Lambertian ground gets its
-//! own next-event estimate and continues by cosine sampling. All scattering orders, Russian roulette from the second, an optional maximum order
-//! (1 = single scattering).
+//! own next-event estimate and continues by cosine sampling. All scattering orders, Russian
+//! roulette from the second, an optional maximum order (1 = single scattering).
 //!
 //! The direct solar disk seen by a camera ray is not included: renderers add it analytically.
 //! Radiance is spectral radiance for the scene's solar spectrum, W·m⁻²·sr⁻¹·nm⁻¹.
@@ -101,7 +101,7 @@ pub struct PathTracerSettings {
     pub max_order: Option<u32>,
     /// Angular radius of the sun, radians.
     pub sun_angular_radius_rad: f64,
-    /// Largest share (0 to below 1) of scattering directions drawn around the sun instead of
+    /// Largest share (0–1) of scattering directions drawn around the sun instead of
     /// from the phase function, reached at vertices with the sun on their horizon or below it
     /// ([`SUNWARD_SHARE`]); 0 draws every direction from the phase function. Either way the
     /// estimate is unbiased: only its noise changes.
@@ -118,17 +118,17 @@ impl Default for PathTracerSettings {
     }
 }
 
-/// The default [`PathTracerSettings::sunward_share`]. At low sun the light reaching a vertex
-/// comes mostly from around the sun: from the aureole, light scattered forward along the
-/// sun's long path through the lower air. The phase function rarely draws those directions, so
-/// the few paths that do carry the largest weights of all, the noise of a twilight image. A
+/// The default [`PathTracerSettings::sunward_share`]. At low sun much of the light reaching a
+/// vertex comes from around the sun: the aureole, light scattered forward along the sun's long
+/// path through the lower air. The phase function rarely draws those directions, so the few
+/// paths that do carry some of the largest weights of a low-sun image. A
 /// lobe around the sun in a one-sample mixture with the phase function (balance heuristic,
 /// Veach 1997 §9.2) draws them more often at a lower weight. Measured on the fisheye with the
 /// sun at 2°, 0.3 needs the fewest paths of 0.3 and 0.5.
 pub const SUNWARD_SHARE: f64 = 0.3;
 
 /// Henyey–Greenstein asymmetry of the lobe around the sun (0.8: half its directions within
-/// about 25° of the sun's).
+/// 19° of the sun's).
 const SUNWARD_G: f64 = 0.8;
 
 /// Cosine of the sun's zenith angle at a vertex above which no direction is drawn around the
