@@ -76,7 +76,9 @@ fn pass_layout(pass: &PassSpec) -> Vec<wgpu::BindGroupLayoutEntry> {
             DISPLAY => storage_texture(bound(DISPLAY), wgpu::TextureFormat::Rgba8Unorm),
             table => buffer_entry(
                 bound(table),
-                wgpu::BufferBindingType::Storage { read_only: false },
+                wgpu::BufferBindingType::Storage {
+                    read_only: pass.reads_only(table),
+                },
             ),
         })
         .collect()
@@ -91,7 +93,9 @@ pub fn shader_source(method: &GpuMethod, pass: &PassSpec, texel_group_size: u32)
         "const TEXEL_GROUP_SIZE: u32 = {texel_group_size}u;\nconst MARCH_SPLIT: u32 = {}u;\n",
         march_split(texel_group_size)
     ));
-    for part in COMMON {
+    // COMMON[0] is bindings.wgsl.
+    s.push_str(&with_read_only_tables(COMMON[0].source, pass));
+    for part in &COMMON[1..] {
         s.push_str(part.source);
     }
     if !VIEW_PASSES.contains(pass) {
@@ -107,6 +111,26 @@ pub fn shader_source(method: &GpuMethod, pass: &PassSpec, texel_group_size: u32)
         s.push_str(SKY_ENTRY_POINT.source);
     }
     s
+}
+
+/// `bindings.wgsl` with each table the pass only reads (`PassSpec::reads_only`) declared
+/// `var<storage, read>` instead of `read_write`, as its bind group layout binds it.
+fn with_read_only_tables(bindings: &str, pass: &PassSpec) -> String {
+    let mut out = String::with_capacity(bindings.len());
+    for line in bindings.lines() {
+        let table = line
+            .split_once("var<storage, read_write> ")
+            .and_then(|(_, rest)| rest.split_once("_lut:"))
+            .map(|(name, _)| name.replace('_', "-"));
+        match table {
+            Some(id) if line.starts_with("@group(1)") && pass.reads_only(&id) => {
+                out.push_str(&line.replacen("read_write", "read", 1));
+            }
+            _ => out.push_str(line),
+        }
+        out.push('\n');
+    }
+    out
 }
 
 struct PassObjects {

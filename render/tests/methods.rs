@@ -52,6 +52,23 @@ fn every_shader_parses_validates_and_matches_the_rust_layouts() {
         )
         .validate(&module)
         .unwrap_or_else(|e| panic!("{file}: {}", e.emit_to_string(&src)));
+        // A table the pass only reads is bound read-only, so that no barrier waits between
+        // passes that read the same tables; what it writes stays writable.
+        for (_, var) in module.global_variables.iter() {
+            let (Some(name), naga::AddressSpace::Storage { access }) = (&var.name, var.space)
+            else {
+                continue;
+            };
+            let Some(table) = name.strip_suffix("_lut") else {
+                continue;
+            };
+            let id = table.replace('_', "-");
+            assert_eq!(
+                access.contains(naga::StorageAccess::STORE),
+                pass.writes.iter().any(|w| *w == id),
+                "{file}: access of {name}"
+            );
+        }
         for (name, size) in [
             ("Globals", std::mem::size_of::<Globals>()),
             ("Batch", std::mem::size_of::<Batch>()),

@@ -95,7 +95,9 @@ fn has_aerosol() -> bool { return globals.options.z != 0u; }
 
 // Group 1: every table of every model and the view's images, declared once for every pass. The
 // engine finds a table's binding here by its name (the registry id with `_` for `-`, then
-// `_lut`); a pass's bind group layout holds only the bindings it reads or writes.
+// `_lut`); a pass's bind group layout holds only the bindings it reads or writes. A pass's own
+// module declares the tables it only reads `read` (render::passes), so that the GPU needs no
+// barrier between passes that read the same tables and write others.
 @group(1) @binding(0) var<storage, read_write> transmittance_lut: array<vec4<f32>>;
 @group(1) @binding(1) var<storage, read_write> multiple_scattering_lut: array<vec4<f32>>;
 @group(1) @binding(2) var<storage, read_write> ground_irradiance_lut: array<vec4<f32>>;

@@ -280,6 +280,14 @@ impl PassSpec {
         !matches!(self.dispatch, Dispatch::View)
     }
 
+    /// Whether the pass binds `id` as a table it only reads: a storage buffer bound read-only,
+    /// so that passes which read the same tables and write different ones follow each other
+    /// with no barrier between them and a GPU may run them side by side. The view's images,
+    /// the exact-tile list and the histogram keep their own access.
+    pub fn reads_only(&self, id: &str) -> bool {
+        ![RADIANCE, DISPLAY, EXACT_TILES, HISTOGRAM].contains(&id) && !self.writes.contains(&id)
+    }
+
     /// Every resource the pass binds: what it reads, then what it writes, without repeats.
     pub fn resources(&self) -> Vec<&'static str> {
         let mut v: Vec<&'static str> = Vec::new();
