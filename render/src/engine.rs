@@ -63,6 +63,13 @@ impl TimingSource {
     }
 }
 
+/// A frame's time from end to end, its passes free to overlap where no barrier parts them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Spans {
+    pub tables_ms: Option<f64>,
+    pub frame_ms: f64,
+}
+
 /// What the last frame did; passes by name, in the order of the model's passes.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct FrameStats {
@@ -75,8 +82,12 @@ pub struct FrameStats {
     pub tables_run: Vec<&'static str>,
     /// Dispatches encoded: the passes run, the order loop's once per order.
     pub dispatched: usize,
-    /// Milliseconds per pass run, when timing is on.
+    /// Milliseconds per pass run, when timing is on (and not in spans).
     pub timings_ms: Vec<(&'static str, f64)>,
+    /// With span timing on (`Engine::set_span_timing`), the milliseconds from the start of
+    /// the frame's first table pass to the end of its last (None when no table ran), and from
+    /// the start of its first pass to the end of its last.
+    pub spans_ms: Option<Spans>,
     pub timing_source: Option<TimingSource>,
     /// How far a rebuild in slices has come (`Engine::set_rebuild_slices`); the frame drew
     /// the previous atmosphere.
@@ -584,8 +595,12 @@ struct Encoder<'a> {
 
 impl Encoder<'_> {
     /// Encodes and submits `work` (each at its origin) and returns per-pass times when
-    /// `timer` is given: GPU timestamps, or fenced CPU time (one submission per pass).
-    fn submit(&self, work: &[Work], timer: Option<&Timer>) -> Vec<(usize, f64)> {
+    /// `timer` is given: GPU timestamps, or fenced CPU time (one submission per pass). With
+    /// `spans`, GPU timestamps are written only where the tables begin and end and where the
+    /// last dispatch ends; fenced CPU time sums the passes. Untimed or in spans, consecutive
+    /// dispatches share a compute pass: on an H100 dispatches in separate compute passes ran
+    /// one after another even with no barrier between them, in one they overlap.
+    fn submit(&self, work: &[Work], timer: Option<&Timer>, spans: bool) -> Timings {
         let gpu_timer = match timer {
             Some(Timer::Gpu(t)) => Some(t),
             _ => None,
@@ -600,77 +615,158 @@ impl Encoder<'_> {
         }
         self.queue.write_buffer(&self.tables.origins, 0, &origins);
         let specs: Vec<_> = self.pipelines.specs().copied().collect();
+        let last_table = work.iter().rposition(|w| specs[w.pass].is_table());
+        let last = work.len().saturating_sub(1);
+        // Span queries: 0 the first pass's start, 1 the end of the tables (or of the frame
+        // when no table runs), 2 the frame's end when view passes follow the tables.
+        let frame_end: u32 = match last_table {
+            Some(t) if t != last => 2,
+            _ => 1,
+        };
         let mut timings = Vec::new();
+        // Whether work needs the encoder itself before its dispatch (clears and copies,
+        // which no compute pass may hold).
+        let needs_encoder = |w: &Work| {
+            (specs[w.pass].writes.contains(&HISTOGRAM) && w.origin == [0; 3])
+                || w.tiles != TilePhase::None
+        };
+        // Untimed, or timed in spans, consecutive dispatches share one compute pass (wgpu
+        // still puts a barrier wherever one reads what another wrote); the tables end theirs.
+        let merge = !fenced && (spans || gpu_timer.is_none());
+        let starts_pass = |s: usize| {
+            !merge || s == 0 || needs_encoder(&work[s]) || Some(s - 1) == last_table
+        };
         let mut encoder = self.device.create_command_encoder(&Default::default());
+        let mut pass: Option<wgpu::ComputePass<'static>> = None;
         for (slot, w) in work.iter().enumerate() {
             let i = w.pass;
             let spec = &specs[i];
             let start = Instant::now();
-            if spec.writes.contains(&HISTOGRAM) && w.origin == [0; 3] {
-                // Counts start from zero with the dispatch (or the first slice) that covers
-                // the view's first pixel.
-                encoder.clear_buffer(&self.target.histogram, 0, None);
-            }
-            match w.tiles {
-                TilePhase::Fill => encoder.clear_buffer(
-                    &self.target.exact_tiles,
-                    0,
-                    Some(EXACT_TILES_HEADER_BYTES),
-                ),
-                // A dispatch may not bind the buffer that holds its own workgroup counts.
-                TilePhase::Compute => encoder.copy_buffer_to_buffer(
-                    &self.target.exact_tiles,
-                    0,
-                    &self.target.exact_groups,
-                    0,
-                    Some(12),
-                ),
-                TilePhase::None => {}
-            }
-            {
-                let timestamp_writes = gpu_timer.map(|t| t.writes(slot as u32));
-                let mut cpass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some(spec.name),
-                    timestamp_writes,
+            if starts_pass(slot) {
+                drop(pass.take());
+                if spec.writes.contains(&HISTOGRAM) && w.origin == [0; 3] {
+                    // Counts start from zero with the dispatch (or the first slice) that
+                    // covers the view's first pixel.
+                    encoder.clear_buffer(&self.target.histogram, 0, None);
+                }
+                match w.tiles {
+                    TilePhase::Fill => encoder.clear_buffer(
+                        &self.target.exact_tiles,
+                        0,
+                        Some(EXACT_TILES_HEADER_BYTES),
+                    ),
+                    // A dispatch may not bind the buffer that holds its own workgroup counts.
+                    TilePhase::Compute => encoder.copy_buffer_to_buffer(
+                        &self.target.exact_tiles,
+                        0,
+                        &self.target.exact_groups,
+                        0,
+                        Some(12),
+                    ),
+                    TilePhase::None => {}
+                }
+                // The last slot of this compute pass.
+                let ends = (slot + 1..work.len())
+                    .find(|&s| starts_pass(s))
+                    .map_or(last, |s| s - 1);
+                let timestamp_writes = gpu_timer.and_then(|t| {
+                    if spans {
+                        let end = if Some(ends) == last_table {
+                            Some(1)
+                        } else {
+                            (ends == last).then_some(frame_end)
+                        };
+                        t.span_writes(slot == 0, end)
+                    } else {
+                        Some(t.writes(slot as u32))
+                    }
                 });
+                pass = Some(
+                    encoder
+                        .begin_compute_pass(&wgpu::ComputePassDescriptor {
+                            label: Some(spec.name),
+                            timestamp_writes,
+                        })
+                        .forget_lifetime(),
+                );
+            }
+            if let Some(cpass) = pass.as_mut() {
                 let group = match spec.dispatch {
                     Dispatch::View => self.target.groups[i].as_ref(),
                     _ => self.tables.group(i),
                 };
                 let dispatch = w.groups;
-                let (Some(group), Some(pipeline)) = (group, self.pipelines.pipeline(i, w.variant))
-                else {
-                    continue;
-                };
-                let offset = (slot as u64 * self.tables.origin_stride) as u32;
-                cpass.set_pipeline(pipeline);
-                cpass.set_bind_group(0, &self.tables.group0, &[offset]);
-                cpass.set_bind_group(1, group, &[]);
-                if w.tiles == TilePhase::Compute {
-                    cpass.dispatch_workgroups_indirect(&self.target.exact_groups, 0);
-                } else {
-                    cpass.dispatch_workgroups(dispatch[0], dispatch[1], dispatch[2]);
+                if let (Some(group), Some(pipeline)) =
+                    (group, self.pipelines.pipeline(i, w.variant))
+                {
+                    let offset = (slot as u64 * self.tables.origin_stride) as u32;
+                    cpass.set_pipeline(pipeline);
+                    cpass.set_bind_group(0, &self.tables.group0, &[offset]);
+                    cpass.set_bind_group(1, group, &[]);
+                    if w.tiles == TilePhase::Compute {
+                        cpass.dispatch_workgroups_indirect(&self.target.exact_groups, 0);
+                    } else {
+                        cpass.dispatch_workgroups(dispatch[0], dispatch[1], dispatch[2]);
+                    }
                 }
             }
             if fenced {
+                drop(pass.take());
                 self.queue.submit([encoder.finish()]);
                 let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
                 timings.push((i, start.elapsed().as_secs_f64() * 1e3));
                 encoder = self.device.create_command_encoder(&Default::default());
             }
         }
-        if let Some(t) = gpu_timer {
-            t.resolve(&mut encoder, work.len() as u32);
-            self.queue.submit([encoder.finish()]);
-            timings.extend(
-                work.iter()
-                    .map(|w| w.pass)
-                    .zip(t.read_ms(self.device, work.len())),
-            );
-        } else {
-            self.queue.submit([encoder.finish()]);
+        drop(pass.take());
+        match gpu_timer {
+            Some(t) if spans => {
+                // Only queries written this frame: resolving one never written waits forever.
+                t.resolve(&mut encoder, frame_end + 1);
+                self.queue.submit([encoder.finish()]);
+                let ticks = t.read_ticks(self.device, frame_end + 1);
+                let ms = |from: usize, to: u32| match (ticks.get(from), ticks.get(to as usize)) {
+                    (Some(&a), Some(&b)) => b.saturating_sub(a) as f64 * t.period_ns * 1e-6,
+                    _ => f64::NAN,
+                };
+                return Timings {
+                    passes: Vec::new(),
+                    spans: Some(Spans {
+                        tables_ms: last_table.map(|_| ms(0, 1)),
+                        frame_ms: ms(0, frame_end),
+                    }),
+                };
+            }
+            Some(t) => {
+                t.resolve(&mut encoder, 2 * work.len() as u32);
+                self.queue.submit([encoder.finish()]);
+                timings.extend(
+                    work.iter()
+                        .map(|w| w.pass)
+                        .zip(t.read_ms(self.device, work.len())),
+                );
+            }
+            None => {
+                self.queue.submit([encoder.finish()]);
+            }
         }
-        timings
+        let spans = (spans && fenced).then(|| {
+            let sum = |tables_only: bool| -> f64 {
+                timings
+                    .iter()
+                    .filter(|(i, _)| !tables_only || specs[*i].is_table())
+                    .map(|(_, ms)| ms)
+                    .sum()
+            };
+            Spans {
+                tables_ms: last_table.map(|_| sum(true)),
+                frame_ms: sum(false),
+            }
+        });
+        Timings {
+            passes: if spans.is_some() { Vec::new() } else { timings },
+            spans,
+        }
     }
 }
 
@@ -744,29 +840,56 @@ impl Timestamps {
         }
     }
 
-    /// Encodes the copy of the first `passes` slots' timestamps for [`Timestamps::read_ms`].
-    pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder, passes: u32) {
-        let count = 2 * passes;
+    /// The stamps of a pass in a frame timed in spans, if any: query 0 at its start where it
+    /// is the frame's first pass, query `end` at its end.
+    fn span_writes(
+        &self,
+        first: bool,
+        end: Option<u32>,
+    ) -> Option<wgpu::ComputePassTimestampWrites<'_>> {
+        (first || end.is_some()).then(|| wgpu::ComputePassTimestampWrites {
+            query_set: &self.queries,
+            beginning_of_pass_write_index: first.then_some(0),
+            end_of_pass_write_index: end,
+        })
+    }
+
+    /// Encodes the copy of the first `count` queries for [`Timestamps::read_ticks`].
+    pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder, count: u32) {
         encoder.resolve_query_set(&self.queries, 0..count, &self.resolve, 0);
         encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.readback, 0, 8 * u64::from(count));
     }
 
-    /// Milliseconds of the first `passes` slots, once the resolving submission has run (waits
-    /// for it); empty if the read-back failed.
-    pub fn read_ms(&self, device: &wgpu::Device, passes: usize) -> Vec<f64> {
-        map_u64(device, &self.readback).map_or_else(Vec::new, |ticks| {
-            (0..passes)
-                .map(|s| {
-                    ticks[2 * s + 1].saturating_sub(ticks[2 * s]) as f64 * self.period_ns * 1e-6
-                })
-                .collect()
+    /// The first `count` queries in ticks, once the resolving submission has run (waits for
+    /// it); empty if the read-back failed.
+    pub fn read_ticks(&self, device: &wgpu::Device, count: u32) -> Vec<u64> {
+        map_u64(device, &self.readback).map_or_else(Vec::new, |mut ticks| {
+            ticks.truncate(count as usize);
+            ticks
         })
+    }
+
+    /// Milliseconds of the first `passes` slots (each a pass's start and end), once the
+    /// resolving submission has run; empty if the read-back failed.
+    pub fn read_ms(&self, device: &wgpu::Device, passes: usize) -> Vec<f64> {
+        let ticks = self.read_ticks(device, 2 * passes as u32);
+        ticks
+            .chunks_exact(2)
+            .map(|t| t[1].saturating_sub(t[0]) as f64 * self.period_ns * 1e-6)
+            .collect()
     }
 }
 
 enum Timer {
     Gpu(Timestamps),
     Cpu,
+}
+
+/// What `Encoder::submit` measured: per-pass times (pass index, ms), or the frame's spans.
+#[derive(Default)]
+struct Timings {
+    passes: Vec<(usize, f64)>,
+    spans: Option<Spans>,
 }
 
 /// Renders views of scenes with any real-time model of the registry.
@@ -788,6 +911,8 @@ pub struct Engine {
     forced: Inputs,
     timer: Timer,
     measure: bool,
+    /// Timing in spans rather than per pass (`Engine::set_span_timing`).
+    spans: bool,
     stats: FrameStats,
     /// Passes left stale because the last frames did not need them (by pass index of the
     /// model on screen); they run as soon as a frame needs them.
@@ -828,6 +953,7 @@ impl Engine {
             forced: Inputs::NONE,
             timer,
             measure: false,
+            spans: false,
             stats: FrameStats::default(),
             deferred: Vec::new(),
             texel_group_size: texel_group_size(device.adapter_info().device_type),
@@ -942,6 +1068,15 @@ impl Engine {
     /// Turns per-pass timing on or off. Timing waits for the GPU at the end of each frame.
     pub fn set_timing(&mut self, on: bool) {
         self.measure = on;
+    }
+
+    /// With timing on, measures each frame's span (`FrameStats::spans_ms`) instead of each
+    /// pass: the frame runs as it does untimed (its dispatches sharing compute passes, those
+    /// that only read the same tables side by side on a GPU), stamped only at its ends and
+    /// where its tables end. Timed per pass, each dispatch has a compute pass and stamps of
+    /// its own, and runs alone. Fenced CPU time sums the passes either way.
+    pub fn set_span_timing(&mut self, on: bool) {
+        self.spans = on;
     }
 
     /// Measures with fenced CPU wall time even where timestamp queries exist (software
@@ -1167,7 +1302,7 @@ impl Engine {
         for w in &work {
             self.pipelines[0].ensure(&self.device, w.pass, w.variant);
         }
-        let timings_ms = match (&self.atmosphere, &self.target) {
+        let timings = match (&self.atmosphere, &self.target) {
             (Some(state), Some(target)) if !work.is_empty() => {
                 let measure = self.measure.then_some(&self.timer);
                 let encoder = Encoder {
@@ -1177,10 +1312,11 @@ impl Engine {
                     tables: &state.tables,
                     target,
                 };
-                encoder.submit(&work, measure)
+                encoder.submit(&work, measure, self.spans)
             }
-            _ => Vec::new(),
+            _ => Timings::default(),
         };
+        let timings_ms = timings.passes;
         let pipelines = &self.pipelines[0];
         if pipelines
             .specs()
@@ -1228,6 +1364,7 @@ impl Engine {
                 .filter(|n| !unwanted.contains(n))
                 .collect(),
             timings_ms,
+            spans_ms: timings.spans,
             rebuild: progress,
             rebuild_done,
         };
@@ -1369,7 +1506,7 @@ impl Engine {
             groups,
             tiles: TilePhase::None,
         };
-        encoder.submit(&[work], None);
+        encoder.submit(&[work], None, false);
         let done = Arc::new(AtomicBool::new(false));
         let flag = done.clone();
         self.queue

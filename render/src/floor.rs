@@ -103,7 +103,7 @@ impl FloorPass {
                 }
                 match &gpu {
                     Some(t) => {
-                        t.resolve(&mut encoder, 1);
+                        t.resolve(&mut encoder, 2);
                         queue.submit([encoder.finish()]);
                         t.read_ms(device, 1).first().copied().unwrap_or(f64::NAN)
                     }

@@ -803,6 +803,37 @@ fn timing_reports_every_pass_that_ran() {
     );
 }
 
+/// Timed in spans, a frame reports its tables and itself from end to end, with either timer
+/// (GPU timestamps written only at the ends, or fenced CPU time summed), and no pass alone.
+#[test]
+fn span_timing_reports_the_tables_and_the_frame_end_to_end() {
+    let Some(gpu) = context() else { return };
+    let view = View::new(Projection::Perspective, 32, 18);
+    for cpu in [false, true] {
+        let mut engine = Engine::new(&gpu.device, &gpu.queue);
+        if cpu {
+            engine.force_cpu_timing();
+        }
+        engine.set_timing(true);
+        engine.set_span_timing(true);
+        let mut scene = Scene::default();
+        let source = engine.timing_source();
+        let rebuild = engine.render(&scene, &view).clone();
+        assert!(rebuild.timings_ms.is_empty(), "{source:?}");
+        let spans = rebuild.spans_ms.expect("spans");
+        let tables = spans.tables_ms.expect("the first frame builds the tables");
+        assert!(
+            tables.is_finite() && tables >= 0.0 && spans.frame_ms >= tables,
+            "{source:?}: {spans:?}"
+        );
+        scene.display.exposure_ev += 0.5;
+        let display = engine.render(&scene, &view).clone();
+        assert!(!display.ran_any_lut(), "an exposure change redraws the display alone");
+        let spans = display.spans_ms.expect("spans");
+        assert!(spans.tables_ms.is_none() && spans.frame_ms.is_finite(), "{spans:?}");
+    }
+}
+
 /// The tables of the models that gather scattering orders (Bruneton, Elek) depend on the
 /// atmosphere alone, but for the views of them at the camera (Bruneton's camera slices): a sun
 /// or camera move runs those and the sky, and from above the atmosphere, where the sky reads

@@ -79,7 +79,14 @@ struct GpuRow {
     /// Median of the floor pass: a trivial full-screen pass of the same size and output
     /// format, timed the same way in the same run.
     floor_ms: f64,
-    /// The frame, a sun move and a full table rebuild as multiples of the floor.
+    /// Median spans, from the start of the first pass to the end of the last (GPU
+    /// timestamps only there, so that passes free of barriers overlap as they do untimed;
+    /// with fenced CPU time, the sums of the passes): a turning-camera frame, a sun move, and
+    /// the table passes of a full rebuild.
+    frame_span_ms: f64,
+    sun_move_span_ms: f64,
+    tables_span_ms: f64,
+    /// The frame, a sun move and a full table rebuild (their spans) as multiples of the floor.
     frame_floors: f64,
     sun_move_floors: f64,
     tables_floors: f64,
@@ -234,6 +241,23 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             let stats = engine.render(&scene, &view).clone();
             sun_moves.push(stats.timings_ms.iter().map(|(_, ms)| ms).sum::<f64>());
         }
+        // The same three, timed in spans.
+        engine.set_span_timing(true);
+        let (mut frame_spans, mut sun_spans, mut table_spans) = (Vec::new(), Vec::new(), Vec::new());
+        for i in 0..repeats {
+            engine.invalidate();
+            if let Some(s) = engine.render(&scene, &view).spans_ms {
+                table_spans.extend(s.tables_ms);
+            }
+            scene.camera.heading_deg = (base.camera.heading_deg + 1.5 + i as f64) % 360.0;
+            frame_spans.extend(engine.render(&scene, &view).spans_ms.map(|s| s.frame_ms));
+            scene.sun = SunSettings::Angles {
+                elevation_deg: (sun.elevation_deg + 0.25 + 0.5 * i as f64).min(90.0),
+                azimuth_deg: sun.azimuth_deg,
+            };
+            sun_spans.extend(engine.render(&scene, &view).spans_ms.map(|s| s.frame_ms));
+        }
+        engine.set_span_timing(false);
         // A change of the atmosphere: in one frame, then in slices.
         let mut changed = scene.clone();
         changed.atmosphere.ground_albedo = (base.atmosphere.ground_albedo + 0.05) % 1.0;
@@ -261,6 +285,13 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         // + 0.0: an empty sum is −0.0, which would print as "-0.00" for a table-free model.
         let lut_total_ms: f64 = lut_ms.iter().map(|(_, ms)| ms).sum::<f64>() + 0.0;
         let sun_move_ms = median(sun_moves);
+        // A model without tables rebuilds nothing: 0, as the sum above.
+        let tables_span_ms = if table_spans.is_empty() {
+            0.0
+        } else {
+            median(table_spans)
+        };
+        let (frame_span_ms, sun_move_span_ms) = (median(frame_spans), median(sun_spans));
         rows.push(GpuRow {
             method: super::method_id(method).into(),
             wavelengths: set_name(set),
@@ -276,9 +307,12 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             frame_wall_ms: median(wall),
             sun_move_ms,
             floor_ms,
-            frame_floors: frame_ms / floor_ms,
-            sun_move_floors: sun_move_ms / floor_ms,
-            tables_floors: lut_total_ms / floor_ms,
+            frame_span_ms,
+            sun_move_span_ms,
+            tables_span_ms,
+            frame_floors: frame_span_ms / floor_ms,
+            sun_move_floors: sun_move_span_ms / floor_ms,
+            tables_floors: tables_span_ms / floor_ms,
             rebuild_whole_ms,
             rebuild_ui_max_ms,
             rebuild_ui_mean_ms,
@@ -300,7 +334,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         t = sky_tile
     );
     println!(
-        "{:14} {:12} {:>10} {:>8} {:>10} {:>8} {:>12} {:>12} {:>9} {:>8}   ×floor: {:>6} {:>6} {:>7}   rebuild: {:>9} {:>16} {:>9}   table passes",
+        "{:14} {:12} {:>10} {:>8} {:>10} {:>8} {:>12} {:>12} {:>9} {:>8}   spans: {:>8} {:>8} {:>8}   ×floor: {:>6} {:>6} {:>7}   rebuild: {:>9} {:>16} {:>9}   table passes",
         "method",
         "set",
         "tables",
@@ -311,6 +345,9 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         "frame (wall)",
         "sun move",
         "floor",
+        "frame",
+        "sun",
+        "tables",
         "frame",
         "sun",
         "tables",
@@ -325,7 +362,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             .map(|(name, ms)| format!("{name} {ms:.2}"))
             .collect();
         println!(
-            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>7.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms {:>6.2} ms {:>5.2} ms          {:>6.1} {:>6.1} {:>7.1}            {:>6.0} ms {:>6.0}/{:>5.0} ms {:>6.0} ms   {}",
+            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>7.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms {:>6.2} ms {:>5.2} ms   {:>5.2} ms {:>5.2} ms {:>5.2} ms          {:>6.1} {:>6.1} {:>7.1}            {:>6.0} ms {:>6.0}/{:>5.0} ms {:>6.0} ms   {}",
             r.method,
             r.wavelengths,
             r.lut_total_ms,
@@ -336,6 +373,9 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             r.frame_wall_ms,
             r.sun_move_ms,
             r.floor_ms,
+            r.frame_span_ms,
+            r.sun_move_span_ms,
+            r.tables_span_ms,
             r.frame_floors,
             r.sun_move_floors,
             r.tables_floors,
