@@ -633,9 +633,8 @@ impl Encoder<'_> {
         // Untimed, or timed in spans, consecutive dispatches share one compute pass (wgpu
         // still puts a barrier wherever one reads what another wrote); the tables end theirs.
         let merge = !fenced && (spans || gpu_timer.is_none());
-        let starts_pass = |s: usize| {
-            !merge || s == 0 || needs_encoder(&work[s]) || Some(s - 1) == last_table
-        };
+        let starts_pass =
+            |s: usize| !merge || s == 0 || needs_encoder(&work[s]) || Some(s - 1) == last_table;
         let mut encoder = self.device.create_command_encoder(&Default::default());
         let mut pass: Option<wgpu::ComputePass<'static>> = None;
         for (slot, w) in work.iter().enumerate() {

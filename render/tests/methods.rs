@@ -828,9 +828,15 @@ fn span_timing_reports_the_tables_and_the_frame_end_to_end() {
         );
         scene.display.exposure_ev += 0.5;
         let display = engine.render(&scene, &view).clone();
-        assert!(!display.ran_any_lut(), "an exposure change redraws the display alone");
+        assert!(
+            !display.ran_any_lut(),
+            "an exposure change redraws the display alone"
+        );
         let spans = display.spans_ms.expect("spans");
-        assert!(spans.tables_ms.is_none() && spans.frame_ms.is_finite(), "{spans:?}");
+        assert!(
+            spans.tables_ms.is_none() && spans.frame_ms.is_finite(),
+            "{spans:?}"
+        );
     }
 }
 

@@ -243,7 +243,8 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         }
         // The same three, timed in spans.
         engine.set_span_timing(true);
-        let (mut frame_spans, mut sun_spans, mut table_spans) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut frame_spans, mut sun_spans, mut table_spans) =
+            (Vec::new(), Vec::new(), Vec::new());
         for i in 0..repeats {
             engine.invalidate();
             if let Some(s) = engine.render(&scene, &view).spans_ms {
