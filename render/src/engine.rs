@@ -626,10 +626,11 @@ impl Encoder<'_> {
         let mut timings = Vec::new();
         // Whether work needs the encoder itself before its dispatch (clears and copies,
         // which no compute pass may hold).
-        let needs_encoder = |w: &Work| {
-            (specs[w.pass].writes.contains(&HISTOGRAM) && w.origin == [0; 3])
-                || w.tiles != TilePhase::None
-        };
+        // Histogram counts start from zero with the dispatch (or the first slice) that covers
+        // the view's first pixel.
+        let clears_histogram =
+            |w: &Work| specs[w.pass].writes.contains(&HISTOGRAM) && w.origin == [0; 3];
+        let needs_encoder = |w: &Work| clears_histogram(w) || w.tiles != TilePhase::None;
         // Untimed, or timed in spans, consecutive dispatches share one compute pass (wgpu
         // still puts a barrier wherever one reads what another wrote); the tables end theirs.
         let merge = !fenced && (spans || gpu_timer.is_none());
@@ -643,9 +644,7 @@ impl Encoder<'_> {
             let start = Instant::now();
             if starts_pass(slot) {
                 drop(pass.take());
-                if spec.writes.contains(&HISTOGRAM) && w.origin == [0; 3] {
-                    // Counts start from zero with the dispatch (or the first slice) that
-                    // covers the view's first pixel.
+                if clears_histogram(w) {
                     encoder.clear_buffer(&self.target.histogram, 0, None);
                 }
                 match w.tiles {
