@@ -96,7 +96,7 @@ pub struct FrameStats {
     pub rebuild_done: bool,
 }
 
-/// Progress of a rebuild in slices, in units of work (rows of workgroups or layers of a pass).
+/// Progress of a rebuild in slices, in units of work (workgroups of its passes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct RebuildProgress {
     pub done: u64,
@@ -491,31 +491,39 @@ fn grid(pipelines: &Pipelines, i: usize, layers: u32, size: [u32; 2]) -> [u32; 3
     }
 }
 
-/// Units of work a pass is cut into when it runs in slices: one row of workgroups of one layer
-/// (a layer of a 3D table being one of its slices of one batch; workgroups are one deep in z).
+/// Units of work a pass is cut into when it runs in slices: its workgroups (a layer of a 3D
+/// table being one of its slices of one batch; workgroups are one deep in z). A row of
+/// workgroups was the smallest slice once, but one row of Bruneton's scattering density took
+/// 60–117 ms on lavapipe, longer than a frame may.
 fn units(grid: [u32; 3]) -> u32 {
-    grid[1] * grid[2]
+    grid[0] * grid[1] * grid[2]
 }
 
 /// Where a slice of `count` units from unit `start` of a pass's `grid` lies: its origin
-/// (invocations), its workgroups and the units it covers. A slice stays within one layer when
-/// it starts inside one or is smaller than one; otherwise it covers whole layers.
+/// (invocations), its workgroups and the units it covers. A slice stays within one row of
+/// workgroups when it starts inside one or is smaller than one, within one layer likewise;
+/// otherwise it covers whole rows, or whole layers.
 fn slice(grid: [u32; 3], start: u32, count: u32) -> ([u32; 3], [u32; 3], u32) {
-    let rows = grid[1].max(1);
-    let (z, y) = (start / rows, start % rows);
-    if y != 0 || count < rows {
-        let n = count.clamp(1, rows - y);
-        ([0, y * WORKGROUP_SIZE, z], [grid[0], n, 1], n)
+    let row = grid[0].max(1);
+    let layer = row * grid[1].max(1);
+    let (z, x, y) = (start / layer, start % row, start % layer / row);
+    if x != 0 || count < row {
+        let n = count.clamp(1, row - x);
+        ([x * WORKGROUP_SIZE, y * WORKGROUP_SIZE, z], [n, 1, 1], n)
+    } else if y != 0 || count < layer {
+        let rows = (count / row).clamp(1, grid[1] - y);
+        ([0, y * WORKGROUP_SIZE, z], [row, rows, 1], rows * row)
     } else {
-        let layers = (count / rows).clamp(1, grid[2] - z);
-        ([0, 0, z], [grid[0], rows, layers], layers * rows)
+        let layers = (count / layer).clamp(1, grid[2] - z);
+        ([0, 0, z], [row, grid[1], layers], layers * layer)
     }
 }
 
 /// How a rebuild runs in slices.
 #[derive(Debug, Clone, Copy)]
 struct Slicing {
-    /// GPU time each slice aims at (zero: the smallest slices).
+    /// GPU time each slice aims at (zero: half a row of workgroups each, so that slices also
+    /// start inside rows).
     target: Duration,
 }
 
@@ -566,13 +574,16 @@ struct Rebuild {
     /// The next slice: index into `run`, and first workgroup along the pass's slice axis.
     next: (usize, u32),
     /// Units per slice of each pass, steered towards the target time (passes differ in cost
-    /// per unit; the engine keeps what it learnt for the model's next rebuild).
+    /// per unit by a thousandfold, so a pass not met before starts with one workgroup; the
+    /// engine keeps what it learnt for the model's next rebuild).
     units: Vec<u32>,
     /// The slice on the GPU: when it was submitted, whether it has finished, its pass and
-    /// units.
-    in_flight: Option<(Instant, Arc<AtomicBool>, usize, u32)>,
+    /// units, and half a row of the pass's workgroups (the slice a zero target asks for).
+    in_flight: Option<(Instant, Arc<AtomicBool>, usize, u32, u32)>,
     done_units: u64,
     total_units: u64,
+    /// The shortest interval from a slice's submission to seeing it finished, s.
+    shortest_s: f64,
 }
 
 impl Rebuild {
@@ -1025,7 +1036,7 @@ impl Engine {
     /// everything in the frame that asks for it; `Some(t)` builds it in slices of about `t`
     /// each, one slice in flight at a time, across as many frames as it takes, while the
     /// previous atmosphere stays on screen and the view keeps responding (for a window).
-    /// `Duration::ZERO` makes every slice one layer or one row of workgroups.
+    /// `Duration::ZERO` makes every slice after a pass's first half a row of its workgroups.
     pub fn set_rebuild_slices(&mut self, target: Option<Duration>) {
         self.slicing = target.map(|target| Slicing { target });
         if self.slicing.is_none() {
@@ -1450,6 +1461,7 @@ impl Engine {
             in_flight: None,
             done_units: 0,
             total_units,
+            shortest_s: f64::INFINITY,
         }
     }
 
@@ -1460,18 +1472,23 @@ impl Engine {
         let gpu = gpu_method(self.rebuild.as_ref()?.state.key.method)?;
         let p = self.pipelines_of(gpu);
         let r = self.rebuild.as_mut()?;
-        if let Some((started, done, pass, count)) = &r.in_flight {
+        if let Some((started, done, pass, count, half_row)) = &r.in_flight {
             if !done.load(Ordering::Acquire) {
                 return Some(r.progress());
             }
-            // Aim the pass's next slice at the target time from how long this one took.
+            // Aim the pass's next slice at the target time from how long this one took. Its
+            // end is seen a frame later, so `took` holds the frame's own work too: most of the
+            // shortest interval of the rebuild is taken for that and set aside, or a cheap pass
+            // would grow its slices by little more than target / frame per frame.
             let took = started.elapsed().as_secs_f64();
+            r.shortest_s = r.shortest_s.min(took);
             let target = slicing.target.as_secs_f64();
             r.units[*pass] = if target <= 0.0 {
-                1
+                *half_row
             } else {
-                let scaled = f64::from(*count) * target / took.max(1e-4);
-                scaled.clamp(1.0, f64::from(*count) * 4.0) as u32
+                let own = (took - 0.8 * r.shortest_s).max(0.1 * took).max(1e-4);
+                let scaled = f64::from(*count) * target / own;
+                scaled.clamp(1.0, f64::from(*count) * 16.0) as u32
             };
             r.in_flight = None;
         }
@@ -1509,7 +1526,7 @@ impl Engine {
         let flag = done.clone();
         self.queue
             .on_submitted_work_done(move || flag.store(true, Ordering::Release));
-        r.in_flight = Some((Instant::now(), done, pass, count));
+        r.in_flight = Some((Instant::now(), done, pass, count, grid[0].div_ceil(2)));
         r.done_units += u64::from(count);
         r.next = if unit + count >= units(grid) {
             (k + 1, 0)
@@ -1793,12 +1810,13 @@ mod tests {
                 let mut start = 0;
                 while start < units(grid) {
                     let (origin, groups, n) = slice(grid, start, size);
-                    assert!(n >= 1 && n <= size.max(grid[1]), "{grid:?} {size}: {n}");
-                    assert_eq!(n, groups[1] * groups[2]);
+                    assert!(n >= 1 && n <= size, "{grid:?} {size}: {n}");
+                    assert_eq!(n, groups[0] * groups[1] * groups[2]);
+                    let x0 = origin[0] / WORKGROUP_SIZE;
                     let (y0, z0) = (origin[1] / WORKGROUP_SIZE, origin[2]);
                     for z in z0..z0 + groups[2] {
                         for y in y0..y0 + groups[1] {
-                            for x in 0..groups[0] {
+                            for x in x0..x0 + groups[0] {
                                 hits[((z * grid[1] + y) * grid[0] + x) as usize] += 1;
                             }
                         }

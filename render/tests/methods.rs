@@ -1263,8 +1263,8 @@ fn the_mie_phase_matches_the_cpu_twin_in_every_shader_that_reads_it() {
     }
 }
 
-/// A rebuild run in slices across frames (the smallest slices: one layer of a table or one row
-/// of workgroups at a time, a frame each) keeps the previous image on screen until it is done,
+/// A rebuild run in slices across frames (half a row of workgroups at a time, a frame each, so
+/// that slices start inside rows as well as at their ends) keeps the previous image on screen until it is done,
 /// and then gives every table and the image exactly as a rebuild in one frame does.
 #[test]
 fn a_rebuild_in_slices_gives_the_same_tables_as_a_whole_one() {
