@@ -492,9 +492,8 @@ fn grid(pipelines: &Pipelines, i: usize, layers: u32, size: [u32; 2]) -> [u32; 3
 }
 
 /// Units of work a pass is cut into when it runs in slices: its workgroups (a layer of a 3D
-/// table being one of its slices of one batch; workgroups are one deep in z). A row of
-/// workgroups was the smallest slice once, but one row of Bruneton's scattering density took
-/// 60–117 ms on lavapipe, longer than a frame may.
+/// table being one of its slices of one batch; workgroups are one deep in z). Not rows: one
+/// row of Bruneton's scattering density takes 60–117 ms on lavapipe, longer than a frame may.
 fn units(grid: [u32; 3]) -> u32 {
     grid[0] * grid[1] * grid[2]
 }
@@ -571,7 +570,8 @@ struct Rebuild {
     variants: Vec<Variant>,
     /// The passes to run, in order, the order loop unrolled.
     run: Vec<Step>,
-    /// The next slice: index into `run`, and first workgroup along the pass's slice axis.
+    /// The next slice: index into `run`, and its first unit (workgroups counted along rows,
+    /// then rows, then layers).
     next: (usize, u32),
     /// Units per slice of each pass, steered towards the target time (passes differ in cost
     /// per unit by a thousandfold, so a pass not met before starts with one workgroup; the
