@@ -167,6 +167,46 @@ fn directions_drawn_around_the_sun_change_the_noise_not_the_sky() {
     }
 }
 
+/// In-scattering points are drawn where light is scattered toward the view: with the sun
+/// ahead, into the aerosol's forward peak low down rather than the thin air above. Order 1
+/// agrees with the exact integrator and its standard error at 16 000 paths is below what
+/// points spread by the extinction alone gave (0.42 % at the zenith under an overhead sun,
+/// 0.47–0.70 % looking low away from a high one).
+#[test]
+fn in_scattering_points_follow_the_phase_function() {
+    let mut s = AtmosphereSettings::default();
+    s.aerosol.kind = AerosolType::Rural;
+    s.aerosol.aod550 = 0.2;
+    let atm = Atmosphere::new(&s);
+    let settings = PathTracerSettings {
+        max_order: Some(1),
+        sun_angular_radius_rad: 1e-6,
+        ..PathTracerSettings::default()
+    };
+    let lanes = LaneOptics::new(&atm, [440.0, 520.0, 610.0, 700.0]);
+    for (sun_elevation, ray, bound) in [
+        (90.0, at_altitude(&atm, 1.0, 90.0, 0.0), 0.003),
+        (60.0, at_altitude(&atm, 1.0, 10.0, 180.0), 0.0045),
+    ] {
+        let sun = direction_from_angles(sun_elevation, 0.0);
+        let pt = PathTracer::new(&atm, sun, settings);
+        let (mean, se) = estimate(&pt, &ray, &lanes, 16_000, 11);
+        for i in 0..LANES {
+            let exact = single_scattering::radiance(&atm, &ray, sun, lanes.wavelengths_nm[i]);
+            let z = (mean[i] - exact) / se[i];
+            let relative = se[i] / exact;
+            assert!(
+                z.abs() < 3.0 && relative < bound,
+                "sun {sun_elevation}°, {ray:?}, λ {}: PT {} ± {} vs exact {exact} (z = {z:.2}, \
+                 standard error {relative:.4}, bound {bound})",
+                lanes.wavelengths_nm[i],
+                mean[i],
+                se[i]
+            );
+        }
+    }
+}
+
 #[test]
 fn conservative_atmosphere_over_a_white_ground_reflects_all_sunlight() {
     // A nearly flat planet (radius 100 000 km), no absorption, albedo 1, sun overhead: the

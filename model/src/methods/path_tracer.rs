@@ -168,10 +168,14 @@ struct PathMedium {
     control: [Lanes; SHELL_ALTITUDES_M.len()],
     /// Majorant of the residual extinction − control over the lanes.
     residual_majorant: [f64; SHELL_ALTITUDES_M.len()],
-    /// The lanes' mean extinction, roughly (between the bounds): the rate of the exponential
-    /// from which in-scattering points are drawn, which then follows the sky's own
-    /// attenuation instead of the bluest lane's bound.
+    /// The lanes' mean extinction, roughly (between the bounds): the optical depth that the
+    /// exponential from which in-scattering points are drawn spreads over a segment, which then
+    /// follows the sky's own attenuation instead of the bluest lane's bound.
     in_scattering_rate: [f64; SHELL_ALTITUDES_M.len()],
+    /// The lanes' mean Rayleigh and aerosol scattering coefficients, roughly, m⁻¹: with a
+    /// segment's phase functions they shape that exponential like its in-scattering.
+    rayleigh_scattering: [f64; SHELL_ALTITUDES_M.len()],
+    aerosol_scattering: [f64; SHELL_ALTITUDES_M.len()],
 }
 
 /// Most shell boundaries a ray can cross, twice each, plus its two ends.
@@ -338,6 +342,8 @@ impl<'a> PathTracer<'a> {
             control: [[0.0; LANES]; N],
             residual_majorant: [0.0; N],
             in_scattering_rate: [0.0; N],
+            rayleigh_scattering: [0.0; N],
+            aerosol_scattering: [0.0; N],
         };
         for (k, shell) in self.shells.iter().enumerate() {
             let max: Lanes = std::array::from_fn(|i| shell.max.extinction(&lanes.optics[i]));
@@ -349,6 +355,15 @@ impl<'a> PathTracer<'a> {
             medium.control[k] = control;
             medium.in_scattering_rate[k] =
                 (0..LANES).map(|i| 0.5 * (max[i] + control[i])).sum::<f64>() / LANES as f64;
+            let (air, aerosol) = (
+                0.5 * (shell.max.air_m3 + shell.min.air_m3),
+                0.5 * (shell.max.aerosol_per_m + shell.min.aerosol_per_m),
+            );
+            let mean =
+                |f: &dyn Fn(&Optics) -> f64| lanes.optics.iter().map(f).sum::<f64>() / LANES as f64;
+            medium.rayleigh_scattering[k] = air * mean(&|o| o.rayleigh_cross_section_m2);
+            medium.aerosol_scattering[k] =
+                aerosol * mean(&|o| o.aerosol_optical_depth * o.aerosol_ssa);
         }
         medium
     }
@@ -539,7 +554,7 @@ impl<'a> PathTracer<'a> {
     /// without the direct solar disk), at the four wavelengths of `lanes`.
     ///
     /// Each path segment contributes the sunlight scattered once anywhere along it (one point
-    /// drawn from the truncated exponential of the lanes' mean extinction, or from the
+    /// drawn from a truncated exponential shaped like the lanes' in-scattering, or from the
     /// segment's proposal where sunlight varies along it; ratio-tracked transmittances to it)
     /// and, where the segment ends on the ground, the ground's direct
     /// sunlight. Delta tracking then picks the vertex the path continues from, so segment k

@@ -1,13 +1,17 @@
 //! Where along a path segment to look for sunlight scattered into the path.
 //!
-//! The point is drawn from the exponential of the lanes' mean extinction along the segment,
-//! which follows the single-scattering integrand where sunlight is the same all along it. (The
-//! majorant's exponential, what delta tracking uses, falls as fast as the bluest lane's bound:
-//! along a level ray it put most points within a few kilometres and gave the rare far ones
-//! weights 30–80 times the mean.) It still wastes most points where light does not come from:
-//! in the Earth's shadow at low sun, and away from the aerosol's forward peak. So each segment gets
-//! a piecewise-constant density shaped like its single-scattering integrand — scattering times
-//! phase, the view's transmittance and the sun's — estimated at the midpoints of a few
+//! The point is drawn from an exponential whose rate in each shell is the lanes' in-scattering
+//! there — scattering times phase, the phase being the same all along a straight ray — scaled
+//! so that the segment holds the optical depth of their mean extinction: where sunlight is the
+//! same all along the segment this follows the single-scattering integrand. (The majorant's
+//! exponential, what delta tracking uses, falls as fast as the bluest lane's bound: along a
+//! level ray it put most points within a few kilometres and gave the rare far ones weights
+//! 30–80 times the mean. The extinction's own exponential, without the phase, put as many points
+//! in the thin air above as in the aerosol's forward peak below, with the sun ahead.) It still
+//! wastes most points where light does not come from: in the Earth's shadow at low sun. So
+//! each segment whose sunlight varies gets a piecewise-constant density shaped like its
+//! single-scattering integrand — scattering times phase, the view's transmittance and the
+//! sun's — estimated at the midpoints of a few
 //! sub-intervals from wavelength-independent sun columns ([`SunColumns`]). That density is only a
 //! proposal: the point's contribution is still weighed with ratio-tracked transmittances and
 //! divided by the density it was drawn with, so the estimate stays unbiased. A share of points is
@@ -202,7 +206,7 @@ impl PathTracer<'_> {
         rng: &mut Rng,
     ) -> Option<(f64, f64)> {
         let (first, last) = (intervals.first()?, intervals.last()?);
-        let rates = &medium.in_scattering_rate;
+        let rates = &self.in_scattering_rates(ray, intervals, medium, lanes);
         let tau_rates: f64 = intervals.iter().map(|&(a, b, s)| rates[s] * (b - a)).sum();
         let p_rates = 1.0 - (-tau_rates).exp();
         if p_rates <= 0.0 || tau_total <= 0.0 {
@@ -233,6 +237,45 @@ impl PathTracer<'_> {
         let pdf =
             share * pdf_exponential + (1.0 - share) * proposal.as_ref().map_or(0.0, |p| p.pdf(t));
         (pdf > 0.0).then_some((t, pdf))
+    }
+
+    /// Per-shell rates of the exponential along `ray`'s segment: the shells' in-scattering
+    /// (scattering times phase, the phase being the same all along a straight ray), scaled to
+    /// the segment's extinction optical depth, so that points go where light is scattered
+    /// toward the ray (with the sun ahead, into the aerosol's forward peak low down rather than
+    /// the thin air above) while spreading over the segment as its attenuation does. Where the
+    /// segment scatters nothing, the extinction itself.
+    fn in_scattering_rates(
+        &self,
+        ray: &Ray,
+        intervals: &Intervals,
+        medium: &PathMedium,
+        lanes: &LaneOptics,
+    ) -> [f64; super::SHELL_ALTITUDES_M.len()] {
+        let nu = ray.direction.dot(self.sun);
+        let mean_phase = |c| {
+            lanes
+                .optics
+                .iter()
+                .map(|o| self.phase(c, o, nu))
+                .sum::<f64>()
+                / LANES as f64
+        };
+        let (phase_rayleigh, phase_aerosol) = (mean_phase(0), mean_phase(1));
+        let mut rates = [0.0; super::SHELL_ALTITUDES_M.len()];
+        let (mut extinction_depth, mut source_depth) = (0.0, 0.0);
+        for &(a, b, s) in intervals.iter() {
+            rates[s] = medium.rayleigh_scattering[s] * phase_rayleigh
+                + medium.aerosol_scattering[s] * phase_aerosol;
+            extinction_depth += medium.in_scattering_rate[s] * (b - a);
+            source_depth += rates[s] * (b - a);
+        }
+        if !(source_depth > 0.0 && source_depth.is_finite()) {
+            return medium.in_scattering_rate;
+        }
+        let scale = extinction_depth / source_depth;
+        rates.iter_mut().for_each(|r| *r *= scale);
+        rates
     }
 
     /// Whether the sun's transmittance along the segment (at its ends and lowest point) varies by
