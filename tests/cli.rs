@@ -1220,6 +1220,41 @@ fn bench_gpu_reports_multiples_of_the_floor_pass() {
 }
 
 #[test]
+fn bench_gpu_rebuild_only_times_the_sliced_rebuild_alone() {
+    let o = atmoscope(&[
+        "bench",
+        "gpu",
+        "--methods",
+        "hillaire",
+        "--sets",
+        "rgb3",
+        "--size",
+        "32x18",
+        "--cpu-timing",
+        "--rebuild-only",
+        "--json",
+    ]);
+    if skipped_without_gpu(&o) {
+        return;
+    }
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rows: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
+    let row = &rows.as_array().expect("rows")[0];
+    let f = |k: &str| row[k].as_f64().unwrap_or_else(|| panic!("no {k}"));
+    assert!(f("rebuild_ui_max_ms") > 0.0 && f("rebuild_sliced_ms") >= f("rebuild_ui_max_ms"));
+    assert!(f("rebuild_ui_last_ms") > 0.0 && f("rebuild_ui_last_ms") <= f("rebuild_ui_max_ms"));
+    // What was not timed is null, not a made-up zero.
+    for key in [
+        "frame_span_ms",
+        "tables_span_ms",
+        "rebuild_whole_ms",
+        "sky_ms",
+    ] {
+        assert!(row[key].is_null(), "{key}: {}", row[key]);
+    }
+}
+
+#[test]
 fn bench_methods_writes_results_summary_and_pareto_chart() {
     let refs = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../tests/data/references");
     let out = std::env::temp_dir().join(format!("atmoscope-bench-methods-{}", std::process::id()));

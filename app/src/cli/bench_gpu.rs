@@ -46,6 +46,11 @@ pub struct GpuBench {
     /// one dispatch. Default: the explorer's for the adapter, bands on a software adapter.
     #[arg(long, value_name = "true|false")]
     pub bands: Option<bool>,
+    /// Time only the change of the atmosphere built in slices (the `rebuild_ui_*` and
+    /// `rebuild_sliced_ms` keys; the others are left out as null): for models whose whole
+    /// rebuilds take minutes on a software adapter.
+    #[arg(long)]
+    pub rebuild_only: bool,
     #[arg(long)]
     pub json: bool,
 }
@@ -97,6 +102,8 @@ struct GpuRow {
     rebuild_whole_ms: f64,
     rebuild_ui_max_ms: f64,
     rebuild_ui_mean_ms: f64,
+    /// The interval of the frame that first draws the view with the new tables.
+    rebuild_ui_last_ms: f64,
     rebuild_sliced_ms: f64,
 }
 
@@ -105,14 +112,15 @@ const REBUILD_SLICE: std::time::Duration = std::time::Duration::from_millis(30);
 
 /// Frame intervals while `engine` builds `scene`'s new atmosphere in slices, each frame also
 /// drawing the floor pass (the UI) and waiting for the GPU (a window's present): (longest,
-/// mean, total) ms.
+/// mean, last, total) ms, the last being the frame that first draws the view with the new
+/// tables (at full resolution: a still frame's cost, not a slice's).
 fn sliced_rebuild_ms(
     engine: &mut Engine,
     scene: &Scene,
     view: &View,
     ui: &atmoscope_render::floor::FloorPass,
     context: &atmoscope_render::gpu::GpuContext,
-) -> anyhow::Result<(f64, f64, f64)> {
+) -> anyhow::Result<(f64, f64, f64, f64)> {
     engine.set_timing(false);
     engine.set_rebuild_slices(Some(REBUILD_SLICE));
     let start = Instant::now();
@@ -137,7 +145,8 @@ fn sliced_rebuild_ms(
     engine.set_timing(true);
     let longest = intervals.iter().copied().fold(0.0, f64::max);
     let mean = intervals.iter().sum::<f64>() / intervals.len() as f64;
-    Ok((longest, mean, start.elapsed().as_secs_f64() * 1e3))
+    let last = intervals.last().copied().unwrap_or(f64::NAN);
+    Ok((longest, mean, last, start.elapsed().as_secs_f64() * 1e3))
 }
 
 /// The median (the mean of the middle two of an even count; NaN of none).
@@ -202,9 +211,23 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         }
         let first = engine.try_render(&scene, &view)?.clone();
         engine.wait();
+        // Repetitions of the frame, sun-move and table timings (none with --rebuild-only:
+        // their medians are NaN, written as null).
+        let timed = if args.rebuild_only { 0 } else { repeats };
+        if args.rebuild_only {
+            // A turning frame, then a still one, as the timed frames would: the pipelines they
+            // compile on first use are not the rebuild's cost.
+            let mut turned = scene.clone();
+            turned.camera.heading_deg = (base.camera.heading_deg + 1.0) % 360.0;
+            engine.try_render(&turned, &view)?;
+            engine.try_render(&turned, &view)?;
+            engine.try_render(&scene, &view)?;
+            engine.try_render(&scene, &view)?;
+            engine.wait();
+        }
         let mut lut: Vec<(&str, Vec<f64>)> =
             first.tables_run.iter().map(|&p| (p, Vec::new())).collect();
-        for _ in 0..repeats {
+        for _ in 0..timed {
             engine.invalidate();
             let stats = engine.render(&scene, &view).clone();
             for (pass, times) in &mut lut {
@@ -213,7 +236,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         }
         let (mut sky, mut frame, mut wall) = (Vec::new(), Vec::new(), Vec::new());
         let mut sky_still = Vec::new();
-        for i in 0..repeats {
+        for i in 0..timed {
             scene.camera.heading_deg = (base.camera.heading_deg + 1.0 + i as f64) % 360.0;
             let start = Instant::now();
             let stats = engine.render(&scene, &view).clone();
@@ -226,14 +249,14 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             sky_still.extend(still.ms("sky").or(stats.ms("sky")));
         }
         let mut display = Vec::new();
-        for i in 0..repeats {
+        for i in 0..timed {
             scene.display.exposure_ev = base.display.exposure_ev + 0.01 * (i + 1) as f64;
             display.extend(engine.render(&scene, &view).ms("display"));
         }
         scene.display.exposure_ev = base.display.exposure_ev;
         let sun = base.sun.angles();
         let mut sun_moves = Vec::new();
-        for i in 0..repeats {
+        for i in 0..timed {
             scene.sun = SunSettings::Angles {
                 elevation_deg: (sun.elevation_deg + 0.5 * (i + 1) as f64).min(90.0),
                 azimuth_deg: sun.azimuth_deg,
@@ -245,7 +268,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         engine.set_span_timing(true);
         let (mut frame_spans, mut sun_spans, mut table_spans) =
             (Vec::new(), Vec::new(), Vec::new());
-        for i in 0..repeats {
+        for i in 0..timed {
             engine.invalidate();
             if let Some(s) = engine.render(&scene, &view).spans_ms {
                 table_spans.extend(s.tables_ms);
@@ -262,13 +285,18 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         // A change of the atmosphere: in one frame, then in slices.
         let mut changed = scene.clone();
         changed.atmosphere.ground_albedo = (base.atmosphere.ground_albedo + 0.05) % 1.0;
-        let whole = Instant::now();
-        engine.try_render(&changed, &view)?;
-        engine.wait();
-        let rebuild_whole_ms = whole.elapsed().as_secs_f64() * 1e3;
-        engine.try_render(&scene, &view)?;
-        engine.wait();
-        let (rebuild_ui_max_ms, rebuild_ui_mean_ms, rebuild_sliced_ms) =
+        let rebuild_whole_ms = if args.rebuild_only {
+            f64::NAN
+        } else {
+            let whole = Instant::now();
+            engine.try_render(&changed, &view)?;
+            engine.wait();
+            let ms = whole.elapsed().as_secs_f64() * 1e3;
+            engine.try_render(&scene, &view)?;
+            engine.wait();
+            ms
+        };
+        let (rebuild_ui_max_ms, rebuild_ui_mean_ms, rebuild_ui_last_ms, rebuild_sliced_ms) =
             sliced_rebuild_ms(&mut engine, &changed, &view, &floor, &context)?;
         let floor_ms = median(floor.time_ms(
             &context.device,
@@ -287,7 +315,9 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         let lut_total_ms: f64 = lut_ms.iter().map(|(_, ms)| ms).sum::<f64>() + 0.0;
         let sun_move_ms = median(sun_moves);
         // A model without tables rebuilds nothing: 0, as the sum above.
-        let tables_span_ms = if table_spans.is_empty() {
+        let tables_span_ms = if args.rebuild_only {
+            f64::NAN
+        } else if table_spans.is_empty() {
             0.0
         } else {
             median(table_spans)
@@ -317,6 +347,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             rebuild_whole_ms,
             rebuild_ui_max_ms,
             rebuild_ui_mean_ms,
+            rebuild_ui_last_ms,
             rebuild_sliced_ms,
         });
     }
@@ -335,7 +366,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         t = sky_tile
     );
     println!(
-        "{:14} {:12} {:>10} {:>8} {:>10} {:>8} {:>12} {:>12} {:>9} {:>8}   spans: {:>8} {:>8} {:>8}   ×floor: {:>6} {:>6} {:>7}   rebuild: {:>9} {:>16} {:>9}   table passes",
+        "{:14} {:12} {:>10} {:>8} {:>10} {:>8} {:>12} {:>12} {:>9} {:>8}   spans: {:>8} {:>8} {:>8}   ×floor: {:>6} {:>6} {:>7}   rebuild: {:>9} {:>22} {:>9}   table passes",
         "method",
         "set",
         "tables",
@@ -353,7 +384,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         "sun",
         "tables",
         "one frame",
-        "sliced: UI max/mean",
+        "sliced: UI max/mean/last",
         "done in"
     );
     for r in &rows {
@@ -363,7 +394,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             .map(|(name, ms)| format!("{name} {ms:.2}"))
             .collect();
         println!(
-            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>7.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms {:>6.2} ms {:>5.2} ms   {:>5.2} ms {:>5.2} ms {:>5.2} ms          {:>6.1} {:>6.1} {:>7.1}            {:>6.0} ms {:>6.0}/{:>5.0} ms {:>6.0} ms   {}",
+            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>7.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms {:>6.2} ms {:>5.2} ms   {:>5.2} ms {:>5.2} ms {:>5.2} ms          {:>6.1} {:>6.1} {:>7.1}            {:>6.0} ms {:>6.0}/{:>5.0}/{:>5.0} ms {:>6.0} ms   {}",
             r.method,
             r.wavelengths,
             r.lut_total_ms,
@@ -383,6 +414,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             r.rebuild_whole_ms,
             r.rebuild_ui_max_ms,
             r.rebuild_ui_mean_ms,
+            r.rebuild_ui_last_ms,
             r.rebuild_sliced_ms,
             passes.join(", ")
         );
