@@ -239,6 +239,21 @@ impl PathTracer<'_> {
         (pdf > 0.0).then_some((t, pdf))
     }
 
+    /// The lanes' mean Rayleigh and aerosol phase functions (sr⁻¹) between the sun and `ray`,
+    /// the same all along it.
+    fn mean_phases(&self, ray: &Ray, lanes: &LaneOptics) -> (f64, f64) {
+        let nu = ray.direction.dot(self.sun);
+        let mean_phase = |c| {
+            lanes
+                .optics
+                .iter()
+                .map(|o| self.phase(c, o, nu))
+                .sum::<f64>()
+                / LANES as f64
+        };
+        (mean_phase(0), mean_phase(1))
+    }
+
     /// Per-shell rates of the exponential along `ray`'s segment: the shells' in-scattering
     /// (scattering times phase, the phase being the same all along a straight ray), scaled to
     /// the segment's extinction optical depth, so that points go where light is scattered
@@ -252,16 +267,7 @@ impl PathTracer<'_> {
         medium: &PathMedium,
         lanes: &LaneOptics,
     ) -> [f64; super::SHELL_ALTITUDES_M.len()] {
-        let nu = ray.direction.dot(self.sun);
-        let mean_phase = |c| {
-            lanes
-                .optics
-                .iter()
-                .map(|o| self.phase(c, o, nu))
-                .sum::<f64>()
-                / LANES as f64
-        };
-        let (phase_rayleigh, phase_aerosol) = (mean_phase(0), mean_phase(1));
+        let (phase_rayleigh, phase_aerosol) = self.mean_phases(ray, lanes);
         let mut rates = [0.0; super::SHELL_ALTITUDES_M.len()];
         let (mut extinction_depth, mut source_depth) = (0.0, 0.0);
         for &(a, b, s) in intervals.iter() {
@@ -332,16 +338,7 @@ impl PathTracer<'_> {
             depth += majorants[s] * (b - a);
         }
         let bottom = self.atmosphere.bottom_radius_m;
-        let nu = ray.direction.dot(self.sun);
-        let mean_phase = |c| {
-            lanes
-                .optics
-                .iter()
-                .map(|o| self.phase(c, o, nu))
-                .sum::<f64>()
-                / LANES as f64
-        };
-        let (phase_rayleigh, phase_aerosol) = (mean_phase(0), mean_phase(1));
+        let (phase_rayleigh, phase_aerosol) = self.mean_phases(ray, lanes);
         let mut cdf = [0.0; SUB_INTERVALS + 1];
         let mut view_depth = 0.0;
         for k in 0..SUB_INTERVALS {
