@@ -1241,8 +1241,14 @@ fn bench_gpu_rebuild_only_times_the_sliced_rebuild_alone() {
     let rows: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
     let row = &rows.as_array().expect("rows")[0];
     let f = |k: &str| row[k].as_f64().unwrap_or_else(|| panic!("no {k}"));
-    assert!(f("rebuild_ui_max_ms") > 0.0 && f("rebuild_sliced_ms") >= f("rebuild_ui_max_ms"));
-    assert!(f("rebuild_ui_last_ms") > 0.0 && f("rebuild_ui_last_ms") <= f("rebuild_ui_max_ms"));
+    for key in [
+        "rebuild_ui_max_ms",
+        "rebuild_ui_mean_ms",
+        "rebuild_ui_last_ms",
+        "floor_ms",
+    ] {
+        assert!(f(key) > 0.0 && f(key).is_finite(), "{key}: {}", f(key));
+    }
     // What was not timed is null, not a made-up zero.
     for key in [
         "frame_span_ms",

@@ -47,8 +47,8 @@ pub struct GpuBench {
     #[arg(long, value_name = "true|false")]
     pub bands: Option<bool>,
     /// Time only the change of the atmosphere built in slices (the `rebuild_ui_*` and
-    /// `rebuild_sliced_ms` keys; the others are left out as null): for models whose whole
-    /// rebuilds take minutes on a software adapter.
+    /// `rebuild_sliced_ms` keys, beside `floor_ms`; the frame, sun-move, table and whole-rebuild
+    /// timings are null): for models whose whole rebuilds take minutes on a software adapter.
     #[arg(long)]
     pub rebuild_only: bool,
     #[arg(long)]
@@ -102,7 +102,8 @@ struct GpuRow {
     rebuild_whole_ms: f64,
     rebuild_ui_max_ms: f64,
     rebuild_ui_mean_ms: f64,
-    /// The interval of the frame that first draws the view with the new tables.
+    /// The interval of the frame that swaps in the new tables and the view drawn with them
+    /// (the view passes run in slices too).
     rebuild_ui_last_ms: f64,
     rebuild_sliced_ms: f64,
 }
@@ -112,8 +113,8 @@ const REBUILD_SLICE: std::time::Duration = std::time::Duration::from_millis(30);
 
 /// Frame intervals while `engine` builds `scene`'s new atmosphere in slices, each frame also
 /// drawing the floor pass (the UI) and waiting for the GPU (a window's present): (longest,
-/// mean, last, total) ms, the last being the frame that first draws the view with the new
-/// tables (at full resolution: a still frame's cost, not a slice's).
+/// mean, last, total) ms, the last being the frame that swaps in the new tables and the view
+/// drawn with them.
 fn sliced_rebuild_ms(
     engine: &mut Engine,
     scene: &Scene,
@@ -355,8 +356,13 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         println!("{}", serde_json::to_string_pretty(&rows)?);
         return Ok(ExitCode::SUCCESS);
     }
+    let measured = if args.rebuild_only {
+        "the rebuild in slices only".to_string()
+    } else {
+        format!("median of {repeats}")
+    };
     println!(
-        "{w}x{h} perspective, median of {repeats}; times from {}; moving frames draw the sky in {t}×{t} tiles, a still frame every pixel; the sky pass {}",
+        "{w}x{h} perspective, {measured}; times from {}; moving frames draw the sky in {t}×{t} tiles, a still frame every pixel; the sky pass {}",
         rows.first().map_or("", |r| r.timing.as_str()),
         if view_bands {
             "in bands, the sun's disk apart"

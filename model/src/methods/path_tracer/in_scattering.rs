@@ -179,7 +179,7 @@ impl Proposal {
     }
 }
 
-/// Optical depth of the per-shell extinctions `rates` from the segment's start to `t`, and the
+/// Optical depth of the per-shell rates `rates` (m⁻¹) from the segment's start to `t`, and the
 /// rate at `t`.
 fn depth_to(intervals: &[(f64, f64, usize)], rates: &[f64], t: f64) -> (f64, f64) {
     let mut acc = 0.0;
