@@ -345,6 +345,11 @@ impl<'a> PathTracer<'a> {
             rayleigh_scattering: [0.0; N],
             aerosol_scattering: [0.0; N],
         };
+        // The lanes' mean Rayleigh cross-section (m²) and aerosol scattering optical depth.
+        let mean =
+            |f: &dyn Fn(&Optics) -> f64| lanes.optics.iter().map(f).sum::<f64>() / LANES as f64;
+        let rayleigh_m2 = mean(&|o| o.rayleigh_cross_section_m2);
+        let aerosol_scattering = mean(&|o| o.aerosol_optical_depth * o.aerosol_ssa);
         for (k, shell) in self.shells.iter().enumerate() {
             let max: Lanes = std::array::from_fn(|i| shell.max.extinction(&lanes.optics[i]));
             let control: Lanes =
@@ -359,11 +364,8 @@ impl<'a> PathTracer<'a> {
                 0.5 * (shell.max.air_m3 + shell.min.air_m3),
                 0.5 * (shell.max.aerosol_per_m + shell.min.aerosol_per_m),
             );
-            let mean =
-                |f: &dyn Fn(&Optics) -> f64| lanes.optics.iter().map(f).sum::<f64>() / LANES as f64;
-            medium.rayleigh_scattering[k] = air * mean(&|o| o.rayleigh_cross_section_m2);
-            medium.aerosol_scattering[k] =
-                aerosol * mean(&|o| o.aerosol_optical_depth * o.aerosol_ssa);
+            medium.rayleigh_scattering[k] = air * rayleigh_m2;
+            medium.aerosol_scattering[k] = aerosol * aerosol_scattering;
         }
         medium
     }

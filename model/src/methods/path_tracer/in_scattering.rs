@@ -206,7 +206,8 @@ impl PathTracer<'_> {
         rng: &mut Rng,
     ) -> Option<(f64, f64)> {
         let (first, last) = (intervals.first()?, intervals.last()?);
-        let rates = &self.in_scattering_rates(ray, intervals, medium, lanes);
+        let phases = self.mean_phases(ray, lanes);
+        let rates = &self.in_scattering_rates(intervals, medium, phases);
         let tau_rates: f64 = intervals.iter().map(|&(a, b, s)| rates[s] * (b - a)).sum();
         let p_rates = 1.0 - (-tau_rates).exp();
         if p_rates <= 0.0 || tau_total <= 0.0 {
@@ -214,7 +215,7 @@ impl PathTracer<'_> {
         }
         let grey = GreyOptics::new(lanes);
         let proposal = if self.sunlight_varies(ray, intervals, &grey) {
-            self.proposal(ray, intervals, &medium.majorant, tau_total, lanes, &grey)
+            self.proposal(ray, intervals, &medium.majorant, tau_total, phases, &grey)
         } else {
             None
         };
@@ -254,20 +255,19 @@ impl PathTracer<'_> {
         (mean_phase(0), mean_phase(1))
     }
 
-    /// Per-shell rates of the exponential along `ray`'s segment: the shells' in-scattering
+    /// Per-shell rates of the exponential along a segment: the shells' in-scattering
     /// (scattering times phase, the phase being the same all along a straight ray), scaled to
     /// the segment's extinction optical depth, so that points go where light is scattered
     /// toward the ray (with the sun ahead, into the aerosol's forward peak low down rather than
     /// the thin air above) while spreading over the segment as its attenuation does. Where the
     /// segment scatters nothing, the extinction itself.
+    /// `(phase_rayleigh, phase_aerosol)` are the segment's [`Self::mean_phases`].
     fn in_scattering_rates(
         &self,
-        ray: &Ray,
         intervals: &Intervals,
         medium: &PathMedium,
-        lanes: &LaneOptics,
+        (phase_rayleigh, phase_aerosol): (f64, f64),
     ) -> [f64; super::SHELL_ALTITUDES_M.len()] {
-        let (phase_rayleigh, phase_aerosol) = self.mean_phases(ray, lanes);
         let mut rates = [0.0; super::SHELL_ALTITUDES_M.len()];
         let (mut extinction_depth, mut source_depth) = (0.0, 0.0);
         for &(a, b, s) in intervals.iter() {
@@ -306,14 +306,15 @@ impl PathTracer<'_> {
         least < SUNLIGHT_SPREAD * most
     }
 
-    /// The segment's proposal density, None where it holds no light by its own estimate.
+    /// The segment's proposal density, None where it holds no light by its own estimate;
+    /// `phases` are its [`Self::mean_phases`].
     fn proposal(
         &self,
         ray: &Ray,
         intervals: &Intervals,
         majorants: &[f64],
         tau_total: f64,
-        lanes: &LaneOptics,
+        (phase_rayleigh, phase_aerosol): (f64, f64),
         grey: &GreyOptics,
     ) -> Option<Proposal> {
         let (start, end) = (intervals.first()?.0, intervals.last()?.1);
@@ -338,7 +339,6 @@ impl PathTracer<'_> {
             depth += majorants[s] * (b - a);
         }
         let bottom = self.atmosphere.bottom_radius_m;
-        let (phase_rayleigh, phase_aerosol) = self.mean_phases(ray, lanes);
         let mut cdf = [0.0; SUB_INTERVALS + 1];
         let mut view_depth = 0.0;
         for k in 0..SUB_INTERVALS {
