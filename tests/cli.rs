@@ -1243,6 +1243,7 @@ fn bench_gpu_rebuild_only_times_the_sliced_rebuild_alone() {
     let f = |k: &str| row[k].as_f64().unwrap_or_else(|| panic!("no {k}"));
     for key in [
         "rebuild_ui_max_ms",
+        "rebuild_ui_p99_ms",
         "rebuild_ui_mean_ms",
         "rebuild_ui_last_ms",
         "floor_ms",

@@ -518,6 +518,9 @@ fn slice(grid: [u32; 3], start: u32, count: u32) -> ([u32; 3], [u32; 3], u32) {
     }
 }
 
+/// Bytes a unit of the clearing of a rebuild's tables covers.
+const CLEAR_UNIT_BYTES: u64 = 1 << 20;
+
 /// How a rebuild runs in slices.
 #[derive(Debug, Clone, Copy)]
 struct Slicing {
@@ -573,9 +576,13 @@ struct Rebuild {
     /// The next slice: index into `run`, and its first unit (workgroups counted along rows,
     /// then rows, then layers).
     next: (usize, u32),
-    /// Units per slice of each pass, steered towards the target time (passes differ in cost
-    /// per unit by a thousandfold, so a pass not met before starts with one workgroup; the
-    /// engine keeps what it learnt for the model's next rebuild).
+    /// Bytes of the new tables zeroed so far: the first slices clear them
+    /// (`TableBuffers::clear`), in units of `CLEAR_UNIT_BYTES`.
+    cleared: u64,
+    /// Units per slice of each pass, and last those of the clearing, steered towards the
+    /// target time (passes differ in cost per unit by a thousandfold, so a pass not met
+    /// before starts with one unit; the engine keeps what it learnt for the model's next
+    /// rebuild).
     units: Vec<u32>,
     /// The slice on the GPU: when it was submitted, whether it has finished, its pass and
     /// units, and half a row of the pass's workgroups (the slice a zero target asks for).
@@ -593,6 +600,14 @@ impl Rebuild {
             total: self.total_units,
         }
     }
+}
+
+/// A flag set once the GPU has finished the work submitted to `queue` so far.
+fn when_done(queue: &wgpu::Queue) -> Arc<AtomicBool> {
+    let done = Arc::new(AtomicBool::new(false));
+    let flag = done.clone();
+    queue.on_submitted_work_done(move || flag.store(true, Ordering::Release));
+    done
 }
 
 /// Encodes dispatches of one model over one atmosphere's tables and one view's images.
@@ -1441,10 +1456,11 @@ impl Engine {
         let run = with_order_loop(&run, pipelines, state.params.scattering_orders);
         let variants = frame.variants(pipelines, scene, view);
         let layers = state.params.batches.len() as u32;
-        let total_units = run
-            .iter()
-            .map(|s| u64::from(units(grid(pipelines, s.pass, layers, size))))
-            .sum();
+        let total_units = state.tables.bytes().div_ceil(CLEAR_UNIT_BYTES)
+            + run
+                .iter()
+                .map(|s| u64::from(units(grid(pipelines, s.pass, layers, size))))
+                .sum::<u64>();
         Rebuild {
             state,
             target,
@@ -1453,11 +1469,12 @@ impl Engine {
             variants,
             run,
             next: (0, 0),
+            cleared: 0,
             units: self
                 .slice_units
                 .iter()
-                .find(|(m, u)| *m == method && u.len() == pipelines.len())
-                .map_or_else(|| vec![1; pipelines.len()], |(_, u)| u.clone()),
+                .find(|(m, u)| *m == method && u.len() == pipelines.len() + 1)
+                .map_or_else(|| vec![1; pipelines.len() + 1], |(_, u)| u.clone()),
             in_flight: None,
             done_units: 0,
             total_units,
@@ -1492,6 +1509,22 @@ impl Engine {
             };
             r.in_flight = None;
         }
+        let clearing = r.units.len() - 1;
+        let table_bytes = r.state.tables.bytes();
+        if r.cleared < table_bytes {
+            let count = r.units[clearing];
+            let mut encoder = self.device.create_command_encoder(&Default::default());
+            let cleared =
+                r.state
+                    .tables
+                    .clear(&mut encoder, r.cleared, u64::from(count) * CLEAR_UNIT_BYTES);
+            self.queue.submit([encoder.finish()]);
+            r.cleared += cleared;
+            // A zero target asks for slices of 16 MiB here.
+            r.in_flight = Some((Instant::now(), when_done(&self.queue), clearing, count, 16));
+            r.done_units += cleared.div_ceil(CLEAR_UNIT_BYTES);
+            return Some(r.progress());
+        }
         let (k, unit) = r.next;
         let &step = r.run.get(k)?;
         let pass = step.pass;
@@ -1522,11 +1555,13 @@ impl Engine {
             tiles: TilePhase::None,
         };
         encoder.submit(&[work], None, false);
-        let done = Arc::new(AtomicBool::new(false));
-        let flag = done.clone();
-        self.queue
-            .on_submitted_work_done(move || flag.store(true, Ordering::Release));
-        r.in_flight = Some((Instant::now(), done, pass, count, grid[0].div_ceil(2)));
+        r.in_flight = Some((
+            Instant::now(),
+            when_done(&self.queue),
+            pass,
+            count,
+            grid[0].div_ceil(2),
+        ));
         r.done_units += u64::from(count);
         r.next = if unit + count >= units(grid) {
             (k + 1, 0)

@@ -401,7 +401,10 @@ impl TableBuffers {
             .tables
             .iter()
             .map(|t| {
-                let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC;
+                // COPY_DST: a rebuild in slices clears them itself (`clear`).
+                let usage = wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::COPY_SRC
+                    | wgpu::BufferUsages::COPY_DST;
                 (*t, buffer(t.label, t.bytes(layers), usage))
             })
             .collect();
@@ -445,5 +448,66 @@ impl TableBuffers {
     /// Bytes of every table together.
     pub fn bytes(&self) -> u64 {
         self.tables.iter().map(|(_, b)| b.size()).sum()
+    }
+
+    /// Zeroes up to `len` bytes of the tables from byte `start` of all of them laid end to end,
+    /// and returns how many it zeroed. wgpu zero-fills a buffer where it is first used, all of
+    /// it in that submission (Bruneton's Spectral32 tables, 170 MB, took 100 ms on lavapipe);
+    /// cleared ahead in pieces they are not filled again.
+    pub fn clear(&self, encoder: &mut wgpu::CommandEncoder, start: u64, len: u64) -> u64 {
+        let sizes: Vec<u64> = self.tables.iter().map(|(_, b)| b.size()).collect();
+        let mut cleared = 0;
+        for (i, offset, size) in clear_spans(&sizes, start, len) {
+            encoder.clear_buffer(&self.tables[i].1, offset, Some(size));
+            cleared += size;
+        }
+        cleared
+    }
+}
+
+/// The pieces of buffers of `sizes` bytes, laid end to end, that bytes `start..start + len`
+/// cover: (buffer, offset, size). Sizes are multiples of 4 bytes (vec4 texels), as
+/// `clear_buffer` needs; `start` and `len` are taken to be too.
+fn clear_spans(sizes: &[u64], start: u64, len: u64) -> Vec<(usize, u64, u64)> {
+    let end = start.saturating_add(len);
+    let mut spans = Vec::new();
+    let mut base = 0;
+    for (i, &size) in sizes.iter().enumerate() {
+        let (from, to) = (start.max(base), end.min(base + size));
+        if from < to {
+            spans.push((i, from - base, to - from));
+        }
+        base += size;
+    }
+    spans
+}
+
+#[cfg(test)]
+mod tests {
+    use super::clear_spans;
+
+    /// Clears of any size, taken one after another, cover every byte of every table once.
+    #[test]
+    fn clear_spans_cover_every_byte_once() {
+        let sizes = [48, 16, 0, 160, 32];
+        let total: u64 = sizes.iter().sum();
+        for step in [4, 16, 20, 64, 1000] {
+            let mut hits = vec![0u32; total as usize];
+            let mut start = 0;
+            while start < total {
+                let spans = clear_spans(&sizes, start, step);
+                let n: u64 = spans.iter().map(|s| s.2).sum();
+                assert!(n > 0 && n <= step, "{step}: {spans:?}");
+                for (i, offset, size) in spans {
+                    assert!(offset + size <= sizes[i], "{step}: past buffer {i}");
+                    let base: u64 = sizes[..i].iter().sum();
+                    for b in base + offset..base + offset + size {
+                        hits[b as usize] += 1;
+                    }
+                }
+                start += n;
+            }
+            assert!(hits.iter().all(|&h| h == 1), "in pieces of {step}");
+        }
     }
 }
