@@ -96,7 +96,8 @@ pub struct FrameStats {
     pub rebuild_done: bool,
 }
 
-/// Progress of a rebuild in slices, in units of work (workgroups of its passes).
+/// Progress of a rebuild in slices, in units of work (MiB of its tables zeroed, then
+/// workgroups of its passes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct RebuildProgress {
     pub done: u64,
@@ -525,7 +526,7 @@ const CLEAR_UNIT_BYTES: u64 = 1 << 20;
 #[derive(Debug, Clone, Copy)]
 struct Slicing {
     /// GPU time each slice aims at (zero: half a row of workgroups each, so that slices also
-    /// start inside rows).
+    /// start inside rows, and 16 MiB of the tables' zeroing).
     target: Duration,
 }
 
@@ -577,15 +578,16 @@ struct Rebuild {
     /// then rows, then layers).
     next: (usize, u32),
     /// Bytes of the new tables zeroed so far: the first slices clear them
-    /// (`TableBuffers::clear`), in units of `CLEAR_UNIT_BYTES`.
+    /// (`TableBuffers::clear`), `CLEAR_UNIT_BYTES` a unit.
     cleared: u64,
     /// Units per slice of each pass, and last those of the clearing, steered towards the
     /// target time (passes differ in cost per unit by a thousandfold, so a pass not met
     /// before starts with one unit; the engine keeps what it learnt for the model's next
     /// rebuild).
     units: Vec<u32>,
-    /// The slice on the GPU: when it was submitted, whether it has finished, its pass and
-    /// units, and half a row of the pass's workgroups (the slice a zero target asks for).
+    /// The slice on the GPU: when it was submitted, whether it has finished, its pass (the
+    /// last slot of `units` for the zeroing) and units, and the slice a zero target asks for
+    /// (half a row of the pass's workgroups; 16 MiB of zeroing).
     in_flight: Option<(Instant, Arc<AtomicBool>, usize, u32, u32)>,
     done_units: u64,
     total_units: u64,
@@ -1051,7 +1053,8 @@ impl Engine {
     /// everything in the frame that asks for it; `Some(t)` builds it in slices of about `t`
     /// each, one slice in flight at a time, across as many frames as it takes, while the
     /// previous atmosphere stays on screen and the view keeps responding (for a window).
-    /// `Duration::ZERO` makes every slice after a pass's first half a row of its workgroups.
+    /// `Duration::ZERO` makes every slice after a pass's first half a row of its workgroups
+    /// (and of the tables' zeroing 16 MiB).
     pub fn set_rebuild_slices(&mut self, target: Option<Duration>) {
         self.slicing = target.map(|target| Slicing { target });
         if self.slicing.is_none() {
@@ -1520,9 +1523,17 @@ impl Engine {
                     .clear(&mut encoder, r.cleared, u64::from(count) * CLEAR_UNIT_BYTES);
             self.queue.submit([encoder.finish()]);
             r.cleared += cleared;
-            // A zero target asks for slices of 16 MiB here.
-            r.in_flight = Some((Instant::now(), when_done(&self.queue), clearing, count, 16));
-            r.done_units += cleared.div_ceil(CLEAR_UNIT_BYTES);
+            // The units zeroed, not those asked for: the last piece is usually short, and the
+            // next slice is sized from what this one did.
+            let units = cleared.div_ceil(CLEAR_UNIT_BYTES);
+            r.in_flight = Some((
+                Instant::now(),
+                when_done(&self.queue),
+                clearing,
+                u32::try_from(units).unwrap_or(count),
+                16,
+            ));
+            r.done_units += units;
             return Some(r.progress());
         }
         let (k, unit) = r.next;
