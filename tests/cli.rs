@@ -644,8 +644,82 @@ fn fit_wavelengths_beats_the_published_matrix_and_writes_csv() {
         "{line}"
     );
     let csv = std::fs::read_to_string(&out).expect("CSV written");
-    assert!(csv.starts_with('#') && csv.contains("row,lane,value"));
-    assert_eq!(csv.lines().filter(|l| !l.starts_with('#')).count(), 13);
+    assert!(csv.starts_with('#') && csv.contains("quantity,lane,value"));
+    // The header, four wavelengths and twelve weights.
+    assert_eq!(csv.lines().filter(|l| !l.starts_with('#')).count(), 17);
+}
+
+/// The wavelengths of a `fit-wavelengths` CSV, lane by lane.
+fn csv_lanes_nm(csv: &str) -> Vec<f64> {
+    csv.lines()
+        .filter_map(|l| l.strip_prefix("wavelength_nm,"))
+        .map(|rest| rest.split(',').nth(1).unwrap().parse().unwrap())
+        .collect()
+}
+
+/// `--choose-lanes` takes one wavelength from each lane's range on a 10 nm grid, longest first,
+/// and since García Liñán's four are among those it tries, its choice leaves the worst view no
+/// nearer its bounds than theirs; `--lanes-nm` fits at the four given and refuses any other
+/// number or order.
+#[test]
+fn fit_wavelengths_chooses_the_wavelengths_or_fits_at_given_ones() {
+    let fit = |extra: &[&str]| {
+        let mut a = vec![
+            "fit-wavelengths",
+            "--views",
+            "ground-noon,fisheye-sun30",
+            "--grid",
+            "4",
+            "--spectral",
+            "spectral8",
+        ];
+        a.extend_from_slice(extra);
+        atmoscope(&a)
+    };
+    let o = fit(&["--choose-lanes"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    let chose = out.lines().find(|l| l.starts_with("chose")).expect(&out);
+    let number_after = |key: &str| -> f64 {
+        let rest = &chose[chose.find(key).expect(key) + key.len()..];
+        rest.trim_start()
+            .split(|c: char| c.is_whitespace() || c == ',')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    let (chosen, published) = (number_after("the worst view at"), number_after("430 nm at"));
+    assert!(chosen <= published, "{chose}");
+    let lanes = csv_lanes_nm(&out);
+    let ranges = [
+        (570.0, 680.0),
+        (510.0, 600.0),
+        (450.0, 530.0),
+        (400.0, 470.0),
+    ];
+    assert_eq!(lanes.len(), 4, "{out}");
+    for (l, (lo, hi)) in lanes.iter().zip(ranges) {
+        assert!((lo..=hi).contains(l) && l % 10.0 == 0.0, "{lanes:?}");
+    }
+    assert!(lanes.windows(2).all(|p| p[0] > p[1]), "{lanes:?}");
+    assert!(chose.starts_with(&format!(
+        "chose {}/{}/{}/{} nm",
+        lanes[0], lanes[1], lanes[2], lanes[3]
+    )));
+
+    let given = fit(&["--lanes-nm", "620,550,500,440"]);
+    assert!(given.status.success(), "{}", stderr(&given));
+    assert_eq!(csv_lanes_nm(&stdout(&given)), [620.0, 550.0, 500.0, 440.0]);
+    for (bad, says) in [
+        ("440,500,550,620", "longest first"),
+        ("620,550,500", "four wavelengths"),
+        ("900,550,500,440", "must lie in"),
+    ] {
+        let o = fit(&["--lanes-nm", bad]);
+        assert!(!o.status.success(), "{bad}");
+        assert!(stderr(&o).contains(says), "{bad}: {}", stderr(&o));
+    }
 }
 
 /// `--hold-out` reports each view under the matrix of the half it was left out of, beside the
@@ -678,8 +752,20 @@ fn fit_wavelengths_judges_the_matrix_on_views_held_out_of_the_fit() {
         let v = r[key].as_array().expect(key);
         [v[0].as_f64().unwrap(), v[1].as_f64().unwrap()]
     };
+    // Without --choose-lanes both halves fit at the shipped wavelengths.
+    let shipped = std::fs::read_to_string(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../model/data/spectral4_fitted.csv"),
+    )
+    .expect("the shipped Spectral4");
     let mut differ = false;
     for r in rows {
+        let lanes: Vec<f64> = r["held_out_lanes_nm"]
+            .as_array()
+            .expect("lanes")
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        assert_eq!(lanes, csv_lanes_nm(&shipped), "{r}");
         let (held, all) = (pair(r, "held_out"), pair(r, "fitted_on_all"));
         for [mean, p95] in [held, all] {
             assert!(
@@ -803,8 +889,8 @@ fn fit_garcia_linan_reports_before_and_after_and_writes_csv() {
 /// the suite views of its domain. The references (`tests/data/references`, see the README there) carry their own
 /// noise, large in twilight, which these bounds include.
 fn delta_e_bound(id: &str) -> (f64, Option<f64>) {
-    // Measured worst views (mean ΔE2000): hillaire ground-sunrise 4.2, plane-dawn 4.3 (and
-    // twilight-12 4.1); bruneton fisheye-sun90 2.5, twilight-12 2.4 (orbit-dawn 4.0 before
+    // Measured worst views (mean ΔE2000): hillaire ground-sunrise 4.0, plane-dawn 4.3 (and
+    // twilight-12 4.1); bruneton twilight-12 2.4, fisheye-sun90 2.2 (orbit-dawn 4.0 before
     // rays starting past the tables' 102° were looked up from where they come back to it, now
     // 1.1); garcia-linan ground-sunrise 11.7 (its L_ms,
     // fitted at 10 km, is far too dark at the ground at low sun); elek ground-sunrise 10.8

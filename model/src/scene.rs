@@ -330,7 +330,8 @@ pub enum Method {
 pub enum WavelengthSet {
     /// 680/550/440 nm used directly as linear sRGB.
     Rgb3,
-    /// 630/560/490/430 nm with a 3×4 matrix to sRGB (García Liñán 2023).
+    /// Four wavelengths with a 3×4 matrix to sRGB (García Liñán 2023's method; the wavelengths
+    /// and matrix fitted by `atmoscope fit-wavelengths`).
     Spectral4,
     /// N evenly spaced bands over 360–830 nm, N a multiple of 4 (4–128).
     SpectralN(u32),

@@ -159,7 +159,7 @@ pub mod tables {
     embedded_table!(guimera_aerosol_types, "aerosol_guimera2018_type_params.csv");
     embedded_table!(garcia_linan_constants, "garcia_linan_2023_constants.csv");
     embedded_table!(garcia_linan_refit, "garcia_linan_refit.csv");
-    embedded_table!(spectral4_fitted_matrix, "spectral4_fitted_matrix.csv");
+    embedded_table!(spectral4_fitted, "spectral4_fitted.csv");
     embedded_table!(preetham_constants, "preetham1999_constants.csv");
     embedded_table!(hillaire_earth, "hillaire2020_earth_defaults.csv");
 }
@@ -190,6 +190,7 @@ mod tests {
             tables::opac_type_profiles(),
             tables::guimera_aerosol_types(),
             tables::garcia_linan_constants(),
+            tables::spectral4_fitted(),
             tables::preetham_constants(),
             tables::hillaire_earth(),
         ];

@@ -2,10 +2,11 @@
 //! linear sRGB. Every set is split into batches of four lanes (one `vec4` on the GPU).
 //!
 //! - RGB3: 680/550/440 nm read directly as R, G, B (the common shortcut; wrong in hue).
-//! - Spectral4: 630/560/490/430 nm (García Liñán 2023) with a 3×4 matrix to linear sRGB refitted
-//!   by this project against SpectralN renders (`atmoscope fit-wavelengths`, stored in
-//!   `data/spectral4_fitted_matrix.csv`); the published matrix
-//!   (`data/garcia_linan_2023_constants.csv`) is kept for comparison.
+//! - Spectral4: García Liñán (2023)'s method, four wavelengths with a 3×4 matrix to linear sRGB,
+//!   with the wavelengths chosen and the matrix fitted by this project against SpectralN renders
+//!   (`atmoscope fit-wavelengths`, stored in `data/spectral4_fitted.csv`); the published
+//!   630/560/490/430 nm and matrix (`data/garcia_linan_2023_constants.csv`) are kept for
+//!   comparison.
 //! - SpectralN: N equal bands over 360–830 nm; each lane is weighted by the CIE 1931 functions
 //!   integrated over its band, then XYZ → linear sRGB.
 //!
@@ -82,19 +83,28 @@ pub fn garcia_linan_spectral4() -> ([f64; LANES], [[f64; LANES]; 3]) {
     (wavelengths, matrix)
 }
 
-/// The project's own Spectral4 matrix (rows R, G, B), from `atmoscope fit-wavelengths`.
-pub fn spectral4_fitted_matrix() -> [[f64; LANES]; 3] {
-    let t = tables::spectral4_fitted_matrix();
-    let mut m = [[0.0; LANES]; 3];
-    for ((row, lane), value) in t
-        .numbers("row")
+/// The project's Spectral4: its four wavelengths (nm, longest first) and its 3×4 matrix (rows
+/// R, G, B), from `atmoscope fit-wavelengths` (`data/spectral4_fitted.csv`).
+pub fn spectral4_fitted() -> ([f64; LANES], [[f64; LANES]; 3]) {
+    let t = tables::spectral4_fitted();
+    let mut wavelengths = [f64::NAN; LANES];
+    let mut matrix = [[f64::NAN; LANES]; 3];
+    for ((quantity, lane), value) in t
+        .text("quantity")
         .iter()
         .zip(t.numbers("lane"))
         .zip(t.numbers("value"))
     {
-        m[*row as usize][lane as usize] = value;
+        let lane = lane as usize;
+        match *quantity {
+            "wavelength_nm" => wavelengths[lane] = value,
+            "R" => matrix[0][lane] = value,
+            "G" => matrix[1][lane] = value,
+            "B" => matrix[2][lane] = value,
+            other => panic!("embedded table spectral4_fitted: unknown quantity {other}"),
+        }
     }
-    m
+    (wavelengths, matrix)
 }
 
 /// The 3×4 matrix M minimising Σ w·|M·l − c|² over samples (lanes l, target linear sRGB c)
@@ -150,6 +160,20 @@ fn solve4(mut a: [[f64; LANES]; LANES], mut b: [f64; LANES]) -> Option<[f64; LAN
     Some(x)
 }
 
+/// Batches of any wavelengths (nm, 360–830), four per batch, the last padded by repeating its
+/// last wavelength, with no colour matrix: for probing or fitting at given wavelengths. Each lane
+/// averages the solar spectrum over `bandwidth_nm` (None: a point sample).
+pub fn batches_at(wavelengths_nm: &[f64], bandwidth_nm: Option<f64>) -> Vec<WavelengthBatch> {
+    wavelengths_nm
+        .chunks(LANES)
+        .map(|c| WavelengthBatch {
+            wavelengths_nm: std::array::from_fn(|i| c[i.min(c.len() - 1)]),
+            bandwidth_nm,
+            to_srgb: [[0.0; LANES]; 3],
+        })
+        .collect()
+}
+
 /// The batches of a wavelength set, in rendering order.
 pub fn batches(set: WavelengthSet) -> Vec<WavelengthBatch> {
     match set {
@@ -162,11 +186,11 @@ pub fn batches(set: WavelengthSet) -> Vec<WavelengthBatch> {
             }]
         }
         WavelengthSet::Spectral4 => {
-            let (wavelengths_nm, _) = garcia_linan_spectral4();
+            let (wavelengths_nm, to_srgb) = spectral4_fitted();
             vec![WavelengthBatch {
                 wavelengths_nm,
                 bandwidth_nm: Some(POINT_SET_SOLAR_BAND_NM),
-                to_srgb: spectral4_fitted_matrix(),
+                to_srgb,
             }]
         }
         WavelengthSet::SpectralN(n) => spectral_n(n.max(LANES as u32) as usize),
@@ -229,9 +253,46 @@ mod tests {
         assert!((m[0][0] - 137.6723892).abs() < 1e-9);
         assert!((m[2][3] - 117.4758528).abs() < 1e-9);
         assert!((m[1][2] - 34.31665471).abs() < 1e-9);
+    }
+
+    /// The shipped Spectral4 is read whole (every lane's wavelength and every weight), its
+    /// wavelengths are visible and longest first as the set's lanes are named, and what it makes
+    /// of sky-like spectra is their colour: lanes read into the wrong slots, or a matrix fitted
+    /// at other wavelengths than those shipped beside it, would not be.
+    #[test]
+    fn the_shipped_spectral4_renders_sky_spectra_in_their_colour() {
+        let (w, m) = spectral4_fitted();
+        assert!(
+            w.iter().chain(m.iter().flatten()).all(|v| v.is_finite()),
+            "{w:?} {m:?}"
+        );
+        assert!(w.windows(2).all(|p| p[0] > p[1]), "{w:?}");
+        assert!(
+            w.iter()
+                .all(|l| (VISIBLE_MIN_NM..=VISIBLE_MAX_NM).contains(l))
+        );
         let b = batches(WavelengthSet::Spectral4);
-        assert_eq!(b[0].wavelengths_nm, w);
-        assert_eq!(b[0].to_srgb, spectral4_fitted_matrix());
+        assert_eq!((b[0].wavelengths_nm, b[0].to_srgb), (w, m));
+        // Sunlight blued as a clear or hazy sky does, (550/λ)ⁿ, and the sun's own colour: each
+        // within 5 % of the exact colour's green (measured at most 2.7 %, and 4.2 % for García
+        // Liñán's wavelengths under the matrix this project fitted there; the shipped matrix at
+        // those wavelengths is 20 % off, and the red and green lanes swapped up to 21 %).
+        let sun = crate::solar::SolarSpectrum::AstmG173;
+        let grid: Vec<f64> = (360..=830).map(f64::from).collect();
+        for n in [4.0, 2.0, 1.0, 0.0] {
+            let tint = |l: f64| (550.0 / l).powf(n);
+            let values = grid.iter().map(|&l| sun.spectrum().sample(l) * tint(l));
+            let spectrum = Spectrum::new(grid.clone(), values.collect()).unwrap();
+            let exact = xyz_to_linear_srgb(spectrum_to_xyz(&spectrum));
+            let lanes = w.map(|l| sun.irradiance(l, POINT_SET_SOLAR_BAND_NM) * tint(l));
+            let rgb = to_linear_srgb(&b, &[lanes]);
+            for c in 0..3 {
+                assert!(
+                    (rgb[c] - exact[c]).abs() < 0.05 * exact[1],
+                    "(550/λ)^{n}, channel {c}: {rgb:?} vs {exact:?}"
+                );
+            }
+        }
     }
 
     #[test]

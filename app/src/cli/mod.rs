@@ -66,7 +66,8 @@ pub enum Command {
     Timelapse(timelapse::TimelapseArgs),
     /// Error metrics of an image against a reference (RMSE, ΔE2000, FLIP), with error maps.
     Compare(compare::CompareArgs),
-    /// Refit the Spectral4 matrix against SpectralN renders over the view suite.
+    /// Fit Spectral4 against SpectralN renders over the view suite: its matrix, and with
+    /// --choose-lanes its four wavelengths.
     FitWavelengths(fit::FitArgs),
     /// Refit García Liñán's multiple-scattering constants against path-traced references of
     /// the view suite; reports the error before and after.

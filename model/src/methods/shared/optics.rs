@@ -9,7 +9,7 @@ use crate::atmosphere::{Atmosphere, OpticalDepth};
 use crate::camera::Camera;
 use crate::geometry::direction_from_angles;
 use crate::scene::{AerosolPhase, FittedConstants, Quality, RenderSettings, Scene, WavelengthSet};
-use crate::wavelengths::{LANES, WavelengthBatch, batches};
+use crate::wavelengths::{LANES, WavelengthBatch, batches, batches_at};
 
 /// Samples of the density profile table, spaced as h = H·x² (dense near the ground).
 pub const PROFILE_SAMPLES: u32 = 256;
@@ -119,15 +119,7 @@ impl Params {
     /// repeating its last wavelength), as point samples with no colour matrix: for probing a
     /// model at given wavelengths.
     pub fn at_wavelengths(atm: &Atmosphere, wavelengths_nm: &[f64], quality: Quality) -> Params {
-        let batches = wavelengths_nm
-            .chunks(LANES)
-            .map(|c| WavelengthBatch {
-                wavelengths_nm: std::array::from_fn(|i| c[i.min(c.len() - 1)]),
-                bandwidth_nm: None,
-                to_srgb: [[0.0; LANES]; 3],
-            })
-            .collect();
-        Params::with_batches(atm, batches, quality)
+        Params::with_batches(atm, batches_at(wavelengths_nm, None), quality)
     }
 
     /// The optics of `colours` (batches of four wavelengths).
