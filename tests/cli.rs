@@ -617,8 +617,11 @@ fn render_writes_png_luminance_map_and_exr_and_refuses_bad_input() {
 #[test]
 fn fit_wavelengths_beats_the_published_matrix_and_writes_csv() {
     let out = std::env::temp_dir().join(format!("atmoscope-fit-{}.csv", std::process::id()));
+    // At the published wavelengths, so that only the matrices differ.
     let o = atmoscope(&[
         "fit-wavelengths",
+        "--lanes-nm",
+        "630,560,490,430",
         "--views",
         "fisheye-sun30",
         "--grid",
@@ -647,6 +650,12 @@ fn fit_wavelengths_beats_the_published_matrix_and_writes_csv() {
     assert!(csv.starts_with('#') && csv.contains("quantity,lane,value"));
     // The header, four wavelengths and twelve weights.
     assert_eq!(csv.lines().filter(|l| !l.starts_with('#')).count(), 17);
+    // The model reads it back as it reads the CSV it embeds.
+    let (lanes, matrix) = atmoscope_model::wavelengths::spectral4_from(
+        &atmoscope_model::table::Table::parse("written", &csv),
+    );
+    assert_eq!(lanes, [630.0, 560.0, 490.0, 430.0]);
+    assert!(matrix.iter().flatten().all(|v| v.is_finite()), "{matrix:?}");
 }
 
 /// The wavelengths of a `fit-wavelengths` CSV, lane by lane.
@@ -707,6 +716,38 @@ fn fit_wavelengths_chooses_the_wavelengths_or_fits_at_given_ones() {
         "chose {}/{}/{}/{} nm",
         lanes[0], lanes[1], lanes[2], lanes[3]
     )));
+
+    // Out of sample each half chooses its own: the views of half A are judged at the
+    // wavelengths that fisheye-sun30 (half B, alone) chooses, and half B at those of half A.
+    let held = fit(&["--choose-lanes", "--hold-out", "--json"]);
+    assert!(held.status.success(), "{}", stderr(&held));
+    let rows: serde_json::Value = serde_json::from_str(&stdout(&held)).expect("JSON");
+    let lanes_of = |r: &serde_json::Value| -> Vec<f64> {
+        r["held_out_lanes_nm"]
+            .as_array()
+            .expect("lanes")
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect()
+    };
+    let alone = |view: &str| {
+        let o = atmoscope(&[
+            "fit-wavelengths",
+            "--choose-lanes",
+            "--views",
+            view,
+            "--grid",
+            "4",
+            "--spectral",
+            "spectral8",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        csv_lanes_nm(&stdout(&o))
+    };
+    // ground-noon comes first in the suite: half A, under half B's (fisheye-sun30's) choice.
+    assert_eq!(rows[0]["view"], "ground-noon");
+    assert_eq!(lanes_of(&rows[0]), alone("fisheye-sun30"), "{rows}");
+    assert_eq!(lanes_of(&rows[1]), alone("ground-noon"), "{rows}");
 
     let given = fit(&["--lanes-nm", "620,550,500,440"]);
     assert!(given.status.success(), "{}", stderr(&given));

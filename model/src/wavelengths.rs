@@ -16,7 +16,7 @@
 use crate::colour::{Xyz, cie1931, xyz_to_linear_srgb};
 use crate::constants::{VISIBLE_MAX_NM, VISIBLE_MIN_NM};
 use crate::scene::WavelengthSet;
-use crate::table::tables;
+use crate::table::{Table, tables};
 
 /// Lanes per batch (one `vec4<f32>` on the GPU).
 pub const LANES: usize = 4;
@@ -86,7 +86,13 @@ pub fn garcia_linan_spectral4() -> ([f64; LANES], [[f64; LANES]; 3]) {
 /// The project's Spectral4: its four wavelengths (nm, longest first) and its 3×4 matrix (rows
 /// R, G, B), from `atmoscope fit-wavelengths` (`data/spectral4_fitted.csv`).
 pub fn spectral4_fitted() -> ([f64; LANES], [[f64; LANES]; 3]) {
-    let t = tables::spectral4_fitted();
+    spectral4_from(tables::spectral4_fitted())
+}
+
+/// Spectral4's wavelengths and matrix from a table in the form `fit-wavelengths` writes
+/// (columns quantity, lane, value; quantities wavelength_nm, R, G, B); a lane the table leaves
+/// out is NaN. Panics on another quantity, as on any malformed embedded table.
+pub fn spectral4_from(t: &Table) -> ([f64; LANES], [[f64; LANES]; 3]) {
     let mut wavelengths = [f64::NAN; LANES];
     let mut matrix = [[f64::NAN; LANES]; 3];
     for ((quantity, lane), value) in t

@@ -54,9 +54,9 @@ pub struct FitArgs {
     /// model/data/spectral4_fitted.csv).
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
-    /// Judge the fit out of sample instead of writing a matrix: fit on every other view of
-    /// the chosen ones (half A: the 1st, 3rd, …) and report each view's ΔE2000 under the
-    /// matrix of the half it is not in, beside the matrix fitted on all of them. With
+    /// Judge the fit out of sample instead of writing wavelengths and a matrix: fit on every
+    /// other view of the chosen ones (half A: the 1st, 3rd, …) and report each view's ΔE2000
+    /// under the fit of the half it is not in, beside the fit on all of them. With
     /// --choose-lanes each half chooses its own wavelengths too.
     #[arg(long, conflicts_with = "out")]
     pub hold_out: bool,
@@ -182,7 +182,10 @@ fn choose(views: &[&ViewData], candidates: &[Lanes]) -> Option<(Lanes, f64)> {
 
 /// The whole fit on `views`: the lanes (chosen among `candidates`), then the matrix.
 fn fit_on(views: &[&ViewData], candidates: &[Lanes], objective: Objective) -> Option<Fit> {
-    let (lanes, _) = choose(views, candidates)?;
+    let lanes = match candidates {
+        [only] => *only,
+        _ => choose(views, candidates)?.0,
+    };
     Some(Fit {
         lanes,
         matrix: fit(views, lanes, objective)?,
@@ -309,9 +312,9 @@ fn hold_out(
         "ΔE2000 mean / p95 of Spectral4 against the spectral set, display-referred at each view's exposure:\n\
          under the fit on the other half of the views (held out), and on all of them\n\
          wavelengths: half A {}, half B {}, all {} nm",
-        slashed(nm(&fits[0])),
-        slashed(nm(&fits[1])),
-        slashed(nm(all))
+        joined(nm(&fits[0]), "/"),
+        joined(nm(&fits[1]), "/"),
+        joined(nm(all), "/")
     );
     println!(
         "{:20} half  {:>15}  {:>15}",
@@ -333,9 +336,9 @@ fn hold_out(
     Ok(ExitCode::SUCCESS)
 }
 
-/// "630/560/490/430".
-fn slashed(nm: [f64; 4]) -> String {
-    nm.map(|w| format!("{w}")).join("/")
+/// Four wavelengths as "630/560/490/430" (separator "/") or "630,560,490,430" (",").
+fn joined(nm: [f64; 4], separator: &str) -> String {
+    nm.map(|w| format!("{w}")).join(separator)
 }
 
 /// Mean relative error of luminance-weighted colour: |M·l − c| / Y(c).
@@ -351,31 +354,26 @@ fn mean_error(m: &Matrix, samples: &[Sample]) -> f64 {
     errors.iter().sum::<f64>() / errors.len().max(1) as f64
 }
 
-/// The wavelengths `--choose-lanes` may pick from (sorted) and every four of them, one per
-/// range and longest first, as indices.
-fn lane_candidates() -> (Vec<f64>, Vec<Lanes>) {
-    let (lo, hi) = (LANE_RANGES_NM[3].0, LANE_RANGES_NM[0].1);
-    let steps = ((hi - lo) / LANE_GRID_STEP_NM).round() as usize;
-    let grid: Vec<f64> = (0..=steps)
-        .map(|i| lo + LANE_GRID_STEP_NM * i as f64)
-        .collect();
-    let within = |lane: usize| -> Vec<usize> {
-        let (a, b) = LANE_RANGES_NM[lane];
-        (0..grid.len())
-            .filter(|&i| (a..=b).contains(&grid[i]))
+/// Every four wavelengths `--choose-lanes` may pick, nm: one from each lane's range on the
+/// grid, longest first.
+fn lane_candidates() -> Vec<[f64; 4]> {
+    let within: [Vec<f64>; 4] = LANE_RANGES_NM.map(|(lo, hi)| {
+        let steps = ((hi - lo) / LANE_GRID_STEP_NM).round() as usize;
+        (0..=steps)
+            .map(|i| lo + LANE_GRID_STEP_NM * i as f64)
             .collect()
-    };
+    });
     let mut candidates = Vec::new();
-    for &r in &within(0) {
-        for &g in within(1).iter().filter(|&&g| grid[g] < grid[r]) {
-            for &b in within(2).iter().filter(|&&b| grid[b] < grid[g]) {
-                for &v in within(3).iter().filter(|&&v| grid[v] < grid[b]) {
-                    candidates.push([r, g, b, v]);
+    for &r in &within[0] {
+        for &g in within[1].iter().filter(|&&g| g < r) {
+            for &c in within[2].iter().filter(|&&c| c < g) {
+                for &b in within[3].iter().filter(|&&b| b < c) {
+                    candidates.push([r, g, c, b]);
                 }
             }
         }
     }
-    (grid, candidates)
+    candidates
 }
 
 /// `--lanes-nm` checked: four visible wavelengths, longest first.
@@ -406,19 +404,20 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     for name in &args.views {
         views::find(name).with_context(|| format!("--views: no view {name}"))?;
     }
+    if args.hold_out && args.views.len() == 1 {
+        bail!("--hold-out needs at least two views (one per half)");
+    }
     let (published_nm, published) = garcia_linan_spectral4();
     // Every wavelength a fit may use, and García Liñán's for comparison, rendered once.
-    let (mut wavelengths_nm, candidates_nm): (Vec<f64>, Vec<[f64; 4]>) = if args.choose_lanes {
-        let (grid, candidates) = lane_candidates();
-        let nm = candidates.iter().map(|k| k.map(|i| grid[i])).collect();
-        (grid, nm)
+    let candidates_nm: Vec<[f64; 4]> = if args.choose_lanes {
+        lane_candidates()
     } else {
-        let lanes = match &args.lanes_nm {
+        vec![match &args.lanes_nm {
             Some(nm) => given_lanes(nm)?,
             None => spectral4_fitted().0,
-        };
-        (lanes.to_vec(), vec![lanes])
+        }]
     };
+    let mut wavelengths_nm: Vec<f64> = candidates_nm.iter().flatten().copied().collect();
     wavelengths_nm.extend(published_nm);
     wavelengths_nm.sort_by(f64::total_cmp);
     wavelengths_nm.dedup();
@@ -470,9 +469,9 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
         let worst = |lanes| worst_against_bounds(&everything, lanes).unwrap_or(f64::INFINITY);
         println!(
             "chose {} nm: the worst view at {:.3} of its bounds (mean ΔE2000 {MEAN_BOUND}, p95 {P95_BOUND}) under its least-squares matrix; García Liñán's {} nm at {:.3}",
-            slashed(lanes_nm),
+            joined(lanes_nm, "/"),
             worst(all.lanes),
-            slashed(published_nm),
+            joined(published_nm, "/"),
             worst(published_lanes)
         );
     }
@@ -484,9 +483,9 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
         fitted_samples.len(),
         args.spectral,
         mean_error(&published, &samples_at(published_lanes)),
-        slashed(published_nm),
+        joined(published_nm, "/"),
         mean_error(&all.matrix, &fitted_samples),
-        slashed(lanes_nm),
+        joined(lanes_nm, "/"),
     );
     let mut csv = String::from(
         "# Spectral4: four wavelengths (nm, lanes 0-3, longest first) and the matrix from spectral radiance at them to linear sRGB (rows R, G, B).\n",
@@ -501,7 +500,7 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     let lanes_flag = if args.choose_lanes {
         " --choose-lanes".to_string()
     } else {
-        format!(" --lanes-nm {}", lanes_nm.map(|w| format!("{w}")).join(","))
+        format!(" --lanes-nm {}", joined(lanes_nm, ","))
     };
     writeln!(
         csv,
@@ -519,6 +518,15 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
             args.views.join(", ")
         }
     )?;
+    if args.choose_lanes {
+        writeln!(
+            csv,
+            "# Wavelengths chosen on a {LANE_GRID_STEP_NM} nm grid, one in each of {}: the four under whose least-squares matrix the worst view's larger of mean ΔE2000 / {MEAN_BOUND} and p95 / {P95_BOUND} is smallest.",
+            LANE_RANGES_NM
+                .map(|(lo, hi)| format!("{lo}-{hi} nm"))
+                .join(", ")
+        )?;
+    }
     csv.push_str("quantity,lane,value\n");
     for (k, w) in lanes_nm.iter().enumerate() {
         writeln!(csv, "wavelength_nm,{k},{w}")?;
