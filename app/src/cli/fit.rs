@@ -170,21 +170,22 @@ fn worst_against_bounds(views: &[&ViewData], lanes: Lanes) -> Option<f64> {
     )
 }
 
-/// The candidate whose worst view is nearest its bounds (the first of equals).
-fn choose(views: &[&ViewData], candidates: &[Lanes]) -> Option<(Lanes, f64)> {
+/// The candidate whose worst view is furthest within its bounds, by
+/// [`worst_against_bounds`] (the first of equals).
+fn choose(views: &[&ViewData], candidates: &[Lanes]) -> Option<Lanes> {
     candidates
         .par_iter()
         .enumerate()
         .filter_map(|(i, &k)| Some((i, k, worst_against_bounds(views, k)?)))
         .min_by(|a, b| a.2.total_cmp(&b.2).then(a.0.cmp(&b.0)))
-        .map(|(_, k, w)| (k, w))
+        .map(|(_, k, _)| k)
 }
 
 /// The whole fit on `views`: the lanes (chosen among `candidates`), then the matrix.
 fn fit_on(views: &[&ViewData], candidates: &[Lanes], objective: Objective) -> Option<Fit> {
     let lanes = match candidates {
         [only] => *only,
-        _ => choose(views, candidates)?.0,
+        _ => choose(views, candidates)?,
     };
     Some(Fit {
         lanes,
