@@ -104,7 +104,7 @@ fn single_order_path_tracing_agrees_with_the_exact_integrator_at_low_sun() {
         (2.0, at_altitude(&atm, 1.0, 3.0, 20.0), 0.03),   // sunrise, towards the sun
         (-4.0, at_altitude(&atm, 1.0, 20.0, 0.0), 0.05),  // civil twilight, towards the sun
         (-4.0, at_altitude(&atm, 1.0, 60.0, 180.0), 0.05), // civil twilight, high and away
-        (-6.0, at_altitude(&atm, 1.0, 10.0, 0.0), 0.03),   // the twilight arch
+        (-6.0, at_altitude(&atm, 1.0, 10.0, 0.0), 0.03),  // the twilight arch
     ];
     order_one_agrees_within(&atm, &cases, 8000, 17);
 }
