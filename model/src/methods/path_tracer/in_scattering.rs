@@ -12,12 +12,13 @@
 //! each segment whose sunlight varies gets a piecewise-constant density shaped like its
 //! single-scattering integrand — scattering times phase, the view's transmittance and the
 //! sun's — constant on each of a few sub-intervals at the larger of its values at the
-//! sub-interval's two ends, from wavelength-independent sun columns ([`SunColumns`]). That density is only a
-//! proposal: the point's contribution is still weighed with ratio-tracked transmittances and
-//! divided by the density it was drawn with, so the estimate stays unbiased. A share of points is
-//! drawn from the exponential as before (one-sample mixture, Veach 1997 §9.2), which
-//! keeps the density positive wherever the proposal's approximations (the tabulated sun, the
-//! view's optical depth summed piece by piece) say too little.
+//! sub-interval's two ends, from wavelength-independent sun columns ([`SunColumns`]). That
+//! density is only a proposal: the point's contribution is still weighed with ratio-tracked
+//! transmittances and divided by the density it was drawn with, so the estimate stays unbiased.
+//! A share of points is drawn from the exponential as before (one-sample mixture, Veach 1997
+//! §9.2), which keeps the density positive wherever the proposal's approximations say too
+//! little: the tabulated sun, the view's optical depth summed piece by piece from each piece's
+//! far end, and a peak inside a piece that both its ends miss (a grazing ray's lowest point).
 
 use super::{Intervals, LANES, LaneOptics, PathMedium, PathTracer};
 use crate::Atmosphere;
@@ -362,16 +363,17 @@ impl PathTracer<'_> {
         // terminator the integrand changes by orders of magnitude within a piece; taken at the
         // piece's middle, in the shadow, it left the sunlit end to the defensive share, with
         // weights hundreds of times the mean (order 1 looking into the twilight arch, sun 6°
-        // down: a standard deviation per path 12 times the mean, against 1.3 now).
+        // down, default atmosphere: a standard deviation per path 12 times the mean, against
+        // 1.3 now).
         let mut cdf = [0.0; SUB_INTERVALS + 1];
         let mut view_depth = 0.0f64;
         let mut left = at(edges[0]).0;
         for k in 0..SUB_INTERVALS {
             let width = edges[k + 1] - edges[k];
             let (right, extinction) = at(edges[k + 1]);
-            let depth = extinction * width;
-            let value = left.max(right * (-depth).exp()) * (-view_depth).exp();
-            view_depth += depth;
+            let piece_depth = extinction * width;
+            let value = left.max(right * (-piece_depth).exp()) * (-view_depth).exp();
+            view_depth += piece_depth;
             cdf[k + 1] = cdf[k] + value * width;
             left = right;
         }
