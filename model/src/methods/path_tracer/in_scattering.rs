@@ -86,7 +86,7 @@ impl SunColumns {
 
     /// The visible share of the sun's disk at zenith cosine `mu_s` from altitude `h`, and the
     /// columns to the top along the sun's ray (the horizon's where the sun's centre is below it).
-    fn towards_sun(&self, h: f64, mu_s: f64) -> (f64, [f64; 3]) {
+    pub(super) fn towards_sun(&self, h: f64, mu_s: f64) -> (f64, [f64; 3]) {
         let visible = visible_fraction(h, mu_s, self.big_r);
         if visible <= 0.0 {
             return (0.0, [0.0; 3]);

@@ -1,0 +1,341 @@
+//! Which way a path turns at a scattering vertex: toward where the light comes from.
+//!
+//! A path's next segment contributes the sunlight scattered once along it and the sunlit
+//! ground at its end, so the ideal density for its direction follows the phase function times
+//! that single-scattered radiance. The phase function alone ignores the radiance, which at low
+//! sun is concentrated in a thin arch of sunlit air above the horizon toward the sun and in
+//! daylight still varies several-fold between the zenith, the horizon and the ground: the few
+//! paths that turn the right way carry weights tens to hundreds of times the mean, most of a
+//! twilight image's noise. A guide in the spirit of path guiding (Vorba et al. 2014), but
+//! computed ahead from the atmosphere rather than learned from paths: for each vertex altitude
+//! and local sun elevation, a piecewise-constant density over (cosine of zenith angle, azimuth
+//! from the sun), proportional to a coarse march of the single-scattered radiance seen in each
+//! cell's middle direction (three wavelengths, the wavelength-independent sun columns). Its
+//! slices are built on first use, since a scene's vertices meet few local sun elevations.
+//! It is a proposal only: the vertex draws from it in a one-sample mixture with the phase
+//! function (balance heuristic, Veach 1997 §9.2) and weighs by the mixture's density, so the
+//! estimate stays unbiased and no weight grows by more than 1 / (1 − share).
+
+use super::PathTracer;
+use crate::atmosphere::Optics;
+use crate::geometry::{Ray, sphere_distances};
+use crate::methods::rng::Rng;
+use glam::DVec3;
+use std::f64::consts::PI;
+use std::sync::OnceLock;
+
+/// Altitude bins of the guide, m: a vertex uses the slice of the bin it lies in, computed at
+/// the bin's middle. Dense low down, where most vertices are.
+const ALTITUDE_EDGES_M: [f64; 14] = [
+    0.0, 500.0, 1000.0, 2000.0, 3000.0, 5000.0, 8000.0, 12_000.0, 18_000.0, 25_000.0, 35_000.0,
+    50_000.0, 70_000.0, 100_000.0,
+];
+
+/// Width of the local sun elevation bins, degrees: narrow enough that the Earth's shadow moves
+/// by less than a bin's worth of sky between a slice and its vertices.
+const ELEVATION_STEP_DEG: f64 = 2.0;
+const ELEVATION_BINS: usize = (180.0 / ELEVATION_STEP_DEG) as usize;
+
+/// Edges of the bins in the cosine of the zenith angle: narrow near the horizon, where the
+/// twilight arch and the haze lie.
+const COS_ZENITH_EDGES: [f64; 16] = [
+    -1.0, -0.6, -0.3, -0.15, -0.08, -0.04, -0.02, 0.0, 0.02, 0.04, 0.08, 0.15, 0.3, 0.5, 0.75, 1.0,
+];
+const ZENITH_BINS: usize = COS_ZENITH_EDGES.len() - 1;
+
+/// Bins in the azimuth from the sun, over [0, π]: the sky is symmetric about the sun's vertical
+/// plane, so each bin stands for two mirror cells.
+const AZIMUTH_BINS: usize = 12;
+const CELLS: usize = ZENITH_BINS * AZIMUTH_BINS;
+
+/// Steps of the radiance march per cell (quadratic spacing, dense near the vertex).
+const MARCH_STEPS: usize = 24;
+
+/// Wavelengths of the march, nm: the guide is one density for every lane.
+const GUIDE_WAVELENGTHS_NM: [f64; 3] = [450.0, 550.0, 650.0];
+
+/// Share of a slice's mass spread evenly over its solid angle, so that a cell whose middle
+/// direction misses a bright feature still draws some directions.
+const FLOOR_SHARE: f64 = 0.02;
+
+/// The default [`super::PathTracerSettings::guide_share`].
+pub const GUIDE_SHARE: f64 = 0.5;
+
+/// One slice: the cumulative mass of the cells, zenith bin major.
+struct Slice {
+    cdf: [f64; CELLS + 1],
+}
+
+/// The guide's lazily built slices, one per (altitude bin, sun elevation bin).
+pub(super) struct DirectionGuide {
+    slices: Vec<OnceLock<Slice>>,
+    optics: [Optics; GUIDE_WAVELENGTHS_NM.len()],
+    solar_irradiance: [f64; GUIDE_WAVELENGTHS_NM.len()],
+}
+
+/// A vertex's local frame: its up, the sun's horizontal direction and the third axis, with the
+/// slice it draws from.
+pub(super) struct Frame {
+    up: DVec3,
+    sun_horizontal: DVec3,
+    side: DVec3,
+    slice: usize,
+}
+
+impl DirectionGuide {
+    pub(super) fn new(atmosphere: &crate::Atmosphere) -> DirectionGuide {
+        DirectionGuide {
+            slices: (0..(ALTITUDE_EDGES_M.len() - 1) * ELEVATION_BINS)
+                .map(|_| OnceLock::new())
+                .collect(),
+            optics: GUIDE_WAVELENGTHS_NM.map(|w| atmosphere.optics(w)),
+            solar_irradiance: GUIDE_WAVELENGTHS_NM.map(|w| atmosphere.solar_irradiance(w, None)),
+        }
+    }
+}
+
+/// The bin of `x` among increasing `edges` (clamped to the first and last bins).
+fn bin(edges: &[f64], x: f64) -> usize {
+    edges[1..edges.len() - 1].partition_point(|&e| e <= x)
+}
+
+/// A unit vector perpendicular to unit `n`.
+fn perpendicular(n: DVec3) -> DVec3 {
+    let a = if n.x.abs() > 0.9 { DVec3::Y } else { DVec3::X };
+    n.cross(a).normalize()
+}
+
+impl PathTracer<'_> {
+    /// The guide's frame at vertex `x`.
+    pub(super) fn guide_frame(&self, x: DVec3) -> Frame {
+        let r = x.length();
+        let up = x / r;
+        let mu_s = up.dot(self.sun).clamp(-1.0, 1.0);
+        let horizontal = self.sun - up * mu_s;
+        let sun_horizontal = if horizontal.length_squared() > 1e-18 {
+            horizontal.normalize()
+        } else {
+            perpendicular(up)
+        };
+        let h = r - self.atmosphere.bottom_radius_m;
+        let elevation_deg = 90.0 - mu_s.acos().to_degrees();
+        let e = (((elevation_deg + 90.0) / ELEVATION_STEP_DEG) as usize).min(ELEVATION_BINS - 1);
+        Frame {
+            up,
+            sun_horizontal,
+            side: up.cross(sun_horizontal),
+            slice: bin(&ALTITUDE_EDGES_M, h) * ELEVATION_BINS + e,
+        }
+    }
+
+    fn guide_slice(&self, slice: usize) -> &Slice {
+        self.guide.slices[slice].get_or_init(|| self.build_slice(slice))
+    }
+
+    /// A direction drawn from the guide at a vertex with `frame`.
+    pub(super) fn guide_sample(&self, frame: &Frame, rng: &mut Rng) -> DVec3 {
+        let cdf = &self.guide_slice(frame.slice).cdf;
+        let u = rng.uniform() * cdf[CELLS];
+        let cell = cdf[1..CELLS].partition_point(|&c| c <= u);
+        let (z, a) = (cell / AZIMUTH_BINS, cell % AZIMUTH_BINS);
+        let c0 = COS_ZENITH_EDGES[z];
+        let cos_zenith = c0 + rng.uniform() * (COS_ZENITH_EDGES[z + 1] - c0);
+        let mut phi = (a as f64 + rng.uniform()) * PI / AZIMUTH_BINS as f64;
+        if rng.uniform() < 0.5 {
+            phi = -phi;
+        }
+        frame_direction(frame, cos_zenith, phi)
+    }
+
+    /// Density (sr⁻¹) with which [`Self::guide_sample`] draws `dir` at a vertex with `frame`.
+    pub(super) fn guide_pdf(&self, frame: &Frame, dir: DVec3) -> f64 {
+        let cdf = &self.guide_slice(frame.slice).cdf;
+        let cos_zenith = frame.up.dot(dir);
+        let phi = dir
+            .dot(frame.side)
+            .atan2(dir.dot(frame.sun_horizontal))
+            .abs();
+        let z = bin(&COS_ZENITH_EDGES, cos_zenith);
+        let a = ((phi / PI * AZIMUTH_BINS as f64) as usize).min(AZIMUTH_BINS - 1);
+        let cell = z * AZIMUTH_BINS + a;
+        let solid_angle =
+            2.0 * (COS_ZENITH_EDGES[z + 1] - COS_ZENITH_EDGES[z]) * PI / AZIMUTH_BINS as f64;
+        (cdf[cell + 1] - cdf[cell]) / cdf[CELLS] / solid_angle
+    }
+
+    /// The slice's cells: the single-scattered radiance in each cell's middle direction from
+    /// the middle of its altitude bin under the middle of its sun elevation bin, times the
+    /// cell's solid angle, plus the floor.
+    fn build_slice(&self, slice: usize) -> Slice {
+        let (k_h, k_e) = (slice / ELEVATION_BINS, slice % ELEVATION_BINS);
+        let h = 0.5
+            * (ALTITUDE_EDGES_M[k_h] + ALTITUDE_EDGES_M[k_h + 1])
+                .min(self.atmosphere.thickness_m());
+        let elevation = ((k_e as f64 + 0.5) * ELEVATION_STEP_DEG - 90.0).to_radians();
+        let sun = DVec3::new(elevation.cos(), 0.0, elevation.sin());
+        let x = DVec3::new(0.0, 0.0, self.atmosphere.bottom_radius_m + h);
+        let frame = Frame {
+            up: DVec3::Z,
+            sun_horizontal: DVec3::X,
+            side: DVec3::Y,
+            slice,
+        };
+        let mut mass = [0.0; CELLS];
+        let mut solid_angles = [0.0; CELLS];
+        for z in 0..ZENITH_BINS {
+            let (c0, c1) = (COS_ZENITH_EDGES[z], COS_ZENITH_EDGES[z + 1]);
+            for a in 0..AZIMUTH_BINS {
+                let phi = (a as f64 + 0.5) * PI / AZIMUTH_BINS as f64;
+                let dir = frame_direction(&frame, 0.5 * (c0 + c1), phi);
+                let solid_angle = 2.0 * (c1 - c0) * PI / AZIMUTH_BINS as f64;
+                let cell = z * AZIMUTH_BINS + a;
+                solid_angles[cell] = solid_angle;
+                mass[cell] = self.single_scattered(x, dir, sun) * solid_angle;
+            }
+        }
+        let total: f64 = mass.iter().sum();
+        let mut cdf = [0.0; CELLS + 1];
+        for cell in 0..CELLS {
+            let floor = if total > 0.0 {
+                FLOOR_SHARE * total * solid_angles[cell] / (4.0 * PI)
+            } else {
+                solid_angles[cell]
+            };
+            cdf[cell + 1] = cdf[cell] + (1.0 - FLOOR_SHARE) * mass[cell] + floor;
+        }
+        Slice { cdf }
+    }
+
+    /// Single-scattered radiance (plus the sunlit ground's) reaching `x` from `dir` under a sun
+    /// in unit direction `sun`, summed over the guide's wavelengths: a coarse midpoint march.
+    fn single_scattered(&self, x: DVec3, dir: DVec3, sun: DVec3) -> f64 {
+        let big_r = self.atmosphere.bottom_radius_m;
+        let ray = Ray::new(x, dir);
+        let (r, mu) = ray.r_mu();
+        let ground = if mu < 0.0 {
+            sphere_distances(r, mu, big_r)
+                .map(|(t, _)| t)
+                .filter(|&t| t >= 0.0)
+        } else {
+            None
+        };
+        let Some(length) = ground.or_else(|| {
+            sphere_distances(r, mu, self.atmosphere.top_radius_m).map(|(_, t)| t.max(0.0))
+        }) else {
+            return 0.0;
+        };
+        let nu = dir.dot(sun);
+        let guide = &self.guide;
+        let phases = guide
+            .optics
+            .map(|o| (self.phase(0, &o, nu), self.phase(1, &o, nu)));
+        let mut depth = [0.0; GUIDE_WAVELENGTHS_NM.len()];
+        let mut radiance = [0.0; GUIDE_WAVELENGTHS_NM.len()];
+        let sun_transmittance = |p: DVec3, depth: &[f64]| -> [f64; 3] {
+            let r_p = p.length();
+            let (visible, column) = self.sun_columns.towards_sun(r_p - big_r, p.dot(sun) / r_p);
+            std::array::from_fn(|i| {
+                let o = &guide.optics[i];
+                let tau = o.rayleigh_cross_section_m2 * column[0]
+                    + o.ozone_cross_section_m2 * column[1]
+                    + o.aerosol_optical_depth * column[2];
+                visible * (-(tau + depth[i])).exp()
+            })
+        };
+        for k in 0..MARCH_STEPS {
+            let f = |k: usize| length * (k as f64 / MARCH_STEPS as f64).powi(2);
+            let (t0, t1) = (f(k), f(k + 1));
+            let p = x + dir * (0.5 * (t0 + t1));
+            let d = self.densities.at(p.length() - big_r);
+            let coefficients = guide.optics.map(|o| o.coefficients(&d));
+            // Half the step's own extinction, so the step's light is dimmed to its middle.
+            for (i, c) in coefficients.iter().enumerate() {
+                depth[i] += 0.5 * c.extinction() * (t1 - t0);
+            }
+            let transmittance = sun_transmittance(p, &depth);
+            for (i, c) in coefficients.iter().enumerate() {
+                let source =
+                    c.rayleigh_scattering * phases[i].0 + c.aerosol_scattering * phases[i].1;
+                radiance[i] += source * transmittance[i] * (t1 - t0);
+                depth[i] += 0.5 * c.extinction() * (t1 - t0);
+            }
+        }
+        if ground.is_some() {
+            let g = x + dir * length;
+            let mu_g = (g.normalize().dot(sun)).max(0.0);
+            let transmittance = sun_transmittance(g, &depth);
+            for i in 0..radiance.len() {
+                radiance[i] += self.atmosphere.ground_albedo / PI * mu_g * transmittance[i];
+            }
+        }
+        (0..radiance.len())
+            .map(|i| radiance[i] * guide.solar_irradiance[i])
+            .sum()
+    }
+}
+
+/// The direction at `cos_zenith` and azimuth `phi` (radians from the sun's side) in `frame`.
+fn frame_direction(frame: &Frame, cos_zenith: f64, phi: f64) -> DVec3 {
+    let sin_zenith = (1.0 - cos_zenith * cos_zenith).max(0.0).sqrt();
+    (frame.up * cos_zenith
+        + (frame.sun_horizontal * phi.cos() + frame.side * phi.sin()) * sin_zenith)
+        .normalize()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Atmosphere;
+    use crate::geometry::direction_from_angles;
+    use crate::methods::path_tracer::PathTracerSettings;
+    use crate::scene::AtmosphereSettings;
+
+    /// The guide's density integrates to one over the sphere, and its samples follow it: the
+    /// share of samples in each quarter of the sphere (above or below the horizon, toward or
+    /// away from the sun) is the density's integral over it. The integrals are by a fine
+    /// midpoint grid in the vertex's frame, through `guide_pdf`'s own inversion of directions.
+    #[test]
+    fn the_guide_density_is_normalised_and_matches_its_samples() {
+        let atm = Atmosphere::new(&AtmosphereSettings::default());
+        for sun_elevation in [60.0, 3.0, -5.0] {
+            let sun = direction_from_angles(sun_elevation, 30.0);
+            let pt = PathTracer::new(&atm, sun, PathTracerSettings::default());
+            let x = DVec3::new(1e4, -2e4, atm.bottom_radius_m + 1500.0);
+            let frame = pt.guide_frame(x);
+            let quarter = |d: DVec3| {
+                usize::from(frame.up.dot(d) > 0.0) * 2
+                    + usize::from(d.dot(frame.sun_horizontal) > 0.0)
+            };
+            let (nc, nphi) = (3000, 720);
+            let mut integral = [0.0; 4];
+            for i in 0..nc {
+                let c = -1.0 + (i as f64 + 0.5) * 2.0 / nc as f64;
+                for j in 0..nphi {
+                    let phi = (j as f64 + 0.5) * 2.0 * PI / nphi as f64;
+                    let dir = frame_direction(&frame, c, phi);
+                    integral[quarter(dir)] +=
+                        pt.guide_pdf(&frame, dir) * (2.0 / nc as f64) * (2.0 * PI / nphi as f64);
+                }
+            }
+            let total: f64 = integral.iter().sum();
+            assert!(
+                (total - 1.0).abs() < 2e-3,
+                "sun {sun_elevation}°: ∫ pdf = {total}"
+            );
+            let mut rng = Rng::new(3, 0, 0);
+            let n = 200_000;
+            let mut hits = [0.0; 4];
+            for _ in 0..n {
+                hits[quarter(pt.guide_sample(&frame, &mut rng))] += 1.0 / n as f64;
+            }
+            for q in 0..4 {
+                assert!(
+                    (hits[q] - integral[q]).abs() < 0.006,
+                    "sun {sun_elevation}°, quarter {q}: sampled share {}, density's {}",
+                    hits[q],
+                    integral[q]
+                );
+            }
+        }
+    }
+}
