@@ -124,13 +124,6 @@ impl Default for PathTracerSettings {
     }
 }
 
-/// Cosine of the sun's zenith angle at a vertex above which no direction is drawn from the
-/// guide (about 17° of elevation): higher, the sky's light is spread widely enough that the
-/// phase function alone does as well (with the sun overhead the guide made the fisheye's
-/// noise 2.80 → 3.20 % at 512 paths). Below it the share grows linearly to its most at the
-/// horizon.
-const GUIDE_MU_S: f64 = 0.3;
-
 /// Densities of each constituent at one bound of a shell.
 #[derive(Debug, Clone, Copy)]
 struct ShellDensity {
@@ -573,8 +566,6 @@ impl<'a> PathTracer<'a> {
         let albedo = self.atmosphere.ground_albedo;
         let bottom = self.atmosphere.bottom_radius_m;
         let mut order = 0u32;
-        // The weight by which the roulette judges the path (see below).
-        let mut judged;
         loop {
             let Some(seg) = self.segment(&ray) else { break };
             order += 1;
@@ -692,7 +683,8 @@ impl<'a> PathTracer<'a> {
                     }
                 }
             }
-            match event {
+            // The weight by which the roulette below judges the path.
+            let judged = match event {
                 Some((x, constituent)) => {
                     let share = self.guide_share(x);
                     let frame = (share > 0.0).then(|| self.guide_frame(x));
@@ -710,16 +702,16 @@ impl<'a> PathTracer<'a> {
                     // not because the light it leads to is faint, and judging it after would
                     // end most guided paths and multiply the survivors' weights (at sun −6°,
                     // the noise per path of orders ≥ 3 twice that of unguided paths).
-                    judged = max_weight(&weight);
+                    let judged = max_weight(&weight);
                     for i in 0..LANES {
                         weight[i] *= self.phase(constituent, &lanes.optics[i], nu) / pdf;
                     }
                     ray = Ray::new(x, dir);
+                    judged
                 }
                 None if seg.ground && albedo > 0.0 => {
                     let n = (ray.origin + ray.direction * seg.end).normalize();
                     weight.iter_mut().for_each(|w| *w *= albedo);
-                    judged = max_weight(&weight);
                     // Cosine-weighted direction over the ground's upper hemisphere.
                     let (t, b) = basis(n);
                     let r = rng.uniform().sqrt();
@@ -728,9 +720,10 @@ impl<'a> PathTracer<'a> {
                         + b * (r * phi.sin())
                         + n * (1.0 - r * r).max(0.0).sqrt();
                     ray = Ray::new(n * (bottom + 1e-3), dir);
+                    max_weight(&weight)
                 }
                 None => break,
-            }
+            };
             if order >= 2 {
                 let survive = judged.min(1.0);
                 if survive <= 0.0 || rng.uniform() >= survive {
@@ -740,12 +733,6 @@ impl<'a> PathTracer<'a> {
             }
         }
         radiance
-    }
-
-    /// The share of directions drawn from the guide at vertex `x` ([`GUIDE_MU_S`]).
-    fn guide_share(&self, x: DVec3) -> f64 {
-        let mu_s = x.normalize().dot(self.sun);
-        self.settings.guide_share * (1.0 - mu_s / GUIDE_MU_S).clamp(0.0, 1.0)
     }
 
     fn phase(&self, constituent: usize, optics: &Optics, nu: f64) -> f64 {
