@@ -416,7 +416,13 @@ impl<'a> PathTracer<'a> {
         // by the same roots that place the cuts (a middle's radius can round across a boundary
         // the ray grazes, and a carried index would keep that error along the whole ray).
         let mut first_shell = 0isize;
-        for &radius in inner.iter().rev() {
+        for (k, &radius) in inner.iter().enumerate().rev() {
+            if mu >= 0.0 && radius <= r {
+                // A ray leaving upward is outside this boundary and every one below from its
+                // start on (both roots ≤ 0 ≤ start, exactly so in floating point): no cuts.
+                first_shell += k as isize + 1;
+                break;
+            }
             let Some((a, b)) = sphere_distances(r, mu, radius) else {
                 first_shell += 1;
                 continue;
@@ -516,6 +522,9 @@ impl<'a> PathTracer<'a> {
     ) -> Lanes {
         let mut tau_control = [0.0; LANES];
         let mut ratio = [1.0; LANES];
+        // Residual majorant optical depth to the next tentative collision, carried from shell
+        // to shell (the exponential is memoryless): one draw per collision, not one per shell.
+        let mut tau_left = None;
         for &(a, b, shell) in intervals {
             if a >= until {
                 break;
@@ -531,10 +540,13 @@ impl<'a> PathTracer<'a> {
             }
             let mut t = a;
             loop {
-                t -= (1.0 - rng.uniform()).ln() / m;
-                if t >= b {
+                let tau = *tau_left.get_or_insert_with(|| -(1.0 - rng.uniform()).ln());
+                if tau >= (b - t) * m {
+                    tau_left = Some(tau - (b - t) * m);
                     break;
                 }
+                t += tau / m;
+                tau_left = None;
                 let d =
                     self.densities
                         .at((ray.origin + ray.direction * t).length()
@@ -627,6 +639,8 @@ impl<'a> PathTracer<'a> {
                 }
             }
             let mut event = None;
+            // Majorant optical depth to the next tentative collision, carried across shells.
+            let mut tau_left = None;
             'track: for (k, &(a, b, shell)) in intervals.iter().enumerate() {
                 let m = majorants[shell];
                 if m <= 0.0 {
@@ -645,10 +659,13 @@ impl<'a> PathTracer<'a> {
                 }
                 loop {
                     if !std::mem::take(&mut at_forced) {
-                        t -= (1.0 - rng.uniform()).ln() / m;
-                        if t >= b {
+                        let tau = *tau_left.get_or_insert_with(|| -(1.0 - rng.uniform()).ln());
+                        if tau >= (b - t) * m {
+                            tau_left = Some(tau - (b - t) * m);
                             break;
                         }
+                        t += tau / m;
+                        tau_left = None;
                     }
                     let x = ray.origin + ray.direction * t;
                     let d = self.densities.at(x.length() - bottom);
