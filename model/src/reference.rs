@@ -2,11 +2,12 @@
 //!
 //! Each pass adds a number of paths to every pixel (rows in parallel with rayon); each path's
 //! random stream is keyed by (seed, pixel, sample index), so a render is the same for a given
-//! seed whatever the thread count or pass sizes. Per pixel it keeps spectral radiance in 10 nm
-//! bins, CIE XYZ, and the sum of squares of luminance for a standard error, so the noise level is
-//! always known. Each path's four wavelengths are drawn by `WavelengthSampler`: stratified in
-//! the inverse CDF of x̄+ȳ+z̄ plus a floor, so the eye's sensitive band gets most paths while
-//! every wavelength of 360–830 nm keeps a non-zero density (the pdf is divided out).
+//! seed whatever the thread count or pass sizes. Per pixel it keeps CIE XYZ and the sum of
+//! squares of luminance for a standard error, so the noise level is always known. Each path's
+//! four wavelengths are drawn by `WavelengthSampler`: stratified in the inverse CDF of x̄+ȳ+z̄
+//! plus a floor, so the eye's sensitive band gets most paths while every wavelength of
+//! 360–830 nm keeps a non-zero density (the pdf is divided out). Each is then moved to the
+//! middle of its cell of [`SpectralCells`], whose optics are tabulated once per render.
 
 use crate::Atmosphere;
 use crate::camera::{Camera, Projection};
@@ -25,6 +26,55 @@ const MIN_COVERAGE: f64 = 0.01;
 /// Most draws of a point inside a partly covered pixel: at `MIN_COVERAGE`, all miss with a
 /// probability of 0.99^10000 ≈ 2e-44.
 const MAX_REDRAWS: usize = 10_000;
+
+/// Width of the cells of [`SpectralCells`], nm. Every spectrum the optics interpolate linearly
+/// has its samples on whole or half nanometres, so it is linear across each cell.
+pub const SPECTRAL_CELL_NM: f64 = 0.1;
+
+/// The optics, extraterrestrial irradiance and colour matching at the middle of every
+/// [`SPECTRAL_CELL_NM`] cell of 360–830 nm. A path's wavelengths are moved to the middles of
+/// their cells: the estimate becomes the midpoint rule on these cells, within a part per
+/// million of the continuous integral (the spectra being linear across a cell, the error is
+/// their products' curvature times the cell width squared; a test measures it), and a path's
+/// optics cost four look-ups instead of some thirty interpolations in the spectra, which had
+/// been about a seventh of a sunlit sky's run time.
+pub struct SpectralCells {
+    /// Per cell: the optics, the solar irradiance (W·m⁻²·nm⁻¹) and x̄, ȳ, z̄.
+    cells: Vec<(crate::Optics, f64, [f64; 3])>,
+}
+
+impl SpectralCells {
+    pub fn new(atmosphere: &Atmosphere) -> SpectralCells {
+        let cmf = cie1931();
+        let count = ((VISIBLE_MAX_NM - VISIBLE_MIN_NM) / SPECTRAL_CELL_NM).round() as usize;
+        let cells = (0..count)
+            .map(|k| {
+                let w = VISIBLE_MIN_NM + (k as f64 + 0.5) * SPECTRAL_CELL_NM;
+                let colour = [cmf.x.sample(w), cmf.y.sample(w), cmf.z.sample(w)];
+                (
+                    atmosphere.optics(w),
+                    atmosphere.solar_irradiance(w, None),
+                    colour,
+                )
+            })
+            .collect();
+        SpectralCells { cells }
+    }
+
+    fn cell(&self, wavelength_nm: f64) -> &(crate::Optics, f64, [f64; 3]) {
+        let k = ((wavelength_nm - VISIBLE_MIN_NM) / SPECTRAL_CELL_NM).max(0.0) as usize;
+        &self.cells[k.min(self.cells.len() - 1)]
+    }
+
+    /// The lanes of the cells holding `wavelengths_nm`, and their x̄, ȳ, z̄.
+    pub fn lanes(&self, wavelengths_nm: Lanes) -> (LaneOptics, [[f64; 3]; LANES]) {
+        let cells = wavelengths_nm.map(|w| self.cell(w));
+        (
+            LaneOptics::from_optics(cells.map(|c| c.0), cells.map(|c| c.1)),
+            cells.map(|c| c.2),
+        )
+    }
+}
 
 /// Draws the wavelengths of a path with density ∝ x̄ + ȳ + z̄ + floor over 360–830 nm.
 #[derive(Debug, Clone)]
@@ -129,6 +179,7 @@ pub struct ReferenceRender {
     camera: Camera,
     sun: glam::DVec3,
     settings: PathTracerSettings,
+    spectral: SpectralCells,
     pixels: Vec<Pixel>,
 }
 
@@ -146,6 +197,7 @@ impl ReferenceRender {
         let sun_angles = scene.sun.angles();
         let sun = direction_from_angles(sun_angles.elevation_deg, sun_angles.azimuth_deg);
         let pixels = vec![Pixel::default(); (width * height) as usize];
+        let spectral = SpectralCells::new(&atmosphere);
         ReferenceRender {
             width,
             height,
@@ -154,6 +206,7 @@ impl ReferenceRender {
             camera,
             sun,
             settings,
+            spectral,
             pixels,
         }
     }
@@ -171,10 +224,9 @@ impl ReferenceRender {
     /// `cancel` was set meanwhile (what was added stays valid).
     pub fn run_pass(&mut self, spp: u32, cancel: &AtomicBool) -> bool {
         let tracer = PathTracer::new(&self.atmosphere, self.sun, self.settings);
-        let cmf = cie1931();
         let sampler = WavelengthSampler::default();
         let (w, h, seed, camera) = (self.width, self.height, self.seed, self.camera);
-        let atmosphere = &self.atmosphere;
+        let spectral = &self.spectral;
         self.pixels
             .par_chunks_mut(w as usize)
             .enumerate()
@@ -207,15 +259,14 @@ impl ReferenceRender {
                         };
                         pixel.covered = true;
                         let (wavelengths, pdf) = sampler.sample(rng.uniform());
-                        let lanes = LaneOptics::new(atmosphere, wavelengths);
+                        let (lanes, colour) = spectral.lanes(wavelengths);
                         let l = tracer.radiance(&ray, &lanes, &mut rng);
                         let mut xyz = [0.0; 3];
                         for i in 0..LANES {
-                            let wl = lanes.wavelengths_nm[i];
                             let v = share * l[i] / (LANES as f64 * pdf[i]);
-                            xyz[0] += v * cmf.x.sample(wl);
-                            xyz[1] += v * cmf.y.sample(wl);
-                            xyz[2] += v * cmf.z.sample(wl);
+                            for c in 0..3 {
+                                xyz[c] += v * colour[i][c];
+                            }
                         }
                         for c in 0..3 {
                             pixel.xyz_sum[c] += xyz[c];
@@ -267,6 +318,61 @@ impl ReferenceRender {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A path's wavelengths go to the middles of their cells, with the optics there; and the
+    /// midpoint rule on the cells integrates sunlight seen through a long slant path (the
+    /// luminance of E·ȳ·e^(−τ) at ten airmasses, where ozone's bands and the air's λ⁻⁴ bend it
+    /// most) within a part per million of a rule 64 times finer (3e-8 when written).
+    #[test]
+    fn cell_middles_carry_their_optics_and_integrate_the_spectra() {
+        let atmosphere = Atmosphere::for_scene(&Scene::default());
+        let cells = SpectralCells::new(&atmosphere);
+        let mut rng = Rng::new(3, 0, 0);
+        for _ in 0..1000 {
+            let w = VISIBLE_MIN_NM + rng.uniform() * (VISIBLE_MAX_NM - VISIBLE_MIN_NM);
+            let (lanes, colour) = cells.lanes([w; LANES]);
+            let middle = lanes.wavelengths_nm[0];
+            assert!(
+                (middle - w).abs() <= 0.5 * SPECTRAL_CELL_NM + 1e-9,
+                "{w} → {middle}"
+            );
+            assert_eq!(
+                lanes.solar_irradiance[0],
+                atmosphere.solar_irradiance(middle, None)
+            );
+            assert_eq!(colour[0][1], cie1931().y.sample(middle));
+        }
+        let airmass = 10.0;
+        let (air_m2, ozone_m2) = (2.15e29, 8.07e22);
+        let f = |o: &crate::Optics, solar: f64, y: f64| {
+            let tau = o.rayleigh_cross_section_m2 * air_m2
+                + o.ozone_cross_section_m2 * ozone_m2
+                + o.aerosol_optical_depth;
+            solar * y * (-airmass * tau).exp()
+        };
+        let coarse: f64 = cells
+            .cells
+            .iter()
+            .map(|(o, e, c)| f(o, *e, c[1]))
+            .sum::<f64>()
+            * SPECTRAL_CELL_NM;
+        let fine_step = SPECTRAL_CELL_NM / 64.0;
+        let n = ((VISIBLE_MAX_NM - VISIBLE_MIN_NM) / fine_step).round() as usize;
+        let fine: f64 = (0..n)
+            .map(|k| {
+                let w = VISIBLE_MIN_NM + (k as f64 + 0.5) * fine_step;
+                let y = cie1931().y.sample(w);
+                f(
+                    &atmosphere.optics(w),
+                    atmosphere.solar_irradiance(w, None),
+                    y,
+                )
+            })
+            .sum::<f64>()
+            * fine_step;
+        let error = (coarse / fine - 1.0).abs();
+        assert!(error < 1e-6, "cells {coarse} against {fine}: {error:e}");
+    }
 
     #[test]
     fn a_pixel_fits_in_48_bytes() {

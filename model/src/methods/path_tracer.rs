@@ -218,6 +218,15 @@ impl LaneOptics {
             solar_irradiance: wavelengths_nm.map(|w| atmosphere.solar_irradiance(w, None)),
         }
     }
+
+    /// Lanes of given optics and extraterrestrial solar irradiance (W·m⁻²·nm⁻¹).
+    pub fn from_optics(optics: [Optics; LANES], solar_irradiance: Lanes) -> LaneOptics {
+        LaneOptics {
+            wavelengths_nm: optics.map(|o| o.wavelength_nm),
+            optics,
+            solar_irradiance,
+        }
+    }
 }
 
 /// The interval index and distance where the majorant optical depth along `intervals` reaches
