@@ -712,15 +712,16 @@ impl<'a> PathTracer<'a> {
             // The weight by which the roulette below judges the path.
             let judged = match event {
                 Some((x, constituent)) => {
-                    let share = self.guide_share(x);
-                    let frame = (share > 0.0).then(|| self.guide_frame(x));
-                    let dir = match &frame {
-                        Some(frame) if rng.uniform() < share => self.guide_sample(frame, rng),
+                    let guide = self.guide(x);
+                    let dir = match &guide {
+                        Some((share, frame)) if rng.uniform() < *share => {
+                            self.guide_sample(frame, rng)
+                        }
                         _ => self.sample_phase(constituent, &lanes.optics[0], ray.direction, rng),
                     };
                     let nu = ray.direction.dot(dir);
                     let mut pdf = self.sampling_pdf(constituent, &lanes.optics[0], nu);
-                    if let Some(frame) = &frame {
+                    if let Some((share, frame)) = &guide {
                         pdf = share * self.guide_pdf(frame, dir) + (1.0 - share) * pdf;
                     }
                     // The roulette below judges the path by its weight before this direction:

@@ -107,23 +107,38 @@ impl DirectionGuide {
     }
 }
 
+/// Solid angle (sr) of a cell in zenith band `z`, its mirror image across the sun's vertical
+/// plane included (the guide draws azimuths on one side and mirrors half of them).
+fn cell_solid_angle(z: usize) -> f64 {
+    2.0 * (COS_ZENITH_EDGES[z + 1] - COS_ZENITH_EDGES[z]) * PI / AZIMUTH_BINS as f64
+}
+
 /// The bin of `x` among increasing `edges` (clamped to the first and last bins).
 fn bin(edges: &[f64], x: f64) -> usize {
     edges[1..edges.len() - 1].partition_point(|&e| e <= x)
 }
 
 impl PathTracer<'_> {
-    /// The share of directions drawn from the guide at vertex `x` ([`GUIDE_MU_S`]).
-    pub(super) fn guide_share(&self, x: DVec3) -> f64 {
-        let mu_s = x.normalize().dot(self.sun);
-        self.settings.guide_share * (1.0 - mu_s / GUIDE_MU_S).clamp(0.0, 1.0)
-    }
-
-    /// The guide's frame at vertex `x`.
-    pub(super) fn guide_frame(&self, x: DVec3) -> Frame {
+    /// The share of directions drawn from the guide at vertex `x` ([`GUIDE_MU_S`]) and the
+    /// guide's frame there; None where the share is zero.
+    pub(super) fn guide(&self, x: DVec3) -> Option<(f64, Frame)> {
         let r = x.length();
         let up = x / r;
         let mu_s = up.dot(self.sun).clamp(-1.0, 1.0);
+        let share = self.settings.guide_share * (1.0 - mu_s / GUIDE_MU_S).clamp(0.0, 1.0);
+        (share > 0.0).then(|| (share, self.frame(r, up, mu_s)))
+    }
+
+    /// The guide's frame at vertex `x`, whatever the share there.
+    #[cfg(test)]
+    pub(super) fn guide_frame(&self, x: DVec3) -> Frame {
+        let r = x.length();
+        let up = x / r;
+        self.frame(r, up, up.dot(self.sun).clamp(-1.0, 1.0))
+    }
+
+    /// The frame at radius `r` (m) with unit `up`, the sun at zenith cosine `mu_s`.
+    fn frame(&self, r: f64, up: DVec3, mu_s: f64) -> Frame {
         let horizontal = self.sun - up * mu_s;
         // With the sun at the vertex's zenith or nadir any azimuth will do: the sky is then
         // the same all around.
@@ -173,9 +188,7 @@ impl PathTracer<'_> {
         let z = bin(&COS_ZENITH_EDGES, cos_zenith);
         let a = ((phi / PI * AZIMUTH_BINS as f64) as usize).min(AZIMUTH_BINS - 1);
         let cell = z * AZIMUTH_BINS + a;
-        let solid_angle =
-            2.0 * (COS_ZENITH_EDGES[z + 1] - COS_ZENITH_EDGES[z]) * PI / AZIMUTH_BINS as f64;
-        (cdf[cell + 1] - cdf[cell]) / cdf[CELLS] / solid_angle
+        (cdf[cell + 1] - cdf[cell]) / cdf[CELLS] / cell_solid_angle(z)
     }
 
     /// The slice's cells: the single-scattered radiance in each cell's middle direction from
@@ -195,16 +208,13 @@ impl PathTracer<'_> {
             slice,
         };
         let mut mass = [0.0; CELLS];
-        let mut solid_angles = [0.0; CELLS];
         for z in 0..ZENITH_BINS {
-            let (c0, c1) = (COS_ZENITH_EDGES[z], COS_ZENITH_EDGES[z + 1]);
+            let cos_zenith = 0.5 * (COS_ZENITH_EDGES[z] + COS_ZENITH_EDGES[z + 1]);
             for a in 0..AZIMUTH_BINS {
                 let phi = (a as f64 + 0.5) * PI / AZIMUTH_BINS as f64;
-                let dir = frame_direction(&frame, 0.5 * (c0 + c1), phi);
-                let solid_angle = 2.0 * (c1 - c0) * PI / AZIMUTH_BINS as f64;
+                let dir = frame_direction(&frame, cos_zenith, phi);
                 let cell = z * AZIMUTH_BINS + a;
-                solid_angles[cell] = solid_angle;
-                let m = self.single_scattered(x, dir, sun) * solid_angle;
+                let m = self.single_scattered(x, dir, sun) * cell_solid_angle(z);
                 mass[cell] = if m.is_finite() { m.max(0.0) } else { 0.0 };
             }
         }
@@ -212,10 +222,11 @@ impl PathTracer<'_> {
         let total: f64 = mass.iter().sum();
         let mut cdf = [0.0; CELLS + 1];
         for cell in 0..CELLS {
+            let solid_angle = cell_solid_angle(cell / AZIMUTH_BINS);
             let floor = if total > 0.0 {
-                FLOOR_SHARE * total * solid_angles[cell] / (4.0 * PI)
+                FLOOR_SHARE * total * solid_angle / (4.0 * PI)
             } else {
-                solid_angles[cell]
+                solid_angle
             };
             cdf[cell + 1] = cdf[cell] + (1.0 - FLOOR_SHARE) * mass[cell] + floor;
         }
