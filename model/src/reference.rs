@@ -14,10 +14,13 @@ use crate::camera::{Camera, Projection};
 use crate::colour::{Xyz, cie1931, xyz_to_linear_srgb};
 use crate::constants::{MAX_LUMINOUS_EFFICACY_LM_PER_W, VISIBLE_MAX_NM, VISIBLE_MIN_NM};
 use crate::geometry::direction_from_angles;
-use crate::methods::path_tracer::{LANES, LaneOptics, Lanes, PathTracer, PathTracerSettings};
+use crate::methods::path_tracer::{
+    LANES, LaneOptics, Lanes, PathTracer, PathTracerSettings, Prepared,
+};
 use crate::methods::rng::Rng;
 use crate::scene::Scene;
 use rayon::prelude::*;
+use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Least share of a pixel the projection covers for which paths are drawn inside it only.
@@ -180,6 +183,8 @@ pub struct ReferenceRender {
     sun: glam::DVec3,
     settings: PathTracerSettings,
     spectral: SpectralCells,
+    /// The tracer's preparation of the atmosphere, for every pass.
+    prepared: Arc<Prepared>,
     pixels: Vec<Pixel>,
 }
 
@@ -198,6 +203,7 @@ impl ReferenceRender {
         let sun = direction_from_angles(sun_angles.elevation_deg, sun_angles.azimuth_deg);
         let pixels = vec![Pixel::default(); (width * height) as usize];
         let spectral = SpectralCells::new(&atmosphere);
+        let prepared = Arc::new(Prepared::new(&atmosphere));
         ReferenceRender {
             width,
             height,
@@ -207,6 +213,7 @@ impl ReferenceRender {
             sun,
             settings,
             spectral,
+            prepared,
             pixels,
         }
     }
@@ -223,7 +230,12 @@ impl ReferenceRender {
     /// Adds `spp` paths to every pixel. Returns false, leaving the pass partly done, when
     /// `cancel` was set meanwhile (what was added stays valid).
     pub fn run_pass(&mut self, spp: u32, cancel: &AtomicBool) -> bool {
-        let tracer = PathTracer::new(&self.atmosphere, self.sun, self.settings);
+        let tracer = PathTracer::with_prepared(
+            &self.atmosphere,
+            self.sun,
+            self.settings,
+            self.prepared.clone(),
+        );
         let sampler = WavelengthSampler::default();
         let (w, h, seed, camera) = (self.width, self.height, self.seed, self.camera);
         let spectral = &self.spectral;

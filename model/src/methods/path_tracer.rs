@@ -27,6 +27,7 @@ use crate::geometry::{Ray, sphere_distances};
 use crate::phase;
 use glam::DVec3;
 use std::f64::consts::PI;
+use std::sync::Arc;
 
 mod direction_guide;
 mod in_scattering;
@@ -185,19 +186,77 @@ impl std::ops::Deref for Intervals {
 pub struct PathTracer<'a> {
     pub atmosphere: &'a Atmosphere,
     pub settings: PathTracerSettings,
-    /// Shell boundary radii, m, increasing, ending at the top of the atmosphere.
-    shell_radii: Vec<f64>,
-    shells: Vec<ShellBounds>,
     /// Unit direction to the sun's centre.
     sun: DVec3,
     /// Orthonormal basis around `sun` for sampling the disk.
     sun_basis: (DVec3, DVec3),
     cos_sun_radius: f64,
+    prepared: Arc<Prepared>,
+}
+
+/// What a path tracer prepares from the atmosphere alone, whatever the sun: built once and
+/// shared by the tracers of a render's passes ([`PathTracer::with_prepared`]), which otherwise
+/// built it again for every pass (a twentieth of a small twilight reference's time).
+pub struct Prepared {
+    /// Shell boundary radii, m, increasing, ending at the top of the atmosphere.
+    shell_radii: Vec<f64>,
+    shells: Vec<ShellBounds>,
     /// Approximate sun transmittance for the in-scattering proposal.
     sun_columns: in_scattering::SunColumns,
     densities: DensityTable,
     /// Densities toward where light comes from, for directions at vertices.
     guide: direction_guide::DirectionGuide,
+}
+
+impl Prepared {
+    /// Prepares `atmosphere`.
+    pub fn new(atmosphere: &Atmosphere) -> Prepared {
+        let thickness = atmosphere.thickness_m();
+        let mut altitudes: Vec<f64> = SHELL_ALTITUDES_M
+            .iter()
+            .copied()
+            .filter(|&z| z < thickness)
+            .collect();
+        altitudes.push(thickness);
+        let shells = altitudes
+            .windows(2)
+            .map(|w| {
+                // Sample each shell finely (ozone peaks inside one) and widen by a margin so the
+                // bounds hold between samples.
+                let samples: Vec<_> = (0..=64)
+                    .map(|k| atmosphere.densities(w[0] + (w[1] - w[0]) * k as f64 / 64.0))
+                    .collect();
+                let fold =
+                    |f: fn(f64, f64) -> f64,
+                     init: f64,
+                     g: fn(&crate::atmosphere::Densities) -> f64| {
+                        samples.iter().map(g).fold(init, f)
+                    };
+                ShellBounds {
+                    max: ShellDensity {
+                        air_m3: 1.02 * fold(f64::max, 0.0, |d| d.air_m3),
+                        ozone_m3: 1.05 * fold(f64::max, 0.0, |d| d.ozone_m3),
+                        aerosol_per_m: 1.02 * fold(f64::max, 0.0, |d| d.aerosol_per_m),
+                    },
+                    min: ShellDensity {
+                        air_m3: 0.98 * fold(f64::min, f64::INFINITY, |d| d.air_m3),
+                        ozone_m3: 0.95 * fold(f64::min, f64::INFINITY, |d| d.ozone_m3),
+                        aerosol_per_m: 0.98 * fold(f64::min, f64::INFINITY, |d| d.aerosol_per_m),
+                    },
+                }
+            })
+            .collect();
+        Prepared {
+            shell_radii: altitudes
+                .iter()
+                .map(|z| atmosphere.bottom_radius_m + z)
+                .collect(),
+            shells,
+            sun_columns: in_scattering::SunColumns::new(atmosphere),
+            densities: DensityTable::new(atmosphere),
+            guide: direction_guide::DirectionGuide::new(atmosphere),
+        }
+    }
 }
 
 /// Optical properties of the four wavelengths of a path.
@@ -286,56 +345,29 @@ impl<'a> PathTracer<'a> {
         sun: DVec3,
         settings: PathTracerSettings,
     ) -> PathTracer<'a> {
-        let thickness = atmosphere.thickness_m();
-        let mut altitudes: Vec<f64> = SHELL_ALTITUDES_M
-            .iter()
-            .copied()
-            .filter(|&z| z < thickness)
-            .collect();
-        altitudes.push(thickness);
-        let shells = altitudes
-            .windows(2)
-            .map(|w| {
-                // Sample each shell finely (ozone peaks inside one) and widen by a margin so the
-                // bounds hold between samples.
-                let samples: Vec<_> = (0..=64)
-                    .map(|k| atmosphere.densities(w[0] + (w[1] - w[0]) * k as f64 / 64.0))
-                    .collect();
-                let fold =
-                    |f: fn(f64, f64) -> f64,
-                     init: f64,
-                     g: fn(&crate::atmosphere::Densities) -> f64| {
-                        samples.iter().map(g).fold(init, f)
-                    };
-                ShellBounds {
-                    max: ShellDensity {
-                        air_m3: 1.02 * fold(f64::max, 0.0, |d| d.air_m3),
-                        ozone_m3: 1.05 * fold(f64::max, 0.0, |d| d.ozone_m3),
-                        aerosol_per_m: 1.02 * fold(f64::max, 0.0, |d| d.aerosol_per_m),
-                    },
-                    min: ShellDensity {
-                        air_m3: 0.98 * fold(f64::min, f64::INFINITY, |d| d.air_m3),
-                        ozone_m3: 0.95 * fold(f64::min, f64::INFINITY, |d| d.ozone_m3),
-                        aerosol_per_m: 0.98 * fold(f64::min, f64::INFINITY, |d| d.aerosol_per_m),
-                    },
-                }
-            })
-            .collect();
+        PathTracer::with_prepared(
+            atmosphere,
+            sun,
+            settings,
+            Arc::new(Prepared::new(atmosphere)),
+        )
+    }
+
+    /// A tracer over `atmosphere` from what was prepared from it before.
+    pub fn with_prepared(
+        atmosphere: &'a Atmosphere,
+        sun: DVec3,
+        settings: PathTracerSettings,
+        prepared: Arc<Prepared>,
+    ) -> PathTracer<'a> {
         let sun = sun.normalize();
         PathTracer {
             atmosphere,
             settings,
-            shell_radii: altitudes
-                .iter()
-                .map(|z| atmosphere.bottom_radius_m + z)
-                .collect(),
-            shells,
             sun,
             sun_basis: basis(sun),
             cos_sun_radius: settings.sun_angular_radius_rad.cos(),
-            sun_columns: in_scattering::SunColumns::new(atmosphere),
-            densities: DensityTable::new(atmosphere),
-            guide: direction_guide::DirectionGuide::new(atmosphere),
+            prepared,
         }
     }
 
@@ -354,7 +386,7 @@ impl<'a> PathTracer<'a> {
             |f: &dyn Fn(&Optics) -> f64| lanes.optics.iter().map(f).sum::<f64>() / LANES as f64;
         let rayleigh_m2 = mean(&|o| o.rayleigh_cross_section_m2);
         let aerosol_scattering = mean(&|o| o.aerosol_optical_depth * o.aerosol_ssa);
-        for (k, shell) in self.shells.iter().enumerate() {
+        for (k, shell) in self.prepared.shells.iter().enumerate() {
             let max: Lanes = std::array::from_fn(|i| shell.max.extinction(&lanes.optics[i]));
             let control: Lanes =
                 std::array::from_fn(|i| shell.min.extinction(&lanes.optics[i]).min(max[i]));
@@ -418,7 +450,7 @@ impl<'a> PathTracer<'a> {
         let mut n = 1;
         // The near roots of the shells, outermost first, then the far roots, innermost first,
         // come in order along the ray: no sort, except where rounding near a tangent disagrees.
-        let inner = &self.shell_radii[1..self.shell_radii.len() - 1];
+        let inner = &self.prepared.shell_radii[1..self.prepared.shell_radii.len() - 1];
         let mut far = [0.0f64; MAX_CUTS];
         let mut n_far = 0;
         // The shell just past `start`: the number of boundaries the ray is outside of there,
@@ -471,7 +503,7 @@ impl<'a> PathTracer<'a> {
             let (a, b) = (w[0].0, w[1].0);
             if b > a {
                 let s = if ordered {
-                    shell.clamp(0, self.shells.len() as isize - 1) as usize
+                    shell.clamp(0, self.prepared.shells.len() as isize - 1) as usize
                 } else {
                     self.shell_at(r, mu, 0.5 * (a + b))
                 };
@@ -485,10 +517,11 @@ impl<'a> PathTracer<'a> {
     /// The shell holding the point at distance `t` along the ray from (r, mu).
     fn shell_at(&self, r: f64, mu: f64, t: f64) -> usize {
         let radius = crate::geometry::radius_at(r, mu, t);
-        self.shell_radii
+        self.prepared
+            .shell_radii
             .partition_point(|&s| s <= radius)
             .saturating_sub(1)
-            .min(self.shells.len() - 1)
+            .min(self.prepared.shells.len() - 1)
     }
 
     /// Transmittance along the ray from its origin out of the atmosphere; zero when the ray
@@ -557,7 +590,8 @@ impl<'a> PathTracer<'a> {
                 t += tau / m;
                 tau_left = None;
                 let d =
-                    self.densities
+                    self.prepared
+                        .densities
                         .at((ray.origin + ray.direction * t).length()
                             - self.atmosphere.bottom_radius_m);
                 for (i, o) in lanes.optics.iter().enumerate() {
@@ -601,7 +635,7 @@ impl<'a> PathTracer<'a> {
                 self.in_scattering_point(&ray, &intervals, &medium, tau_total, lanes, rng)
             {
                 let x = ray.origin + ray.direction * t;
-                let d = self.densities.at(x.length() - bottom);
+                let d = self.prepared.densities.at(x.length() - bottom);
                 let view_t = self.ratio_track(&ray, &intervals, t, lanes, &medium, rng);
                 let s_dir = self.sample_sun(rng);
                 let sun_t = self.transmittance(&Ray::new(x, s_dir), lanes, &medium, rng);
@@ -677,7 +711,7 @@ impl<'a> PathTracer<'a> {
                         tau_left = None;
                     }
                     let x = ray.origin + ray.direction * t;
-                    let d = self.densities.at(x.length() - bottom);
+                    let d = self.prepared.densities.at(x.length() - bottom);
                     let mut sigma = [[0.0; LANES]; 3]; // Rayleigh, aerosol scattering, null
                     for (i, o) in lanes.optics.iter().enumerate() {
                         let c = o.coefficients(&d);
@@ -852,6 +886,7 @@ mod tests {
                 // ray's) may round to either side of it.
                 let radius = crate::geometry::radius_at(r, mu, 0.5 * (a + b));
                 let clear = tracer
+                    .prepared
                     .shell_radii
                     .iter()
                     .all(|&s| (radius - s).abs() > 1e-6);

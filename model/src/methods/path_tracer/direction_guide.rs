@@ -159,7 +159,7 @@ impl PathTracer<'_> {
     }
 
     fn guide_slice(&self, slice: usize) -> &Slice {
-        self.guide.slices[slice].get_or_init(|| Box::new(self.build_slice(slice)))
+        self.prepared.guide.slices[slice].get_or_init(|| Box::new(self.build_slice(slice)))
     }
 
     /// A direction drawn from the guide at a vertex with `frame`.
@@ -252,7 +252,7 @@ impl PathTracer<'_> {
             return 0.0;
         };
         let nu = dir.dot(sun);
-        let guide = &self.guide;
+        let guide = &self.prepared.guide;
         let phases = guide
             .optics
             .map(|o| (self.phase(0, &o, nu), self.phase(1, &o, nu)));
@@ -260,7 +260,10 @@ impl PathTracer<'_> {
         let mut radiance = [0.0; GUIDE_WAVELENGTHS_NM.len()];
         let sun_transmittance = |p: DVec3, depth: &[f64]| -> [f64; GUIDE_WAVELENGTHS_NM.len()] {
             let r_p = p.length();
-            let (visible, column) = self.sun_columns.towards_sun(r_p - big_r, p.dot(sun) / r_p);
+            let (visible, column) = self
+                .prepared
+                .sun_columns
+                .towards_sun(r_p - big_r, p.dot(sun) / r_p);
             std::array::from_fn(|i| {
                 let o = &guide.optics[i];
                 let tau = o.rayleigh_cross_section_m2 * column[0]
@@ -273,7 +276,7 @@ impl PathTracer<'_> {
             let f = |k: usize| length * (k as f64 / MARCH_STEPS as f64).powi(2);
             let (t0, t1) = (f(k), f(k + 1));
             let p = x + dir * (0.5 * (t0 + t1));
-            let d = self.densities.at(p.length() - big_r);
+            let d = self.prepared.densities.at(p.length() - big_r);
             let coefficients = guide.optics.map(|o| o.coefficients(&d));
             // Half the step's own extinction, so the step's light is dimmed to its middle.
             for (i, c) in coefficients.iter().enumerate() {

@@ -324,7 +324,8 @@ impl PathTracer<'_> {
             .map(|x| x.dot(self.sun) / x.length())
             .fold(1.0f64, f64::min);
         mu_s_least > HIGH_SUN_MU_S
-            && (-grey.depth(&self.sun_columns.vertical()) / mu_s_least).exp() >= SUNLIGHT_SPREAD
+            && (-grey.depth(&self.prepared.sun_columns.vertical()) / mu_s_least).exp()
+                >= SUNLIGHT_SPREAD
     }
 
     /// Whether the tabulated sunlight at `points` varies by more than [`SUNLIGHT_SPREAD`].
@@ -333,6 +334,7 @@ impl PathTracer<'_> {
         for &x in points {
             let r = x.length();
             let (visible, column) = self
+                .prepared
                 .sun_columns
                 .towards_sun(r - self.atmosphere.bottom_radius_m, x.dot(self.sun) / r);
             let sunlight = visible * (-grey.depth(&column)).exp();
@@ -380,8 +382,11 @@ impl PathTracer<'_> {
             let x = ray.origin + ray.direction * t;
             let r = x.length();
             let h = r - bottom;
-            let d = self.densities.at(h);
-            let (visible, column) = self.sun_columns.towards_sun(h, x.dot(self.sun) / r);
+            let d = self.prepared.densities.at(h);
+            let (visible, column) = self
+                .prepared
+                .sun_columns
+                .towards_sun(h, x.dot(self.sun) / r);
             let rayleigh = grey.rayleigh_m2 * d.air_m3;
             let extinction =
                 rayleigh + grey.ozone_m2 * d.ozone_m3 + grey.aerosol_extinction * d.aerosol_per_m;
