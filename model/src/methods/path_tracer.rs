@@ -353,7 +353,8 @@ impl<'a> PathTracer<'a> {
         )
     }
 
-    /// A tracer over `atmosphere` from what was prepared from it before.
+    /// A tracer over `atmosphere` from what was prepared from it before: `prepared` must come
+    /// from this same atmosphere (its guide's slices, built on first use, read the tracer's).
     pub fn with_prepared(
         atmosphere: &'a Atmosphere,
         sun: DVec3,

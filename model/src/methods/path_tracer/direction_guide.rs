@@ -79,7 +79,7 @@ struct Slice {
 }
 
 /// The guide's lazily built slices, one per (altitude bin, sun elevation bin); boxed, since a
-/// scene uses few of them and a tracer is made for every pass of an image.
+/// scene uses few of them.
 pub(super) struct DirectionGuide {
     slices: Vec<OnceLock<Box<Slice>>>,
     optics: [Optics; GUIDE_WAVELENGTHS_NM.len()],

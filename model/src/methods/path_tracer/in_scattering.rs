@@ -39,8 +39,9 @@ const DEFENSIVE_SHARE: f64 = 0.15;
 /// proposal.
 const SUNLIGHT_SPREAD: f64 = 0.5;
 
-/// Cosine of the sun's zenith angle above which its whole disk is in sight from anywhere in
-/// the atmosphere (the horizon dips 10° at 100 km), for the shortcut of `sunlight_varies`.
+/// Least cosine of the sun's zenith angle at a segment's ends and lowest point for the shortcut
+/// of `sunlight_varies`: far above the sun's angular radius, so that its whole disk is in sight
+/// at every point of the segment and the columns toward it are those of a ray going up.
 const HIGH_SUN_MU_S: f64 = 0.2;
 
 /// Size of the sun-column table: (x_mu, x_r) in Bruneton's mapping.
