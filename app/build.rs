@@ -1,6 +1,10 @@
 //! Embeds the shipped presets (`presets/*.ron` at the workspace root) and the Learn menu's
 //! lessons (`presets/learn/*.ron`) into the binary, so the explorer and the commands that list
-//! them work from any directory.
+//! them work from any directory; and fingerprints the sources the cache's entries depend on
+//! (`src/source_key.rs`).
+
+#[path = "src/source_key.rs"]
+mod source_key;
 
 use std::fmt::Write;
 use std::path::Path;
@@ -36,8 +40,22 @@ fn embed(dir: &Path, name: &str, doc: &str, out: &str) {
     std::fs::write(dest, code).expect("write embedded file list");
 }
 
+/// Sets `ATMOSCOPE_<NAME>` at compile time to the fingerprint of `dirs`, and reruns when a
+/// file in them changes.
+fn fingerprint(root: &Path, name: &str, dirs: &[&str]) {
+    for dir in dirs {
+        println!("cargo:rerun-if-changed={}", root.join(dir).display());
+    }
+    let key = source_key::fingerprint(root, dirs)
+        .unwrap_or_else(|e| panic!("fingerprint of {dirs:?}: {e}"));
+    println!("cargo:rustc-env=ATMOSCOPE_{name}={key:016x}");
+}
+
 fn main() {
-    let presets = Path::new(env!("CARGO_MANIFEST_DIR")).join("../presets");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    fingerprint(&root, "MODEL_SOURCES", source_key::MODEL_SOURCES);
+    fingerprint(&root, "ENGINE_SOURCES", source_key::ENGINE_SOURCES);
+    let presets = root.join("presets");
     embed(&presets, "SHIPPED", "Shipped presets", "presets.rs");
     embed(
         &presets.join("learn"),

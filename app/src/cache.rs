@@ -19,7 +19,7 @@ pub fn dir(kind: &str) -> PathBuf {
 
 /// A stable 64-bit key of `bytes` (FNV-1a): names a cache entry after everything it depends on.
 pub fn key(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
-    })
+    let mut hash = crate::source_key::Fnv::new();
+    hash.write(bytes);
+    hash.finish()
 }

@@ -8,6 +8,7 @@ mod gui;
 mod images;
 mod lessons;
 mod presets;
+mod source_key;
 mod summary;
 mod timelapse;
 

@@ -17,9 +17,6 @@ use std::process::ExitCode;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
-/// Bumped whenever the path tracer's output changes, so old cache entries are not reused.
-const CACHE_VERSION: u32 = 4;
-
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum ProjectionArg {
     Perspective,
@@ -222,7 +219,8 @@ pub(crate) fn path_traced(
     label: &str,
 ) -> anyhow::Result<Vec<[f64; 3]>> {
     let key = format!(
-        "v{CACHE_VERSION}|{}|{:?}|{w}x{h}|{:?}|{:?}|{:?}|{}",
+        "{}|{}|{:?}|{w}x{h}|{:?}|{:?}|{:?}|{}",
+        env!("ATMOSCOPE_MODEL_SOURCES"),
         scene.to_ron(),
         projection,
         pt.spp,

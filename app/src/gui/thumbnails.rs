@@ -1,6 +1,7 @@
 //! Thumbnails of the shipped presets for the preset menu: each rendered by the engine with the
 //! preset's own settings (metered where it asks), off the UI thread, and cached on disk under a
-//! key of the preset's text and the program's version, so later sessions read them back.
+//! key of the preset's text and the fingerprint of the model's and the engine's sources, so
+//! later sessions of the same build read them back.
 
 use super::gpu_view::Gpu;
 use super::jobs::{Job, Progress};
@@ -21,7 +22,7 @@ pub type Rgba = Vec<u8>;
 fn cache_file(dir: &Path, ron: &str) -> PathBuf {
     let key = format!(
         "{}|{}x{}|{ron}",
-        env!("CARGO_PKG_VERSION"),
+        env!("ATMOSCOPE_ENGINE_SOURCES"),
         SIZE[0],
         SIZE[1]
     );
