@@ -42,8 +42,16 @@ pub const SPECTRAL_CELL_NM: f64 = 0.1;
 /// optics cost four look-ups instead of some thirty interpolations in the spectra, which had
 /// been about a seventh of a sunlit sky's run time.
 pub struct SpectralCells {
-    /// Per cell: the optics, the solar irradiance (W·m⁻²·nm⁻¹) and x̄, ȳ, z̄.
-    cells: Vec<(crate::Optics, f64, [f64; 3])>,
+    cells: Vec<SpectralCell>,
+}
+
+/// What [`SpectralCells`] holds for the middle of one cell.
+struct SpectralCell {
+    optics: crate::Optics,
+    /// Extraterrestrial solar irradiance, W·m⁻²·nm⁻¹.
+    solar_irradiance: f64,
+    /// x̄, ȳ, z̄.
+    colour: [f64; 3],
 }
 
 impl SpectralCells {
@@ -53,18 +61,17 @@ impl SpectralCells {
         let cells = (0..count)
             .map(|k| {
                 let w = VISIBLE_MIN_NM + (k as f64 + 0.5) * SPECTRAL_CELL_NM;
-                let colour = [cmf.x.sample(w), cmf.y.sample(w), cmf.z.sample(w)];
-                (
-                    atmosphere.optics(w),
-                    atmosphere.solar_irradiance(w, None),
-                    colour,
-                )
+                SpectralCell {
+                    optics: atmosphere.optics(w),
+                    solar_irradiance: atmosphere.solar_irradiance(w, None),
+                    colour: [cmf.x.sample(w), cmf.y.sample(w), cmf.z.sample(w)],
+                }
             })
             .collect();
         SpectralCells { cells }
     }
 
-    fn cell(&self, wavelength_nm: f64) -> &(crate::Optics, f64, [f64; 3]) {
+    fn cell(&self, wavelength_nm: f64) -> &SpectralCell {
         let k = ((wavelength_nm - VISIBLE_MIN_NM) / SPECTRAL_CELL_NM).max(0.0) as usize;
         &self.cells[k.min(self.cells.len() - 1)]
     }
@@ -73,8 +80,8 @@ impl SpectralCells {
     pub fn lanes(&self, wavelengths_nm: Lanes) -> (LaneOptics, [[f64; 3]; LANES]) {
         let cells = wavelengths_nm.map(|w| self.cell(w));
         (
-            LaneOptics::from_optics(cells.map(|c| c.0), cells.map(|c| c.1)),
-            cells.map(|c| c.2),
+            LaneOptics::from_optics(cells.map(|c| c.optics), cells.map(|c| c.solar_irradiance)),
+            cells.map(|c| c.colour),
         )
     }
 }
@@ -365,7 +372,7 @@ mod tests {
         let coarse: f64 = cells
             .cells
             .iter()
-            .map(|(o, e, c)| f(o, *e, c[1]))
+            .map(|c| f(&c.optics, c.solar_irradiance, c.colour[1]))
             .sum::<f64>()
             * SPECTRAL_CELL_NM;
         let fine_step = SPECTRAL_CELL_NM / 64.0;
