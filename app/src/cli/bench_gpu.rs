@@ -110,9 +110,6 @@ struct GpuRow {
     rebuild_sliced_ms: f64,
 }
 
-/// GPU time a slice of a rebuild aims at, as in the explorer.
-const REBUILD_SLICE: std::time::Duration = std::time::Duration::from_millis(30);
-
 /// Frame intervals while a rebuild runs in slices, ms.
 struct SlicedRebuild {
     longest: f64,
@@ -136,7 +133,7 @@ fn sliced_rebuild_ms(
     context: &atmoscope_render::gpu::GpuContext,
 ) -> anyhow::Result<SlicedRebuild> {
     engine.set_timing(false);
-    engine.set_rebuild_slices(Some(REBUILD_SLICE));
+    engine.set_rebuild_slices(Some(crate::gui::REBUILD_SLICE));
     let start = Instant::now();
     let mut intervals = Vec::new();
     loop {

@@ -26,6 +26,7 @@ use atmoscope_model::Scene;
 use compare_tab::CompareTab;
 use eframe::egui;
 use files::ExportKind;
+pub(crate) use gpu_view::REBUILD_SLICE;
 use gpu_view::{Gpu, GpuView};
 use inspector::{Inspector, Probe};
 use jobs::Job;
