@@ -18,6 +18,11 @@ pub const MODEL_SOURCES: &[&str] = &["model/src", "model/data"];
 #[cfg_attr(not(test), allow(dead_code))] // read by build.rs and the tests
 pub const ENGINE_SOURCES: &[&str] = &["model/src", "model/data", "render/src", "shaders"];
 
+/// The kinds of file hashed: Rust, WGSL and the data tables. Editors' swap, lock and backup
+/// files (`.a.rs.swp`, `.#a.rs`, `a.rs~`) are none of these, so saving in an editor does not
+/// change a fingerprint, and a dangling lock link cannot fail the build.
+const SOURCE_EXTENSIONS: &[&str] = &["rs", "wgsl", "csv"];
+
 /// FNV-1a, 64-bit, fed in pieces.
 pub struct Fnv(u64);
 
@@ -37,9 +42,10 @@ impl Fnv {
     }
 }
 
-/// The fingerprint of every file under `dirs` (relative to `root`): each file's path relative
-/// to `root` (with `/` between parts) and its bytes, in the order of the paths, so it changes
-/// when any file is edited, added, removed or renamed, and only then.
+/// The fingerprint of every source file under `dirs` (relative to `root`; hidden names
+/// skipped): each file's path relative to `root` (with `/` between parts) and its bytes, in
+/// the order of the paths, so that editing, adding, removing or renaming a source file changes
+/// it.
 #[cfg_attr(not(test), allow(dead_code))] // the program reads build.rs's; the tests recompute it
 pub fn fingerprint(root: &Path, dirs: &[&str]) -> std::io::Result<u64> {
     let mut files = Vec::new();
@@ -71,13 +77,25 @@ pub fn fingerprint(root: &Path, dirs: &[&str]) -> std::io::Result<u64> {
     Ok(hash.finish())
 }
 
-/// Every file under `dir`, recursively.
+/// Whether `path` names a source file by its extension, and is not hidden.
+fn is_source(path: &Path) -> bool {
+    let hidden = path
+        .file_name()
+        .is_some_and(|n| n.to_string_lossy().starts_with('.'));
+    let extension = path.extension().and_then(|e| e.to_str());
+    !hidden && extension.is_some_and(|e| SOURCE_EXTENSIONS.contains(&e))
+}
+
+/// Every regular source file under `dir`, recursively, without following links.
 fn collect(dir: &Path, files: &mut Vec<PathBuf>) -> std::io::Result<()> {
     for entry in std::fs::read_dir(dir)? {
-        let path = entry?.path();
-        if path.is_dir() {
+        let entry = entry?;
+        let path = entry.path();
+        let kind = entry.file_type()?;
+        let hidden = entry.file_name().to_string_lossy().starts_with('.');
+        if kind.is_dir() && !hidden {
             collect(&path, files)?;
-        } else {
+        } else if kind.is_file() && is_source(&path) {
             files.push(path);
         }
     }
@@ -97,11 +115,40 @@ mod tests {
         let engine = fingerprint(&root, ENGINE_SOURCES).expect("engine sources");
         assert_eq!(format!("{model:016x}"), env!("ATMOSCOPE_MODEL_SOURCES"));
         assert_eq!(format!("{engine:016x}"), env!("ATMOSCOPE_ENGINE_SOURCES"));
-        assert_ne!(model, engine);
+    }
+
+    /// Every file in the source folders is of a kind the fingerprint hashes: a data table in
+    /// a new format must be added to `SOURCE_EXTENSIONS`, or edits to it would leave stale
+    /// entries in the cache.
+    #[test]
+    fn every_source_file_is_of_a_hashed_kind() {
+        fn walk(dir: &Path, unhashed: &mut Vec<PathBuf>) {
+            for entry in std::fs::read_dir(dir).expect("source folder") {
+                let path = entry.expect("entry").path();
+                if path
+                    .file_name()
+                    .is_some_and(|n| n.to_string_lossy().starts_with('.'))
+                {
+                    continue;
+                }
+                if path.is_dir() {
+                    walk(&path, unhashed);
+                } else if !is_source(&path) {
+                    unhashed.push(path);
+                }
+            }
+        }
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+        let mut unhashed = Vec::new();
+        for dir in ENGINE_SOURCES {
+            walk(&root.join(dir), &mut unhashed);
+        }
+        assert!(unhashed.is_empty(), "not fingerprinted: {unhashed:?}");
     }
 
     /// Editing a file, adding one, renaming one or moving bytes between two files each
-    /// changes the fingerprint; reading the same files again does not.
+    /// changes the fingerprint; reading the same files again, or an editor's swap, backup or
+    /// dangling lock link beside them, does not.
     #[test]
     fn a_fingerprint_changes_with_any_file() {
         let root = tempfile::tempdir().expect("temporary folder");
@@ -131,5 +178,15 @@ mod tests {
         write("a.rs", "const A: f64 = 1.");
         write("d.rs", "5;");
         changed("bytes moved from one file to the next");
+        let last = print();
+        write(".a.rs.swp", "swap");
+        write("a.rs~", "backup");
+        write("notes.md", "text");
+        assert_eq!(print(), last, "editor files changed the fingerprint");
+        #[cfg(unix)]
+        {
+            std::os::unix::fs::symlink(dir.join("gone"), dir.join(".#a.rs")).expect("link");
+            assert_eq!(print(), last, "a dangling lock link");
+        }
     }
 }
