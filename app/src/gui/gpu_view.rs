@@ -66,7 +66,8 @@ impl Radiance {
 /// GPU time a slice of a rebuild aims at: well inside the 100 ms a window may take per frame
 /// and still feel live, with room for the frame's own work (15–18 ms on lavapipe) and for a
 /// slice that costs three times what the last one promised, as slices of Bruneton's
-/// scattering density do on lavapipe (with 30 ms that made frames of 84–114 ms).
+/// scattering density do on lavapipe (with 30 ms, the longest frames of his Spectral32
+/// rebuild were 84–114 ms there in the runs of 2026-11-27).
 pub(crate) const REBUILD_SLICE: Duration = Duration::from_millis(20);
 
 pub struct GpuView {

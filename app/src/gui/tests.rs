@@ -1001,7 +1001,7 @@ proptest::proptest! {
 fn a_new_atmosphere_is_built_across_frames_while_the_last_one_shows() {
     let mut h = harness();
     h.state_mut()
-        .set_rebuild_slices(Some(std::time::Duration::from_millis(30)));
+        .set_rebuild_slices(Some(crate::gui::REBUILD_SLICE));
     let generation = |h: &Harness<'static, ExplorerApp>| views(h).main.generation();
     let (before, drawn) = (radiance(&mut h), generation(&h));
     h.state_mut().scene.render.wavelengths = atmoscope_model::scene::WavelengthSet::SpectralN(32);
