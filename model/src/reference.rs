@@ -50,8 +50,8 @@ struct SpectralCell {
     optics: crate::Optics,
     /// Extraterrestrial solar irradiance, W·m⁻²·nm⁻¹.
     solar_irradiance: f64,
-    /// x̄, ȳ, z̄.
-    colour: [f64; 3],
+    /// The CIE 1931 colour-matching functions x̄, ȳ, z̄.
+    cmf: [f64; 3],
 }
 
 impl SpectralCells {
@@ -64,7 +64,7 @@ impl SpectralCells {
                 SpectralCell {
                     optics: atmosphere.optics(w),
                     solar_irradiance: atmosphere.solar_irradiance(w, None),
-                    colour: [cmf.x.sample(w), cmf.y.sample(w), cmf.z.sample(w)],
+                    cmf: [cmf.x.sample(w), cmf.y.sample(w), cmf.z.sample(w)],
                 }
             })
             .collect();
@@ -81,7 +81,7 @@ impl SpectralCells {
         let cells = wavelengths_nm.map(|w| self.cell(w));
         (
             LaneOptics::from_optics(cells.map(|c| c.optics), cells.map(|c| c.solar_irradiance)),
-            cells.map(|c| c.colour),
+            cells.map(|c| c.cmf),
         )
     }
 }
@@ -278,13 +278,13 @@ impl ReferenceRender {
                         };
                         pixel.covered = true;
                         let (wavelengths, pdf) = sampler.sample(rng.uniform());
-                        let (lanes, colour) = spectral.lanes(wavelengths);
+                        let (lanes, cmf) = spectral.lanes(wavelengths);
                         let l = tracer.radiance(&ray, &lanes, &mut rng);
                         let mut xyz = [0.0; 3];
                         for i in 0..LANES {
                             let v = share * l[i] / (LANES as f64 * pdf[i]);
                             for c in 0..3 {
-                                xyz[c] += v * colour[i][c];
+                                xyz[c] += v * cmf[i][c];
                             }
                         }
                         for c in 0..3 {
@@ -349,7 +349,7 @@ mod tests {
         let mut rng = Rng::new(3, 0, 0);
         for _ in 0..1000 {
             let w = VISIBLE_MIN_NM + rng.uniform() * (VISIBLE_MAX_NM - VISIBLE_MIN_NM);
-            let (lanes, colour) = cells.lanes([w; LANES]);
+            let (lanes, cmf) = cells.lanes([w; LANES]);
             let middle = lanes.wavelengths_nm[0];
             assert!(
                 (middle - w).abs() <= 0.5 * SPECTRAL_CELL_NM + 1e-9,
@@ -359,7 +359,7 @@ mod tests {
                 lanes.solar_irradiance[0],
                 atmosphere.solar_irradiance(middle, None)
             );
-            assert_eq!(colour[0][1], cie1931().y.sample(middle));
+            assert_eq!(cmf[0][1], cie1931().y.sample(middle));
         }
         let airmass = 10.0;
         let (air_m2, ozone_m2) = (2.15e29, 8.07e22);
@@ -372,7 +372,7 @@ mod tests {
         let coarse: f64 = cells
             .cells
             .iter()
-            .map(|c| f(&c.optics, c.solar_irradiance, c.colour[1]))
+            .map(|c| f(&c.optics, c.solar_irradiance, c.cmf[1]))
             .sum::<f64>()
             * SPECTRAL_CELL_NM;
         let fine_step = SPECTRAL_CELL_NM / 64.0;
