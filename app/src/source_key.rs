@@ -77,13 +77,16 @@ pub fn fingerprint(root: &Path, dirs: &[&str]) -> std::io::Result<u64> {
     Ok(hash.finish())
 }
 
+/// Whether the name of `path` starts with a dot.
+fn is_hidden(path: &Path) -> bool {
+    path.file_name()
+        .is_some_and(|n| n.to_string_lossy().starts_with('.'))
+}
+
 /// Whether `path` names a source file by its extension, and is not hidden.
 fn is_source(path: &Path) -> bool {
-    let hidden = path
-        .file_name()
-        .is_some_and(|n| n.to_string_lossy().starts_with('.'));
     let extension = path.extension().and_then(|e| e.to_str());
-    !hidden && extension.is_some_and(|e| SOURCE_EXTENSIONS.contains(&e))
+    !is_hidden(path) && extension.is_some_and(|e| SOURCE_EXTENSIONS.contains(&e))
 }
 
 /// Every regular source file under `dir`, recursively, without following links.
@@ -92,8 +95,7 @@ fn collect(dir: &Path, files: &mut Vec<PathBuf>) -> std::io::Result<()> {
         let entry = entry?;
         let path = entry.path();
         let kind = entry.file_type()?;
-        let hidden = entry.file_name().to_string_lossy().starts_with('.');
-        if kind.is_dir() && !hidden {
+        if kind.is_dir() && !is_hidden(&path) {
             collect(&path, files)?;
         } else if kind.is_file() && is_source(&path) {
             files.push(path);
@@ -125,10 +127,7 @@ mod tests {
         fn walk(dir: &Path, unhashed: &mut Vec<PathBuf>) {
             for entry in std::fs::read_dir(dir).expect("source folder") {
                 let path = entry.expect("entry").path();
-                if path
-                    .file_name()
-                    .is_some_and(|n| n.to_string_lossy().starts_with('.'))
-                {
+                if is_hidden(&path) {
                     continue;
                 }
                 if path.is_dir() {
