@@ -369,11 +369,13 @@ impl PathTracer<'_> {
         // normalised: dense where the air is, without leaving long thin stretches to one piece.
         let mut edges = [end; SUB_INTERVALS + 1];
         edges[0] = start;
+        // (Reciprocals once: four divisions per interval cost as much as the edges' look-ups.)
+        let (per_depth, per_length) = (0.5 / tau_total, 0.5 / length);
         let mut depth = 0.0;
         let mut j = 1;
         for &(a, b, s) in intervals.iter() {
-            let slope = 0.5 * (majorants[s] / tau_total + 1.0 / length);
-            let s_a = 0.5 * (depth / tau_total + (a - start) / length);
+            let slope = majorants[s] * per_depth + per_length;
+            let s_a = depth * per_depth + (a - start) * per_length;
             let s_b = s_a + slope * (b - a);
             while j < SUB_INTERVALS && (j as f64 / SUB_INTERVALS as f64) <= s_b {
                 edges[j] = (a + (j as f64 / SUB_INTERVALS as f64 - s_a) / slope).clamp(a, b);
