@@ -309,16 +309,18 @@ impl PathTracer<'_> {
             return false;
         };
         let lowest = -ray.origin.dot(ray.direction);
-        let points = [first.0, last.1, lowest.clamp(first.0, last.1)]
-            .map(|t| ray.origin + ray.direction * t);
+        let points = [first.0, last.1, lowest].map(|t| ray.origin + ray.direction * t);
+        // The lowest point counts only inside the segment: else it is one of its ends (nearly
+        // every segment rises or falls all along), and the look-up would be done twice.
+        let points = &points[..if first.0 < lowest && lowest < last.1 { 3 } else { 2 }];
         // With the sun high over every point, no column toward it exceeds the vertical one from
         // the ground over μ_s (an upward ray only steepens through the shells): where even that
         // leaves more than SUNLIGHT_SPREAD of the sunlight, the table need not be read (most
         // segments under a high sun end here, a twentieth of the tracer's time).
-        if self.sun_high_over(&points, grey) {
+        if self.sun_high_over(points, grey) {
             return false;
         }
-        self.tabulated_sunlight_varies(&points, grey)
+        self.tabulated_sunlight_varies(points, grey)
     }
 
     /// Whether the sun stands so high over every point that even the vertical column from the
