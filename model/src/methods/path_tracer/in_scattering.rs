@@ -312,7 +312,8 @@ impl PathTracer<'_> {
         let points = [first.0, last.1, lowest].map(|t| ray.origin + ray.direction * t);
         // The lowest point counts only inside the segment: else it is one of its ends (nearly
         // every segment rises or falls all along), and the look-up would be done twice.
-        let points = &points[..if first.0 < lowest && lowest < last.1 { 3 } else { 2 }];
+        let inside = first.0 < lowest && lowest < last.1;
+        let points = &points[..if inside { 3 } else { 2 }];
         // With the sun high over every point, no column toward it exceeds the vertical one from
         // the ground over μ_s (an upward ray only steepens through the shells): where even that
         // leaves more than SUNLIGHT_SPREAD of the sunlight, the table need not be read (most
