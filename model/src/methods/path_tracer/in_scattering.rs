@@ -372,7 +372,7 @@ impl PathTracer<'_> {
         // normalised: dense where the air is, without leaving long thin stretches to one piece.
         let mut edges = [end; SUB_INTERVALS + 1];
         edges[0] = start;
-        // (Reciprocals once: four divisions per interval cost as much as the edges' look-ups.)
+        // Reciprocals once, rather than four divisions per interval.
         let (per_depth, per_length) = (0.5 / tau_total, 0.5 / length);
         let mut depth = 0.0;
         let mut j = 1;
@@ -387,9 +387,9 @@ impl PathTracer<'_> {
             depth += majorants[s] * (b - a);
         }
         let bottom = self.atmosphere.bottom_radius_m;
-        // The integrand at `t`, the end of a piece `width` long past the view's grey optical
-        // depth `view_depth`, and the view's depth through that piece (by the grey extinction
-        // at `t`).
+        // The integrand at `t`, the far end of a piece `width` long that starts at the view's
+        // grey optical depth `view_depth`, and the view's grey optical depth from the segment's
+        // start to `t` (the piece's share taken at the grey extinction at `t`).
         let at = |t: f64, view_depth: f64, width: f64| {
             let x = ray.origin + ray.direction * t;
             let r = x.length();
