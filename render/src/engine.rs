@@ -20,7 +20,7 @@ use crate::readback::{
     ReadbackError, read_buffer_f32x4, read_buffer_u32, read_texture, read_texture_f32x4,
 };
 use crate::uniforms::{self, FrameInputs, Globals};
-use crate::views::View;
+use crate::views::{self, View};
 use atmoscope_model::Atmosphere;
 use atmoscope_model::camera::{Camera, Projection, Sees};
 use atmoscope_model::colour::Xyz;
@@ -94,6 +94,9 @@ pub struct FrameStats {
     pub rebuild: Option<RebuildProgress>,
     /// The frame put on screen a rebuild finished in slices (new images, whatever it ran).
     pub rebuild_done: bool,
+    /// Pixels on a side of the tiles the frame drew its sky in (`views::moving_tile`), where
+    /// more than 1; 1 (0 in a frame that failed) where it drew every pixel or no sky.
+    pub sky_tile: u32,
 }
 
 /// Progress of a rebuild in slices, in units of work (MiB of its tables zeroed, then
@@ -998,7 +1001,7 @@ impl Engine {
     /// after it redraws the view at full resolution too, and `read_radiance` waits for that.
     /// 1 (the default) draws every frame at full resolution; at most 16.
     pub fn set_sky_tile(&mut self, tile: u32) {
-        let tile = tile.clamp(1, 16);
+        let tile = tile.clamp(1, views::MAX_SKY_TILE);
         if tile != self.sky_tile {
             self.sky_tile = tile;
             // The list of tiles is sized for the tile: new images, redrawn (a rebuild under
@@ -1285,7 +1288,11 @@ impl Engine {
         if refine {
             changed = changed.union(Inputs::VIEW_SIZE);
         }
-        frame.sky_tile = if refine { 1 } else { self.sky_tile };
+        frame.sky_tile = if refine {
+            1
+        } else {
+            views::moving_tile(self.sky_tile, gpu)
+        };
         frame.write_radiance = frame.sky_tile <= 1 || self.metering;
         frame.bands = self.view_bands;
         if rebuilt || self.target.as_ref().is_none_or(|t| t.size != size) {
@@ -1373,6 +1380,11 @@ impl Engine {
         self.last = Some(frame.snapshot);
         self.stats = FrameStats {
             method: state.key.method,
+            sky_tile: if ran.iter().any(|&i| names[i] == "sky") {
+                frame.sky_tile
+            } else {
+                1
+            },
             timing_source: (self.measure && !steps.is_empty()).then(|| self.timing_source()),
             skipped: (0..names.len())
                 .filter(|i| !ran.contains(i) && !unwanted.contains(&names[*i]))

@@ -618,7 +618,12 @@ fn a_moving_frame_in_tiles_is_close_and_the_still_frame_after_it_exact() {
         ("from 400 km", space, Projection::Perspective, 96, 64),
     ];
     for (name, scene, projection, w, h) in cases {
-        for method in [Method::Hillaire, Method::Preetham, Method::Nishita] {
+        for method in [
+            Method::Hillaire,
+            Method::Preetham,
+            Method::Nishita,
+            Method::Schuler,
+        ] {
             let mut scene = scene.clone();
             scene.render.method = method;
             if refused(&scene) {
@@ -649,6 +654,9 @@ fn a_moving_frame_in_tiles_is_close_and_the_still_frame_after_it_exact() {
             engine.set_sky_tile(4);
             let moving = engine.render(&scene, &view).clone();
             assert!(moving.ran("sky"), "{name}: the moving frame draws");
+            // Schuler's march per pixel moves in its own coarser tiles.
+            let tile = if method == Method::Schuler { 8 } else { 4 };
+            assert_eq!(moving.sky_tile, tile, "{name}: the moving frame's tiles");
             assert!(
                 engine.settling(),
                 "{name}: a frame in tiles awaits its full resolution"
@@ -667,6 +675,10 @@ fn a_moving_frame_in_tiles_is_close_and_the_still_frame_after_it_exact() {
             let still = engine.render(&scene, &view).clone();
             eprintln!("{name}: moving {:?} still {:?}", moving.run, still.run);
             assert_eq!(still.run, vec!["sky"], "{name}: the still frame");
+            assert_eq!(
+                still.sky_tile, 1,
+                "{name}: the still frame draws every pixel"
+            );
             assert_eq!(
                 radiance_image(&engine),
                 exact,

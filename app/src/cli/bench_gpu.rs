@@ -12,6 +12,8 @@ use atmoscope_model::metrics::{DisplaySetup, compare};
 use atmoscope_model::scene::Method;
 use atmoscope_model::scene::{SunSettings, WavelengthSet};
 use atmoscope_model::views;
+use atmoscope_render::methods::gpu_method;
+use atmoscope_render::views::moving_tile;
 use atmoscope_render::{Engine, View};
 use clap::Args;
 use serde::Serialize;
@@ -39,7 +41,9 @@ pub struct GpuBench {
     #[arg(long)]
     pub cpu_timing: bool,
     /// Tile of the sky pass in moving frames (1: every pixel; `sky_still_ms` is always every
-    /// pixel). Default: the explorer's for the adapter, 4 on a software adapter, 1 on a GPU.
+    /// pixel), or the model's coarser tile where it has one (8 for the marches with a closed
+    /// form towards the sun, `schuler` and `galaj-taylor`). Default: the explorer's for the
+    /// adapter, 4 on a software adapter, 1 on a GPU.
     #[arg(long, value_name = "PIXELS", value_parser = clap::value_parser!(u32).range(1..=16))]
     pub sky_tile: Option<u32>,
     /// Whether the sky pass runs in bands of what the rows see, the sun's disk apart, or as
@@ -63,7 +67,7 @@ struct GpuRow {
     /// Median milliseconds of each table pass in a full rebuild.
     lut_ms: Vec<(String, f64)>,
     lut_total_ms: f64,
-    /// Tile of the sky pass in the moving frames (`--sky-tile`).
+    /// Tile of the sky pass in the moving frames: `--sky-tile`, or the model's coarser one.
     sky_tile: u32,
     /// Whether the sky pass ran in bands (`--bands`).
     view_bands: bool,
@@ -347,7 +351,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             timing: engine.timing_source().label().into(),
             lut_total_ms,
             lut_ms,
-            sky_tile,
+            sky_tile: gpu_method(method).map_or(sky_tile, |g| moving_tile(sky_tile, g)),
             view_bands,
             sky_ms,
             display_ms,
@@ -380,7 +384,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         format!("median of {repeats}")
     };
     println!(
-        "{w}x{h} perspective, {measured}; times from {}; moving frames draw the sky in {t}×{t} tiles, a still frame every pixel; the sky pass {}",
+        "{w}x{h} perspective, {measured}; times from {}; moving frames draw the sky in {t}×{t} tiles or the model's coarser ones (column `tile`), a still frame every pixel; the sky pass {}",
         rows.first().map_or("", |r| r.timing.as_str()),
         if view_bands {
             "in bands, the sun's disk apart"

@@ -34,7 +34,11 @@ pub fn show(ui: &mut egui::Ui, views: &[(&str, &GpuView)], ui_frame_ms: f64, ada
             }
             ui.label(format!("{:.1} ms", v.last_frame_ms))
                 .on_hover_text("Wall time of the last frame that ran any pass, from submission until the GPU was idle.");
-            let ran = format!("{} run, {} skipped", stats.run.len(), stats.skipped.len());
+            let mut ran = format!("{} run, {} skipped", stats.run.len(), stats.skipped.len());
+            if stats.sky_tile > 1 {
+                // A view in motion on a software adapter: it sharpens in the first still frame.
+                ran += &format!("; sky in {0}×{0} tiles", stats.sky_tile);
+            }
             match stats.rebuild {
                 Some(p) => ui.label(format!(
                     "{ran}; rebuilding tables {:.0} %",

@@ -5,7 +5,7 @@
 //! `atmoscope_model::methods::galaj_spline`.
 
 use super::{
-    Dispatch, EXPONENTIAL, GpuMethod, HIGHER_ORDERS_PASSES, HILLAIRE_HIGHER_ORDERS,
+    Dispatch, ENGINE_TILE, EXPONENTIAL, GpuMethod, HIGHER_ORDERS_PASSES, HILLAIRE_HIGHER_ORDERS,
     NO_HIGHER_ORDERS, PassSpec, Repeat, SUN_ROUTE, Shader, shader,
 };
 use atmoscope_model::methods::galaj_spline::MESH;
@@ -29,6 +29,7 @@ const SKY_SHADER: Shader = shader!("shared/single_scattering_sky.wgsl");
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::GalajSpline,
+    moving_tile: ENGINE_TILE,
     common: &[NO_HIGHER_ORDERS, EXPONENTIAL, COLUMNS, SUN_ROUTE],
     constants: |p| single_scattering_sky::constants(p, Way::GalajSpline),
     passes: &[MESH_PASS, PassSpec::sky(SKY_SHADER, &[MESH.id])],
@@ -37,6 +38,7 @@ pub const METHOD: GpuMethod = GpuMethod {
 /// With Hillaire's Ψ_ms table as the higher orders (the `galaj-spline-ms` row).
 pub const METHOD_MS: GpuMethod = GpuMethod {
     method: Method::GalajSplineMs,
+    moving_tile: ENGINE_TILE,
     common: &[HILLAIRE_HIGHER_ORDERS, EXPONENTIAL, COLUMNS, SUN_ROUTE],
     constants: |p| single_scattering_sky::constants(p, Way::GalajSpline),
     passes: &[

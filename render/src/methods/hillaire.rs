@@ -2,7 +2,8 @@
 //! pass is `atmoscope_model::methods::hillaire::<pass>`.
 
 use super::{
-    Dispatch, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS, shader,
+    Dispatch, ENGINE_TILE, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS,
+    shader,
 };
 use atmoscope_model::scene::Method;
 
@@ -21,6 +22,7 @@ pub const MULTIPLE_SCATTERING_PASS: PassSpec = PassSpec::table(
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Hillaire,
+    moving_tile: ENGINE_TILE,
     common: &[
         SUN_DISK_FROM_TABLE,
         shader!("common/march.wgsl"),
