@@ -607,6 +607,84 @@ impl Rebuild {
     }
 }
 
+/// Units for a pass's next slice: `count` units took `took_s` from submission to being seen
+/// finished. That end is seen a frame later, so `took_s` holds the frame's own work too: most
+/// of `shortest_s`, the shortest such interval of the job, is taken for that and set aside,
+/// or a cheap pass would grow its slices by little more than target / frame per frame.
+fn steered_units(count: u32, took_s: f64, shortest_s: f64, target_s: f64) -> u32 {
+    let own = (took_s - 0.8 * shortest_s).max(0.1 * took_s).max(1e-4);
+    let scaled = f64::from(count) * target_s / own;
+    scaled.clamp(1.0, f64::from(count) * 16.0) as u32
+}
+
+/// The still frame after frames in tiles, drawn at full resolution a slice of rows per frame
+/// where the engine slices its work (`Engine::set_rebuild_slices`): a march per pixel takes
+/// seconds there on a software adapter. The image in tiles stays on screen and sharpens from
+/// the top down.
+struct Refine {
+    /// The frame's dispatches at full resolution, in order.
+    work: Vec<Work>,
+    /// The next slice: index into `work`, and its first row of workgroups.
+    next: (usize, u32),
+    /// Rows of workgroups per slice, steered towards the target time.
+    rows: u32,
+    /// The slice on the GPU: when it was submitted, whether it has finished, its rows.
+    in_flight: Option<(Instant, Arc<AtomicBool>, u32)>,
+    /// The shortest interval from a slice's submission to seeing it finished, s.
+    shortest_s: f64,
+}
+
+impl Refine {
+    fn new(work: Vec<Work>) -> Refine {
+        Refine {
+            work,
+            next: (0, 0),
+            rows: 1,
+            in_flight: None,
+            shortest_s: f64::INFINITY,
+        }
+    }
+
+    /// The next slice's dispatch: none while the last one is on the GPU, None once every
+    /// slice has finished. A zero target takes one row of workgroups a slice.
+    fn next_slice(&mut self, slicing: Slicing) -> Option<Vec<Work>> {
+        if let Some((started, done, rows)) = &self.in_flight {
+            if !done.load(Ordering::Acquire) {
+                return Some(Vec::new());
+            }
+            let took = started.elapsed().as_secs_f64();
+            self.shortest_s = self.shortest_s.min(took);
+            let target = slicing.target.as_secs_f64();
+            self.rows = if target <= 0.0 {
+                1
+            } else {
+                steered_units(*rows, took, self.shortest_s, target)
+            };
+            self.in_flight = None;
+        }
+        let (k, row) = self.next;
+        let w = *self.work.get(k)?;
+        let rows = self.rows.min(w.groups[1].saturating_sub(row)).max(1);
+        self.next = if row + rows >= w.groups[1] {
+            (k + 1, 0)
+        } else {
+            (k, row + rows)
+        };
+        Some(vec![Work {
+            origin: [w.origin[0], w.origin[1] + row * WORKGROUP_SIZE, w.origin[2]],
+            groups: [w.groups[0], rows, w.groups[2]],
+            ..w
+        }])
+    }
+
+    /// Marks the slice just submitted as on the GPU.
+    fn submitted(&mut self, queue: &wgpu::Queue, work: &[Work]) {
+        if let Some(w) = work.first() {
+            self.in_flight = Some((Instant::now(), when_done(queue), w.groups[1]));
+        }
+    }
+}
+
 /// A flag set once the GPU has finished the work submitted to `queue` so far.
 fn when_done(queue: &wgpu::Queue) -> Arc<AtomicBool> {
     let done = Arc::new(AtomicBool::new(false));
@@ -930,6 +1008,8 @@ pub struct Engine {
     atmosphere: Option<AtmosphereState>,
     /// A new atmosphere being built in slices while `atmosphere` stays on screen.
     rebuild: Option<Rebuild>,
+    /// The still frame after frames in tiles, being drawn in slices.
+    refine: Option<Refine>,
     slicing: Option<Slicing>,
     metering: bool,
     /// Units per slice each pass of a model reached in its last rebuild in slices.
@@ -974,6 +1054,7 @@ impl Engine {
             pipelines: Vec::new(),
             atmosphere: None,
             rebuild: None,
+            refine: None,
             slicing: None,
             metering: false,
             slice_units: Vec::new(),
@@ -1008,6 +1089,7 @@ impl Engine {
             // way would bring images sized for the old one).
             self.target = None;
             self.rebuild = None;
+            self.refine = None;
             self.tiled_on_screen = false;
         }
     }
@@ -1036,6 +1118,7 @@ impl Engine {
         self.pipelines.clear();
         self.atmosphere = None;
         self.rebuild = None;
+        self.refine = None;
         self.target = None;
         self.last = None;
         self.deferred.clear();
@@ -1062,6 +1145,7 @@ impl Engine {
         self.slicing = target.map(|target| Slicing { target });
         if self.slicing.is_none() {
             self.rebuild = None;
+            self.refine = None;
         }
     }
 
@@ -1191,6 +1275,7 @@ impl Engine {
                 self.pipelines.clear();
                 self.atmosphere = None;
                 self.rebuild = None;
+                self.refine = None;
                 self.target = None;
                 self.last = None;
                 Err(fault)
@@ -1250,6 +1335,7 @@ impl Engine {
             }
         } else {
             self.rebuild = None;
+            self.refine = None;
             self.select(gpu);
             self.atmosphere = Some(self.build_state(scene, key));
             rebuilt = true;
@@ -1287,6 +1373,16 @@ impl Engine {
         let refine = display_only && (still_after_tiles || radiance_read);
         if refine {
             changed = changed.union(Inputs::VIEW_SIZE);
+        }
+        // Where the engine slices its work, a still frame after tiles is drawn a slice per
+        // frame; anything else that happens meanwhile drops it (a frame in motion draws in
+        // tiles again, a change of the display needs the whole radiance now).
+        let refine_in_slices = match self.slicing {
+            Some(slicing) if still_after_tiles && !radiance_read && !rebuilt => Some(slicing),
+            _ => None,
+        };
+        if refine_in_slices.is_none() {
+            self.refine = None;
         }
         frame.sky_tile = if refine {
             1
@@ -1327,12 +1423,33 @@ impl Engine {
             &mut self.deferred,
         );
         let steps = with_order_loop(&run, pipelines, state.params.scattering_orders);
-        let ran_pass = |i: usize| steps.iter().any(|s| s.pass == i);
         let layers = state.params.batches.len() as u32;
         let work: Vec<Work> = steps
             .iter()
             .flat_map(|&step| frame.work(pipelines, step, layers, scene, view))
             .collect();
+        // A still frame in slices submits its next slice, or nothing while one is on the GPU;
+        // `refined` once every slice has finished.
+        let mut refined = false;
+        let work = match refine_in_slices {
+            Some(slicing) => {
+                // Runs the callback that marks the slice in flight finished.
+                let _ = self.device.poll(wgpu::PollType::Poll);
+                let job = self.refine.get_or_insert_with(|| Refine::new(work));
+                job.next_slice(slicing).unwrap_or_else(|| {
+                    refined = true;
+                    self.refine = None;
+                    Vec::new()
+                })
+            }
+            None => work,
+        };
+        // The steps that run this frame (all of them, but while a still frame is in slices).
+        let steps: Vec<Step> = steps
+            .into_iter()
+            .filter(|s| work.iter().any(|w| w.pass == s.pass))
+            .collect();
+        let ran_pass = |i: usize| steps.iter().any(|s| s.pass == i);
         for w in &work {
             self.pipelines[0].ensure(&self.device, w.pass, w.variant);
         }
@@ -1346,7 +1463,11 @@ impl Engine {
                     tables: &state.tables,
                     target,
                 };
-                encoder.submit(&work, measure, self.spans)
+                let timings = encoder.submit(&work, measure, self.spans);
+                if let Some(job) = &mut self.refine {
+                    job.submitted(&self.queue, &work);
+                }
+                timings
             }
             _ => Timings::default(),
         };
@@ -1356,9 +1477,14 @@ impl Engine {
             .specs()
             .enumerate()
             .any(|(i, s)| s.writes.contains(&RADIANCE) && ran_pass(i))
+            && self.refine.is_none()
         {
             self.tiled_on_screen = frame.sky_tile > 1;
             self.radiance_current = frame.write_radiance;
+        }
+        if refined {
+            self.tiled_on_screen = false;
+            self.radiance_current = true;
         }
         let names: Vec<&'static str> = pipelines.specs().map(|s| s.name).collect();
         let unwanted = self.unwanted();
@@ -1508,19 +1634,14 @@ impl Engine {
             if !done.load(Ordering::Acquire) {
                 return Some(r.progress());
             }
-            // Aim the pass's next slice at the target time from how long this one took. Its
-            // end is seen a frame later, so `took` holds the frame's own work too: most of the
-            // shortest interval of the rebuild is taken for that and set aside, or a cheap pass
-            // would grow its slices by little more than target / frame per frame.
+            // Aim the pass's next slice at the target time from how long this one took.
             let took = started.elapsed().as_secs_f64();
             r.shortest_s = r.shortest_s.min(took);
             let target = slicing.target.as_secs_f64();
             r.units[*pass] = if target <= 0.0 {
                 *half_row
             } else {
-                let own = (took - 0.8 * r.shortest_s).max(0.1 * took).max(1e-4);
-                let scaled = f64::from(*count) * target / own;
-                scaled.clamp(1.0, f64::from(*count) * 16.0) as u32
+                steered_units(*count, took, r.shortest_s, target)
             };
             r.in_flight = None;
         }

@@ -587,6 +587,68 @@ fn each_frame_runs_only_the_passes_whose_inputs_changed() {
     assert!(engine.render(&scene, &view).run.is_empty());
 }
 
+/// Where the engine slices its work (`Engine::set_rebuild_slices`), the still frame after frames
+/// in tiles is drawn a row of workgroups per frame (a zero target), the image in tiles on screen
+/// meanwhile, and comes out as the still frame drawn whole.
+#[test]
+fn the_still_frame_after_tiles_in_slices_is_the_one_drawn_whole() {
+    let Some(gpu) = context() else { return };
+    let (w, h) = (96, 64);
+    let view = View::new(Projection::Perspective, w, h);
+    for method in [Method::Hillaire, Method::Nishita] {
+        let mut scene = Scene::default();
+        scene.render.method = method;
+        scene.camera.pitch_deg = 5.0;
+        let mut engine = Engine::new(&gpu.device, &gpu.queue);
+        engine.render(&scene, &view);
+        let (exact, exact_shown) = (radiance_image(&engine), displayed_image(&engine));
+        engine.set_sky_tile(4);
+        engine.set_rebuild_slices(Some(std::time::Duration::ZERO));
+        let mut turned = scene.clone();
+        turned.camera.heading_deg += 1.0;
+        engine.render(&turned, &view);
+        assert_eq!(
+            engine.render(&scene, &view).sky_tile,
+            4,
+            "{method:?}: in motion"
+        );
+        let (mut frames, mut slices) = (0, 0);
+        while engine.settling() {
+            assert!(
+                matches!(engine.read_radiance(), Err(EngineError::InMotion)),
+                "{method:?}: the radiance waits for the last slice"
+            );
+            let stats = engine.render(&scene, &view).clone();
+            frames += 1;
+            assert!(
+                stats.run.iter().all(|p| *p == "sky"),
+                "{method:?}: {:?}",
+                stats.run
+            );
+            if stats.ran("sky") {
+                slices += 1;
+                assert_eq!(stats.sky_tile, 1, "{method:?}: every pixel");
+            }
+            assert!(frames < 10_000, "{method:?}: the still frame never ends");
+        }
+        let rows = h.div_ceil(atmoscope_render::prelude::WORKGROUP_SIZE);
+        assert!(
+            slices >= rows,
+            "{method:?}: {slices} slices over {frames} frames for {rows} rows of workgroups"
+        );
+        assert_eq!(radiance_image(&engine), exact, "{method:?}: radiance");
+        assert_eq!(
+            displayed_image(&engine),
+            exact_shown,
+            "{method:?}: as shown"
+        );
+        assert!(
+            engine.render(&scene, &view).run.is_empty(),
+            "{method:?}: then nothing"
+        );
+    }
+}
+
 /// A moving frame drawn in tiles (`Engine::set_sky_tile`) stays close to the frame drawn pixel
 /// by pixel, sharp at the horizon, the sun and the fisheye's edge (their tiles are computed
 /// exactly), and the first still frame after it redraws the view at full resolution.
