@@ -384,7 +384,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         format!("median of {repeats}")
     };
     println!(
-        "{w}x{h} perspective, {measured}; times from {}; moving frames draw the sky in {t}×{t} tiles or the model's coarser ones (column `tile`), a still frame every pixel; the sky pass {}",
+        "{w}x{h} perspective, {measured}; times from {}; moving frames draw the sky in {t}×{t} tiles or the model's coarser ones (`sky_tile` in --json), a still frame every pixel; the sky pass {}",
         rows.first().map_or("", |r| r.timing.as_str()),
         if view_bands {
             "in bands, the sun's disk apart"
