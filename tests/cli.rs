@@ -1346,6 +1346,10 @@ fn bench_gpu_reports_multiples_of_the_floor_pass() {
         // A rebuild in slices keeps every frame shorter than the one-frame rebuild and ends.
         assert!(f("rebuild_ui_max_ms") > 0.0 && f("rebuild_ui_mean_ms") <= f("rebuild_ui_max_ms"));
         assert!(f("rebuild_sliced_ms") >= f("rebuild_ui_max_ms") && f("rebuild_whole_ms") > 0.0);
+        // So does the still frame after a turn, drawn a slice at a time.
+        assert!(f("still_ui_max_ms") > 0.0 && f("still_ui_mean_ms") <= f("still_ui_max_ms"));
+        assert!(f("still_ui_p99_ms") <= f("still_ui_max_ms"));
+        assert!(f("still_sliced_ms") >= f("still_ui_max_ms"));
     }
 }
 
@@ -1376,6 +1380,8 @@ fn bench_gpu_rebuild_only_times_the_sliced_rebuild_alone() {
         "rebuild_ui_p99_ms",
         "rebuild_ui_mean_ms",
         "rebuild_ui_last_ms",
+        "still_ui_max_ms",
+        "still_sliced_ms",
         "floor_ms",
     ] {
         assert!(f(key) > 0.0 && f(key).is_finite(), "{key}: {}", f(key));

@@ -588,7 +588,7 @@ fn each_frame_runs_only_the_passes_whose_inputs_changed() {
 }
 
 /// Where the engine slices its work (`Engine::set_rebuild_slices`), the still frame after frames
-/// in tiles is drawn a row of workgroups per frame (a zero target), the image in tiles on screen
+/// in tiles is drawn half a row of workgroups per frame (a zero target), the image in tiles on screen
 /// meanwhile, and comes out as the still frame drawn whole.
 #[test]
 fn the_still_frame_after_tiles_in_slices_is_the_one_drawn_whole() {
@@ -631,9 +631,11 @@ fn the_still_frame_after_tiles_in_slices_is_the_one_drawn_whole() {
             }
             assert!(frames < 10_000, "{method:?}: the still frame never ends");
         }
+        // A zero target takes half a row of workgroups a slice: a row of a march per pixel
+        // can take longer than a frame may.
         let rows = h.div_ceil(atmoscope_render::prelude::WORKGROUP_SIZE);
         assert!(
-            slices >= rows,
+            slices >= 2 * rows,
             "{method:?}: {slices} slices over {frames} frames for {rows} rows of workgroups"
         );
         assert_eq!(radiance_image(&engine), exact, "{method:?}: radiance");

@@ -112,32 +112,49 @@ struct GpuRow {
     /// (the view passes run in slices too).
     rebuild_ui_last_ms: f64,
     rebuild_sliced_ms: f64,
+    /// The still frame after a turn of the camera as the explorer draws it: where the turn
+    /// was drawn in tiles, every pixel again a slice of rows per frame, each frame drawing
+    /// the floor pass and waiting as above. The longest, 99th-percentile and mean frame
+    /// interval, and the time until the last slice (one frame where nothing was tiled).
+    still_ui_max_ms: f64,
+    still_ui_p99_ms: f64,
+    still_ui_mean_ms: f64,
+    still_sliced_ms: f64,
 }
 
-/// Frame intervals while a rebuild runs in slices, ms.
-struct SlicedRebuild {
+/// Frame intervals while the engine finishes work in slices, ms.
+struct SlicedFrames {
     longest: f64,
     /// The 99th percentile (nearest rank): a single long frame on a busy machine moves the
     /// longest but not this.
     p99: f64,
     mean: f64,
-    /// The frame that swaps in the new tables and the view drawn with them.
+    /// The last frame: the one that swaps in the new tables (a rebuild) or draws the last
+    /// slice of the still image.
     last: f64,
     /// From the first frame to the end of the last.
     total: f64,
 }
 
-/// Frame intervals while `engine` builds `scene`'s new atmosphere in slices, each frame also
-/// drawing the floor pass (the UI) and waiting for the GPU (a window's present).
-fn sliced_rebuild_ms(
+/// Frame intervals of frames of `scene` drawn as the explorer draws them, its work in slices,
+/// each frame also drawing the floor pass (the UI) and waiting for the GPU (a window's
+/// present), for as long as `more` says the engine has work left. `lead`, when given, is
+/// drawn first, untimed, with slicing already on (the frame whose work the timed ones finish).
+fn sliced_frames(
     engine: &mut Engine,
+    lead: Option<&Scene>,
     scene: &Scene,
     view: &View,
     ui: &atmoscope_render::floor::FloorPass,
     context: &atmoscope_render::gpu::GpuContext,
-) -> anyhow::Result<SlicedRebuild> {
+    more: fn(&Engine) -> bool,
+) -> anyhow::Result<SlicedFrames> {
     engine.set_timing(false);
     engine.set_rebuild_slices(Some(crate::gui::REBUILD_SLICE));
+    if let Some(lead) = lead {
+        engine.try_render(lead, view)?;
+        engine.wait();
+    }
     let start = Instant::now();
     let mut intervals = Vec::new();
     loop {
@@ -152,7 +169,7 @@ fn sliced_rebuild_ms(
             1,
         );
         intervals.push(frame.elapsed().as_secs_f64() * 1e3);
-        if !engine.rebuilding() {
+        if !more(engine) {
             break;
         }
     }
@@ -163,7 +180,7 @@ fn sliced_rebuild_ms(
     let mean = intervals.iter().sum::<f64>() / intervals.len() as f64;
     intervals.sort_by(f64::total_cmp);
     let rank = (0.99 * intervals.len() as f64).ceil() as usize;
-    Ok(SlicedRebuild {
+    Ok(SlicedFrames {
         longest: intervals.last().copied().unwrap_or(f64::NAN),
         p99: intervals.get(rank.max(1) - 1).copied().unwrap_or(f64::NAN),
         mean,
@@ -319,7 +336,28 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             engine.wait();
             ms
         };
-        let sliced = sliced_rebuild_ms(&mut engine, &changed, &view, &floor, &context)?;
+        let sliced = sliced_frames(
+            &mut engine,
+            None,
+            &changed,
+            &view,
+            &floor,
+            &context,
+            Engine::rebuilding,
+        )?;
+        // The still frame after a turn of the camera, drawn a slice at a time where the
+        // turn was drawn in tiles.
+        let mut turned = changed.clone();
+        turned.camera.heading_deg = (changed.camera.heading_deg + 2.0) % 360.0;
+        let still = sliced_frames(
+            &mut engine,
+            Some(&turned),
+            &turned,
+            &view,
+            &floor,
+            &context,
+            Engine::settling,
+        )?;
         let floor_ms = median(floor.time_ms(
             &context.device,
             &context.queue,
@@ -372,6 +410,10 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             rebuild_ui_mean_ms: sliced.mean,
             rebuild_ui_last_ms: sliced.last,
             rebuild_sliced_ms: sliced.total,
+            still_ui_max_ms: still.longest,
+            still_ui_p99_ms: still.p99,
+            still_ui_mean_ms: still.mean,
+            still_sliced_ms: still.total,
         });
     }
     if args.json {
@@ -394,7 +436,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         t = sky_tile
     );
     println!(
-        "{:14} {:12} {:>10} {:>8} {:>10} {:>8} {:>12} {:>12} {:>9} {:>8}   spans: {:>8} {:>8} {:>8}   ×floor: {:>6} {:>6} {:>7}   rebuild: {:>9} {:>28} {:>9}   table passes",
+        "{:14} {:12} {:>10} {:>8} {:>10} {:>8} {:>12} {:>12} {:>9} {:>8}   spans: {:>8} {:>8} {:>8}   ×floor: {:>6} {:>6} {:>7}   rebuild: {:>9} {:>28} {:>9}   still after a turn: {:>16}   table passes",
         "method",
         "set",
         "tables",
@@ -413,7 +455,8 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         "tables",
         "one frame",
         "sliced: UI max/p99/mean/last",
-        "done in"
+        "done in",
+        "UI max / done in"
     );
     for r in &rows {
         let passes: Vec<String> = r
@@ -422,7 +465,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             .map(|(name, ms)| format!("{name} {ms:.2}"))
             .collect();
         println!(
-            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>7.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms {:>6.2} ms {:>5.2} ms   {:>5.2} ms {:>5.2} ms {:>5.2} ms          {:>6.1} {:>6.1} {:>7.1}            {:>6.0} ms {:>6.0}/{:>5.0}/{:>5.0}/{:>5.0} ms {:>6.0} ms   {}",
+            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>7.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms {:>6.2} ms {:>5.2} ms   {:>5.2} ms {:>5.2} ms {:>5.2} ms          {:>6.1} {:>6.1} {:>7.1}            {:>6.0} ms {:>6.0}/{:>5.0}/{:>5.0}/{:>5.0} ms {:>6.0} ms   {:>19.0} / {:>6.0} ms   {}",
             r.method,
             r.wavelengths,
             r.lut_total_ms,
@@ -445,6 +488,8 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             r.rebuild_ui_mean_ms,
             r.rebuild_ui_last_ms,
             r.rebuild_sliced_ms,
+            r.still_ui_max_ms,
+            r.still_sliced_ms,
             passes.join(", ")
         );
     }
