@@ -22,9 +22,7 @@
 
 use super::{Intervals, LANES, LaneOptics, PathMedium, PathTracer};
 use crate::Atmosphere;
-use crate::geometry::{
-    Ray, altitude_along, distance_to_top, hits_ground, transmittance_h_mu, transmittance_x_mu_x_r,
-};
+use crate::geometry::{Ray, altitude_along, distance_to_top, hits_ground, rho_squared};
 use crate::methods::rng::Rng;
 use crate::methods::shared::sun::visible_fraction;
 use glam::DVec3;
@@ -44,33 +42,80 @@ const SUNLIGHT_SPREAD: f64 = 0.5;
 /// at every point of the segment and the columns toward it are those of a ray going up.
 const HIGH_SUN_MU_S: f64 = 0.2;
 
-/// Size of the sun-column table: (x_mu, x_r) in Bruneton's mapping.
-const COLUMNS_SIZE: [usize; 2] = [64, 32];
+/// Rows of the sun-column table: x_r = ρ/H, Bruneton's altitude mapping (dense near the
+/// ground, where the columns change fastest).
+const COLUMNS_ROWS: usize = 64;
+
+/// Columns of the sun-column table by μ_s, the sun's zenith cosine: `COLUMNS_FINE` evenly
+/// from [`MU_S_LEAST`] to [`MU_S_KNEE`], where the columns change fastest (the horizon's
+/// air mass of about 40 falls to 5 within 11°), then `COLUMNS_COARSE` evenly up to 1.
+/// Indexed by μ_s itself rather than Bruneton's x_mu, whose distance to the top of the
+/// atmosphere is a chain of a square root and two divisions: the proposal looks the sun up
+/// 17 times per segment, and that chain was most of the look-up's time.
+const COLUMNS_FINE: usize = 96;
+const COLUMNS_COARSE: usize = 32;
+const COLUMNS_MU_S: usize = COLUMNS_FINE + COLUMNS_COARSE + 1;
+
+/// Least μ_s of the table: below the horizon of the top of the atmosphere (−0.175 at
+/// 100 km), so that every sun with any of its disk in sight is inside.
+const MU_S_LEAST: f64 = -0.2;
+
+/// μ_s from which the table's columns are coarse.
+const MU_S_KNEE: f64 = 0.2;
 
 /// Midpoint-rule steps per tabulated column (quadratic spacing, dense near the start).
 const COLUMN_STEPS: usize = 64;
 
+/// The table's fractional column of `mu_s` (from 0 at [`MU_S_LEAST`]).
+fn mu_s_column(mu_s: f64) -> f64 {
+    const FINE: f64 = COLUMNS_FINE as f64 / (MU_S_KNEE - MU_S_LEAST);
+    const COARSE: f64 = COLUMNS_COARSE as f64 / (1.0 - MU_S_KNEE);
+    if mu_s < MU_S_KNEE {
+        (mu_s - MU_S_LEAST) * FINE
+    } else {
+        COLUMNS_FINE as f64 + (mu_s - MU_S_KNEE) * COARSE
+    }
+}
+
+/// The μ_s of the table's column `x`: the inverse of [`mu_s_column`].
+fn column_mu_s(x: usize) -> f64 {
+    if x <= COLUMNS_FINE {
+        MU_S_LEAST + (MU_S_KNEE - MU_S_LEAST) * x as f64 / COLUMNS_FINE as f64
+    } else {
+        MU_S_KNEE + (1.0 - MU_S_KNEE) * (x - COLUMNS_FINE) as f64 / COLUMNS_COARSE as f64
+    }
+}
+
 /// Columns of air (m⁻²), ozone (m⁻²) and the aerosol profile (dimensionless) from a point to
-/// the top of the atmosphere, tabulated over (h, mu) for rays that miss the ground: with any
-/// wavelength's cross-sections they give an approximate transmittance to the sun.
+/// the top of the atmosphere along the sun's ray, or the horizon's where the sun's centre is
+/// below it, tabulated over (x_r, μ_s): with any wavelength's cross-sections they give an
+/// approximate transmittance to the sun. Stored in f32 to keep the table in a core's cache
+/// (single precision is far finer than the proposal needs).
 pub(super) struct SunColumns {
     big_r: f64,
     top: f64,
-    columns: Vec<[f64; 3]>,
+    /// ρ at the top of the atmosphere, m.
+    big_h: f64,
+    columns: Vec<[f32; 3]>,
 }
 
 impl SunColumns {
     pub(super) fn new(atmosphere: &Atmosphere) -> SunColumns {
         let (big_r, top) = (atmosphere.bottom_radius_m, atmosphere.top_radius_m);
-        let [nx, ny] = COLUMNS_SIZE;
-        let mut columns = Vec::with_capacity(nx * ny);
-        for y in 0..ny {
-            for x in 0..nx {
-                let x_mu = x as f64 / (nx - 1) as f64;
-                let x_r = y as f64 / (ny - 1) as f64;
-                let (h, mu) = transmittance_h_mu(x_mu, x_r, big_r, top);
+        let big_h = rho_squared(top - big_r, big_r).sqrt();
+        let mut columns = Vec::with_capacity(COLUMNS_ROWS * COLUMNS_MU_S);
+        for y in 0..COLUMNS_ROWS {
+            let rho = big_h * y as f64 / (COLUMNS_ROWS - 1) as f64;
+            let h = (rho * rho / ((rho * rho + big_r * big_r).sqrt() + big_r)).min(top - big_r);
+            for x in 0..COLUMNS_MU_S {
+                let mu_s = column_mu_s(x);
+                let mu = if hits_ground(h, mu_s, big_r) {
+                    horizon_mu(h, big_r)
+                } else {
+                    mu_s
+                };
                 let length = distance_to_top(h, mu, big_r, top);
-                let mut column = [0.0; 3];
+                let mut column = [0.0f64; 3];
                 for k in 0..COLUMN_STEPS {
                     let f = |k: usize| length * (k as f64 / COLUMN_STEPS as f64).powi(2);
                     let (t0, t1) = (f(k), f(k + 1));
@@ -80,20 +125,21 @@ impl SunColumns {
                     column[1] += d.ozone_m3 * (t1 - t0);
                     column[2] += d.aerosol_per_m * (t1 - t0);
                 }
-                columns.push(column);
+                columns.push(column.map(|c| c as f32));
             }
         }
         SunColumns {
             big_r,
             top,
+            big_h,
             columns,
         }
     }
 
     /// The columns straight up from the ground: the largest of any point with the sun overhead.
     pub(super) fn vertical(&self) -> [f64; 3] {
-        // Texel (0, 0): x_r = 0 is the ground, x_mu = 0 the shortest way to the top.
-        self.columns[0]
+        // Row 0 is the ground, the last column μ_s = 1.
+        self.columns[COLUMNS_MU_S - 1].map(f64::from)
     }
 
     /// The visible share of the sun's disk at zenith cosine `mu_s` from altitude `h`, and the
@@ -104,30 +150,29 @@ impl SunColumns {
             return (0.0, [0.0; 3]);
         }
         let h = h.clamp(0.0, self.top - self.big_r);
-        let mu = if hits_ground(h, mu_s, self.big_r) {
-            -(1.0 - (self.big_r / (self.big_r + h)).powi(2))
-                .max(0.0)
-                .sqrt()
-        } else {
-            mu_s
-        };
-        let (x_mu, x_r) = transmittance_x_mu_x_r(h, mu, self.big_r, self.top);
-        let [nx, ny] = COLUMNS_SIZE;
-        let fx = (x_mu.clamp(0.0, 1.0) * (nx - 1) as f64).min((nx - 1) as f64 - 1e-9);
-        let fy = (x_r.clamp(0.0, 1.0) * (ny - 1) as f64).min((ny - 1) as f64 - 1e-9);
+        let rho = rho_squared(h, self.big_r).sqrt();
+        let last_row = (COLUMNS_ROWS - 1) as f64;
+        let fy = (rho / self.big_h * last_row).min(last_row - 1e-9);
+        let fx = mu_s_column(mu_s).clamp(0.0, (COLUMNS_MU_S - 1) as f64 - 1e-9);
         let (x0, y0) = (fx as usize, fy as usize);
         let (ax, ay) = (fx - x0 as f64, fy - y0 as f64);
         // Written out rather than per component through a closure: this runs 17 times per
         // proposal, and the closure's look-ups were a tenth of a low-sun path's time.
-        let below = &self.columns[y0 * nx + x0..y0 * nx + x0 + 2];
-        let above = &self.columns[(y0 + 1) * nx + x0..(y0 + 1) * nx + x0 + 2];
+        let below = &self.columns[y0 * COLUMNS_MU_S + x0..y0 * COLUMNS_MU_S + x0 + 2];
+        let above = &self.columns[(y0 + 1) * COLUMNS_MU_S + x0..(y0 + 1) * COLUMNS_MU_S + x0 + 2];
         let mut column = [0.0; 3];
         for c in 0..3 {
-            column[c] = (1.0 - ay) * ((1.0 - ax) * below[0][c] + ax * below[1][c])
-                + ay * ((1.0 - ax) * above[0][c] + ax * above[1][c]);
+            let [b0, b1, a0, a1] =
+                [below[0][c], below[1][c], above[0][c], above[1][c]].map(f64::from);
+            column[c] = (1.0 - ay) * ((1.0 - ax) * b0 + ax * b1) + ay * ((1.0 - ax) * a0 + ax * a1);
         }
         (visible, column)
     }
+}
+
+/// Zenith cosine of the horizon from altitude `h` (m): the ray that grazes the ground.
+fn horizon_mu(h: f64, big_r: f64) -> f64 {
+    -(1.0 - (big_r / (big_r + h)).powi(2)).max(0.0).sqrt()
 }
 
 /// The four lanes' optics averaged: the proposal is one density for every lane, shaped like
