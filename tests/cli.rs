@@ -1346,15 +1346,21 @@ fn bench_gpu_reports_multiples_of_the_floor_pass() {
         // A rebuild in slices keeps every frame shorter than the one-frame rebuild and ends.
         assert!(f("rebuild_ui_max_ms") > 0.0 && f("rebuild_ui_mean_ms") <= f("rebuild_ui_max_ms"));
         assert!(f("rebuild_sliced_ms") >= f("rebuild_ui_max_ms") && f("rebuild_whole_ms") > 0.0);
-        // So does the still frame after a turn, drawn a slice at a time.
-        assert!(f("still_ui_max_ms") > 0.0 && f("still_ui_mean_ms") <= f("still_ui_max_ms"));
-        assert!(f("still_ui_p99_ms") <= f("still_ui_max_ms"));
-        assert!(f("still_sliced_ms") >= f("still_ui_max_ms"));
+        // The still frame after a turn: a slice at a time where the turn was drawn in tiles
+        // (the first slice one workgroup, the rest of the view's 4 × 3 in one or two more,
+        // then the frame that finds the last finished), else one frame that draws nothing.
+        let still_frames = row["still_frames"].as_u64().expect("still_frames");
+        if row["sky_tile"].as_u64() > Some(1) {
+            assert!(still_frames >= 3, "{id}: {still_frames} still frames");
+        } else {
+            assert_eq!(still_frames, 1, "{id}");
+        }
+        assert!(f("still_ui_max_ms") > 0.0 && f("still_sliced_ms") >= f("still_ui_max_ms"));
     }
 }
 
 #[test]
-fn bench_gpu_rebuild_only_times_the_sliced_rebuild_alone() {
+fn bench_gpu_rebuild_only_times_the_frames_in_slices_alone() {
     let o = atmoscope(&[
         "bench",
         "gpu",

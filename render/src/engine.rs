@@ -620,8 +620,9 @@ fn steered_units(count: u32, took_s: f64, shortest_s: f64, target_s: f64) -> u32
 /// The still frame after frames in tiles, drawn at full resolution a slice per frame where
 /// the engine slices its work (`Engine::set_rebuild_slices`): a march per pixel takes seconds
 /// there on a software adapter. The image in tiles stays on screen and sharpens from the top
-/// down. Slices are counted in workgroups, as a rebuild's ([`units`]): one row of workgroups
-/// of Nishita's march at 1280 pixels wide takes about 100 ms on lavapipe, Gałaj's spline 230.
+/// down. Slices are counted in workgroups along rows, as a rebuild's ([`units`], [`slice`]):
+/// one row of workgroups 1280 pixels wide takes about 105 ms of Nishita's march on lavapipe
+/// and 230 ms of Gałaj's spline, longer than a frame may.
 struct Refine {
     /// The frame's dispatches at full resolution, in order.
     work: Vec<Work>,
@@ -646,47 +647,56 @@ impl Refine {
         }
     }
 
-    /// The next slice's dispatch: none while the last one is on the GPU, None once every
-    /// slice has finished. A zero target takes half a row of workgroups a slice, so that
-    /// slices also start inside rows.
+    /// The next slice's dispatches: none while the last slice is on the GPU, None once every
+    /// slice has finished. A slice runs on across rows (the rest of one, whole rows, the
+    /// start of the next: up to three dispatches) so that it holds the units asked for, but
+    /// stops at the end of a dispatch of the frame. A zero target takes half a row of
+    /// workgroups a slice, so that slices also start inside rows.
     fn next_slice(&mut self, slicing: Slicing) -> Option<Vec<Work>> {
-        let (k, unit) = self.next;
-        let w = *self.work.get(k)?;
+        let target = slicing.target.as_secs_f64();
         if let Some((started, done, count)) = &self.in_flight {
             if !done.load(Ordering::Acquire) {
                 return Some(Vec::new());
             }
             let took = started.elapsed().as_secs_f64();
             self.shortest_s = self.shortest_s.min(took);
-            let target = slicing.target.as_secs_f64();
-            self.units = if target <= 0.0 {
-                w.groups[0].div_ceil(2)
-            } else {
-                steered_units(*count, took, self.shortest_s, target)
-            };
+            // A slice cut short at the end of a dispatch says little of the cost per
+            // workgroup (the frame's own work can be most of its time): the size stays.
+            if target > 0.0 && *count >= self.units {
+                self.units = steered_units(*count, took, self.shortest_s, target);
+            }
             self.in_flight = None;
         }
-        let (origin, groups, count) = slice(w.groups, unit, self.units);
-        self.next = if unit + count >= units(w.groups) {
-            (k + 1, 0)
-        } else {
-            (k, unit + count)
-        };
-        Some(vec![Work {
-            origin: [
-                w.origin[0] + origin[0],
-                w.origin[1] + origin[1],
-                w.origin[2] + origin[2],
-            ],
-            groups,
-            ..w
-        }])
+        let (k, mut unit) = self.next;
+        let w = *self.work.get(k)?;
+        if target <= 0.0 {
+            self.units = w.groups[0].div_ceil(2);
+        }
+        let (total, mut left) = (units(w.groups), self.units);
+        let mut slice_work = Vec::new();
+        while left > 0 && unit < total {
+            let (origin, groups, count) = slice(w.groups, unit, left);
+            slice_work.push(Work {
+                origin: [
+                    w.origin[0] + origin[0],
+                    w.origin[1] + origin[1],
+                    w.origin[2] + origin[2],
+                ],
+                groups,
+                ..w
+            });
+            unit += count;
+            left = left.saturating_sub(count);
+        }
+        self.next = if unit >= total { (k + 1, 0) } else { (k, unit) };
+        Some(slice_work)
     }
 
     /// Marks the slice just submitted as on the GPU.
     fn submitted(&mut self, queue: &wgpu::Queue, work: &[Work]) {
-        if let Some(w) = work.first() {
-            self.in_flight = Some((Instant::now(), when_done(queue), units(w.groups)));
+        if !work.is_empty() {
+            let count = work.iter().map(|w| units(w.groups)).sum();
+            self.in_flight = Some((Instant::now(), when_done(queue), count));
         }
     }
 }

@@ -113,13 +113,15 @@ struct GpuRow {
     rebuild_ui_last_ms: f64,
     rebuild_sliced_ms: f64,
     /// The still frame after a turn of the camera as the explorer draws it: where the turn
-    /// was drawn in tiles, every pixel again a slice of rows per frame, each frame drawing
-    /// the floor pass and waiting as above. The longest, 99th-percentile and mean frame
-    /// interval, and the time until the last slice (one frame where nothing was tiled).
+    /// was drawn in tiles, every pixel again, a run of workgroups per frame, each frame
+    /// drawing the floor pass and waiting as above. The longest, 99th-percentile and mean
+    /// frame interval, the time until the frame that finds the last slice finished, and the
+    /// frames until then (one, drawing nothing, where the turn was not drawn in tiles).
     still_ui_max_ms: f64,
     still_ui_p99_ms: f64,
     still_ui_mean_ms: f64,
     still_sliced_ms: f64,
+    still_frames: usize,
 }
 
 /// Frame intervals while the engine finishes work in slices, ms.
@@ -129,11 +131,12 @@ struct SlicedFrames {
     /// longest but not this.
     p99: f64,
     mean: f64,
-    /// The last frame: the one that swaps in the new tables (a rebuild) or draws the last
-    /// slice of the still image.
+    /// The last frame: the one that swaps in the new tables (a rebuild), or the one that
+    /// finds the still image's last slice finished.
     last: f64,
     /// From the first frame to the end of the last.
     total: f64,
+    frames: usize,
 }
 
 /// Frame intervals of frames of `scene` drawn as the explorer draws them, its work in slices,
@@ -181,6 +184,7 @@ fn sliced_frames(
     intervals.sort_by(f64::total_cmp);
     let rank = (0.99 * intervals.len() as f64).ceil() as usize;
     Ok(SlicedFrames {
+        frames: intervals.len(),
         longest: intervals.last().copied().unwrap_or(f64::NAN),
         p99: intervals.get(rank.max(1) - 1).copied().unwrap_or(f64::NAN),
         mean,
@@ -414,6 +418,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             still_ui_p99_ms: still.p99,
             still_ui_mean_ms: still.mean,
             still_sliced_ms: still.total,
+            still_frames: still.frames,
         });
     }
     if args.json {
@@ -436,7 +441,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         t = sky_tile
     );
     println!(
-        "{:14} {:12} {:>10} {:>8} {:>10} {:>8} {:>12} {:>12} {:>9} {:>8}   spans: {:>8} {:>8} {:>8}   ×floor: {:>6} {:>6} {:>7}   rebuild: {:>9} {:>28} {:>9}   still after a turn: {:>16}   table passes",
+        "{:14} {:12} {:>10} {:>8} {:>10} {:>8} {:>12} {:>12} {:>9} {:>8}   spans: {:>8} {:>8} {:>8}   ×floor: {:>6} {:>6} {:>7}   rebuild: {:>9} {:>28} {:>9}   still: {:>16}   table passes",
         "method",
         "set",
         "tables",
@@ -456,7 +461,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         "one frame",
         "sliced: UI max/p99/mean/last",
         "done in",
-        "UI max / done in"
+        "UI max/done in"
     );
     for r in &rows {
         let passes: Vec<String> = r
@@ -465,7 +470,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             .map(|(name, ms)| format!("{name} {ms:.2}"))
             .collect();
         println!(
-            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>7.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms {:>6.2} ms {:>5.2} ms   {:>5.2} ms {:>5.2} ms {:>5.2} ms          {:>6.1} {:>6.1} {:>7.1}            {:>6.0} ms {:>6.0}/{:>5.0}/{:>5.0}/{:>5.0} ms {:>6.0} ms   {:>19.0} / {:>6.0} ms   {}",
+            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>7.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms {:>6.2} ms {:>5.2} ms   {:>5.2} ms {:>5.2} ms {:>5.2} ms          {:>6.1} {:>6.1} {:>7.1}            {:>6.0} ms {:>6.0}/{:>5.0}/{:>5.0}/{:>5.0} ms {:>6.0} ms          {:>6.0}/{:>6.0} ms   {}",
             r.method,
             r.wavelengths,
             r.lut_total_ms,
