@@ -22,6 +22,7 @@
 
 use super::{Intervals, LANES, LaneOptics, PathMedium, PathTracer};
 use crate::Atmosphere;
+use crate::constants::SUN_ANGULAR_RADIUS_RAD;
 use crate::geometry::{Ray, altitude_along, distance_to_top, hits_ground, rho_squared};
 use crate::methods::rng::Rng;
 use crate::methods::shared::sun::visible_fraction;
@@ -46,18 +47,18 @@ const HIGH_SUN_MU_S: f64 = 0.2;
 /// ground, where the columns change fastest).
 const COLUMNS_ROWS: usize = 64;
 
-/// Columns of the sun-column table by μ_s, the sun's zenith cosine: `COLUMNS_FINE` evenly
-/// from [`MU_S_LEAST`] to [`MU_S_KNEE`], where the columns change fastest (the horizon's
-/// air mass of about 40 falls to 5 within 11°), then `COLUMNS_COARSE` evenly up to 1.
-/// Indexed by μ_s itself rather than Bruneton's x_mu, whose distance to the top of the
-/// atmosphere is a chain of a square root and two divisions: the proposal looks the sun up
-/// 17 times per segment, and that chain was most of the look-up's time.
+/// Columns of the sun-column table by μ_s, the sun's zenith cosine: `COLUMNS_FINE` intervals
+/// evenly from the table's least μ_s ([`MuSAxis`]) to [`MU_S_KNEE`], where the columns change
+/// fastest (the horizon's air mass of about 40 falls to 5 within 11°), then `COLUMNS_COARSE`
+/// evenly up to 1. Indexed by μ_s itself rather than Bruneton's x_mu, whose distance to the
+/// top of the atmosphere is a chain of a square root and two divisions: the proposal looks
+/// the sun up 17 times per segment, and that chain was most of the look-up's time.
 const COLUMNS_FINE: usize = 96;
 const COLUMNS_COARSE: usize = 32;
 const COLUMNS_MU_S: usize = COLUMNS_FINE + COLUMNS_COARSE + 1;
 
-/// Least μ_s of the table: below the horizon of the top of the atmosphere (−0.175 at
-/// 100 km), so that every sun with any of its disk in sight is inside.
+/// Least μ_s of the table where the atmosphere's top sees no lower sun: below the horizon of
+/// a 100 km top on the Earth (−0.175).
 const MU_S_LEAST: f64 = -0.2;
 
 /// μ_s from which the table's columns are coarse.
@@ -66,23 +67,42 @@ const MU_S_KNEE: f64 = 0.2;
 /// Midpoint-rule steps per tabulated column (quadratic spacing, dense near the start).
 const COLUMN_STEPS: usize = 64;
 
-/// The table's fractional column of `mu_s` (from 0 at [`MU_S_LEAST`]).
-fn mu_s_column(mu_s: f64) -> f64 {
-    const FINE: f64 = COLUMNS_FINE as f64 / (MU_S_KNEE - MU_S_LEAST);
-    const COARSE: f64 = COLUMNS_COARSE as f64 / (1.0 - MU_S_KNEE);
-    if mu_s < MU_S_KNEE {
-        (mu_s - MU_S_LEAST) * FINE
-    } else {
-        COLUMNS_FINE as f64 + (mu_s - MU_S_KNEE) * COARSE
-    }
+/// The sun-column table's μ_s axis: from [`MU_S_LEAST`], or lower where a higher top or a
+/// smaller planet sees the sun lower (the horizon of the top, less the sun's radius), so
+/// that every sun with any of its disk in sight lies inside.
+#[derive(Clone, Copy)]
+struct MuSAxis {
+    least: f64,
+    /// Fine columns per unit of μ_s.
+    fine: f64,
 }
 
-/// The μ_s of the table's column `x`: the inverse of [`mu_s_column`].
-fn column_mu_s(x: usize) -> f64 {
-    if x <= COLUMNS_FINE {
-        MU_S_LEAST + (MU_S_KNEE - MU_S_LEAST) * x as f64 / COLUMNS_FINE as f64
-    } else {
-        MU_S_KNEE + (1.0 - MU_S_KNEE) * (x - COLUMNS_FINE) as f64 / COLUMNS_COARSE as f64
+impl MuSAxis {
+    fn new(big_r: f64, top: f64) -> MuSAxis {
+        let least = MU_S_LEAST.min(horizon_mu(top - big_r, big_r) - SUN_ANGULAR_RADIUS_RAD);
+        MuSAxis {
+            least,
+            fine: COLUMNS_FINE as f64 / (MU_S_KNEE - least),
+        }
+    }
+
+    /// The table's fractional column of `mu_s` (0 at the least μ_s).
+    fn column(self, mu_s: f64) -> f64 {
+        const COARSE: f64 = COLUMNS_COARSE as f64 / (1.0 - MU_S_KNEE);
+        if mu_s < MU_S_KNEE {
+            (mu_s - self.least) * self.fine
+        } else {
+            COLUMNS_FINE as f64 + (mu_s - MU_S_KNEE) * COARSE
+        }
+    }
+
+    /// The μ_s of the table's column `x`: the inverse of [`MuSAxis::column`].
+    fn mu_s(self, x: usize) -> f64 {
+        if x <= COLUMNS_FINE {
+            self.least + (MU_S_KNEE - self.least) * x as f64 / COLUMNS_FINE as f64
+        } else {
+            MU_S_KNEE + (1.0 - MU_S_KNEE) * (x - COLUMNS_FINE) as f64 / COLUMNS_COARSE as f64
+        }
     }
 }
 
@@ -96,6 +116,7 @@ pub(super) struct SunColumns {
     top: f64,
     /// ρ at the top of the atmosphere, m.
     big_h: f64,
+    mu_s_axis: MuSAxis,
     columns: Vec<[f32; 3]>,
 }
 
@@ -103,12 +124,13 @@ impl SunColumns {
     pub(super) fn new(atmosphere: &Atmosphere) -> SunColumns {
         let (big_r, top) = (atmosphere.bottom_radius_m, atmosphere.top_radius_m);
         let big_h = rho_squared(top - big_r, big_r).sqrt();
+        let mu_s_axis = MuSAxis::new(big_r, top);
         let mut columns = Vec::with_capacity(COLUMNS_ROWS * COLUMNS_MU_S);
         for y in 0..COLUMNS_ROWS {
             let rho = big_h * y as f64 / (COLUMNS_ROWS - 1) as f64;
             let h = (rho * rho / ((rho * rho + big_r * big_r).sqrt() + big_r)).min(top - big_r);
             for x in 0..COLUMNS_MU_S {
-                let mu_s = column_mu_s(x);
+                let mu_s = mu_s_axis.mu_s(x);
                 let mu = if hits_ground(h, mu_s, big_r) {
                     horizon_mu(h, big_r)
                 } else {
@@ -132,6 +154,7 @@ impl SunColumns {
             big_r,
             top,
             big_h,
+            mu_s_axis,
             columns,
         }
     }
@@ -153,7 +176,10 @@ impl SunColumns {
         let rho = rho_squared(h, self.big_r).sqrt();
         let last_row = (COLUMNS_ROWS - 1) as f64;
         let fy = (rho / self.big_h * last_row).min(last_row - 1e-9);
-        let fx = mu_s_column(mu_s).clamp(0.0, (COLUMNS_MU_S - 1) as f64 - 1e-9);
+        let fx = self
+            .mu_s_axis
+            .column(mu_s)
+            .clamp(0.0, (COLUMNS_MU_S - 1) as f64 - 1e-9);
         let (x0, y0) = (fx as usize, fy as usize);
         let (ax, ay) = (fx - x0 as f64, fy - y0 as f64);
         // Written out rather than per component through a closure: this runs 17 times per
@@ -568,5 +594,47 @@ mod tests {
         }
         // Deep in the Earth's shadow there is no sunlight at all.
         assert_eq!(columns.towards_sun(1000.0, -0.2).0, 0.0);
+    }
+
+    /// Suns below the horizontal but above the horizon, whose rays pass a lowest point and
+    /// climb again: from 12 and 45 km with the sun 2° and 5° down, within 3 %; and from 300 km
+    /// under a 1000 km top with the sun 16.5° down, beyond the μ_s of −0.2 that covers a
+    /// 100 km top (its ray passes 26 km over the ground, so the column of μ_s −0.2, which
+    /// passes 167 km up, would leave all the light). The table's rows and columns spread over
+    /// ten times the height there, and its lowest point moves about 17 km from row to row: within
+    /// 35 %, a proposal's shape.
+    #[test]
+    fn sun_columns_hold_suns_below_the_horizontal() {
+        let high = AtmosphereSettings {
+            top_km: 1000.0,
+            ..AtmosphereSettings::default()
+        };
+        for (settings, h, elevation_deg, bound) in [
+            (AtmosphereSettings::default(), 12_000.0, -2.0, 0.03),
+            (AtmosphereSettings::default(), 45_000.0, -2.0, 0.03),
+            (AtmosphereSettings::default(), 45_000.0, -5.0, 0.03),
+            (high, 300_000.0, -16.5, 0.35),
+        ] {
+            let atmosphere = Atmosphere::new(&settings);
+            let columns = SunColumns::new(&atmosphere);
+            let lanes = LaneOptics::new(&atmosphere, [450.0, 550.0, 650.0, 750.0]);
+            let grey = GreyOptics::new(&lanes);
+            let optics = crate::Optics {
+                rayleigh_cross_section_m2: grey.rayleigh_m2,
+                ozone_cross_section_m2: grey.ozone_m2,
+                aerosol_optical_depth: grey.aerosol_extinction,
+                ..lanes.optics[1]
+            };
+            let mu_s = f64::to_radians(elevation_deg).sin();
+            let point = DVec3::new(0.0, 0.0, atmosphere.bottom_radius_m + h);
+            let sun = DVec3::new((1.0 - mu_s * mu_s).sqrt(), 0.0, mu_s);
+            let exact = atmosphere.transmittance_to_sun(&optics, point, sun);
+            let (visible, column) = columns.towards_sun(h, mu_s);
+            let table = visible * (-grey.depth(&column)).exp();
+            assert!(
+                exact < 0.95 && (table - exact).abs() <= bound * exact + 1e-4,
+                "h {h} m, sun {elevation_deg}°: table {table} vs exact {exact}"
+            );
+        }
     }
 }
