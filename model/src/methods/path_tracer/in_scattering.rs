@@ -564,28 +564,39 @@ mod tests {
         );
     }
 
+    /// The sun's transmittance from the table and from the exact quadrature, at altitude `h`
+    /// (m) with the sun `elevation_deg` up, for the lanes' grey optics.
+    fn table_and_exact(
+        atmosphere: &Atmosphere,
+        columns: &SunColumns,
+        h: f64,
+        elevation_deg: f64,
+    ) -> (f64, f64) {
+        let lanes = LaneOptics::new(atmosphere, [450.0, 550.0, 650.0, 750.0]);
+        let grey = GreyOptics::new(&lanes);
+        let optics = crate::Optics {
+            rayleigh_cross_section_m2: grey.rayleigh_m2,
+            ozone_cross_section_m2: grey.ozone_m2,
+            aerosol_optical_depth: grey.aerosol_extinction,
+            ..lanes.optics[1]
+        };
+        let mu_s = f64::to_radians(elevation_deg).sin();
+        let point = DVec3::new(0.0, 0.0, atmosphere.bottom_radius_m + h);
+        let sun = DVec3::new((1.0 - mu_s * mu_s).sqrt(), 0.0, mu_s);
+        let exact = atmosphere.transmittance_to_sun(&optics, point, sun);
+        let (visible, column) = columns.towards_sun(h, mu_s);
+        (visible * (-grey.depth(&column)).exp(), exact)
+    }
+
     /// The tabulated columns give the sun's transmittance the exact quadrature gives, within a
     /// few per cent where it matters (the proposal only needs its shape).
     #[test]
     fn sun_columns_give_the_exact_transmittance() {
         let atmosphere = Atmosphere::new(&AtmosphereSettings::default());
         let columns = SunColumns::new(&atmosphere);
-        let lanes = LaneOptics::new(&atmosphere, [450.0, 550.0, 650.0, 750.0]);
-        let grey = GreyOptics::new(&lanes);
-        let mean_optics = crate::Optics {
-            rayleigh_cross_section_m2: grey.rayleigh_m2,
-            ozone_cross_section_m2: grey.ozone_m2,
-            aerosol_optical_depth: grey.aerosol_extinction,
-            ..lanes.optics[1]
-        };
         for h in [0.0, 1500.0, 12_000.0, 45_000.0] {
             for elevation_deg in [90.0, 30.0, 8.0, 2.0, 0.5] {
-                let mu_s = f64::to_radians(elevation_deg).sin();
-                let point = DVec3::new(0.0, 0.0, atmosphere.bottom_radius_m + h);
-                let sun = DVec3::new((1.0 - mu_s * mu_s).sqrt(), 0.0, mu_s);
-                let exact = atmosphere.transmittance_to_sun(&mean_optics, point, sun);
-                let (visible, column) = columns.towards_sun(h, mu_s);
-                let table = visible * (-grey.depth(&column)).exp();
+                let (table, exact) = table_and_exact(&atmosphere, &columns, h, elevation_deg);
                 assert!(
                     (table - exact).abs() <= 0.03 * exact + 1e-4,
                     "h {h} m, sun {elevation_deg}°: table {table} vs exact {exact}"
@@ -601,8 +612,8 @@ mod tests {
     /// under a 1000 km top with the sun 16.5° down, beyond the μ_s of −0.2 that covers a
     /// 100 km top (its ray passes 26 km over the ground, so the column of μ_s −0.2, which
     /// passes 167 km up, would leave all the light). The table's rows and columns spread over
-    /// ten times the height there, and its lowest point moves about 17 km from row to row: within
-    /// 35 %, a proposal's shape.
+    /// ten times the height there, and its lowest point moves about 17 km from row to row:
+    /// within 35 %, a proposal's shape.
     #[test]
     fn sun_columns_hold_suns_below_the_horizontal() {
         let high = AtmosphereSettings {
@@ -617,20 +628,7 @@ mod tests {
         ] {
             let atmosphere = Atmosphere::new(&settings);
             let columns = SunColumns::new(&atmosphere);
-            let lanes = LaneOptics::new(&atmosphere, [450.0, 550.0, 650.0, 750.0]);
-            let grey = GreyOptics::new(&lanes);
-            let optics = crate::Optics {
-                rayleigh_cross_section_m2: grey.rayleigh_m2,
-                ozone_cross_section_m2: grey.ozone_m2,
-                aerosol_optical_depth: grey.aerosol_extinction,
-                ..lanes.optics[1]
-            };
-            let mu_s = f64::to_radians(elevation_deg).sin();
-            let point = DVec3::new(0.0, 0.0, atmosphere.bottom_radius_m + h);
-            let sun = DVec3::new((1.0 - mu_s * mu_s).sqrt(), 0.0, mu_s);
-            let exact = atmosphere.transmittance_to_sun(&optics, point, sun);
-            let (visible, column) = columns.towards_sun(h, mu_s);
-            let table = visible * (-grey.depth(&column)).exp();
+            let (table, exact) = table_and_exact(&atmosphere, &columns, h, elevation_deg);
             assert!(
                 exact < 0.95 && (table - exact).abs() <= bound * exact + 1e-4,
                 "h {h} m, sun {elevation_deg}°: table {table} vs exact {exact}"
