@@ -50,9 +50,10 @@ pub struct GpuBench {
     /// one dispatch. Default: the explorer's for the adapter, bands on a software adapter.
     #[arg(long, value_name = "true|false")]
     pub bands: Option<bool>,
-    /// Time only the change of the atmosphere built in slices (the `rebuild_ui_*` and
-    /// `rebuild_sliced_ms` keys, beside `floor_ms`; the frame, sun-move, table and whole-rebuild
-    /// timings are null): for models whose whole rebuilds take minutes on a software adapter.
+    /// Time only what the explorer draws in slices: the change of the atmosphere and the still
+    /// frame after a turn (the `rebuild_ui_*`, `rebuild_sliced_ms` and `still_*` keys, beside
+    /// `floor_ms`; the frame, sun-move, table and whole-rebuild timings are null): for models
+    /// whose whole rebuilds take minutes on a software adapter.
     #[arg(long)]
     pub rebuild_only: bool,
     #[arg(long)]
