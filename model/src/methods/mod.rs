@@ -543,7 +543,7 @@ pub const MODELS: &[ModelInfo] = &[
         method: Method::PathTracer,
         id: "path-tracer",
         label: "Path tracer",
-        citation: "Spectral Monte Carlo path tracer with delta tracking and next-event estimation (this project)",
+        citation: "Spectral Monte Carlo path tracer with ratio tracking and next-event estimation (this project)",
         summary: "The offline ground truth: all scattering orders, no tables. `atmoscope reference` and the Reference tab render with it.",
         domain: Domain::EVERYWHERE,
         tables: &[],

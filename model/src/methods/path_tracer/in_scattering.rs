@@ -4,10 +4,10 @@
 //! there — scattering times phase, the phase being the same all along a straight ray — scaled
 //! so that the segment holds the optical depth of their mean extinction: where sunlight is the
 //! same all along the segment this follows the single-scattering integrand. (The majorant's
-//! exponential, what delta tracking uses, falls as fast as the bluest lane's bound: along a
-//! level ray it put most points within a few kilometres and gave the rare far ones weights
-//! 30–80 times the mean. The extinction's own exponential, without the phase, put as many points
-//! in the thin air above as in the aerosol's forward peak below, with the sun ahead.) It still
+//! exponential falls as fast as the bluest lane's bound: along a level ray it put most points
+//! within a few kilometres and gave the rare far ones weights 30–80 times the mean. The
+//! extinction's own exponential, without the phase, put as many points in the thin air above
+//! as in the aerosol's forward peak below, with the sun ahead.) It still
 //! wastes most points where light does not come from: in the Earth's shadow at low sun. So
 //! each segment whose sunlight varies gets a piecewise-constant density shaped like its
 //! single-scattering integrand — scattering times phase, the view's transmittance and the
@@ -20,7 +20,7 @@
 //! little: the tabulated sun, the view's optical depth summed piece by piece from each piece's
 //! far end, and a peak inside a piece that both its ends miss (a grazing ray's lowest point).
 
-use super::{Intervals, LANES, LaneOptics, PathMedium, PathTracer};
+use super::{Intervals, LANES, LaneOptics, PathMedium, PathTracer, depth_to};
 use crate::Atmosphere;
 use crate::constants::SUN_ANGULAR_RADIUS_RAD;
 use crate::geometry::{Ray, altitude_along, distance_to_top, hits_ground, rho_squared};
@@ -265,19 +265,6 @@ impl Proposal {
         };
         self.edges[j] + f * (self.edges[j + 1] - self.edges[j])
     }
-}
-
-/// Optical depth of the per-shell rates `rates` (m⁻¹) from the segment's start to `t`, and the
-/// rate at `t`.
-fn depth_to(intervals: &[(f64, f64, usize)], rates: &[f64], t: f64) -> (f64, f64) {
-    let mut acc = 0.0;
-    for &(a, b, s) in intervals {
-        if t <= b {
-            return (acc + rates[s] * (t - a).max(0.0), rates[s]);
-        }
-        acc += rates[s] * (b - a);
-    }
-    (acc, 0.0)
 }
 
 impl PathTracer<'_> {
