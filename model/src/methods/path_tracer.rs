@@ -646,11 +646,12 @@ impl<'a> PathTracer<'a> {
     ) -> Option<(f64, f64)> {
         let rates = &medium.in_scattering_rate;
         let tau: f64 = intervals.iter().map(|&(a, b, s)| rates[s] * (b - a)).sum();
-        let p_any = 1.0 - (-tau).exp();
+        // exp_m1 and ln_1p keep a thin segment's chances exact.
+        let p_any = -(-tau).exp_m1();
         if !(p_any > 0.0) {
             return None;
         }
-        let (k, t) = locate(intervals, rates, -(1.0 - rng.uniform() * p_any).ln())?;
+        let (k, t) = locate(intervals, rates, -(-rng.uniform() * p_any).ln_1p())?;
         let t = t.clamp(intervals[k].0, intervals[k].1);
         let (depth, rate) = depth_to(intervals, rates, t);
         let pdf = rate * (-depth).exp() / p_any;
@@ -935,9 +936,9 @@ mod tests {
 
     /// The vertex a path goes on from is drawn with the density `scattering_point` reports: the
     /// mean of σ(t)/pdf(t) over its draws, σ a lane's extinction, is the optical depth of the
-    /// whole segment and of the part that holds the lower half of its air (a density that were
-    /// off in some shells would miss one or the other), on rays up, level and down to the
-    /// ground through haze. (The extinction is what the vertex's weight divides by the
+    /// whole segment and of its near half by the density's own depth (a density that were off
+    /// in some shells would miss one or the other), on rays up, level, down to the ground and
+    /// from space, through haze. (The extinction is what the vertex's weight divides by the
     /// density; the length alone, with the rare draws in the thin air above, has too heavy a
     /// tail to judge by.)
     #[test]
@@ -952,7 +953,12 @@ mod tests {
         let bottom = atmosphere.bottom_radius_m;
         let mut rng = Rng::new(13, 0, 0);
         let n = 40_000;
-        for (h, elevation_deg) in [(10.0, 60.0), (1500.0, 0.0), (9000.0, -20.0)] {
+        for (h, elevation_deg) in [
+            (10.0, 60.0),
+            (1500.0, 0.0),
+            (9000.0, -20.0),
+            (200_000.0, -15.0),
+        ] {
             let e: f64 = f64::to_radians(elevation_deg);
             let ray = Ray::new(
                 DVec3::new(0.0, 0.0, bottom + h),
