@@ -934,6 +934,22 @@ mod tests {
         assert!(checked > 40_000, "{checked}");
     }
 
+    /// The default atmosphere with rural haze.
+    fn rural() -> Atmosphere {
+        let mut s = AtmosphereSettings::default();
+        s.aerosol.kind = crate::aerosol::AerosolType::Rural;
+        Atmosphere::new(&s)
+    }
+
+    /// A ray from altitude `h` (m), `elevation_deg` above the horizontal.
+    fn ray_at(atmosphere: &Atmosphere, h: f64, elevation_deg: f64) -> Ray {
+        let e = elevation_deg.to_radians();
+        Ray::new(
+            DVec3::new(0.0, 0.0, atmosphere.bottom_radius_m + h),
+            DVec3::new(e.cos(), 0.0, e.sin()),
+        )
+    }
+
     /// The vertex a path goes on from is drawn with the density `scattering_point` reports: the
     /// mean of σ(t)/pdf(t) over its draws, σ a lane's extinction, is the optical depth of the
     /// whole segment and of its near half by the density's own depth (a density that were off
@@ -943,9 +959,7 @@ mod tests {
     /// tail to judge by.)
     #[test]
     fn scattering_points_are_drawn_with_the_density_they_report() {
-        let mut s = AtmosphereSettings::default();
-        s.aerosol.kind = crate::aerosol::AerosolType::Rural;
-        let atmosphere = Atmosphere::new(&s);
+        let atmosphere = rural();
         let tracer = PathTracer::new(&atmosphere, DVec3::Z, PathTracerSettings::default());
         let lanes = LaneOptics::new(&atmosphere, [450.0, 520.0, 600.0, 700.0]);
         let medium = tracer.medium(&lanes);
@@ -959,11 +973,7 @@ mod tests {
             (9000.0, -20.0),
             (200_000.0, -15.0),
         ] {
-            let e: f64 = f64::to_radians(elevation_deg);
-            let ray = Ray::new(
-                DVec3::new(0.0, 0.0, bottom + h),
-                DVec3::new(e.cos(), 0.0, e.sin()),
-            );
+            let ray = ray_at(&atmosphere, h, elevation_deg);
             let seg = tracer.segment(&ray).unwrap();
             let intervals = tracer.intervals(&ray, seg.start, seg.end);
             let rates = &medium.in_scattering_rate;
@@ -1013,9 +1023,7 @@ mod tests {
     /// through haze where a low sun's light comes from.
     #[test]
     fn ratio_tracking_about_the_shells_middle_is_unbiased_and_quieter() {
-        let mut s = AtmosphereSettings::default();
-        s.aerosol.kind = crate::aerosol::AerosolType::Rural;
-        let atmosphere = Atmosphere::new(&s);
+        let atmosphere = rural();
         let tracer = PathTracer::new(&atmosphere, DVec3::Z, PathTracerSettings::default());
         let lanes = LaneOptics::new(&atmosphere, [450.0, 520.0, 600.0, 700.0]);
         let medium = tracer.medium(&lanes);
@@ -1029,14 +1037,9 @@ mod tests {
             lowest.control[k] = min;
             lowest.residual_majorant[k] = (0..LANES).fold(0.0f64, |a, i| a.max(max[i] - min[i]));
         }
-        let bottom = atmosphere.bottom_radius_m;
         let n = 20_000;
         for (h, elevation_deg) in [(300.0, 0.0), (2000.0, 2.0), (8000.0, -1.0)] {
-            let e: f64 = f64::to_radians(elevation_deg);
-            let ray = Ray::new(
-                DVec3::new(0.0, 0.0, bottom + h),
-                DVec3::new(e.cos(), 0.0, e.sin()),
-            );
+            let ray = ray_at(&atmosphere, h, elevation_deg);
             let seg = tracer.segment(&ray).unwrap();
             let intervals = tracer.intervals(&ray, seg.start, seg.end);
             let mut rng = Rng::new(11, 0, 0);
