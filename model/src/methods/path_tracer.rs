@@ -12,9 +12,9 @@
 //! reach it.
 //! Next-event estimation to the sun (sampled inside its finite disk, transmittance by residual
 //! ratio tracking) is made at a point of every path segment drawn apart from the vertex, for
-//! the sunlight scattered once along it. Where sunlight varies along a segment (low sun, twilight, the Earth's shadow)
-//! that point is drawn from a density shaped like the segment's single-scattering integrand
-//! ([`in_scattering`]). Scattering directions come from the phase function, and at low sun a
+//! the sunlight scattered once along it. Where sunlight varies along a segment (low sun,
+//! twilight, the Earth's shadow) that point is drawn from a density shaped like the segment's
+//! single-scattering integrand ([`in_scattering`]). Scattering directions come from the phase function, and at low sun a
 //! share of them from a guide toward where single-scattered light comes from
 //! ([`direction_guide`]). The Lambertian ground gets its own next-event estimate and continues
 //! by cosine sampling. All scattering orders, Russian roulette from the second (judging a path
@@ -171,9 +171,10 @@ struct PathMedium {
     control: [Lanes; SHELL_ALTITUDES_M.len()],
     /// Majorant of |extinction − control| over the lanes.
     residual_majorant: [f64; SHELL_ALTITUDES_M.len()],
-    /// The lanes' mean extinction, roughly (between the bounds): the optical depth that the
-    /// exponential from which in-scattering points are drawn spreads over a segment, which then
-    /// follows the sky's own attenuation instead of the bluest lane's bound.
+    /// The lanes' mean extinction, roughly (between the bounds): the rate of the exponential
+    /// from which each segment's vertex is drawn, the share of light it lets through to the
+    /// ground, and the optical depth that the exponential of in-scattering points spreads over a
+    /// segment, which then follows the sky's own attenuation instead of the bluest lane's bound.
     in_scattering_rate: [f64; SHELL_ALTITUDES_M.len()],
     /// The lanes' mean Rayleigh and aerosol scattering coefficients, roughly, m⁻¹: with a
     /// segment's phase functions they shape that exponential like its in-scattering.
