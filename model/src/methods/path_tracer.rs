@@ -318,6 +318,12 @@ fn locate(intervals: &[(f64, f64, usize)], rates: &[f64], target: f64) -> Option
     None
 }
 
+/// Optical depth of `intervals` by the lanes' mean extinction ([`PathMedium::in_scattering_rate`]).
+fn mean_depth(intervals: &[(f64, f64, usize)], medium: &PathMedium) -> f64 {
+    let rates = &medium.in_scattering_rate;
+    intervals.iter().map(|&(a, b, s)| rates[s] * (b - a)).sum()
+}
+
 /// Optical depth of the per-shell rates `rates` (m⁻¹) from the start of `intervals` to `t`,
 /// and the rate at `t`.
 fn depth_to(intervals: &[(f64, f64, usize)], rates: &[f64], t: f64) -> (f64, f64) {
@@ -638,15 +644,16 @@ impl<'a> PathTracer<'a> {
     /// drawn from the exponential of the lanes' mean extinction truncated to the segment, so
     /// that every path scatters (none escapes, none meets a null collision) nearly where
     /// light would; the lanes' own transmittances and coefficients go into the weight. None
-    /// where the segment holds no medium.
+    /// where the segment holds no medium. `tau` is the segment's optical depth by that mean
+    /// extinction ([`mean_depth`]).
     fn scattering_point(
         &self,
         intervals: &[(f64, f64, usize)],
         medium: &PathMedium,
+        tau: f64,
         rng: &mut Rng,
     ) -> Option<(f64, f64)> {
         let rates = &medium.in_scattering_rate;
-        let tau: f64 = intervals.iter().map(|&(a, b, s)| rates[s] * (b - a)).sum();
         // exp_m1 and ln_1p keep a thin segment's chances exact.
         let p_any = -(-tau).exp_m1();
         if !(p_any > 0.0) {
@@ -732,10 +739,9 @@ impl<'a> PathTracer<'a> {
             // collisions, escapes and per-lane probabilities made the weights of every order
             // above random, and the fisheye with the sun at 2° took 12 % less noise² × time
             // without them.
+            let tau_mean = mean_depth(&intervals, &medium);
             let p_ground = if seg.ground && albedo > 0.0 {
-                let rates = &medium.in_scattering_rate;
-                let depth: f64 = intervals.iter().map(|&(a, b, s)| rates[s] * (b - a)).sum();
-                (-depth).exp()
+                (-tau_mean).exp()
             } else {
                 0.0
             };
@@ -757,7 +763,8 @@ impl<'a> PathTracer<'a> {
                     t * (r * phi.cos()) + b * (r * phi.sin()) + n * (1.0 - r * r).max(0.0).sqrt();
                 ray = Ray::new(n * (bottom + 1e-3), dir);
                 max_weight(&weight)
-            } else if let Some((t, pdf)) = self.scattering_point(&intervals, &medium, rng) {
+            } else if let Some((t, pdf)) = self.scattering_point(&intervals, &medium, tau_mean, rng)
+            {
                 let x = ray.origin + ray.direction * t;
                 let d = self.prepared.densities.at(x.length() - bottom);
                 let view_t = self.ratio_track(&ray, &intervals, t, lanes, &medium, rng);
@@ -977,14 +984,13 @@ mod tests {
             let ray = ray_at(&atmosphere, h, elevation_deg);
             let seg = tracer.segment(&ray).unwrap();
             let intervals = tracer.intervals(&ray, seg.start, seg.end);
-            let rates = &medium.in_scattering_rate;
-            let total: f64 = intervals.iter().map(|&(a, b, s)| rates[s] * (b - a)).sum();
-            let (k, half) = locate(&intervals, rates, 0.5 * total).unwrap();
+            let total = mean_depth(&intervals, &medium);
+            let (k, half) = locate(&intervals, &medium.in_scattering_rate, 0.5 * total).unwrap();
             let half = half.clamp(intervals[k].0, intervals[k].1);
             let (mut sums, mut squares) = ([0.0; 2], [0.0; 2]);
             for _ in 0..n {
                 let (t, pdf) = tracer
-                    .scattering_point(&intervals, &medium, &mut rng)
+                    .scattering_point(&intervals, &medium, total, &mut rng)
                     .unwrap();
                 assert!(
                     (seg.start..=seg.end).contains(&t),
