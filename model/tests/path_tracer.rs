@@ -151,10 +151,12 @@ fn order_one_agrees_within(atm: &Atmosphere, cases: &[(f64, Ray, f64)], paths: u
     }
 }
 
-/// At low sun a share of scattering directions is drawn from the guide: the estimate is the
-/// one that draws every direction from the phase function, within the noise (a mixture density
-/// that left out either part would brighten or darken the higher orders), in clear air and in
-/// haze, from the sun a little above the horizon to below it.
+/// At low sun a share of scattering directions is drawn from the guide, and the roulette
+/// judges a path by its weight times the guide's fluence: the estimate is the one that draws
+/// every direction from the phase function and judges by the weight alone, within the noise (a
+/// mixture density that left out either part, or a survivor not divided by its chance, would
+/// brighten or darken the higher orders), in clear air and in haze, from the sun a little
+/// above the horizon to below it.
 #[test]
 fn directions_drawn_from_the_guide_change_the_noise_not_the_sky() {
     let clear = Atmosphere::new(&AtmosphereSettings::default());

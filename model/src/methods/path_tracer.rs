@@ -18,8 +18,8 @@
 //! share of them from a guide toward where single-scattered light comes from
 //! ([`direction_guide`]). The Lambertian ground gets its own next-event estimate and continues
 //! by cosine sampling. All scattering orders, Russian roulette from the second (judging a path
-//! by its weight before its latest direction), an optional maximum order (1 = single
-//! scattering).
+//! by its weight before its latest direction, times the light its vertex can find where the
+//! guide is on), an optional maximum order (1 = single scattering).
 //!
 //! The direct solar disk seen by a camera ray is not included: renderers add it analytically.
 //! Radiance is spectral radiance for the scene's solar spectrum, W·m⁻²·sr⁻¹·nm⁻¹.
@@ -685,6 +685,9 @@ impl<'a> PathTracer<'a> {
         let albedo = self.atmosphere.ground_albedo;
         let bottom = self.atmosphere.bottom_radius_m;
         let mut order = 0u32;
+        // The light the path's first vertex can find, times its weight there: what the
+        // roulette measures a later vertex's prospects against where the guide is on.
+        let mut prospect_first = 0.0;
         loop {
             let Some(seg) = self.segment(&ray) else { break };
             order += 1;
@@ -792,8 +795,26 @@ impl<'a> PathTracer<'a> {
                 // because the light it leads to is faint, and judging it after would end most
                 // guided paths and multiply the survivors' weights (at sun −6°, the noise per
                 // path of orders ≥ 3 twice that of unguided paths).
-                let judged = max_weight(&weight);
-                let dir = self.scattered(x, constituent, ray.direction, lanes, &mut weight, rng);
+                let guide = self.guide(x);
+                let mut judged = max_weight(&weight);
+                // Where the guide is on (low sun), the light a vertex can find varies by orders
+                // of magnitude with its height and the sun's depression, and so does what a
+                // path's weight is worth there: the roulette then judges the weight times that
+                // light (the guide's fluence) against the first vertex's, ending paths where
+                // little is to be found and sparing those where much is, in the spirit of
+                // adjoint-driven roulette (Vorba and Křivánek 2016). Otherwise a guided path
+                // kept in the dark below the twilight arch that found it late, spared with a
+                // weight near 1, brought a thousand times the pixel's mean.
+                if let Some((_, frame)) = &guide {
+                    let prospect = judged * self.fluence(frame);
+                    if order == 1 {
+                        prospect_first = prospect;
+                    } else if prospect_first > 0.0 {
+                        judged = prospect / prospect_first;
+                    }
+                }
+                let dir =
+                    self.scattered(constituent, ray.direction, guide, lanes, &mut weight, rng);
                 ray = Ray::new(x, dir);
                 judged
             } else {
@@ -810,19 +831,19 @@ impl<'a> PathTracer<'a> {
         radiance
     }
 
-    /// A direction after scattering by `constituent` at vertex `x` of a path arriving along
-    /// `incoming`, from the direction guide or the phase function, with `weight` multiplied by
-    /// each lane's phase over the density it was drawn with.
+    /// A direction after scattering by `constituent` at a vertex of a path arriving along
+    /// `incoming`, from the vertex's direction guide (its [`Self::guide`]) or the phase
+    /// function, with `weight` multiplied by each lane's phase over the density it was drawn
+    /// with.
     fn scattered(
         &self,
-        x: DVec3,
         constituent: usize,
         incoming: DVec3,
+        guide: Option<(f64, direction_guide::Frame)>,
         lanes: &LaneOptics,
         weight: &mut Lanes,
         rng: &mut Rng,
     ) -> DVec3 {
-        let guide = self.guide(x);
         let dir = match &guide {
             Some((share, frame)) if rng.uniform() < *share => self.guide_sample(frame, rng),
             _ => self.sample_phase(constituent, &lanes.optics[0], incoming, rng),

@@ -76,6 +76,9 @@ const GUIDE_MU_S: f64 = 0.3;
 /// One slice: the cumulative mass of the cells, zenith bin major.
 struct Slice {
     cdf: [f64; CELLS + 1],
+    /// The single-scattered radiance over the whole sphere, without the floor (W·m⁻²·nm⁻¹
+    /// summed over the guide's wavelengths): zero where no light reaches the slice.
+    fluence: f64,
 }
 
 /// The guide's lazily built slices, one per (altitude bin, sun elevation bin); boxed, since a
@@ -162,6 +165,12 @@ impl PathTracer<'_> {
         self.prepared.guide.slices[slice].get_or_init(|| Box::new(self.build_slice(slice)))
     }
 
+    /// The single-scattered light reaching a vertex with `frame` from every direction: what
+    /// a path going on from there can find, up to a factor the same everywhere.
+    pub(super) fn fluence(&self, frame: &Frame) -> f64 {
+        self.guide_slice(frame.slice).fluence
+    }
+
     /// A direction drawn from the guide at a vertex with `frame`.
     pub(super) fn guide_sample(&self, frame: &Frame, rng: &mut Rng) -> DVec3 {
         let cdf = &self.guide_slice(frame.slice).cdf;
@@ -230,7 +239,10 @@ impl PathTracer<'_> {
             };
             cdf[cell + 1] = cdf[cell] + (1.0 - FLOOR_SHARE) * mass[cell] + floor;
         }
-        Slice { cdf }
+        Slice {
+            cdf,
+            fluence: total,
+        }
     }
 
     /// Single-scattered radiance (plus the sunlit ground's) reaching `x` from `dir` under a sun
