@@ -19,7 +19,7 @@
 //! ([`direction_guide`]). The Lambertian ground gets its own next-event estimate and continues
 //! by cosine sampling. All scattering orders, Russian roulette from the second (judging a path
 //! by its weight before its latest direction, times the light its vertex can find where the
-//! guide is on), an optional maximum order (1 = single scattering).
+//! sun is below the vertex's horizon), an optional maximum order (1 = single scattering).
 //!
 //! The direct solar disk seen by a camera ray is not included: renderers add it analytically.
 //! Radiance is spectral radiance for the scene's solar spectrum, W·m⁻²·sr⁻¹·nm⁻¹.
@@ -127,6 +127,11 @@ pub struct PathTracerSettings {
     /// direction from the phase function. Either way the estimate is unbiased: only its noise
     /// changes.
     pub guide_share: f64,
+    /// Whether, at vertices with the sun below their horizon, the Russian roulette judges a
+    /// path by its weight times the light the vertex can find (over that product at its first
+    /// vertex) rather than by its weight alone. Either way the estimate is unbiased: only its
+    /// noise changes (at twilight, much).
+    pub roulette_by_prospect: bool,
 }
 
 impl Default for PathTracerSettings {
@@ -135,6 +140,7 @@ impl Default for PathTracerSettings {
             max_order: None,
             sun_angular_radius_rad: SUN_ANGULAR_RADIUS_RAD,
             guide_share: GUIDE_SHARE,
+            roulette_by_prospect: true,
         }
     }
 }
@@ -686,7 +692,8 @@ impl<'a> PathTracer<'a> {
         let bottom = self.atmosphere.bottom_radius_m;
         let mut order = 0u32;
         // The light the path's first vertex can find, times its weight there: what the
-        // roulette measures a later vertex's prospects against where the guide is on.
+        // roulette measures a later vertex's prospects against where the sun is below its
+        // horizon.
         let mut prospect_first = 0.0;
         loop {
             let Some(seg) = self.segment(&ray) else { break };
@@ -797,15 +804,19 @@ impl<'a> PathTracer<'a> {
                 // path of orders ≥ 3 twice that of unguided paths).
                 let guide = self.guide(x);
                 let mut judged = max_weight(&weight);
-                // Where the guide is on (low sun), the light a vertex can find varies by orders
-                // of magnitude with its height and the sun's depression, and so does what a
-                // path's weight is worth there: the roulette then judges the weight times that
-                // light (the guide's fluence) against the first vertex's, ending paths where
-                // little is to be found and sparing those where much is, in the spirit of
-                // adjoint-driven roulette (Vorba and Křivánek 2016). Otherwise a guided path
-                // kept in the dark below the twilight arch that found it late, spared with a
-                // weight near 1, brought a thousand times the pixel's mean.
-                if let Some((_, frame)) = &guide {
+                // With the sun below a vertex's horizon, the light it can find varies by
+                // orders of magnitude with its height and the sun's depression, and so does
+                // what a path's weight is worth there: the roulette then judges the weight
+                // times that light (the guide's fluence) against the first vertex's, ending
+                // paths where little is to be found and sparing those where much is, in the
+                // spirit of adjoint-driven roulette (Vorba and Křivánek 2016). Otherwise a
+                // path kept in the dark below the twilight arch that found it late, spared
+                // with a weight near 1, brought a thousand times the pixel's mean. With the
+                // sun above the horizon that light varies little and judging by it only cost
+                // time (the fisheye at sun 2°, 256 paths: 0.95 of the noise for 1.14–1.18 of
+                // the time).
+                let sun_below = self.settings.roulette_by_prospect && x.dot(self.sun) < 0.0;
+                if let Some((_, frame)) = guide.as_ref().filter(|_| sun_below) {
                     let prospect = judged * self.fluence(frame);
                     if order == 1 {
                         prospect_first = prospect;
