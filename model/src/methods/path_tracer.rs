@@ -127,10 +127,12 @@ pub struct PathTracerSettings {
     /// direction from the phase function. Either way the estimate is unbiased: only its noise
     /// changes.
     pub guide_share: f64,
-    /// Whether, at vertices with the sun below their horizon, the Russian roulette judges a
-    /// path by its weight times the light the vertex can find (over that product at its first
-    /// vertex) rather than by its weight alone. Either way the estimate is unbiased: only its
-    /// noise changes (at twilight, much).
+    /// Whether, at scattering vertices with the sun below their horizon, the Russian roulette
+    /// judges a path by its weight times the single-scattered light the guide's slice there
+    /// finds (over that product at the path's first vertex, itself with the sun below its
+    /// horizon) rather than by its weight alone. Only where the guide is on: with
+    /// `guide_share` 0 every path is judged by its weight. Either way the estimate is unbiased:
+    /// only its noise changes (at twilight, much).
     pub roulette_by_prospect: bool,
 }
 
@@ -807,21 +809,27 @@ impl<'a> PathTracer<'a> {
                 // With the sun below a vertex's horizon, the light it can find varies by
                 // orders of magnitude with its height and the sun's depression, and so does
                 // what a path's weight is worth there: the roulette then judges the weight
-                // times that light (the guide's fluence) against the first vertex's, ending
-                // paths where little is to be found and sparing those where much is, in the
-                // spirit of adjoint-driven roulette (Vorba and Křivánek 2016). Otherwise a
-                // path kept in the dark below the twilight arch that found it late, spared
-                // with a weight near 1, brought a thousand times the pixel's mean. With the
-                // sun above the horizon that light varies little and judging by it only cost
-                // time (the fisheye at sun 2°, 256 paths: 0.95 of the noise for 1.14–1.18 of
-                // the time).
+                // times that light (the fluence of the guide's slice) against the same product
+                // at the path's first vertex, so that paths where little is to be found tend to
+                // end and those where much is to go on, in the spirit of adjoint-driven
+                // roulette (Vorba and Křivánek 2016). Otherwise a path kept in the dark below
+                // the twilight arch that found it late, spared with a weight near 1, brought a
+                // thousand times the pixel's mean. With the sun above the horizon that light
+                // varies little and judging by it only cost time (the fisheye at sun 2°, 256
+                // paths: 0.95 of the noise for 1.14–1.18 of the time). A slice with no light
+                // (its bins' middles in the full shadow) says nothing of what a path may still
+                // find beyond it: the weight alone judges there, as it does wherever the first
+                // vertex had the sun above its horizon, or the guide is off.
                 let sun_below = self.settings.roulette_by_prospect && x.dot(self.sun) < 0.0;
                 if let Some((_, frame)) = guide.as_ref().filter(|_| sun_below) {
                     let prospect = judged * self.fluence(frame);
                     if order == 1 {
                         prospect_first = prospect;
-                    } else if prospect_first > 0.0 {
-                        judged = prospect / prospect_first;
+                    } else if prospect_first > 0.0 && prospect > 0.0 {
+                        let ratio = prospect / prospect_first;
+                        if ratio.is_finite() {
+                            judged = ratio;
+                        }
                     }
                 }
                 let dir =

@@ -165,8 +165,9 @@ impl PathTracer<'_> {
         self.prepared.guide.slices[slice].get_or_init(|| Box::new(self.build_slice(slice)))
     }
 
-    /// The single-scattered light reaching a vertex with `frame` from every direction: what
-    /// a path going on from there can find, up to a factor the same everywhere.
+    /// The single-scattered light reaching the middle of the slice of a vertex with `frame`
+    /// (its altitude bin and 2° sun elevation bin) from every direction: roughly what a path
+    /// going on from there can find, up to a factor the same everywhere.
     pub(super) fn fluence(&self, frame: &Frame) -> f64 {
         self.guide_slice(frame.slice).fluence
     }
