@@ -94,7 +94,7 @@ pub struct FrameStats {
     pub rebuild: Option<RebuildProgress>,
     /// The frame put on screen a rebuild finished in slices (new images, whatever it ran).
     pub rebuild_done: bool,
-    /// Pixels on a side of the tiles the frame drew its sky in (`views::moving_tile`), where
+    /// Pixels on a side of the tiles the frame drew its sky in (`Engine::set_sky_tile`), where
     /// more than 1; 1 (0 in a frame that failed) where it drew every pixel or no sky.
     pub sky_tile: u32,
 }
@@ -427,14 +427,16 @@ impl FrameSetup {
 /// input it reads changed, a table it reads was just rewritten or it was left stale before
 /// (`deferred`); it runs when the view needs what it writes (from above the atmosphere a
 /// marching sky pass reads fewer tables, Bruneton's sky no camera slices there or with the sun
-/// below its tables, and a view without ground none of those only the ground's pixels read),
-/// and otherwise stays marked in `deferred`.
+/// below its tables, a view without ground none of those only the ground's pixels read, and a
+/// frame not `in_motion` (drawn in tiles) no moving sky), and otherwise stays marked in
+/// `deferred`.
 fn plan(
     pipelines: &Pipelines,
     changed: Inputs,
     above: bool,
     sun_below_tables: bool,
     ground: bool,
+    in_motion: bool,
     unwanted: &[&str],
     deferred: &mut [bool],
 ) -> Vec<usize> {
@@ -446,7 +448,7 @@ fn plan(
         let wanted = !spec.is_table() && !unwanted.contains(&spec.name);
         if wanted || spec.writes.iter().any(|w| needed_resources.contains(w)) {
             needed[i] = true;
-            needed_resources.extend(spec.reads_where(above, sun_below_tables, ground));
+            needed_resources.extend(spec.reads_where(above, sun_below_tables, ground, in_motion));
         }
     }
     let mut written: Vec<&str> = Vec::new();
@@ -1400,11 +1402,7 @@ impl Engine {
         if refine_in_slices.is_none() {
             self.refine = None;
         }
-        frame.sky_tile = if refine {
-            1
-        } else {
-            views::moving_tile(self.sky_tile, gpu)
-        };
+        frame.sky_tile = if refine { 1 } else { self.sky_tile };
         frame.write_radiance = frame.sky_tile <= 1 || self.metering;
         frame.bands = self.view_bands;
         if rebuilt || self.target.as_ref().is_none_or(|t| t.size != size) {
@@ -1435,6 +1433,7 @@ impl Engine {
             frame.above,
             frame.sun_below_tables,
             ground,
+            frame.sky_tile > 1,
             self.unwanted(),
             &mut self.deferred,
         );
@@ -1607,6 +1606,8 @@ impl Engine {
             frame.above,
             frame.sun_below_tables,
             ground,
+            // A rebuild draws its view at full resolution.
+            false,
             self.unwanted(),
             &mut deferred,
         );

@@ -3,7 +3,8 @@
 //! the model's tables (vec4 texels in the order of `model::methods::shared::Lut`).
 
 use crate::methods::{
-    COMMON, Constant, DISPLAY, GpuMethod, PassSpec, RADIANCE, SKY_ENTRY_POINT, TONE, VIEW_PASSES,
+    COMMON, Constant, DISPLAY, GpuMethod, MOVING_SKY, MOVING_SKY_ENTRY_POINT, MOVING_SKY_RADIANCE,
+    PassSpec, RADIANCE, SKY_ENTRY_POINT, TONE, VIEW_PASSES, VIEW_RADIANCE,
 };
 use crate::prelude::{march_split, wgsl_prelude};
 use crate::uniforms::{Batch, Globals, MIE_PHASE_ROWS_LEN};
@@ -85,7 +86,8 @@ fn pass_layout(pass: &PassSpec) -> Vec<wgpu::BindGroupLayoutEntry> {
 }
 
 /// The complete WGSL module of a pass of `method` (the display pass takes no model files; a
-/// sky pass ends with the shared entry point), for workgroups of `texel_group_size` where a
+/// sky pass ends with the shared entry point, and the moving sky's pass with its own after the
+/// model's sky file), for workgroups of `texel_group_size` where a
 /// workgroup shares a texel (`prelude::texel_group_size`).
 pub fn shader_source(method: &GpuMethod, pass: &PassSpec, texel_group_size: u32) -> String {
     let mut s = wgsl_prelude();
@@ -107,7 +109,16 @@ pub fn shader_source(method: &GpuMethod, pass: &PassSpec, texel_group_size: u32)
         s.push_str(TONE.source);
     }
     s.push_str(pass.shader.source);
+    if pass.writes.contains(&MOVING_SKY) {
+        s.push_str(MOVING_SKY_ENTRY_POINT.source);
+    }
     if pass.writes.contains(&RADIANCE) {
+        let radiance = if pass.reads_in_motion.contains(&MOVING_SKY) {
+            MOVING_SKY_RADIANCE
+        } else {
+            VIEW_RADIANCE
+        };
+        s.push_str(radiance.source);
         s.push_str(SKY_ENTRY_POINT.source);
     }
     s

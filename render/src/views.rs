@@ -1,7 +1,6 @@
 //! Views: what a frame shows and how (projection, size, display mode), plus the CPU twin of
 //! the luminance map's false-colour scale so a legend drawn on the CPU matches the shader.
 
-use crate::methods::GpuMethod;
 use crate::uniforms::DisplayMode;
 use atmoscope_model::camera::Projection;
 
@@ -44,19 +43,6 @@ pub fn moving_sky_tile(device_type: wgpu::DeviceType) -> u32 {
 
 /// Most pixels on a side of a moving frame's tiles.
 pub const MAX_SKY_TILE: u32 = 16;
-
-/// Pixels on a side of the tiles a moving frame of `method` draws its sky in where the engine
-/// draws moving frames in `tile` × `tile` tiles: the coarser of that and the model's own least
-/// ([`GpuMethod::moving_tile`]), or every pixel (1) where the engine draws every pixel. On
-/// lavapipe Schuler's and Gałaj's Taylor form took 13–16 floor passes a moving frame in 4 × 4
-/// tiles and 5–6 in 8 × 8; the still frame after it is exact all the same.
-pub fn moving_tile(tile: u32, method: &GpuMethod) -> u32 {
-    if tile > 1 {
-        tile.max(method.moving_tile).min(MAX_SKY_TILE)
-    } else {
-        1
-    }
-}
 
 /// Whether the sky pass runs in bands of what the rows see with the sun's disk apart
 /// (`Engine::set_view_bands`), by adapter: on a CPU adapter, which runs both sides of every

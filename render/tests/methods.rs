@@ -7,13 +7,15 @@ mod common;
 
 use atmoscope_model::camera::{Camera, Projection};
 use atmoscope_model::colour::{linear_srgb_to_xyz, srgb_decode};
-use atmoscope_model::methods::shared::Lut;
+use atmoscope_model::methods::shared::{Lut, moving_sky, viewpoint};
 use atmoscope_model::methods::{self, CannotDraw, ModelInfo};
 use atmoscope_model::metrics::{DisplaySetup, compare};
 use atmoscope_model::scene::{
     FittedConstants, Method, Quality, Scene, SunSettings, ToneMap, WavelengthSet,
 };
-use atmoscope_render::methods::{DISPLAY_PASS, GPU_METHODS, Repeat, gpu_method};
+use atmoscope_render::methods::{
+    DISPLAY_PASS, GPU_METHODS, MOVING_SKY, MOVING_SKY_PASS, Repeat, gpu_method,
+};
 use atmoscope_render::passes::shader_source;
 use atmoscope_render::uniforms::{Batch, Globals};
 use atmoscope_render::{Engine, EngineError, FrameStats, GpuContext, View};
@@ -199,7 +201,8 @@ fn every_lookup_table_matches_its_cpu_twin() {
             let radius = scene.atmosphere.planet_radius_km * 1000.0;
             let camera = Camera::new(&scene.camera, radius, view.projection);
             let cpu = methods::build(&scene, &camera).expect("a real-time model");
-            for table in model.tables {
+            // A still frame leaves the moving sky unbuilt: the next test holds it to its twin.
+            for table in model.tables.iter().filter(|t| t.id != MOVING_SKY) {
                 let gpu_lut = engine.read_table(table.id).expect("read-back");
                 let cpu_lut = cpu.table(table.id).expect("the twin's table");
                 let (e, texel) = worst_error(&gpu_lut, cpu_lut, 1e-3);
@@ -220,6 +223,70 @@ fn every_lookup_table_matches_its_cpu_twin() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// A march per pixel draws its views in motion (frames in tiles) from the moving sky, its own
+/// radiance at the sky-view grid's directions: built by the first such frame, it matches its
+/// f64 twin texel by texel; it is not built again while only the camera turns, and it is again
+/// when the sun moves; a still frame marches every pixel and builds nothing.
+#[test]
+fn the_moving_sky_matches_its_cpu_twin_and_is_built_only_in_motion() {
+    let Some(gpu) = context() else { return };
+    let mut failures = Vec::new();
+    for method in [Method::Nishita, Method::SchulerMs, Method::GalajSpline] {
+        for scene in [Scene::default(), twilight_spectral8()] {
+            let mut scene = scene.clone();
+            scene.render.method = method;
+            if refused(&scene) {
+                continue;
+            }
+            let name = format!("{method:?}, sun {:.0}°", scene.sun.angles().elevation_deg);
+            let view = View::new(Projection::Perspective, 32, 18);
+            let mut engine = Engine::new(&gpu.device, &gpu.queue);
+            let still = engine.render(&scene, &view).clone();
+            assert!(!still.ran(MOVING_SKY_PASS), "{name}: a still frame marches");
+            engine.set_sky_tile(4);
+            let mut turned = scene.clone();
+            turned.camera.heading_deg += 10.0;
+            let moving = engine.render(&turned, &view).clone();
+            assert!(
+                moving.ran(MOVING_SKY_PASS),
+                "{name}: the first frame in motion builds it"
+            );
+            turned.camera.heading_deg += 10.0;
+            let turning = engine.render(&turned, &view).clone();
+            assert_eq!(
+                turning.run,
+                vec!["sky"],
+                "{name}: turning, nothing but the sky"
+            );
+
+            let radius = scene.atmosphere.planet_radius_km * 1000.0;
+            let camera = Camera::new(&turned.camera, radius, view.projection);
+            let cpu = methods::build(&turned, &camera).expect("a real-time model");
+            let vp = viewpoint(&turned, &camera);
+            let cpu_lut = moving_sky::compute_lut(&*cpu, vp);
+            let gpu_lut = engine.read_table(MOVING_SKY).expect("read-back");
+            let (e, texel) = worst_error(&gpu_lut, &cpu_lut, 1e-3);
+            let psnr = psnr_db(&gpu_lut, &cpu_lut);
+            eprintln!(
+                "{name}: moving sky, worst relative error {e:.2e} at texel {texel}, PSNR {psnr:.1} dB"
+            );
+            if e >= 1e-3 && psnr < 47.0 {
+                failures.push(format!(
+                    "{name}: the moving sky differs from its twin by {e:.2e} at texel {texel}, PSNR {psnr:.1} dB"
+                ));
+            }
+
+            turned.sun = SunSettings::Angles {
+                elevation_deg: scene.sun.angles().elevation_deg + 1.0,
+                azimuth_deg: scene.sun.angles().azimuth_deg,
+            };
+            let sun_moved = engine.render(&turned, &view).clone();
+            assert!(sun_moved.ran(MOVING_SKY_PASS), "{name}: the sun moved");
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// The engine's last rendered view as linear sRGB.
 /// How many of the display's bytes may be a step off the f64 twin: one in 20. Lavapipe's f32
 /// puts under 2 % a step off, an H100's faster exp and pow 3.3 % (127 of 3 888); never 2 steps.
@@ -234,14 +301,14 @@ fn radiance_image(engine: &Engine) -> Vec<[f64; 3]> {
         .collect()
 }
 
-/// The passes a frame that draws everything runs: all but the display pass, whose image the
-/// sky pass draws too.
-fn every_pass_but_display(stats: &FrameStats) -> Vec<&'static str> {
+/// The passes a still frame that draws everything runs: all but the display pass, whose image
+/// the sky pass draws too, and the moving sky, which frames in motion alone read.
+fn every_still_pass(stats: &FrameStats) -> Vec<&'static str> {
     stats
         .passes
         .iter()
         .copied()
-        .filter(|&p| p != DISPLAY_PASS.name)
+        .filter(|&p| p != DISPLAY_PASS.name && p != MOVING_SKY_PASS)
         .collect()
 }
 
@@ -718,9 +785,7 @@ fn a_moving_frame_in_tiles_is_close_and_the_still_frame_after_it_exact() {
             engine.set_sky_tile(4);
             let moving = engine.render(&scene, &view).clone();
             assert!(moving.ran("sky"), "{name}: the moving frame draws");
-            // Schuler's march per pixel moves in its own coarser tiles.
-            let tile = if method == Method::Schuler { 8 } else { 4 };
-            assert_eq!(moving.sky_tile, tile, "{name}: the moving frame's tiles");
+            assert_eq!(moving.sky_tile, 4, "{name}: the moving frame's tiles");
             assert!(
                 engine.settling(),
                 "{name}: a frame in tiles awaits its full resolution"
@@ -870,7 +935,7 @@ fn timing_reports_every_pass_that_ran() {
         .clone();
     assert_eq!(stats.timing_source, Some(engine.timing_source()));
     assert_eq!(stats.timings_ms.len(), stats.run.len());
-    assert_eq!(stats.run, every_pass_but_display(&stats));
+    assert_eq!(stats.run, every_still_pass(&stats));
     assert!(
         stats
             .timings_ms
@@ -938,8 +1003,8 @@ fn order_gathering_models_rebuild_only_their_view_tables_when_the_sun_or_the_cam
             .count();
         let id = model.id;
         let first = engine.render(&scene, &view).clone();
-        assert_eq!(first.run, every_pass_but_display(&first), "{id}");
-        let once = every_pass_but_display(&first).len() - looped;
+        assert_eq!(first.run, every_still_pass(&first), "{id}");
+        let once = every_still_pass(&first).len() - looped;
         let orders = scene.render.scattering_orders as usize;
         assert_eq!(
             first.dispatched,
@@ -1032,7 +1097,7 @@ fn fitted_constants_reach_the_gpu_and_rebuild_the_tables() {
         let stats = engine.render(&scene, &view).clone();
         assert_eq!(
             stats.run,
-            every_pass_but_display(&stats),
+            every_still_pass(&stats),
             "{choice:?}: every table rebuilt"
         );
         let gpu_image = radiance_image(&engine);
@@ -1118,7 +1183,7 @@ fn from_above_the_atmosphere_the_view_tables_wait_until_a_view_needs_them() {
         scene.camera.altitude_m = 1000.0;
         let down = engine.render(&scene, &view).clone();
         assert!(
-            every_pass_but_display(&down)
+            every_still_pass(&down)
                 .iter()
                 .filter(|p| !from_space.contains(p))
                 .all(|p| down.run.contains(p)),
@@ -1143,7 +1208,7 @@ fn every_model_skips_its_tables_when_only_the_view_or_the_display_changes() {
         let first = engine.render(&scene, &view).clone();
         assert_eq!(
             first.run,
-            every_pass_but_display(&first),
+            every_still_pass(&first),
             "{}: a new model runs every pass",
             model.id
         );
@@ -1168,12 +1233,7 @@ fn every_model_skips_its_tables_when_only_the_view_or_the_display_changes() {
         );
         scene.atmosphere.ground_albedo = 0.5;
         let stats = engine.render(&scene, &view).clone();
-        assert_eq!(
-            stats.run,
-            every_pass_but_display(&stats),
-            "{}: albedo",
-            model.id
-        );
+        assert_eq!(stats.run, every_still_pass(&stats), "{}: albedo", model.id);
     }
     let mut offline = Scene::default();
     offline.render.method = Method::PathTracer;

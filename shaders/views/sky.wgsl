@@ -1,6 +1,7 @@
 // The entry point of every model's sky pass, appended after the pass's file, which defines
 // `radiance(layer, dir)`: a batch's radiance of the sky and the ground along a world direction
-// from the camera, and, in the model's common files, `sun_through_atmosphere(layer, h, mu_s)`:
+// from the camera (drawn through `view_radiance`: views/radiance.wgsl, or for a march per pixel
+// views/moving_sky_radiance.wgsl), and, in the model's common files, `sun_through_atmosphere(layer, h, mu_s)`:
 // the transmittance along the sun's own ray (shared/sun_disk.wgsl for the table-based models).
 // The sun's disk is added here, averaged over the pixel (twin of model::methods::render_with). Sums the
 // batches into linear sRGB (Y = ∫ȳL dλ) and writes coverage in alpha (0 outside the projection).
@@ -53,7 +54,7 @@ fn batch_srgb(layer: u32, l: vec4<f32>) -> vec3<f32> {
 fn sky_rgb(dir: vec3<f32>) -> vec3<f32> {
     var rgb = vec3<f32>(0.0);
     for (var layer = 0u; layer < batch_count(); layer++) {
-        rgb += batch_srgb(layer, radiance(layer, dir));
+        rgb += batch_srgb(layer, view_radiance(layer, dir));
     }
     return rgb;
 }
@@ -70,7 +71,7 @@ fn pixel(x: f32, y: f32) -> vec4<f32> {
     }
     var rgb = vec3<f32>(0.0);
     for (var layer = 0u; layer < batch_count(); layer++) {
-        var l = radiance(layer, ray.xyz);
+        var l = view_radiance(layer, ray.xyz);
         if SUN_DISK && disk.reaches {
             let sun = sun_through_atmosphere(layer, globals.camera_position.w, globals.sun.w);
             l += batches[layer].solar_irradiance * sun

@@ -12,8 +12,6 @@ use atmoscope_model::metrics::{DisplaySetup, compare};
 use atmoscope_model::scene::Method;
 use atmoscope_model::scene::{SunSettings, WavelengthSet};
 use atmoscope_model::views;
-use atmoscope_render::methods::gpu_method;
-use atmoscope_render::views::moving_tile;
 use atmoscope_render::{Engine, View};
 use clap::Args;
 use serde::Serialize;
@@ -40,10 +38,10 @@ pub struct GpuBench {
     /// Time passes by fenced CPU wall time even where GPU timestamps exist.
     #[arg(long)]
     pub cpu_timing: bool,
-    /// Tile of the sky pass in moving frames (1: every pixel; `sky_still_ms` is always every
-    /// pixel), or the model's coarser tile where it has one (8 for the marches with a closed
-    /// form towards the sun, `schuler` and `galaj-taylor`). Default: the explorer's for the
-    /// adapter, 4 on a software adapter, 1 on a GPU.
+    /// Tile of the sky pass in moving frames (1: every pixel, the marches per pixel included;
+    /// `sky_still_ms` is always every pixel; above 1 the marches per pixel draw moving frames
+    /// from their moving sky). Default: the explorer's for the adapter, 4 on a software
+    /// adapter, 1 on a GPU.
     #[arg(long, value_name = "PIXELS", value_parser = clap::value_parser!(u32).range(1..=16))]
     pub sky_tile: Option<u32>,
     /// Whether the sky pass runs in bands of what the rows see, the sun's disk apart, or as
@@ -68,7 +66,7 @@ struct GpuRow {
     /// Median milliseconds of each table pass in a full rebuild.
     lut_ms: Vec<(String, f64)>,
     lut_total_ms: f64,
-    /// Tile of the sky pass in the moving frames: `--sky-tile`, or the model's coarser one.
+    /// Tile of the sky pass in the moving frames: `--sky-tile`.
     sky_tile: u32,
     /// Whether the sky pass ran in bands (`--bands`).
     view_bands: bool,
@@ -394,7 +392,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             timing: engine.timing_source().label().into(),
             lut_total_ms,
             lut_ms,
-            sky_tile: gpu_method(method).map_or(sky_tile, |g| moving_tile(sky_tile, g)),
+            sky_tile,
             view_bands,
             sky_ms,
             display_ms,
@@ -432,7 +430,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         format!("median of {repeats}")
     };
     println!(
-        "{w}x{h} perspective, {measured}; times from {}; moving frames draw the sky in {t}×{t} tiles or the model's coarser ones (`sky_tile` in --json), a still frame every pixel; the sky pass {}",
+        "{w}x{h} perspective, {measured}; times from {}; moving frames draw the sky in {t}×{t} tiles (a march per pixel from its moving sky where tiles are on), a still frame every pixel; the sky pass {}",
         rows.first().map_or("", |r| r.timing.as_str()),
         if view_bands {
             "in bands, the sun's disk apart"

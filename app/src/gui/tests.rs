@@ -483,7 +483,7 @@ fn the_lut_tab_reads_every_table() {
         }
     }
     // A table-free model says so.
-    h.state_mut().scene.render.method = atmoscope_model::scene::Method::Nishita;
+    h.state_mut().scene.render.method = atmoscope_model::scene::Method::Preetham;
     h.run();
     h.get_by_label_contains("has no tables");
     // A table id the model does not have (an old or edited layout) shows the first table.

@@ -260,12 +260,13 @@ impl ModelInfo {
         self.build.is_some()
     }
 
-    /// Whether any table depends on the viewpoint (camera altitude, sun elevation): if not,
-    /// one CPU twin serves every viewpoint of an atmosphere.
+    /// Whether any table the model's still frames read depends on the viewpoint (camera
+    /// altitude, sun elevation): if not, one CPU twin serves every viewpoint of an atmosphere.
+    /// The moving sky is read by views in motion alone, which no CPU twin draws.
     pub fn reads_viewpoint(&self) -> bool {
-        self.tables
-            .iter()
-            .any(|t| t.invalidated_by.intersects(Inputs::VIEWPOINT))
+        self.tables.iter().any(|t| {
+            t.invalidated_by.intersects(Inputs::VIEWPOINT) && t.id != shared::moving_sky::TABLE.id
+        })
     }
 
     /// A table of the model by id.
@@ -362,7 +363,7 @@ pub const MODELS: &[ModelInfo] = &[
         id: "nishita",
         label: "Nishita 1993",
         citation: "T. Nishita, T. Sirai, K. Tadamura, E. Nakamae (1993), Display of the Earth Taking into Account Atmospheric Scattering, SIGGRAPH; per pixel on the GPU as in S. O'Neil (2005), Accurate Atmospheric Scattering, GPU Gems 2",
-        summary: "Single scattering by nested quadrature, no tables: every pixel marches its view ray and, at each sample, the ray to the sun. No higher orders; nothing to rebuild, all the cost is in the frame.",
+        summary: "Single scattering by nested quadrature, no tables of the atmosphere: every pixel marches its view ray and, at each sample, the ray to the sun. No higher orders; all the cost is in the frame (in motion on a software GPU, in the moving sky: the same marches at 192 × 108 directions).",
         domain: nishita::DOMAIN,
         tables: &nishita::TABLES,
         gathers_orders: false,
@@ -388,7 +389,7 @@ pub const MODELS: &[ModelInfo] = &[
         id: "nishita-ms",
         label: "Nishita 1993 + Hillaire's Ψ_ms",
         citation: "Nishita et al. (1993) as the nishita row, with the multiple-scattering table of S. Hillaire (2020) as its higher orders",
-        summary: "The nishita row's table-free single scattering plus Hillaire's isotropic higher orders Ψ_ms, looked up at every sample: two small tables that depend on the atmosphere alone.",
+        summary: "The nishita row's table-free single scattering plus Hillaire's isotropic higher orders Ψ_ms, looked up at every sample: two small tables that depend on the atmosphere alone (and the moving sky for views in motion on a software GPU).",
         domain: nishita::DOMAIN_MS,
         tables: &single_scattering_sky::TABLES_WITH_HIGHER_ORDERS,
         gathers_orders: false,
@@ -414,7 +415,7 @@ pub const MODELS: &[ModelInfo] = &[
         id: "schuler",
         label: "Schuler 2012",
         citation: "C. Schuler (2012), An Approximation to the Chapman Grazing-Incidence Function for Atmospheric Scattering, GPU Pro 3; as compared by D. Leenman (2025)",
-        summary: "Nishita's per-pixel single scattering with the march towards the sun replaced by Schuler's closed-form Chapman function on exponential fits of air and aerosol (ozone as a thin shell); no tables, no higher orders.",
+        summary: "Nishita's per-pixel single scattering with the march towards the sun replaced by Schuler's closed-form Chapman function on exponential fits of air and aerosol (ozone as a thin shell); no tables of the atmosphere (views in motion on a software GPU are drawn from the moving sky), no higher orders.",
         domain: schuler::DOMAIN,
         tables: &schuler::TABLES,
         gathers_orders: false,
@@ -440,7 +441,7 @@ pub const MODELS: &[ModelInfo] = &[
         id: "galaj-taylor",
         label: "Gałaj 2021 (Taylor)",
         citation: "T. Gałaj, F. Pietrusiak, M. Galewski, R. Ledzion, A. Wojciechowski (2021), Hybrid Integration Method for Sunlight Atmospheric Scattering, IEEE Access 9: the Taylor-series transmittance (a = b = 0.45)",
-        summary: "Single scattering marched along the view ray, with the optical depth towards the sun from one closed form per constituent: the altitude along the sun's ray expanded to order 1 + a about a point b of the way to the top; exponential fits of air and aerosol, ozone as a thin shell; no tables, no higher orders.",
+        summary: "Single scattering marched along the view ray, with the optical depth towards the sun from one closed form per constituent: the altitude along the sun's ray expanded to order 1 + a about a point b of the way to the top; exponential fits of air and aerosol, ozone as a thin shell; no tables of the atmosphere (views in motion on a software GPU are drawn from the moving sky), no higher orders.",
         domain: galaj_taylor::DOMAIN,
         tables: &galaj_taylor::TABLES,
         gathers_orders: false,

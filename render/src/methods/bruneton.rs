@@ -4,8 +4,8 @@
 //! `atmoscope_model::methods::bruneton::<pass>`.
 
 use super::{
-    Constant, Dispatch, ENGINE_TILE, GpuMethod, PassSpec, Repeat, SKY_CONSTANTS,
-    SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS, shader,
+    Constant, Dispatch, GpuMethod, PassSpec, Repeat, SKY_CONSTANTS, SUN_DISK_FROM_TABLE,
+    TRANSMITTANCE_PASS, shader,
 };
 use atmoscope_model::scene::Method;
 
@@ -36,7 +36,6 @@ const SKY_CONSTANTS_BELOW_TABLES: [Constant; 11] = {
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Bruneton,
-    moving_tile: ENGINE_TILE,
     common: &[SUN_DISK_FROM_TABLE, shader!("bruneton/common.wgsl")],
     constants: |_| [0.0; 12],
     passes: &[

@@ -4,8 +4,7 @@
 //! `atmoscope_model::methods::elek::<pass>`.
 
 use super::{
-    Dispatch, ENGINE_TILE, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS,
-    shader,
+    Dispatch, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS, shader,
 };
 use atmoscope_model::scene::Method;
 
@@ -21,7 +20,6 @@ const VOLUME: Dispatch = Dispatch::Volume(RAYLEIGH);
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Elek,
-    moving_tile: ENGINE_TILE,
     common: &[SUN_DISK_FROM_TABLE, shader!("elek/common.wgsl")],
     constants: |_| [0.0; 12],
     passes: &[

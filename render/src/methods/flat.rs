@@ -2,13 +2,12 @@
 //! (`shaders/shared/segments_sky.wgsl`) with one segment. Its f64 twin is
 //! `atmoscope_model::methods::flat`.
 
-use super::{ENGINE_TILE, GpuMethod, SEGMENTS_COMMON, SEGMENTS_SKY_PASS};
+use super::{GpuMethod, SEGMENTS_COMMON, SEGMENTS_SKY_PASS};
 use atmoscope_model::methods::shared::segments_sky::{self, FLAT_SEGMENTS};
 use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Flat,
-    moving_tile: ENGINE_TILE,
     common: &SEGMENTS_COMMON,
     constants: |p| segments_sky::constants(p, FLAT_SEGMENTS),
     passes: &[SEGMENTS_SKY_PASS],

@@ -5,8 +5,9 @@
 //! `atmoscope_model::methods::galaj_spline`.
 
 use super::{
-    Dispatch, ENGINE_TILE, EXPONENTIAL, GpuMethod, HIGHER_ORDERS_PASSES, HILLAIRE_HIGHER_ORDERS,
-    NO_HIGHER_ORDERS, PassSpec, Repeat, SUN_ROUTE, Shader, shader,
+    Dispatch, EXPONENTIAL, GpuMethod, HIGHER_ORDERS_PASSES, HILLAIRE_HIGHER_ORDERS, MOVING_SKY,
+    NO_HIGHER_ORDERS, PassSpec, Repeat, SINGLE_SCATTERING_SKY, SUN_ROUTE, Shader, moving_sky_pass,
+    shader,
 };
 use atmoscope_model::methods::galaj_spline::MESH;
 use atmoscope_model::methods::shared::single_scattering_sky::{self, Way};
@@ -25,26 +26,29 @@ pub const MESH_PASS: PassSpec = PassSpec::table(
     Repeat::Once,
 );
 
-const SKY_SHADER: Shader = shader!("shared/single_scattering_sky.wgsl");
+const SKY_SHADER: Shader = SINGLE_SCATTERING_SKY;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::GalajSpline,
-    moving_tile: ENGINE_TILE,
     common: &[NO_HIGHER_ORDERS, EXPONENTIAL, COLUMNS, SUN_ROUTE],
     constants: |p| single_scattering_sky::constants(p, Way::GalajSpline),
-    passes: &[MESH_PASS, PassSpec::sky(SKY_SHADER, &[MESH.id])],
+    passes: &[
+        MESH_PASS,
+        moving_sky_pass(SKY_SHADER, &[MESH.id]),
+        PassSpec::sky(SKY_SHADER, &[MESH.id, MOVING_SKY]).with_moving_sky(),
+    ],
 };
 
 /// With Hillaire's Ψ_ms table as the higher orders (the `galaj-spline-ms` row).
 pub const METHOD_MS: GpuMethod = GpuMethod {
     method: Method::GalajSplineMs,
-    moving_tile: ENGINE_TILE,
     common: &[HILLAIRE_HIGHER_ORDERS, EXPONENTIAL, COLUMNS, SUN_ROUTE],
     constants: |p| single_scattering_sky::constants(p, Way::GalajSpline),
     passes: &[
         MESH_PASS,
         HIGHER_ORDERS_PASSES[0],
         HIGHER_ORDERS_PASSES[1],
-        PassSpec::sky(SKY_SHADER, &[MESH.id, "multiple-scattering"]),
+        moving_sky_pass(SKY_SHADER, &[MESH.id, "multiple-scattering"]),
+        PassSpec::sky(SKY_SHADER, &[MESH.id, "multiple-scattering", MOVING_SKY]).with_moving_sky(),
     ],
 };

@@ -4,24 +4,22 @@
 //! `atmoscope_model::methods::galaj_taylor`.
 
 use super::{
-    CLOSED_FORM_MARCH_TILE, GpuMethod, SINGLE_SCATTERING_COMMON, SINGLE_SCATTERING_MS_COMMON,
-    SINGLE_SCATTERING_MS_PASSES, SINGLE_SCATTERING_SKY_PASS,
+    GpuMethod, SINGLE_SCATTERING_COMMON, SINGLE_SCATTERING_MS_COMMON, SINGLE_SCATTERING_MS_PASSES,
+    SINGLE_SCATTERING_PASSES,
 };
 use atmoscope_model::methods::shared::single_scattering_sky::{self, Way};
 use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::GalajTaylor,
-    moving_tile: CLOSED_FORM_MARCH_TILE,
     common: &SINGLE_SCATTERING_COMMON,
     constants: |p| single_scattering_sky::constants(p, Way::GalajTaylor),
-    passes: &[SINGLE_SCATTERING_SKY_PASS],
+    passes: &SINGLE_SCATTERING_PASSES,
 };
 
 /// With Hillaire's Ψ_ms table as the higher orders (the `galaj-taylor-ms` row).
 pub const METHOD_MS: GpuMethod = GpuMethod {
     method: Method::GalajTaylorMs,
-    moving_tile: CLOSED_FORM_MARCH_TILE,
     common: &SINGLE_SCATTERING_MS_COMMON,
     constants: |p| single_scattering_sky::constants(p, Way::GalajTaylor),
     passes: &SINGLE_SCATTERING_MS_PASSES,

@@ -2,15 +2,13 @@
 //! of every pass is `atmoscope_model::methods::garcia_linan::<pass>`.
 
 use super::{
-    Dispatch, ENGINE_TILE, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS,
-    shader,
+    Dispatch, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS, shader,
 };
 use atmoscope_model::methods::garcia_linan::Constants;
 use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::GarciaLinan,
-    moving_tile: ENGINE_TILE,
     common: &[
         SUN_DISK_FROM_TABLE,
         shader!("common/march.wgsl"),

@@ -2,8 +2,7 @@
 //! pass is `atmoscope_model::methods::hillaire::<pass>`.
 
 use super::{
-    Dispatch, ENGINE_TILE, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS,
-    shader,
+    Dispatch, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS, shader,
 };
 use atmoscope_model::scene::Method;
 
@@ -22,7 +21,6 @@ pub const MULTIPLE_SCATTERING_PASS: PassSpec = PassSpec::table(
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Hillaire,
-    moving_tile: ENGINE_TILE,
     common: &[
         SUN_DISK_FROM_TABLE,
         shader!("common/march.wgsl"),

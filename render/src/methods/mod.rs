@@ -21,6 +21,7 @@ pub mod raymarched;
 pub mod schuler;
 pub mod trapezoid;
 
+use atmoscope_model::methods::shared::moving_sky;
 use atmoscope_model::methods::{self, Inputs, ModelInfo};
 use atmoscope_model::scene::Method;
 
@@ -183,6 +184,10 @@ pub struct PassSpec {
     /// What the pass reads only for pixels that see the ground: a view without ground leaves
     /// the passes that only these need stale until a view shows the ground.
     pub reads_for_ground: &'static [&'static str],
+    /// What the pass reads only in frames drawn in tiles (a view in motion on a software GPU)
+    /// from inside the atmosphere: the moving sky of a march per pixel ([`moving_sky_pass`]).
+    /// Other frames leave the passes that only these need stale until such a frame.
+    pub reads_in_motion: &'static [&'static str],
 }
 
 impl PassSpec {
@@ -208,6 +213,7 @@ impl PassSpec {
             reads_above_atmosphere: None,
             reads_with_sun_below_tables: None,
             reads_for_ground: &[],
+            reads_in_motion: &[],
         }
     }
 
@@ -228,6 +234,7 @@ impl PassSpec {
             reads_above_atmosphere: None,
             reads_with_sun_below_tables: None,
             reads_for_ground: &[],
+            reads_in_motion: &[],
         }
     }
 
@@ -252,13 +259,24 @@ impl PassSpec {
         }
     }
 
+    /// The same sky pass of a march per pixel drawing its frames in tiles from the moving sky
+    /// ([`moving_sky_pass`]), which it must read: `views/moving_sky_radiance.wgsl`.
+    pub const fn with_moving_sky(self) -> PassSpec {
+        PassSpec {
+            reads_in_motion: &[MOVING_SKY],
+            ..self
+        }
+    }
+
     /// What the pass reads with the camera above the atmosphere or not, with the sun below
-    /// Bruneton's tables for some view ray or not, in a view that shows the ground or not.
+    /// Bruneton's tables for some view ray or not, in a view that shows the ground or not, in
+    /// a frame drawn in tiles or not.
     pub fn reads_where(
         &self,
         above_atmosphere: bool,
         sun_below_tables: bool,
         ground_in_view: bool,
+        in_motion: bool,
     ) -> Vec<&'static str> {
         let reads = match (
             self.reads_above_atmosphere,
@@ -272,6 +290,7 @@ impl PassSpec {
             .iter()
             .copied()
             .filter(|r| ground_in_view || !self.reads_for_ground.contains(r))
+            .filter(|r| (in_motion && !above_atmosphere) || !self.reads_in_motion.contains(r))
             .collect()
     }
 
@@ -322,23 +341,7 @@ pub struct GpuMethod {
     /// The model's constants the passes read from `globals.model`, for the optics and model
     /// settings of `Params`.
     pub constants: fn(&atmoscope_model::methods::shared::Params) -> ModelConstants,
-    /// Least side, in pixels, of the tiles a view in motion draws its sky in where the engine
-    /// draws moving frames in tiles at all (`Engine::set_sky_tile`, `views::moving_tile`):
-    /// [`ENGINE_TILE`], or [`CLOSED_FORM_MARCH_TILE`] for a costly pixel in a smooth image.
-    pub moving_tile: u32,
 }
-
-/// [`GpuMethod::moving_tile`] that leaves the engine's tile as it is: for models whose pixel is
-/// a few table look-ups or closed forms, and for the nested marches (Nishita's, the trapezoid
-/// rule's, Gałaj's spline), whose images hold lines near the horizon thinner than 4 pixels
-/// that the corners of coarser tiles miss (ΔE2000 up to 20 in 8 × 8 tiles, 1.2 in 4 × 4).
-pub const ENGINE_TILE: u32 = 1;
-
-/// [`GpuMethod::moving_tile`] of a march along each pixel's ray with a closed form towards the
-/// sun at every sample (Schuler's, Gałaj's Taylor form): a pixel costs 10 times a table
-/// look-up, and the image is smooth enough for 8 × 8 tiles (ΔE2000 at most 2.1 from the
-/// still frame, as in 4 × 4).
-pub const CLOSED_FORM_MARCH_TILE: u32 = 8;
 
 /// The values of `globals.model`: three rows of four.
 pub type ModelConstants = [f64; 12];
@@ -378,6 +381,7 @@ pub const DISPLAY_PASS: PassSpec = PassSpec {
     reads_above_atmosphere: None,
     reads_with_sun_below_tables: None,
     reads_for_ground: &[],
+    reads_in_motion: &[],
 };
 
 /// The pass that counts the view's pixels per luminance bin, after every model's view; it
@@ -394,6 +398,7 @@ pub const METER_PASS: PassSpec = PassSpec {
     reads_above_atmosphere: None,
     reads_with_sun_below_tables: None,
     reads_for_ground: &[],
+    reads_in_motion: &[],
 };
 
 /// The passes after every model's sky pass: they read the view, not the tables.
@@ -412,12 +417,44 @@ pub const TRANSMITTANCE_PASS: PassSpec = PassSpec {
     reads_above_atmosphere: None,
     reads_with_sun_below_tables: None,
     reads_for_ground: &[],
+    reads_in_motion: &[],
 };
 
-/// The sky pass of the table-free single-scattering models: the view march lit through the
+/// The table of the moving sky (`atmoscope_model::methods::shared::moving_sky`).
+pub const MOVING_SKY: &str = moving_sky::TABLE.id;
+
+/// The moving sky of a march per pixel: the model's sky file `sky`, whose `radiance(layer,
+/// dir)` the entry point `shared/moving_sky.wgsl` evaluates at the directions of the sky-view
+/// grid, reading what the sky pass reads. On a software GPU a march costs 10–300 table look-ups
+/// a pixel; a view in motion is drawn from this table of 192 × 108 marches
+/// ([`PassSpec::with_moving_sky`]), rebuilt only when the viewpoint moves, and the still frame
+/// after it marches every pixel.
+pub const fn moving_sky_pass(sky: Shader, reads: &'static [&'static str]) -> PassSpec {
+    PassSpec::table(
+        MOVING_SKY_PASS,
+        sky,
+        reads,
+        &[MOVING_SKY],
+        Dispatch::Table(MOVING_SKY),
+        Repeat::Once,
+    )
+}
+
+/// The name of [`moving_sky_pass`].
+pub const MOVING_SKY_PASS: &str = "moving-sky";
+
+/// The entry point of [`moving_sky_pass`], after the model's sky file.
+pub const MOVING_SKY_ENTRY_POINT: Shader = shader!("shared/moving_sky.wgsl");
+
+/// The sky file of the table-free single-scattering models: the view march lit through the
 /// optical depth towards the sun by the model's rule (its constants say which).
-pub const SINGLE_SCATTERING_SKY_PASS: PassSpec =
-    PassSpec::sky(shader!("shared/single_scattering_sky.wgsl"), &[]);
+pub const SINGLE_SCATTERING_SKY: Shader = shader!("shared/single_scattering_sky.wgsl");
+
+/// The passes of a table-free single-scattering model: its moving sky and its sky pass.
+pub const SINGLE_SCATTERING_PASSES: [PassSpec; 2] = [
+    moving_sky_pass(SINGLE_SCATTERING_SKY, &[]),
+    PassSpec::sky(SINGLE_SCATTERING_SKY, &[MOVING_SKY]).with_moving_sky(),
+];
 
 /// Single scattering alone: the `psi` of the table-free sky pass is zero.
 pub const NO_HIGHER_ORDERS: Shader = shader!("shared/no_higher_orders.wgsl");
@@ -461,14 +498,13 @@ pub const HIGHER_ORDERS_PASSES: [PassSpec; 2] =
     [TRANSMITTANCE_PASS, hillaire::MULTIPLE_SCATTERING_PASS];
 
 /// The passes of a table-free single-scattering model with Hillaire's higher orders: the
-/// transmittance and Ψ_ms tables (Hillaire's pass), then the sky pass reading Ψ_ms.
-pub const SINGLE_SCATTERING_MS_PASSES: [PassSpec; 3] = [
+/// transmittance and Ψ_ms tables (Hillaire's pass), then the moving sky and the sky pass
+/// reading Ψ_ms.
+pub const SINGLE_SCATTERING_MS_PASSES: [PassSpec; 4] = [
     HIGHER_ORDERS_PASSES[0],
     HIGHER_ORDERS_PASSES[1],
-    PassSpec::sky(
-        shader!("shared/single_scattering_sky.wgsl"),
-        &["multiple-scattering"],
-    ),
+    moving_sky_pass(SINGLE_SCATTERING_SKY, &["multiple-scattering"]),
+    PassSpec::sky(SINGLE_SCATTERING_SKY, &["multiple-scattering", MOVING_SKY]).with_moving_sky(),
 ];
 
 /// The sun's disk through the transmittance table, for the models that have one: the
@@ -478,6 +514,11 @@ pub const SUN_DISK_FROM_TABLE: Shader = shader!("shared/sun_disk.wgsl");
 
 /// The entry point every sky pass ends with; the pass's own file defines `radiance(layer, dir)`.
 pub const SKY_ENTRY_POINT: Shader = shader!("views/sky.wgsl");
+
+/// What the entry point draws along a direction (`view_radiance`): the model's `radiance`, or
+/// for a sky pass [`PassSpec::with_moving_sky`] the moving sky in frames drawn in tiles.
+pub const VIEW_RADIANCE: Shader = shader!("views/radiance.wgsl");
+pub const MOVING_SKY_RADIANCE: Shader = shader!("views/moving_sky_radiance.wgsl");
 
 /// What the display shows of a pixel's radiance, included by every pass that writes
 /// [`DISPLAY`] (the sky pass and the display pass) before the pass's own file.
@@ -490,10 +531,11 @@ pub const SKY_INPUTS: Inputs = Inputs::VIEWPOINT
     .union(Inputs::VIEW_SIZE);
 
 /// The WGSL files every pass includes, after the generated prelude.
-pub const COMMON: [Shader; 9] = [
+pub const COMMON: [Shader; 10] = [
     shader!("common/bindings.wgsl"),
     shader!("common/geometry.wgsl"),
     shader!("common/lut.wgsl"),
+    shader!("common/sky_view.wgsl"),
     shader!("common/phase.wgsl"),
     shader!("common/medium.wgsl"),
     shader!("common/transmittance.wgsl"),
@@ -634,8 +676,8 @@ mod tests {
                     p.name
                 );
                 let fewer = [
-                    p.reads_where(true, true, true),
-                    p.reads_where(false, true, true),
+                    p.reads_where(true, true, true, true),
+                    p.reads_where(false, true, true, true),
                 ];
                 assert!(
                     fewer.iter().flatten().all(|r| p.reads.contains(r)),

@@ -1,13 +1,12 @@
 //! Preetham et al. (1999) on the GPU: one pass, the sky (`shaders/preetham/sky.wgsl`), with the
 //! turbidity as its one model constant. Its f64 twin is `atmoscope_model::methods::preetham`.
 
-use super::{ENGINE_TILE, GpuMethod, PassSpec, shader};
+use super::{GpuMethod, PassSpec, shader};
 use atmoscope_model::methods::preetham;
 use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Preetham,
-    moving_tile: ENGINE_TILE,
     common: &[],
     constants: preetham::constants,
     passes: &[PassSpec::sky(shader!("preetham/sky.wgsl"), &[])],

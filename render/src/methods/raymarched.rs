@@ -2,13 +2,12 @@
 //! (`shaders/shared/segments_sky.wgsl`) with five segments. Its f64 twin is
 //! `atmoscope_model::methods::raymarched`.
 
-use super::{ENGINE_TILE, GpuMethod, SEGMENTS_COMMON, SEGMENTS_SKY_PASS};
+use super::{GpuMethod, SEGMENTS_COMMON, SEGMENTS_SKY_PASS};
 use atmoscope_model::methods::shared::segments_sky::{self, RAYMARCHED_SEGMENTS};
 use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Raymarched,
-    moving_tile: ENGINE_TILE,
     common: &SEGMENTS_COMMON,
     constants: |p| segments_sky::constants(p, RAYMARCHED_SEGMENTS),
     passes: &[SEGMENTS_SKY_PASS],

@@ -3,24 +3,22 @@
 //! (`shaders/shared/exponential.wgsl`). Its f64 twin is `atmoscope_model::methods::schuler`.
 
 use super::{
-    CLOSED_FORM_MARCH_TILE, GpuMethod, SINGLE_SCATTERING_COMMON, SINGLE_SCATTERING_MS_COMMON,
-    SINGLE_SCATTERING_MS_PASSES, SINGLE_SCATTERING_SKY_PASS,
+    GpuMethod, SINGLE_SCATTERING_COMMON, SINGLE_SCATTERING_MS_COMMON, SINGLE_SCATTERING_MS_PASSES,
+    SINGLE_SCATTERING_PASSES,
 };
 use atmoscope_model::methods::shared::single_scattering_sky::{self, Way};
 use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Schuler,
-    moving_tile: CLOSED_FORM_MARCH_TILE,
     common: &SINGLE_SCATTERING_COMMON,
     constants: |p| single_scattering_sky::constants(p, Way::SchulerChapman),
-    passes: &[SINGLE_SCATTERING_SKY_PASS],
+    passes: &SINGLE_SCATTERING_PASSES,
 };
 
 /// With Hillaire's Ψ_ms table as the higher orders (the `schuler-ms` row).
 pub const METHOD_MS: GpuMethod = GpuMethod {
     method: Method::SchulerMs,
-    moving_tile: CLOSED_FORM_MARCH_TILE,
     common: &SINGLE_SCATTERING_MS_COMMON,
     constants: |p| single_scattering_sky::constants(p, Way::SchulerChapman),
     passes: &SINGLE_SCATTERING_MS_PASSES,

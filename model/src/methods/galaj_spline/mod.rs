@@ -23,6 +23,7 @@
 //! column; the domain keeps the sun higher.
 
 use super::shared::exponential::ExponentialMedium;
+use super::shared::moving_sky;
 use super::shared::single_scattering_sky::{self, Way};
 use super::shared::{Lanes, Lut, Params, TableSpec, Viewpoint};
 use super::{Domain, Inputs, SkyModel};
@@ -49,15 +50,16 @@ pub const MESH: TableSpec = TableSpec {
     describe_texel: describe_mesh_texel,
 };
 
-/// The model's tables: the mesh alone.
-pub const TABLES: [TableSpec; 1] = [MESH];
+/// The model's tables: the mesh, then the moving sky (`shared::moving_sky`).
+pub const TABLES: [TableSpec; 2] = [MESH, moving_sky::TABLE];
 
-/// With Hillaire's higher orders (the `galaj-spline-ms` row): the mesh, then the transmittance
-/// and Ψ_ms tables.
-pub const TABLES_MS: [TableSpec; 3] = [
+/// With Hillaire's higher orders (the `galaj-spline-ms` row): the mesh, the transmittance and
+/// Ψ_ms tables, then the moving sky.
+pub const TABLES_MS: [TableSpec; 4] = [
     MESH,
     single_scattering_sky::TABLES_WITH_HIGHER_ORDERS[0],
     single_scattering_sky::TABLES_WITH_HIGHER_ORDERS[1],
+    moving_sky::TABLE,
 ];
 
 /// Daylight with the sun at least 18° high: lower, lines from the ground towards the sun leave

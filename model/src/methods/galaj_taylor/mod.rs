@@ -18,8 +18,9 @@ use super::shared::single_scattering_sky::{self, Way};
 use super::shared::{Params, TableSpec, Viewpoint};
 use super::{Domain, SkyModel};
 
-/// The method has no tables.
-pub const TABLES: [TableSpec; 0] = [];
+/// The method's one table: the moving sky its views in motion are drawn from on a software
+/// GPU (`shared::moving_sky`).
+pub const TABLES: [TableSpec; 1] = [super::shared::moving_sky::TABLE];
 
 /// Daylight with the sun at least 30° high, where the aerosol's Taylor optical depth stays
 /// within 25 % of the exponential's (air's within 2 % at 60°).

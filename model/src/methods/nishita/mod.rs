@@ -1,9 +1,10 @@
 //! Nishita et al. (1993), "Display of the Earth Taking into Account Atmospheric Scattering"
 //! (SIGGRAPH), in the per-pixel form O'Neil (2005, GPU Gems 2, ch. 16) brought to the GPU:
-//! single scattering by nested quadrature, with no tables at all. Each pixel marches its view
-//! ray; at every sample a second march of midpoint samples along the ray towards the sun gives
-//! the optical depth to the sun. A frame costs view steps × sun steps medium evaluations per
-//! pixel and batch, and no scene change costs more than a frame. There are no higher orders:
+//! single scattering by nested quadrature, with no tables of the atmosphere. Each pixel marches
+//! its view ray; at every sample a second march of midpoint samples along the ray towards the
+//! sun gives the optical depth to the sun. A frame costs view steps × sun steps medium
+//! evaluations per pixel and batch, and no change of the atmosphere costs more than a frame
+//! (a software GPU draws views in motion from the moving sky, `shared::moving_sky`). There are no higher orders:
 //! the sky lacks what multiple scattering adds, and the ground is lit by the sun alone.
 //!
 //! The medium (profiles, cross-sections, phase functions, sun) is the scene's, shared with
@@ -15,8 +16,9 @@ use super::shared::single_scattering_sky::{self, Rule, Way};
 use super::shared::{Params, TableSpec, Viewpoint};
 use super::{Domain, SkyModel};
 
-/// The method has no tables.
-pub const TABLES: [TableSpec; 0] = [];
+/// The method's one table: the moving sky its views in motion are drawn from on a software
+/// GPU (`shared::moving_sky`).
+pub const TABLES: [TableSpec; 1] = [super::shared::moving_sky::TABLE];
 
 /// Where the model is meant to work: anywhere with the sun up. Below the horizon the sky is
 /// lit by light scattered more than once, which the model leaves out; above it the sky lacks

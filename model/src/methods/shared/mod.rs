@@ -7,6 +7,7 @@
 
 pub mod exponential;
 pub mod march;
+pub mod moving_sky;
 pub mod optics;
 pub mod ray;
 pub mod segments_sky;

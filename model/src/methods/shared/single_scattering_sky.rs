@@ -301,10 +301,12 @@ impl HigherOrders {
     }
 }
 
-/// The tables of a single-scattering model with Hillaire's higher orders, in pass order.
-pub const TABLES_WITH_HIGHER_ORDERS: [TableSpec; 2] = [
+/// The tables of a single-scattering model with Hillaire's higher orders, in pass order: the
+/// transmittance and Ψ_ms tables, then the moving sky (`super::moving_sky`).
+pub const TABLES_WITH_HIGHER_ORDERS: [TableSpec; 3] = [
     super::transmittance::TABLE,
     crate::methods::hillaire::multiple_scattering::TABLE,
+    super::moving_sky::TABLE,
 ];
 
 /// A single-scattering model: the optics, the view march's sample count, the model's way to

@@ -10,8 +10,9 @@ use super::shared::single_scattering_sky::{self, Rule, Way};
 use super::shared::{Params, TableSpec, Viewpoint};
 use super::{Domain, SkyModel};
 
-/// The method has no tables.
-pub const TABLES: [TableSpec; 0] = [];
+/// The method's one table: the moving sky its views in motion are drawn from on a software
+/// GPU (`shared::moving_sky`).
+pub const TABLES: [TableSpec; 1] = [super::shared::moving_sky::TABLE];
 
 /// The domain of single scattering (as `nishita`'s).
 pub const DOMAIN: Domain = super::nishita::DOMAIN;
