@@ -1402,7 +1402,14 @@ impl Engine {
         if refine_in_slices.is_none() {
             self.refine = None;
         }
-        frame.sky_tile = if refine { 1 } else { self.sky_tile };
+        // A frame whose inputs did not change is a still one (the frame that swaps in a
+        // rebuild's tables and view, drawn at full resolution, and those after it): it builds
+        // no moving sky.
+        frame.sky_tile = if refine || changed.is_empty() {
+            1
+        } else {
+            self.sky_tile
+        };
         frame.write_radiance = frame.sky_tile <= 1 || self.metering;
         frame.bands = self.view_bands;
         if rebuilt || self.target.as_ref().is_none_or(|t| t.size != size) {

@@ -8,7 +8,7 @@ mod common;
 use atmoscope_model::camera::{Camera, Projection};
 use atmoscope_model::colour::{linear_srgb_to_xyz, srgb_decode};
 use atmoscope_model::methods::shared::{Lut, moving_sky, viewpoint};
-use atmoscope_model::methods::{self, CannotDraw, ModelInfo};
+use atmoscope_model::methods::{self, CannotDraw, Inputs, ModelInfo};
 use atmoscope_model::metrics::{DisplaySetup, compare};
 use atmoscope_model::scene::{
     FittedConstants, Method, Quality, Scene, SunSettings, ToneMap, WavelengthSet,
@@ -202,7 +202,7 @@ fn every_lookup_table_matches_its_cpu_twin() {
             let camera = Camera::new(&scene.camera, radius, view.projection);
             let cpu = methods::build(&scene, &camera).expect("a real-time model");
             // A still frame leaves the moving sky unbuilt: the next test holds it to its twin.
-            for table in model.tables.iter().filter(|t| t.id != MOVING_SKY) {
+            for table in model.tables.iter().filter(|t| !t.motion_only()) {
                 let gpu_lut = engine.read_table(table.id).expect("read-back");
                 let cpu_lut = cpu.table(table.id).expect("the twin's table");
                 let (e, texel) = worst_error(&gpu_lut, cpu_lut, 1e-3);
@@ -226,7 +226,8 @@ fn every_lookup_table_matches_its_cpu_twin() {
 /// A march per pixel draws its views in motion (frames in tiles) from the moving sky, its own
 /// radiance at the sky-view grid's directions: built by the first such frame, it matches its
 /// f64 twin texel by texel; it is not built again while only the camera turns, and it is again
-/// when the sun moves; a still frame marches every pixel and builds nothing.
+/// when the sun moves; a still frame marches every pixel and builds nothing, nor does the frame
+/// that swaps in a rebuild done in slices.
 #[test]
 fn the_moving_sky_matches_its_cpu_twin_and_is_built_only_in_motion() {
     let Some(gpu) = context() else { return };
@@ -282,6 +283,26 @@ fn the_moving_sky_matches_its_cpu_twin_and_is_built_only_in_motion() {
             };
             let sun_moved = engine.render(&turned, &view).clone();
             assert!(sun_moved.ran(MOVING_SKY_PASS), "{name}: the sun moved");
+
+            // A rebuild in slices draws its view at full resolution; the frame that swaps it in
+            // changes nothing, so it builds no moving sky, and the frame after it runs nothing.
+            engine.set_rebuild_slices(Some(std::time::Duration::ZERO));
+            turned.atmosphere.ground_albedo = 0.6;
+            let swapped = loop {
+                let stats = engine.render(&turned, &view).clone();
+                engine.wait();
+                if !engine.rebuilding() {
+                    break stats;
+                }
+            };
+            assert!(swapped.rebuild_done, "{name}: the rebuild ends");
+            assert!(
+                !swapped.ran(MOVING_SKY_PASS),
+                "{name}: the frame that swaps in a rebuild ran {:?}",
+                swapped.run
+            );
+            let after = engine.render(&turned, &view).run.clone();
+            assert!(after.is_empty(), "{name}: after the rebuild, ran {after:?}");
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
@@ -783,6 +804,8 @@ fn a_moving_frame_in_tiles_is_close_and_the_still_frame_after_it_exact() {
             };
 
             engine.set_sky_tile(4);
+            // The same scene as a frame in motion: a frame whose inputs did not change is still.
+            engine.invalidate_inputs(Inputs::CAMERA);
             let moving = engine.render(&scene, &view).clone();
             assert!(moving.ran("sky"), "{name}: the moving frame draws");
             assert_eq!(moving.sky_tile, 4, "{name}: the moving frame's tiles");

@@ -1,7 +1,8 @@
 // Pass: the view with a table-free single-scattering model (nishita, trapezoid, schuler,
 // galaj-taylor): single scattering marched along each pixel's ray, lit at every sample through
 // the transmittance towards the sun by the model's way, and the sunlit ground behind; from
-// above the atmosphere the march starts where the ray enters it (entry point: views/sky.wgsl).
+// above the atmosphere the march starts where the ray enters it (entry point: views/sky.wgsl,
+// or shared/moving_sky.wgsl for the moving sky).
 // globals.model[0] holds (view samples, sun intervals, way: 0 midpoint or 1 trapezoid rule
 // along the sun's ray, 2 Schuler's or 3 Gałaj's closed form on the exponential medium of
 // shared/exponential.wgsl, 0), from the model's registry constants; the model's common file

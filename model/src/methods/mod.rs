@@ -264,9 +264,9 @@ impl ModelInfo {
     /// altitude, sun elevation): if not, one CPU twin serves every viewpoint of an atmosphere.
     /// The moving sky is read by views in motion alone, which no CPU twin draws.
     pub fn reads_viewpoint(&self) -> bool {
-        self.tables.iter().any(|t| {
-            t.invalidated_by.intersects(Inputs::VIEWPOINT) && t.id != shared::moving_sky::TABLE.id
-        })
+        self.tables
+            .iter()
+            .any(|t| t.invalidated_by.intersects(Inputs::VIEWPOINT) && !t.motion_only())
     }
 
     /// A table of the model by id.
@@ -722,7 +722,8 @@ mod tests {
             scene.render.method = row.method;
             let camera = Camera::new(&scene.camera, 6_360_000.0, Projection::Perspective);
             let model = build(&scene, &camera).expect("real-time model");
-            for spec in row.tables {
+            // The moving sky's twin is `shared::moving_sky::compute_lut`, tested on its own.
+            for spec in row.tables.iter().filter(|t| !t.motion_only()) {
                 let lut = model
                     .table(spec.id)
                     .unwrap_or_else(|| panic!("{} has no table {}", row.id, spec.id));

@@ -1,5 +1,6 @@
 //! Gałaj et al.'s (2021) spline transmittance on the GPU: the mesh pass
-//! (`shaders/galaj_spline/mesh.wgsl`), then the table-free single-scattering sky
+//! (`shaders/galaj_spline/mesh.wgsl`), then the moving sky and the sky pass of the table-free
+//! single-scattering sky
 //! (`shaders/shared/single_scattering_sky.wgsl`) whose way to the sun integrates the spline over
 //! that mesh (`shaders/galaj_spline/columns.wgsl`). Its f64 twin is
 //! `atmoscope_model::methods::galaj_spline`.

@@ -1,7 +1,7 @@
-//! Gałaj et al.'s (2021) Taylor-series transmittance on the GPU: one pass, the table-free
-//! single-scattering sky (`shaders/shared/single_scattering_sky.wgsl`) with the Taylor integral
-//! towards the sun (`shaders/shared/exponential.wgsl`). Its f64 twin is
-//! `atmoscope_model::methods::galaj_taylor`.
+//! Gałaj et al.'s (2021) Taylor-series transmittance on the GPU: the moving sky and the sky
+//! pass of the table-free single-scattering sky (`shaders/shared/single_scattering_sky.wgsl`)
+//! with the Taylor integral towards the sun (`shaders/shared/exponential.wgsl`). Its f64 twin
+//! is `atmoscope_model::methods::galaj_taylor`.
 
 use super::{
     GpuMethod, SINGLE_SCATTERING_COMMON, SINGLE_SCATTERING_MS_COMMON, SINGLE_SCATTERING_MS_PASSES,

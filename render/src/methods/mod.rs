@@ -685,6 +685,24 @@ mod tests {
                     row.id,
                     p.name
                 );
+                assert!(
+                    p.reads_in_motion.iter().all(|r| p.reads.contains(r)),
+                    "{}: {} reads in motion what it does not declare",
+                    row.id,
+                    p.name
+                );
+                if p.writes.contains(&MOVING_SKY) {
+                    // The moving sky evaluates the sky pass's radiance: it reads what that reads.
+                    let sky: Vec<_> = last.reads.iter().filter(|&&r| r != MOVING_SKY).collect();
+                    assert_eq!(
+                        p.reads.iter().collect::<Vec<_>>(),
+                        sky,
+                        "{}: the moving sky reads what the sky pass reads",
+                        row.id
+                    );
+                    assert_eq!(last.shader, p.shader, "{}: the same sky file", row.id);
+                    assert_eq!(last.reads_in_motion, [MOVING_SKY], "{}", row.id);
+                }
                 for r in p.reads {
                     let earlier = gpu.passes[..i].iter().any(|q| q.writes.contains(r));
                     assert!(

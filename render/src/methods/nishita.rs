@@ -1,6 +1,6 @@
-//! Nishita (1993) on the GPU: one pass, the table-free single-scattering sky
-//! (`shaders/shared/single_scattering_sky.wgsl`) with the midpoint rule towards the sun. Its
-//! f64 twin is `atmoscope_model::methods::nishita`.
+//! Nishita (1993) on the GPU: the moving sky and the sky pass of the table-free
+//! single-scattering sky (`shaders/shared/single_scattering_sky.wgsl`) with the midpoint rule
+//! towards the sun. Its f64 twin is `atmoscope_model::methods::nishita`.
 
 use super::{
     GpuMethod, SINGLE_SCATTERING_COMMON, SINGLE_SCATTERING_MS_COMMON, SINGLE_SCATTERING_MS_PASSES,

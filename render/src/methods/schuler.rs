@@ -1,6 +1,7 @@
-//! Schuler (2012) on the GPU: one pass, the table-free single-scattering sky
-//! (`shaders/shared/single_scattering_sky.wgsl`) with Schuler's Chapman function towards the sun
-//! (`shaders/shared/exponential.wgsl`). Its f64 twin is `atmoscope_model::methods::schuler`.
+//! Schuler (2012) on the GPU: the moving sky and the sky pass of the table-free
+//! single-scattering sky (`shaders/shared/single_scattering_sky.wgsl`) with Schuler's Chapman
+//! function towards the sun (`shaders/shared/exponential.wgsl`). Its f64 twin is
+//! `atmoscope_model::methods::schuler`.
 
 use super::{
     GpuMethod, SINGLE_SCATTERING_COMMON, SINGLE_SCATTERING_MS_COMMON, SINGLE_SCATTERING_MS_PASSES,

@@ -1,6 +1,7 @@
-//! Single scattering with the trapezoid rule towards the sun on the GPU: one pass, the
-//! table-free single-scattering sky (`shaders/shared/single_scattering_sky.wgsl`). Its f64
-//! twin is `atmoscope_model::methods::trapezoid`.
+//! Single scattering with the trapezoid rule towards the sun on the GPU: the moving sky and
+//! the sky pass of the table-free single-scattering sky
+//! (`shaders/shared/single_scattering_sky.wgsl`). Its f64 twin is
+//! `atmoscope_model::methods::trapezoid`.
 
 use super::{
     GpuMethod, SINGLE_SCATTERING_COMMON, SINGLE_SCATTERING_MS_COMMON, SINGLE_SCATTERING_MS_PASSES,

@@ -4,7 +4,8 @@
 //! constituent's optical depth is its density at the sample times its scale height times
 //! Schuler's rational approximation of the Chapman function, c / ((c − 1)·μ + 1) with
 //! c = √(πx/2), mirrored through the ray's lowest point below the horizontal. A frame costs
-//! one closed form per view sample instead of a march; no tables, no higher orders.
+//! one closed form per view sample instead of a march; no tables of the atmosphere (but the
+//! moving sky of views in motion, `shared::moving_sky`), no higher orders.
 //!
 //! The closed form holds for exponential profiles: the way to the sun sees the scene's medium
 //! as fitted exponentials and an ozone shell (`shared::exponential`); the view march reads the

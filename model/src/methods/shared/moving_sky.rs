@@ -10,23 +10,18 @@
 
 use super::{Lanes, Lut, TableSpec, Viewpoint, direction_from_phi_theta, local_sun};
 use crate::geometry::hits_ground;
-use crate::methods::hillaire::sky_view::{self, SKY_VIEW_SIZE, sky_view_angles_from_texel};
+use crate::methods::hillaire::sky_view::{self, sky_view_angles_from_texel};
 use crate::methods::{Inputs, SkyModel};
 use glam::DVec3;
 
-/// The moving sky: on the sky-view grid, rebuilt with the viewpoint.
+/// The moving sky: on Hillaire's sky-view grid (its size, axes and texel descriptions), rebuilt
+/// with the viewpoint, built by frames in motion alone.
 pub const TABLE: TableSpec = TableSpec {
     id: "moving-sky",
-    label: "moving sky",
-    size: [SKY_VIEW_SIZE[0], SKY_VIEW_SIZE[1], 1],
-    axes: [
-        "x: azimuth from the sun φ, 0 (left) to 180° (right), √ spacing",
-        "y: view zenith θ, zenith (top) to the horizon (middle) to nadir (bottom), quadratic towards the horizon; built by frames in motion on a software GPU",
-        "",
-    ],
+    label: "moving sky (built by frames in motion on a software GPU)",
     invalidated_by: Inputs::ATMOSPHERE.union(Inputs::VIEWPOINT),
     transmittance: false,
-    describe_texel: sky_view::TABLE.describe_texel,
+    ..sky_view::TABLE
 };
 
 /// The moving sky of `model` at viewpoint `vp`: its radiance (W·m⁻²·sr⁻¹·nm⁻¹) at each

@@ -31,6 +31,12 @@ impl TableSpec {
         self.size.iter().map(|&n| u64::from(n)).product()
     }
 
+    /// Whether only frames in motion read the table (the moving sky, `super::moving_sky`): no
+    /// CPU twin holds it, since no CPU image is drawn in motion.
+    pub fn motion_only(&self) -> bool {
+        self.id == super::moving_sky::TABLE.id
+    }
+
     /// Bytes of the table for `layers` batches (four f32 per texel on the GPU).
     pub fn bytes(&self, layers: usize) -> u64 {
         16 * self.texels_per_layer() * layers as u64

@@ -3,7 +3,8 @@
 //! The sky pass is the table-free single-scattering models' (`shared::single_scattering_sky`),
 //! with the same sample counts as `nishita`; the two differ only in the rule along the sun's
 //! ray — the trapezoid rule's samples include both ends, so the point being lit, where the air
-//! is densest along a rising ray, is sampled itself. No tables and no higher orders. This
+//! is densest along a rising ray, is sampled itself. No tables of the atmosphere (but the
+//! moving sky of views in motion, `shared::moving_sky`) and no higher orders. This
 //! module chooses that rule.
 
 use super::shared::single_scattering_sky::{self, Rule, Way};
