@@ -14,7 +14,7 @@ use crate::DisplayMode;
 use crate::methods::{
     Constant, Dispatch, GpuMethod, HISTOGRAM, METER_PASS, PassSpec, RADIANCE, Repeat, gpu_method,
 };
-use crate::passes::{ORIGIN_SLOTS, Pipelines, TableBuffers, Variant};
+use crate::passes::{NextMovingSky, ORIGIN_SLOTS, Pipelines, TableBuffers, Variant};
 use crate::prelude::{WORKGROUP_SIZE, texel_group_size};
 use crate::readback::{
     ReadbackError, read_buffer_f32x4, read_buffer_u32, read_texture, read_texture_f32x4,
@@ -97,6 +97,23 @@ pub struct FrameStats {
     /// Pixels on a side of the tiles the frame drew its sky in (`Engine::set_sky_tile`), where
     /// more than 1; 1 (0 in a frame that failed) where it drew every pixel or no sky.
     pub sky_tile: u32,
+    /// What the frame did to a moving sky being built in slices.
+    pub moving_sky: MovingSkyStep,
+}
+
+/// What a frame did to the next moving sky of a march per pixel, built in slices where the
+/// engine slices its work (`Engine::set_rebuild_slices`) and a moving sky is complete.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MovingSkyStep {
+    /// None is being built.
+    #[default]
+    None,
+    /// One is being built; its last slice is still on the GPU.
+    Waiting,
+    /// It submitted a slice of it.
+    Slice,
+    /// Every slice had finished: it copied the new one over the one the sky pass reads.
+    Published,
 }
 
 /// Progress of a rebuild in slices, in units of work (MiB of its tables zeroed, then
@@ -619,13 +636,14 @@ fn steered_units(count: u32, took_s: f64, shortest_s: f64, target_s: f64) -> u32
     scaled.clamp(1.0, f64::from(count) * 16.0) as u32
 }
 
-/// The still frame after frames in tiles, drawn at full resolution a slice per frame where
-/// the engine slices its work (`Engine::set_rebuild_slices`): a march per pixel takes seconds
-/// there on a software adapter. The image in tiles stays on screen and sharpens from the top
-/// down. Slices are counted in workgroups along rows, as a rebuild's ([`units`], [`slice`]):
-/// one row of workgroups 1280 pixels wide takes about 105 ms of Nishita's march on lavapipe
-/// and 230 ms of Gałaj's spline, longer than a frame may.
-struct Refine {
+/// Dispatches run a slice per frame where the engine slices its work
+/// (`Engine::set_rebuild_slices`): the still frame after frames in tiles, drawn at full
+/// resolution (a march per pixel takes seconds on a software adapter; the image in tiles stays
+/// on screen and sharpens from the top down), and the next moving sky of a march per pixel
+/// (`MovingSky`). Slices are counted in workgroups along rows, as a rebuild's ([`units`],
+/// [`slice`]): one row of workgroups 1280 pixels wide takes about 105 ms of Nishita's march on
+/// lavapipe and 230 ms of Gałaj's spline, longer than a frame may.
+struct Slices {
     /// The frame's dispatches at full resolution, in order.
     work: Vec<Work>,
     /// The next slice: index into `work`, and its first workgroup (counted along rows).
@@ -638,14 +656,23 @@ struct Refine {
     shortest_s: f64,
 }
 
-impl Refine {
-    fn new(work: Vec<Work>) -> Refine {
-        Refine {
+impl Slices {
+    /// Slices of `work`, the first of one workgroup.
+    fn new(work: Vec<Work>) -> Slices {
+        Slices::steered(work, 1, f64::INFINITY)
+    }
+
+    /// Slices of `work` steered on from where earlier slices of the same dispatches left off:
+    /// `units` workgroups first, `shortest_s` the shortest interval seen. Without the latter
+    /// the first slice's whole interval, the frame's own work included, would be taken for
+    /// the shortest, and the second slice sized five times too large.
+    fn steered(work: Vec<Work>, units: u32, shortest_s: f64) -> Slices {
+        Slices {
             work,
             next: (0, 0),
-            units: 1,
+            units: units.max(1),
             in_flight: None,
-            shortest_s: f64::INFINITY,
+            shortest_s,
         }
     }
 
@@ -718,6 +745,9 @@ struct Encoder<'a> {
     pipelines: &'a Pipelines,
     tables: &'a TableBuffers,
     target: &'a Target,
+    /// Where the work is a slice of the next moving sky, what it binds instead of the
+    /// frame's globals and the table the sky pass reads.
+    next_moving_sky: Option<&'a NextMovingSky>,
 }
 
 impl Encoder<'_> {
@@ -734,6 +764,8 @@ impl Encoder<'_> {
         };
         let fenced = matches!(timer, Some(Timer::Cpu));
         let work = &work[..work.len().min(MAX_PASSES).min(ORIGIN_SLOTS)];
+        let next = self.next_moving_sky;
+        let group0 = next.map_or(&self.tables.group0, |n| &n.group0);
         let mut origins = vec![0u8; self.tables.origin_stride as usize * work.len()];
         for (slot, w) in work.iter().enumerate() {
             let origin = [w.origin[0], w.origin[1], w.origin[2], 0];
@@ -816,9 +848,10 @@ impl Encoder<'_> {
                 );
             }
             if let Some(cpass) = pass.as_mut() {
-                let group = match spec.dispatch {
-                    Dispatch::View => self.target.groups[i].as_ref(),
-                    _ => self.tables.group(i),
+                let group = match (spec.dispatch, next) {
+                    (Dispatch::View, _) => self.target.groups[i].as_ref(),
+                    (_, Some(n)) => Some(&n.group1),
+                    (_, None) => self.tables.group(i),
                 };
                 let dispatch = w.groups;
                 if let (Some(group), Some(pipeline)) =
@@ -826,7 +859,7 @@ impl Encoder<'_> {
                 {
                     let offset = (slot as u64 * self.tables.origin_stride) as u32;
                     cpass.set_pipeline(pipeline);
-                    cpass.set_bind_group(0, &self.tables.group0, &[offset]);
+                    cpass.set_bind_group(0, group0, &[offset]);
                     cpass.set_bind_group(1, group, &[]);
                     if w.tiles == TilePhase::Compute {
                         cpass.dispatch_workgroups_indirect(&self.target.exact_groups, 0);
@@ -901,6 +934,36 @@ struct AtmosphereState {
     tables: TableBuffers,
     /// The white of the noon sun through this atmosphere, once a white balance asks for it.
     noon_white: std::sync::OnceLock<Xyz>,
+    moving_sky: MovingSky,
+}
+
+/// The moving sky of a march per pixel (`methods::MOVING_SKY`) where the engine slices its
+/// work. Built whole, it cost a frame 216–599 ms on lavapipe at Spectral4 (1.6 s for Nishita
+/// at Spectral32) each time the sun moved in motion. Once one is complete, a new one is built
+/// in slices across frames in `TableBuffers::next_moving_sky`, from the globals of the frame
+/// that started it, while the sky pass reads the last complete one (the sky of a slightly
+/// earlier sun or altitude, turned to the sun's azimuth of the moment), then copied over it.
+/// A change while one is being built waits for it to finish, then starts the next.
+struct MovingSky {
+    /// Whether the table the sky pass reads holds a complete moving sky (of any inputs).
+    complete: bool,
+    /// The next one, being built.
+    job: Option<Slices>,
+    /// Workgroups per slice the last one reached, and the shortest interval it saw from a
+    /// slice's submission to seeing it finished, s (`Slices::steered`).
+    units: u32,
+    shortest_s: f64,
+}
+
+impl Default for MovingSky {
+    fn default() -> MovingSky {
+        MovingSky {
+            complete: false,
+            job: None,
+            units: 1,
+            shortest_s: f64::INFINITY,
+        }
+    }
 }
 
 struct Target {
@@ -1027,7 +1090,7 @@ pub struct Engine {
     /// A new atmosphere being built in slices while `atmosphere` stays on screen.
     rebuild: Option<Rebuild>,
     /// The still frame after frames in tiles, being drawn in slices.
-    refine: Option<Refine>,
+    refine: Option<Slices>,
     slicing: Option<Slicing>,
     metering: bool,
     /// Units per slice each pass of a model reached in its last rebuild in slices.
@@ -1109,6 +1172,7 @@ impl Engine {
             self.rebuild = None;
             self.refine = None;
             self.tiled_on_screen = false;
+            self.drop_moving_sky_job();
         }
     }
 
@@ -1122,9 +1186,17 @@ impl Engine {
     }
 
     /// Whether a frame of an unchanged scene would still draw: a rebuild in slices is under
-    /// way, or the frame on screen was drawn in tiles and awaits its full resolution.
+    /// way, the frame on screen was drawn in tiles and awaits its full resolution, or a moving
+    /// sky is being built in slices.
     pub fn settling(&self) -> bool {
-        self.rebuilding() || self.tiled_on_screen
+        self.rebuilding() || self.tiled_on_screen || self.building_moving_sky()
+    }
+
+    /// Whether a moving sky is being built in slices (`FrameStats::moving_sky`).
+    pub fn building_moving_sky(&self) -> bool {
+        self.atmosphere
+            .as_ref()
+            .is_some_and(|a| a.moving_sky.job.is_some())
     }
 
     /// Compiles passes that share a texel among a workgroup with workgroups of `n` invocations
@@ -1164,6 +1236,7 @@ impl Engine {
         if self.slicing.is_none() {
             self.rebuild = None;
             self.refine = None;
+            self.drop_moving_sky_job();
         }
     }
 
@@ -1434,7 +1507,7 @@ impl Engine {
         // Whether the view shows the ground matters only to a frame with stale passes.
         let stale = !changed.is_empty() || self.deferred.iter().any(|&d| d);
         let ground = stale && frame.shows_ground(view);
-        let run = plan(
+        let mut run = plan(
             pipelines,
             changed,
             frame.above,
@@ -1444,8 +1517,35 @@ impl Engine {
             self.unwanted(),
             &mut self.deferred,
         );
-        let steps = with_order_loop(&run, pipelines, state.params.scattering_orders);
         let layers = state.params.batches.len() as u32;
+        // Where the engine slices its work and a moving sky is complete, a new one is built in
+        // slices (`MovingSky`) and the frame reads the complete one: in motion, where the frame
+        // would build it, and in a still frame where one was left stale (the sun let go while
+        // the last was being built), so that the next motion finds it caught up. While one is
+        // being built the pass stays stale, to start again once it is complete.
+        let moving_sky_pass = pipelines.moving_sky_pass();
+        let mut start_moving_sky = None;
+        let in_slices = self.slicing.is_some()
+            && state.moving_sky.complete
+            && state.tables.next_moving_sky.is_some();
+        if let Some(m) = moving_sky_pass.filter(|&m| {
+            in_slices
+                && (run.contains(&m) || (self.deferred[m] && self.sky_tile > 1 && !frame.above))
+        }) {
+            run.retain(|&i| i != m);
+            if state.moving_sky.job.is_some() {
+                self.deferred[m] = true;
+            } else {
+                self.deferred[m] = false;
+                start_moving_sky = Some(
+                    with_order_loop(&[m], pipelines, state.params.scattering_orders)
+                        .into_iter()
+                        .flat_map(|step| frame.work(pipelines, step, layers, scene, view))
+                        .collect::<Vec<Work>>(),
+                );
+            }
+        }
+        let steps = with_order_loop(&run, pipelines, state.params.scattering_orders);
         let work: Vec<Work> = steps
             .iter()
             .flat_map(|&step| frame.work(pipelines, step, layers, scene, view))
@@ -1457,7 +1557,7 @@ impl Engine {
             Some(slicing) => {
                 // Runs the callback that marks the slice in flight finished.
                 let _ = self.device.poll(wgpu::PollType::Poll);
-                let job = self.refine.get_or_insert_with(|| Refine::new(work));
+                let job = self.refine.get_or_insert_with(|| Slices::new(work));
                 job.next_slice(slicing).unwrap_or_else(|| {
                     refined = true;
                     self.refine = None;
@@ -1484,6 +1584,7 @@ impl Engine {
                     pipelines: &self.pipelines[0],
                     tables: &state.tables,
                     target,
+                    next_moving_sky: None,
                 };
                 let timings = encoder.submit(&work, measure, self.spans);
                 if let Some(job) = &mut self.refine {
@@ -1494,6 +1595,12 @@ impl Engine {
             _ => Timings::default(),
         };
         let timings_ms = timings.passes;
+        let method_on_screen = state.key.method;
+        let moving_sky = self.advance_moving_sky(
+            start_moving_sky,
+            &frame.globals,
+            moving_sky_pass.is_some_and(ran_pass),
+        );
         let pipelines = &self.pipelines[0];
         if pipelines
             .specs()
@@ -1527,7 +1634,7 @@ impl Engine {
             .collect();
         self.last = Some(frame.snapshot);
         self.stats = FrameStats {
-            method: state.key.method,
+            method: method_on_screen,
             sky_tile: if ran.iter().any(|&i| names[i] == "sky") {
                 frame.sky_tile
             } else {
@@ -1554,8 +1661,82 @@ impl Engine {
             spans_ms: timings.spans,
             rebuild: progress,
             rebuild_done,
+            moving_sky,
         };
         Ok(())
+    }
+
+    /// The next moving sky of the model on screen (`MovingSky`): started from `globals` when
+    /// `start` holds its dispatches, its next slice submitted once the last has finished, and
+    /// once every slice has, copied over the one the sky pass reads. `built_whole`: the frame
+    /// built the moving sky itself.
+    fn advance_moving_sky(
+        &mut self,
+        start: Option<Vec<Work>>,
+        globals: &Globals,
+        built_whole: bool,
+    ) -> MovingSkyStep {
+        let (Some(state), Some(target)) = (self.atmosphere.as_mut(), self.target.as_ref()) else {
+            return MovingSkyStep::None;
+        };
+        let moving = &mut state.moving_sky;
+        moving.complete |= built_whole;
+        let next = state.tables.next_moving_sky.as_ref();
+        if let (Some(work), Some(next)) = (start, next) {
+            self.queue
+                .write_buffer(&next.globals, 0, bytemuck::bytes_of(globals));
+            moving.job = Some(Slices::steered(work, moving.units, moving.shortest_s));
+        }
+        let (Some(slicing), Some(job), Some(next)) = (self.slicing, moving.job.as_mut(), next)
+        else {
+            return MovingSkyStep::None;
+        };
+        // Runs the callback that marks the slice in flight finished.
+        let _ = self.device.poll(wgpu::PollType::Poll);
+        match job.next_slice(slicing) {
+            Some(work) if work.is_empty() => MovingSkyStep::Waiting,
+            Some(work) => {
+                for w in &work {
+                    self.pipelines[0].ensure(&self.device, w.pass, w.variant);
+                }
+                let encoder = Encoder {
+                    device: &self.device,
+                    queue: &self.queue,
+                    pipelines: &self.pipelines[0],
+                    tables: &state.tables,
+                    target,
+                    next_moving_sky: Some(next),
+                };
+                encoder.submit(&work, None, false);
+                job.submitted(&self.queue, &work);
+                MovingSkyStep::Slice
+            }
+            None => {
+                (moving.units, moving.shortest_s) = (job.units, job.shortest_s);
+                moving.job = None;
+                let mut encoder = self.device.create_command_encoder(&Default::default());
+                state.tables.publish_next_moving_sky(&mut encoder);
+                self.queue.submit([encoder.finish()]);
+                MovingSkyStep::Published
+            }
+        }
+    }
+
+    /// Forgets the next moving sky being built, leaving the pass stale so that the next frame
+    /// in motion builds it.
+    fn drop_moving_sky_job(&mut self) {
+        let job = self
+            .atmosphere
+            .as_mut()
+            .and_then(|a| a.moving_sky.job.take());
+        if let (Some(_), Some(m)) = (
+            job,
+            self.pipelines.first().and_then(Pipelines::moving_sky_pass),
+        ) {
+            if let Some(d) = self.deferred.get_mut(m) {
+                *d = true;
+            }
+        }
     }
 
     /// The tables' buffers of a new atmosphere for `key`, its inputs uploaded.
@@ -1585,6 +1766,7 @@ impl Engine {
             params,
             tables,
             noon_white: std::sync::OnceLock::new(),
+            moving_sky: MovingSky::default(),
         }
     }
 
@@ -1598,7 +1780,7 @@ impl Engine {
         size: [u32; 2],
     ) -> Rebuild {
         let method = key.method;
-        let state = self.build_state(scene, key);
+        let mut state = self.build_state(scene, key);
         let frame = FrameSetup::new(scene, view, &state, gpu);
         self.queue
             .write_buffer(&state.tables.globals, 0, bytemuck::bytes_of(&frame.globals));
@@ -1613,11 +1795,17 @@ impl Engine {
             frame.above,
             frame.sun_below_tables,
             ground,
-            // A rebuild draws its view at full resolution.
-            false,
+            // A rebuild draws its view at full resolution, and builds the moving sky of a
+            // march per pixel where frames in motion are drawn in tiles: the first of them
+            // would build it whole (216 ms for Nishita on lavapipe at Spectral4, 1.6 s at
+            // Spectral32), a few percent of the still frame the rebuild draws.
+            self.sky_tile > 1,
             self.unwanted(),
             &mut deferred,
         );
+        state.moving_sky.complete = pipelines
+            .moving_sky_pass()
+            .is_some_and(|m| run.contains(&m));
         let run = with_order_loop(&run, pipelines, state.params.scattering_orders);
         let variants = frame.variants(pipelines, scene, view);
         let layers = state.params.batches.len() as u32;
@@ -1713,6 +1901,7 @@ impl Engine {
             pipelines,
             tables: &r.state.tables,
             target: &r.target,
+            next_moving_sky: None,
         };
         let (origin, groups, _) = slice(grid, unit, count);
         let work = Work {

@@ -18,7 +18,7 @@ pub mod uniforms;
 pub mod views;
 
 pub use atmoscope_model::methods::Inputs;
-pub use engine::{Engine, EngineError, FrameStats, Spans, TimingSource};
+pub use engine::{Engine, EngineError, FrameStats, MovingSkyStep, Spans, TimingSource};
 pub use gpu::{GpuContext, GpuError};
 pub use uniforms::DisplayMode;
 pub use views::View;

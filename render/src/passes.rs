@@ -231,6 +231,12 @@ impl Pipelines {
         self.passes.iter().map(|p| &p.spec)
     }
 
+    /// The index of the pass that builds the moving sky of a march per pixel, if any.
+    pub fn moving_sky_pass(&self) -> Option<usize> {
+        self.specs()
+            .position(|s| s.is_table() && s.writes.contains(&MOVING_SKY))
+    }
+
     pub fn len(&self) -> usize {
         self.passes.len()
     }
@@ -347,6 +353,19 @@ pub struct TableBuffers {
     tables: Vec<(TableSpec, wgpu::Buffer)>,
     /// Group 1 of each table pass, by pass index (None for the view passes).
     groups: Vec<Option<wgpu::BindGroup>>,
+    /// Where a model with a moving sky builds the next one in slices (None for the others).
+    pub next_moving_sky: Option<NextMovingSky>,
+}
+
+/// The moving sky being built a slice per frame while the sky pass reads the last complete
+/// one (`methods::MOVING_SKY`): a table of its own, and the globals of the frame that started
+/// it, which every slice reads whatever the frames in between change.
+pub struct NextMovingSky {
+    pub globals: wgpu::Buffer,
+    table: wgpu::Buffer,
+    pub group0: wgpu::BindGroup,
+    /// Group 1 of the moving-sky pass over `table`.
+    pub group1: wgpu::BindGroup,
 }
 
 impl TableBuffers {
@@ -378,57 +397,83 @@ impl TableBuffers {
         let origin_stride =
             u64::from(device.limits().min_uniform_buffer_offset_alignment).max(ORIGIN_BYTES);
         let origins = buffer("origins", origin_stride * ORIGIN_SLOTS as u64, uniform);
-        let group0 = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("group 0"),
-            layout: &pipelines.group0,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: globals.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: batches.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: profile.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                        buffer: &origins,
-                        offset: 0,
-                        size: wgpu::BufferSize::new(ORIGIN_BYTES),
-                    }),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: mie_phase.as_entire_binding(),
-                },
-            ],
-        });
+        let group0 = |globals: &wgpu::Buffer, origins: &wgpu::Buffer| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("group 0"),
+                layout: &pipelines.group0,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: globals.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: batches.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: profile.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                            buffer: origins,
+                            offset: 0,
+                            size: wgpu::BufferSize::new(ORIGIN_BYTES),
+                        }),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: mie_phase.as_entire_binding(),
+                    },
+                ],
+            })
+        };
+        let table_usage = wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_SRC
+            | wgpu::BufferUsages::COPY_DST;
         let tables = model
             .tables
             .iter()
-            .map(|t| {
-                // COPY_DST: a rebuild in slices clears them itself (`clear`).
-                let usage = wgpu::BufferUsages::STORAGE
-                    | wgpu::BufferUsages::COPY_SRC
-                    | wgpu::BufferUsages::COPY_DST;
-                (*t, buffer(t.label, t.bytes(layers), usage))
+            // COPY_DST: a rebuild in slices clears them itself (`clear`).
+            .map(|t| (*t, buffer(t.label, t.bytes(layers), table_usage)))
+            .collect::<Vec<_>>();
+        let next_moving_sky = pipelines.moving_sky_pass().and_then(|i| {
+            let spec = model.table(MOVING_SKY)?;
+            let table = buffer("moving sky (next)", spec.bytes(layers), table_usage);
+            let globals = buffer(
+                "globals (next moving sky)",
+                std::mem::size_of::<Globals>() as u64,
+                uniform,
+            );
+            let group1 = pipelines.bind(device, i, |id| {
+                if id == MOVING_SKY {
+                    Some(table.as_entire_binding())
+                } else {
+                    tables
+                        .iter()
+                        .find(|(t, _): &&(TableSpec, wgpu::Buffer)| t.id == id)
+                        .map(|(_, b)| b.as_entire_binding())
+                }
+            })?;
+            Some(NextMovingSky {
+                group0: group0(&globals, &origins),
+                globals,
+                table,
+                group1,
             })
-            .collect();
+        });
         let mut b = TableBuffers {
+            group0: group0(&globals, &origins),
             globals,
             origins,
             origin_stride,
             batches,
             profile,
             mie_phase,
-            group0,
             tables,
             groups: Vec::new(),
+            next_moving_sky,
         };
         let groups = (0..pipelines.len())
             .map(|i| {
@@ -454,6 +499,14 @@ impl TableBuffers {
     /// Group 1 of table pass `i`.
     pub fn group(&self, i: usize) -> Option<&wgpu::BindGroup> {
         self.groups.get(i).and_then(|g| g.as_ref())
+    }
+
+    /// Encodes the copy of the next moving sky, once every slice of it has finished, over the
+    /// one the sky pass reads.
+    pub fn publish_next_moving_sky(&self, encoder: &mut wgpu::CommandEncoder) {
+        if let (Some(next), Some(table)) = (&self.next_moving_sky, self.buffer(MOVING_SKY)) {
+            encoder.copy_buffer_to_buffer(&next.table, 0, table, 0, None);
+        }
     }
 
     /// Bytes of every table together.

@@ -18,8 +18,9 @@ use atmoscope_render::methods::{
 };
 use atmoscope_render::passes::shader_source;
 use atmoscope_render::uniforms::{Batch, Globals};
-use atmoscope_render::{Engine, EngineError, FrameStats, GpuContext, View};
+use atmoscope_render::{Engine, EngineError, FrameStats, GpuContext, MovingSkyStep, View};
 use common::context;
+use std::time::Duration;
 
 /// The scene with `model`'s method.
 fn with(model: &ModelInfo, scene: &Scene) -> Scene {
@@ -306,6 +307,155 @@ fn the_moving_sky_matches_its_cpu_twin_and_is_built_only_in_motion() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Where the engine slices its work (the explorer), a sun move in motion builds the next moving
+/// sky in slices while the sky pass reads the last complete one. Once every slice has finished
+/// it is copied over that one, equal to the moving sky built whole for the sun of the frame that
+/// started it; a sun move while it is being built starts another after it. A rebuild in slices
+/// builds the moving sky with its tables, so the first frame in motion after it builds none;
+/// with slicing turned off, a moving sky being built is dropped and built whole.
+#[test]
+fn a_moving_sky_built_in_slices_is_the_one_built_whole() {
+    let Some(gpu) = context() else { return };
+    let mut scene = Scene::default();
+    scene.render.method = Method::Nishita;
+    let view = View::new(Projection::Perspective, 32, 18);
+    let elevation_deg = scene.sun.angles().elevation_deg;
+    let sun_at = |scene: &mut Scene, elevation_deg: f64| {
+        scene.sun = SunSettings::Angles {
+            elevation_deg,
+            azimuth_deg: scene.sun.angles().azimuth_deg,
+        };
+    };
+    // The moving sky of `scene`, built whole by an engine that does not slice: its first frame,
+    // which changes everything, is one in motion.
+    let built_whole = |scene: &Scene| {
+        let mut engine = Engine::new(&gpu.device, &gpu.queue);
+        engine.set_sky_tile(4);
+        assert!(engine.render(scene, &view).ran(MOVING_SKY_PASS));
+        engine.read_table(MOVING_SKY).expect("read-back")
+    };
+    // The same dispatches over the same inputs: equal but for a table of another sun (a
+    // degree moves texels by percents).
+    let same = |a: &[[f32; 4]], b: &[[f32; 4]]| {
+        let max = b.iter().flatten().fold(0.0_f32, |m, v| m.max(v.abs()));
+        a.len() == b.len()
+            && a.iter()
+                .flatten()
+                .zip(b.iter().flatten())
+                .all(|(x, y)| (x - y).abs() <= 1e-6 * max)
+    };
+
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    engine.set_sky_tile(4);
+    engine.set_rebuild_slices(Some(Duration::ZERO));
+    let mut frame = scene.clone();
+    let first = engine.render(&frame, &view).clone();
+    assert!(
+        first.ran(MOVING_SKY_PASS),
+        "none is complete yet: the first frame in motion builds it whole"
+    );
+    let mut on_screen = engine.read_table(MOVING_SKY).expect("read-back");
+    assert!(same(&on_screen, &built_whole(&frame)));
+
+    // The sun moves in the first two frames, the camera turns in the first three, then the
+    // view holds still: the moving sky of the second sun, left stale while the first was
+    // being built, is built in still frames.
+    let mut published = Vec::new();
+    let mut slices = 0;
+    for k in 0..500 {
+        if k < 3 {
+            frame.camera.heading_deg += 1.0;
+        }
+        if k < 2 {
+            sun_at(&mut frame, elevation_deg + 1.0 + k as f64);
+        }
+        let stats = engine.render(&frame, &view).clone();
+        engine.wait();
+        assert!(
+            !stats.ran(MOVING_SKY_PASS),
+            "frame {k}: a complete moving sky is on screen, the next is built in slices"
+        );
+        assert_eq!(stats.sky_tile, if k < 3 { 4 } else { 1 }, "frame {k}");
+        let table = engine.read_table(MOVING_SKY).expect("read-back");
+        match stats.moving_sky {
+            MovingSkyStep::Published => {
+                published.push(k);
+                let sun = elevation_deg + published.len() as f64;
+                assert!(
+                    same(
+                        &table,
+                        &built_whole(&{
+                            let mut s = frame.clone();
+                            sun_at(&mut s, sun);
+                            s
+                        })
+                    ),
+                    "frame {k}: the moving sky published is the one of the sun at {sun}°"
+                );
+                on_screen = table;
+                if published.len() == 2 {
+                    break;
+                }
+            }
+            step => {
+                assert!(
+                    same(&table, &on_screen),
+                    "frame {k} ({step:?}): the sky pass reads the last complete moving sky"
+                );
+                slices += usize::from(step == MovingSkyStep::Slice);
+            }
+        }
+    }
+    assert_eq!(published.len(), 2, "two moving skies built in slices");
+    // A zero target cuts slices in half rows of workgroups: two a row of each layer.
+    let [w, h, _] = moving_sky::TABLE.size;
+    let layers = on_screen.len() / (w * h) as usize;
+    let rows = h.div_ceil(atmoscope_render::prelude::WORKGROUP_SIZE) as usize;
+    assert_eq!(slices, 2 * 2 * rows * layers, "slices of the two");
+    assert!(!engine.building_moving_sky());
+    let stats = engine.render(&frame, &view).clone();
+    assert!(
+        !stats.ran(MOVING_SKY_PASS) && stats.moving_sky == MovingSkyStep::None,
+        "still, the moving sky up to date: {:?}, {:?}",
+        stats.run,
+        stats.moving_sky
+    );
+
+    // A rebuild in slices builds the moving sky with its tables.
+    frame.atmosphere.ground_albedo = 0.6;
+    while engine.render(&frame, &view).rebuild.is_some() {
+        engine.wait();
+    }
+    engine.wait();
+    frame.camera.heading_deg += 1.0;
+    let after = engine.render(&frame, &view).clone();
+    assert!(
+        !after.ran(MOVING_SKY_PASS) && after.moving_sky == MovingSkyStep::None,
+        "the rebuild built it: {:?}, {:?}",
+        after.run,
+        after.moving_sky
+    );
+    let table = engine.read_table(MOVING_SKY).expect("read-back");
+    assert!(
+        same(&table, &built_whole(&frame)),
+        "the rebuild's moving sky"
+    );
+
+    // Slicing turned off while one is built: the next frame in motion builds it whole.
+    sun_at(&mut frame, elevation_deg - 1.0);
+    frame.camera.heading_deg += 1.0;
+    assert_eq!(
+        engine.render(&frame, &view).moving_sky,
+        MovingSkyStep::Slice
+    );
+    engine.set_rebuild_slices(None);
+    assert!(!engine.building_moving_sky());
+    frame.camera.heading_deg += 1.0;
+    assert!(engine.render(&frame, &view).ran(MOVING_SKY_PASS));
+    let table = engine.read_table(MOVING_SKY).expect("read-back");
+    assert!(same(&table, &built_whole(&frame)));
 }
 
 /// The engine's last rendered view as linear sRGB.

@@ -121,7 +121,21 @@ struct GpuRow {
     still_ui_mean_ms: f64,
     still_sliced_ms: f64,
     still_frames: usize,
+    /// The sun dragged as the explorer draws it (`SUN_DRAG_FRAMES` frames, each moving it
+    /// `SUN_DRAG_STEP_DEG` and drawing the floor pass and waiting as above): the longest,
+    /// 99th-percentile and mean frame interval, the mean as a multiple of the floor, and the
+    /// frames after the last step until the moving sky of a march per pixel, built in slices,
+    /// has caught up with it (0 for the other models).
+    sun_drag_ui_max_ms: f64,
+    sun_drag_ui_p99_ms: f64,
+    sun_drag_ui_mean_ms: f64,
+    sun_drag_floors: f64,
+    sun_drag_catch_up_frames: usize,
 }
+
+/// Frames of the sun drag of `bench gpu`, and the step of the sun's elevation in each, degrees.
+const SUN_DRAG_FRAMES: usize = 24;
+const SUN_DRAG_STEP_DEG: f64 = 0.25;
 
 /// Frame intervals while the engine finishes work in slices, ms.
 struct SlicedFrames {
@@ -138,19 +152,21 @@ struct SlicedFrames {
     frames: usize,
 }
 
-/// Frame intervals of frames of `scene` drawn as the explorer draws them, its work in slices,
-/// each frame also drawing the floor pass (the UI) and waiting for the GPU (a window's
-/// present), for as long as `more` says the engine has work left. `lead`, when given, is
-/// drawn first, untimed, with slicing already on (the frame whose work the timed ones finish).
+/// Frame intervals of frames drawn as the explorer draws them, its work in slices, each
+/// frame also drawing the floor pass (the UI) and waiting for the GPU (a window's present):
+/// frame `i` draws `scene(i)`, for as long as `more(engine, i)` says there is work left.
+/// `lead`, when given, is drawn first, untimed, with slicing already on (the frame whose work
+/// the timed ones finish). Returns the intervals, ms, and the time from the first frame to the
+/// end of the last.
 fn sliced_frames(
     engine: &mut Engine,
     lead: Option<&Scene>,
-    scene: &Scene,
+    scene: &dyn Fn(usize) -> Scene,
     view: &View,
     ui: &atmoscope_render::floor::FloorPass,
     context: &atmoscope_render::gpu::GpuContext,
-    more: fn(&Engine) -> bool,
-) -> anyhow::Result<SlicedFrames> {
+    more: &dyn Fn(&Engine, usize) -> bool,
+) -> anyhow::Result<(Vec<f64>, f64)> {
     engine.set_timing(false);
     engine.set_rebuild_slices(Some(crate::gui::REBUILD_SLICE));
     if let Some(lead) = lead {
@@ -159,9 +175,9 @@ fn sliced_frames(
     }
     let start = Instant::now();
     let mut intervals = Vec::new();
-    loop {
+    for i in 0.. {
         let frame = Instant::now();
-        engine.try_render(scene, view)?;
+        engine.try_render(&scene(i), view)?;
         // The UI's drawing, submitted behind the frame; it returns once the GPU is idle.
         ui.time_ms(
             &context.device,
@@ -171,25 +187,32 @@ fn sliced_frames(
             1,
         );
         intervals.push(frame.elapsed().as_secs_f64() * 1e3);
-        if !more(engine) {
+        if !more(engine, i) {
             break;
         }
     }
     engine.set_rebuild_slices(None);
     engine.set_timing(true);
-    let total = start.elapsed().as_secs_f64() * 1e3;
-    let last = intervals.last().copied().unwrap_or(f64::NAN);
-    let mean = intervals.iter().sum::<f64>() / intervals.len() as f64;
-    intervals.sort_by(f64::total_cmp);
-    let rank = (0.99 * intervals.len() as f64).ceil() as usize;
-    Ok(SlicedFrames {
-        frames: intervals.len(),
-        longest: intervals.last().copied().unwrap_or(f64::NAN),
-        p99: intervals.get(rank.max(1) - 1).copied().unwrap_or(f64::NAN),
-        mean,
-        last,
-        total,
-    })
+    Ok((intervals, start.elapsed().as_secs_f64() * 1e3))
+}
+
+impl SlicedFrames {
+    /// The figures of frame `intervals` (ms) that took `total` ms from first to last.
+    fn of(intervals: &[f64], total: f64) -> SlicedFrames {
+        let last = intervals.last().copied().unwrap_or(f64::NAN);
+        let mean = intervals.iter().sum::<f64>() / intervals.len() as f64;
+        let mut sorted = intervals.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        let rank = (0.99 * sorted.len() as f64).ceil() as usize;
+        SlicedFrames {
+            frames: sorted.len(),
+            longest: sorted.last().copied().unwrap_or(f64::NAN),
+            p99: sorted.get(rank.max(1) - 1).copied().unwrap_or(f64::NAN),
+            mean,
+            last,
+            total,
+        }
+    }
 }
 
 /// The median (the mean of the middle two of an even count; NaN of none).
@@ -339,28 +362,59 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             engine.wait();
             ms
         };
-        let sliced = sliced_frames(
+        let (intervals, total) = sliced_frames(
             &mut engine,
             None,
-            &changed,
+            &|_| changed.clone(),
             &view,
             &floor,
             &context,
-            Engine::rebuilding,
+            &|e, _| e.rebuilding(),
         )?;
+        let sliced = SlicedFrames::of(&intervals, total);
         // The still frame after a turn of the camera, drawn a slice at a time where the
         // turn was drawn in tiles.
         let mut turned = changed.clone();
         turned.camera.heading_deg = (changed.camera.heading_deg + 2.0) % 360.0;
-        let still = sliced_frames(
+        let (intervals, total) = sliced_frames(
             &mut engine,
             Some(&turned),
-            &turned,
+            &|_| turned.clone(),
             &view,
             &floor,
             &context,
-            Engine::settling,
+            &|e, _| e.settling(),
         )?;
+        let still = SlicedFrames::of(&intervals, total);
+        // The sun dragged, a step a frame, then let go: the frames of the drag, and those
+        // until a moving sky built in slices has caught up with the last step.
+        let from = turned.sun.angles();
+        let dragged = |i: usize| {
+            let mut s = turned.clone();
+            s.sun = SunSettings::Angles {
+                elevation_deg: (from.elevation_deg
+                    + SUN_DRAG_STEP_DEG * (i.min(SUN_DRAG_FRAMES - 1) + 1) as f64)
+                    .min(90.0),
+                azimuth_deg: from.azimuth_deg,
+            };
+            s
+        };
+        let intervals = if args.rebuild_only {
+            Vec::new()
+        } else {
+            sliced_frames(
+                &mut engine,
+                None,
+                &dragged,
+                &view,
+                &floor,
+                &context,
+                &|e, i| i + 1 < SUN_DRAG_FRAMES || e.building_moving_sky(),
+            )?
+            .0
+        };
+        let drag = SlicedFrames::of(&intervals[..SUN_DRAG_FRAMES.min(intervals.len())], f64::NAN);
+        let sun_drag_catch_up_frames = intervals.len().saturating_sub(SUN_DRAG_FRAMES);
         let floor_ms = median(floor.time_ms(
             &context.device,
             &context.queue,
@@ -418,6 +472,11 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             still_ui_mean_ms: still.mean,
             still_sliced_ms: still.total,
             still_frames: still.frames,
+            sun_drag_ui_max_ms: drag.longest,
+            sun_drag_ui_p99_ms: drag.p99,
+            sun_drag_ui_mean_ms: drag.mean,
+            sun_drag_floors: drag.mean / floor_ms,
+            sun_drag_catch_up_frames,
         });
     }
     if args.json {
@@ -440,7 +499,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         t = sky_tile
     );
     println!(
-        "{:14} {:12} {:>10} {:>8} {:>10} {:>8} {:>12} {:>12} {:>9} {:>8}   spans: {:>8} {:>8} {:>8}   ×floor: {:>6} {:>6} {:>7}   rebuild: {:>9} {:>28} {:>9}   still: {:>16}   table passes",
+        "{:14} {:12} {:>10} {:>8} {:>10} {:>8} {:>12} {:>12} {:>9} {:>8}   spans: {:>8} {:>8} {:>8}   ×floor: {:>6} {:>6} {:>7}   rebuild: {:>9} {:>28} {:>9}   still: {:>16}   sun drag: {:>20}   table passes",
         "method",
         "set",
         "tables",
@@ -460,7 +519,8 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         "one frame",
         "sliced: UI max/p99/mean/last",
         "done in",
-        "UI max/done in"
+        "UI max/done in",
+        "UI max/mean/×floor/+"
     );
     for r in &rows {
         let passes: Vec<String> = r
@@ -469,7 +529,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             .map(|(name, ms)| format!("{name} {ms:.2}"))
             .collect();
         println!(
-            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>7.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms {:>6.2} ms {:>5.2} ms   {:>5.2} ms {:>5.2} ms {:>5.2} ms          {:>6.1} {:>6.1} {:>7.1}            {:>6.0} ms {:>6.0}/{:>5.0}/{:>5.0}/{:>5.0} ms {:>6.0} ms          {:>6.0}/{:>6.0} ms   {}",
+            "{:14} {:12} {:>7.2} ms {:>5.2} ms {:>7.2} ms {:>5.2} ms {:>9.2} ms {:>9.2} ms {:>6.2} ms {:>5.2} ms   {:>5.2} ms {:>5.2} ms {:>5.2} ms          {:>6.1} {:>6.1} {:>7.1}            {:>6.0} ms {:>6.0}/{:>5.0}/{:>5.0}/{:>5.0} ms {:>6.0} ms          {:>6.0}/{:>6.0} ms   {:>5.0}/{:>5.0} ms/{:>4.1}/{:>3}   {}",
             r.method,
             r.wavelengths,
             r.lut_total_ms,
@@ -494,6 +554,10 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             r.rebuild_sliced_ms,
             r.still_ui_max_ms,
             r.still_sliced_ms,
+            r.sun_drag_ui_max_ms,
+            r.sun_drag_ui_mean_ms,
+            r.sun_drag_floors,
+            r.sun_drag_catch_up_frames,
             passes.join(", ")
         );
     }

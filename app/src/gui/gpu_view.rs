@@ -180,8 +180,9 @@ impl GpuView {
         self.engine.set_rebuild_slices(slice);
     }
 
-    /// Whether the view needs more frames of the same scene: a rebuild in slices, or the full
-    /// resolution of a frame drawn in tiles (`Engine::settling`).
+    /// Whether the view needs more frames of the same scene: a rebuild in slices, the full
+    /// resolution of a frame drawn in tiles, or a moving sky being built in slices
+    /// (`Engine::settling`).
     pub fn settling(&self) -> bool {
         self.engine.settling()
     }

@@ -15,10 +15,10 @@ use crate::methods::{Inputs, SkyModel};
 use glam::DVec3;
 
 /// The moving sky: on Hillaire's sky-view grid (its size, axes and texel descriptions), rebuilt
-/// with the viewpoint, built by frames in motion alone.
+/// with the viewpoint, built for frames in motion alone.
 pub const TABLE: TableSpec = TableSpec {
     id: "moving-sky",
-    label: "moving sky (built by frames in motion on a software GPU)",
+    label: "moving sky (built for frames in motion on a software GPU)",
     invalidated_by: Inputs::ATMOSPHERE.union(Inputs::VIEWPOINT),
     transmittance: false,
     ..sky_view::TABLE
