@@ -550,6 +550,58 @@ struct Slicing {
     /// GPU time each slice aims at (zero: half a row of workgroups each, so that slices also
     /// start inside rows, and 16 MiB of the tables' zeroing).
     target: Duration,
+    /// Whether each slice is timed alone, waited for with the GPU idle before it (a CPU
+    /// adapter, `Engine::new`), rather than by the interval until a later frame sees it done.
+    alone: bool,
+}
+
+/// How long a slice took: timed alone ([`Slicing::alone`]), or from its submission to the
+/// frame that sees it finished, that frame's own work included.
+#[derive(Debug, Clone, Copy)]
+enum SliceClock {
+    Alone(f64),
+    Since(Instant),
+}
+
+impl SliceClock {
+    /// Submits a slice through `submit` and starts its clock. Timed alone, it waits for the
+    /// GPU to be idle, then for the slice: on a CPU adapter the GPU is the CPU's other threads,
+    /// so waiting costs the frame nothing, and the interval until a later frame saw a slice
+    /// done was mostly that frame's own work, whose spread from frame to frame (20–40 ms on
+    /// lavapipe) the steering took for the slice's cost and held slices to a workgroup.
+    fn start(device: &wgpu::Device, alone: bool, submit: impl FnOnce()) -> SliceClock {
+        if !alone {
+            submit();
+            return SliceClock::Since(Instant::now());
+        }
+        let _ = device.poll(wgpu::PollType::wait_indefinitely());
+        let start = Instant::now();
+        submit();
+        let _ = device.poll(wgpu::PollType::wait_indefinitely());
+        SliceClock::Alone(start.elapsed().as_secs_f64())
+    }
+
+    /// Units for the next slice of the same work after this one of `count` units, aimed at
+    /// `target_s`; `shortest_s` is the shortest interval the job has seen (`steered_units`),
+    /// which a slice timed alone neither needs nor changes.
+    fn steer(self, count: u32, shortest_s: &mut f64, target_s: f64) -> u32 {
+        match self {
+            SliceClock::Alone(took) => steered_units(count, took, 0.0, target_s),
+            SliceClock::Since(started) => {
+                let took = started.elapsed().as_secs_f64();
+                *shortest_s = shortest_s.min(took);
+                steered_units(count, took, *shortest_s, target_s)
+            }
+        }
+    }
+
+    /// A flag set once the slice has finished: already set for one timed alone.
+    fn done(self, queue: &wgpu::Queue) -> Arc<AtomicBool> {
+        match self {
+            SliceClock::Alone(_) => Arc::new(AtomicBool::new(true)),
+            SliceClock::Since(_) => when_done(queue),
+        }
+    }
 }
 
 /// One dispatch of a pass: its pipeline constants, where it starts in the pass's grid
@@ -607,10 +659,10 @@ struct Rebuild {
     /// before starts with one unit; the engine keeps what it learnt for the model's next
     /// rebuild).
     units: Vec<u32>,
-    /// The slice on the GPU: when it was submitted, whether it has finished, its pass (the
+    /// The slice on the GPU: its clock, whether it has finished, its pass (the
     /// last slot of `units` for the zeroing) and units, and the slice a zero target asks for
     /// (half a row of the pass's workgroups; 16 MiB of zeroing).
-    in_flight: Option<(Instant, Arc<AtomicBool>, usize, u32, u32)>,
+    in_flight: Option<(SliceClock, Arc<AtomicBool>, usize, u32, u32)>,
     done_units: u64,
     total_units: u64,
     /// The shortest interval from a slice's submission to seeing it finished, s.
@@ -650,8 +702,8 @@ struct Slices {
     next: (usize, u32),
     /// Workgroups per slice, steered towards the target time.
     units: u32,
-    /// The slice on the GPU: when it was submitted, whether it has finished, its workgroups.
-    in_flight: Option<(Instant, Arc<AtomicBool>, u32)>,
+    /// The slice on the GPU: its clock, whether it has finished, its workgroups.
+    in_flight: Option<(SliceClock, Arc<AtomicBool>, u32)>,
     /// The shortest interval from a slice's submission to seeing it finished, s.
     shortest_s: f64,
 }
@@ -683,16 +735,15 @@ impl Slices {
     /// workgroups a slice, so that slices also start inside rows.
     fn next_slice(&mut self, slicing: Slicing) -> Option<Vec<Work>> {
         let target = slicing.target.as_secs_f64();
-        if let Some((started, done, count)) = &self.in_flight {
+        if let Some((clock, done, count)) = &self.in_flight {
             if !done.load(Ordering::Acquire) {
                 return Some(Vec::new());
             }
-            let took = started.elapsed().as_secs_f64();
-            self.shortest_s = self.shortest_s.min(took);
+            let steered = clock.steer(*count, &mut self.shortest_s, target);
             // A slice cut short at the end of a dispatch says little of the cost per
             // workgroup (the frame's own work can be most of its time): the size stays.
             if target > 0.0 && *count >= self.units {
-                self.units = steered_units(*count, took, self.shortest_s, target);
+                self.units = steered;
             }
             self.in_flight = None;
         }
@@ -721,11 +772,11 @@ impl Slices {
         Some(slice_work)
     }
 
-    /// Marks the slice just submitted as on the GPU.
-    fn submitted(&mut self, queue: &wgpu::Queue, work: &[Work]) {
+    /// Marks the slice just submitted, with its `clock`, as on the GPU.
+    fn submitted(&mut self, clock: SliceClock, queue: &wgpu::Queue, work: &[Work]) {
         if !work.is_empty() {
             let count = work.iter().map(|w| units(w.groups)).sum();
-            self.in_flight = Some((Instant::now(), when_done(queue), count));
+            self.in_flight = Some((clock, clock.done(queue), count));
         }
     }
 }
@@ -1092,6 +1143,8 @@ pub struct Engine {
     /// The still frame after frames in tiles, being drawn in slices.
     refine: Option<Slices>,
     slicing: Option<Slicing>,
+    /// Whether slices are timed alone ([`Slicing::alone`]): on a CPU adapter.
+    slices_alone: bool,
     metering: bool,
     /// Units per slice each pass of a model reached in its last rebuild in slices.
     slice_units: Vec<(Method, Vec<u32>)>,
@@ -1137,6 +1190,7 @@ impl Engine {
             rebuild: None,
             refine: None,
             slicing: None,
+            slices_alone: device.adapter_info().device_type == wgpu::DeviceType::Cpu,
             metering: false,
             slice_units: Vec::new(),
             target: None,
@@ -1232,7 +1286,8 @@ impl Engine {
     /// `Duration::ZERO` makes every slice after a pass's first half a row of its workgroups
     /// (and of the tables' zeroing 16 MiB).
     pub fn set_rebuild_slices(&mut self, target: Option<Duration>) {
-        self.slicing = target.map(|target| Slicing { target });
+        let alone = self.slices_alone;
+        self.slicing = target.map(|target| Slicing { target, alone });
         if self.slicing.is_none() {
             self.rebuild = None;
             self.refine = None;
@@ -1586,9 +1641,13 @@ impl Engine {
                     target,
                     next_moving_sky: None,
                 };
-                let timings = encoder.submit(&work, measure, self.spans);
+                let mut timings = Timings::default();
+                let alone = refine_in_slices.is_some_and(|s| s.alone);
+                let clock = SliceClock::start(&self.device, alone, || {
+                    timings = encoder.submit(&work, measure, self.spans);
+                });
                 if let Some(job) = &mut self.refine {
-                    job.submitted(&self.queue, &work);
+                    job.submitted(clock, &self.queue, &work);
                 }
                 timings
             }
@@ -1707,8 +1766,10 @@ impl Engine {
                     target,
                     next_moving_sky: Some(next),
                 };
-                encoder.submit(&work, None, false);
-                job.submitted(&self.queue, &work);
+                let clock = SliceClock::start(&self.device, slicing.alone, || {
+                    encoder.submit(&work, None, false);
+                });
+                job.submitted(clock, &self.queue, &work);
                 MovingSkyStep::Slice
             }
             None => {
@@ -1842,19 +1903,14 @@ impl Engine {
         let gpu = gpu_method(self.rebuild.as_ref()?.state.key.method)?;
         let p = self.pipelines_of(gpu);
         let r = self.rebuild.as_mut()?;
-        if let Some((started, done, pass, count, half_row)) = &r.in_flight {
+        if let Some((clock, done, pass, count, half_row)) = &r.in_flight {
             if !done.load(Ordering::Acquire) {
                 return Some(r.progress());
             }
             // Aim the pass's next slice at the target time from how long this one took.
-            let took = started.elapsed().as_secs_f64();
-            r.shortest_s = r.shortest_s.min(took);
             let target = slicing.target.as_secs_f64();
-            r.units[*pass] = if target <= 0.0 {
-                *half_row
-            } else {
-                steered_units(*count, took, r.shortest_s, target)
-            };
+            let steered = clock.steer(*count, &mut r.shortest_s, target);
+            r.units[*pass] = if target <= 0.0 { *half_row } else { steered };
             r.in_flight = None;
         }
         let clearing = r.units.len() - 1;
@@ -1866,14 +1922,16 @@ impl Engine {
                 r.state
                     .tables
                     .clear(&mut encoder, r.cleared, u64::from(count) * CLEAR_UNIT_BYTES);
-            self.queue.submit([encoder.finish()]);
+            let clock = SliceClock::start(&self.device, slicing.alone, || {
+                self.queue.submit([encoder.finish()]);
+            });
             r.cleared += cleared;
             // The units zeroed, not those asked for: the last piece is usually short, and the
             // next slice is sized from what this one did.
             let units = cleared.div_ceil(CLEAR_UNIT_BYTES);
             r.in_flight = Some((
-                Instant::now(),
-                when_done(&self.queue),
+                clock,
+                clock.done(&self.queue),
                 clearing,
                 u32::try_from(units).unwrap_or(count),
                 16,
@@ -1911,10 +1969,12 @@ impl Engine {
             groups,
             tiles: TilePhase::None,
         };
-        encoder.submit(&[work], None, false);
+        let clock = SliceClock::start(&self.device, slicing.alone, || {
+            encoder.submit(&[work], None, false);
+        });
         r.in_flight = Some((
-            Instant::now(),
-            when_done(&self.queue),
+            clock,
+            clock.done(&self.queue),
             pass,
             count,
             grid[0].div_ceil(2),
@@ -2190,7 +2250,27 @@ impl Target {
 
 #[cfg(test)]
 mod tests {
-    use super::{WORKGROUP_SIZE, slice, units};
+    use super::{SliceClock, WORKGROUP_SIZE, slice, units};
+    use std::time::{Duration, Instant};
+
+    /// A slice timed alone is steered by its own time, whatever frames came between: 4
+    /// workgroups in 5 ms ask for 16 at a 20 ms target, and the shortest interval is left as it
+    /// was. One seen done 40 ms after its submission, with 20 ms the shortest interval, sets
+    /// most of that aside as the frame's own work.
+    #[test]
+    fn slices_timed_alone_are_steered_by_their_own_time() {
+        let mut shortest = 0.020;
+        assert_eq!(SliceClock::Alone(0.005).steer(4, &mut shortest, 0.020), 16);
+        assert_eq!(SliceClock::Alone(0.080).steer(4, &mut shortest, 0.020), 1);
+        // Growth stays within 16 times a slice.
+        assert_eq!(SliceClock::Alone(1e-6).steer(4, &mut shortest, 0.020), 64);
+        assert_eq!(shortest, 0.020);
+        let submitted = Instant::now() - Duration::from_millis(40);
+        let steered = SliceClock::Since(submitted).steer(4, &mut shortest, 0.020);
+        // own = 40 − 0.8 × 20 = 24 ms (a little more, as time passed since): 4 × 20 / 24 → 3.
+        assert_eq!(steered, 3);
+        assert_eq!(shortest, 0.020);
+    }
 
     /// Slices of any size, taken one after another, cover every workgroup of a pass exactly
     /// once, each slice a box inside the grid.
