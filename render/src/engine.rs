@@ -2262,8 +2262,8 @@ mod tests {
 
     /// A slice timed alone is steered by its own time, whatever frames came between: 4
     /// workgroups in 5 ms ask for 12 at a 20 ms target (aiming at 15 ms), and the shortest
-    /// interval is left as it was. One seen done 40 ms after its submission, with 20 ms the shortest interval, sets
-    /// most of that aside as the frame's own work.
+    /// interval is left as it was. One seen done 40 ms after its submission, with 20 ms the
+    /// shortest interval, sets most of that aside as the frame's own work.
     #[test]
     fn slices_timed_alone_are_steered_by_their_own_time() {
         let mut shortest = 0.020;
