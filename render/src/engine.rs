@@ -563,11 +563,11 @@ struct Slicing {
 const ALONE_AIM: f64 = 0.75;
 
 /// How long a slice took: timed alone ([`Slicing::alone`]), or from its submission to the
-/// frame that sees it finished, that frame's own work included.
-#[derive(Debug, Clone, Copy)]
+/// frame that sees it finished (the flag set once the GPU has), that frame's own work included.
+#[derive(Debug, Clone)]
 enum SliceClock {
     Alone(f64),
-    Since(Instant),
+    Since(Instant, Arc<AtomicBool>),
 }
 
 impl SliceClock {
@@ -576,10 +576,15 @@ impl SliceClock {
     /// so waiting costs the frame nothing, and the interval until a later frame saw a slice
     /// done was mostly that frame's own work, whose spread from frame to frame (20–40 ms on
     /// lavapipe) the steering took for the slice's cost and held slices to a workgroup.
-    fn start(device: &wgpu::Device, alone: bool, submit: impl FnOnce()) -> SliceClock {
+    fn start(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        alone: bool,
+        submit: impl FnOnce(),
+    ) -> SliceClock {
         if !alone {
             submit();
-            return SliceClock::Since(Instant::now());
+            return SliceClock::Since(Instant::now(), when_done(queue));
         }
         let _ = device.poll(wgpu::PollType::wait_indefinitely());
         let start = Instant::now();
@@ -591,10 +596,10 @@ impl SliceClock {
     /// Units for the next slice of the same work after this one of `count` units, aimed at
     /// `target_s`; `shortest_s` is the shortest interval the job has seen (`steered_units`),
     /// which a slice timed alone neither needs nor changes.
-    fn steer(self, count: u32, shortest_s: &mut f64, target_s: f64) -> u32 {
-        match self {
+    fn steer(&self, count: u32, shortest_s: &mut f64, target_s: f64) -> u32 {
+        match *self {
             SliceClock::Alone(took) => steered_units(count, took, 0.0, ALONE_AIM * target_s),
-            SliceClock::Since(started) => {
+            SliceClock::Since(started, _) => {
                 let took = started.elapsed().as_secs_f64();
                 *shortest_s = shortest_s.min(took);
                 steered_units(count, took, *shortest_s, target_s)
@@ -602,11 +607,11 @@ impl SliceClock {
         }
     }
 
-    /// A flag set once the slice has finished: already set for one timed alone.
-    fn done(self, queue: &wgpu::Queue) -> Arc<AtomicBool> {
+    /// Whether the slice has finished (one timed alone has).
+    fn finished(&self) -> bool {
         match self {
-            SliceClock::Alone(_) => Arc::new(AtomicBool::new(true)),
-            SliceClock::Since(_) => when_done(queue),
+            SliceClock::Alone(_) => true,
+            SliceClock::Since(_, done) => done.load(Ordering::Acquire),
         }
     }
 }
@@ -666,10 +671,10 @@ struct Rebuild {
     /// before starts with one unit; the engine keeps what it learnt for the model's next
     /// rebuild).
     units: Vec<u32>,
-    /// The slice on the GPU: its clock, whether it has finished, its pass (the
+    /// The slice on the GPU: its clock, its pass (the
     /// last slot of `units` for the zeroing) and units, and the slice a zero target asks for
     /// (half a row of the pass's workgroups; 16 MiB of zeroing).
-    in_flight: Option<(SliceClock, Arc<AtomicBool>, usize, u32, u32)>,
+    in_flight: Option<(SliceClock, usize, u32, u32)>,
     done_units: u64,
     total_units: u64,
     /// The shortest interval from a slice's submission to seeing it finished, s.
@@ -709,8 +714,8 @@ struct Slices {
     next: (usize, u32),
     /// Workgroups per slice, steered towards the target time.
     units: u32,
-    /// The slice on the GPU: its clock, whether it has finished, its workgroups.
-    in_flight: Option<(SliceClock, Arc<AtomicBool>, u32)>,
+    /// The slice on the GPU: its clock and workgroups.
+    in_flight: Option<(SliceClock, u32)>,
     /// The shortest interval from a slice's submission to seeing it finished, s.
     shortest_s: f64,
 }
@@ -742,8 +747,8 @@ impl Slices {
     /// workgroups a slice, so that slices also start inside rows.
     fn next_slice(&mut self, slicing: Slicing) -> Option<Vec<Work>> {
         let target = slicing.target.as_secs_f64();
-        if let Some((clock, done, count)) = &self.in_flight {
-            if !done.load(Ordering::Acquire) {
+        if let Some((clock, count)) = &self.in_flight {
+            if !clock.finished() {
                 return Some(Vec::new());
             }
             let steered = clock.steer(*count, &mut self.shortest_s, target);
@@ -780,10 +785,10 @@ impl Slices {
     }
 
     /// Marks the slice just submitted, with its `clock`, as on the GPU.
-    fn submitted(&mut self, clock: SliceClock, queue: &wgpu::Queue, work: &[Work]) {
+    fn submitted(&mut self, clock: SliceClock, work: &[Work]) {
         if !work.is_empty() {
             let count = work.iter().map(|w| units(w.groups)).sum();
-            self.in_flight = Some((clock, clock.done(queue), count));
+            self.in_flight = Some((clock, count));
         }
     }
 }
@@ -1650,11 +1655,11 @@ impl Engine {
                 };
                 let mut timings = Timings::default();
                 let alone = refine_in_slices.is_some_and(|s| s.alone);
-                let clock = SliceClock::start(&self.device, alone, || {
+                let clock = SliceClock::start(&self.device, &self.queue, alone, || {
                     timings = encoder.submit(&work, measure, self.spans);
                 });
                 if let Some(job) = &mut self.refine {
-                    job.submitted(clock, &self.queue, &work);
+                    job.submitted(clock, &work);
                 }
                 timings
             }
@@ -1773,10 +1778,10 @@ impl Engine {
                     target,
                     next_moving_sky: Some(next),
                 };
-                let clock = SliceClock::start(&self.device, slicing.alone, || {
+                let clock = SliceClock::start(&self.device, &self.queue, slicing.alone, || {
                     encoder.submit(&work, None, false);
                 });
-                job.submitted(clock, &self.queue, &work);
+                job.submitted(clock, &work);
                 MovingSkyStep::Slice
             }
             None => {
@@ -1910,8 +1915,8 @@ impl Engine {
         let gpu = gpu_method(self.rebuild.as_ref()?.state.key.method)?;
         let p = self.pipelines_of(gpu);
         let r = self.rebuild.as_mut()?;
-        if let Some((clock, done, pass, count, half_row)) = &r.in_flight {
-            if !done.load(Ordering::Acquire) {
+        if let Some((clock, pass, count, half_row)) = &r.in_flight {
+            if !clock.finished() {
                 return Some(r.progress());
             }
             // Aim the pass's next slice at the target time from how long this one took.
@@ -1929,20 +1934,14 @@ impl Engine {
                 r.state
                     .tables
                     .clear(&mut encoder, r.cleared, u64::from(count) * CLEAR_UNIT_BYTES);
-            let clock = SliceClock::start(&self.device, slicing.alone, || {
+            let clock = SliceClock::start(&self.device, &self.queue, slicing.alone, || {
                 self.queue.submit([encoder.finish()]);
             });
             r.cleared += cleared;
             // The units zeroed, not those asked for: the last piece is usually short, and the
             // next slice is sized from what this one did.
             let units = cleared.div_ceil(CLEAR_UNIT_BYTES);
-            r.in_flight = Some((
-                clock,
-                clock.done(&self.queue),
-                clearing,
-                u32::try_from(units).unwrap_or(count),
-                16,
-            ));
+            r.in_flight = Some((clock, clearing, u32::try_from(units).unwrap_or(count), 16));
             r.done_units += units;
             return Some(r.progress());
         }
@@ -1976,16 +1975,10 @@ impl Engine {
             groups,
             tiles: TilePhase::None,
         };
-        let clock = SliceClock::start(&self.device, slicing.alone, || {
+        let clock = SliceClock::start(&self.device, &self.queue, slicing.alone, || {
             encoder.submit(&[work], None, false);
         });
-        r.in_flight = Some((
-            clock,
-            clock.done(&self.queue),
-            pass,
-            count,
-            grid[0].div_ceil(2),
-        ));
+        r.in_flight = Some((clock, pass, count, grid[0].div_ceil(2)));
         r.done_units += u64::from(count);
         r.next = if unit + count >= units(grid) {
             (k + 1, 0)
@@ -2258,6 +2251,8 @@ impl Target {
 #[cfg(test)]
 mod tests {
     use super::{SliceClock, WORKGROUP_SIZE, slice, units};
+    use std::sync::Arc;
+    use std::sync::atomic::AtomicBool;
     use std::time::{Duration, Instant};
 
     /// A slice timed alone is steered by its own time, whatever frames came between: 4
@@ -2273,7 +2268,8 @@ mod tests {
         assert_eq!(SliceClock::Alone(1e-6).steer(4, &mut shortest, 0.020), 64);
         assert_eq!(shortest, 0.020);
         let submitted = Instant::now() - Duration::from_millis(40);
-        let steered = SliceClock::Since(submitted).steer(4, &mut shortest, 0.020);
+        let seen = Arc::new(AtomicBool::new(true));
+        let steered = SliceClock::Since(submitted, seen).steer(4, &mut shortest, 0.020);
         // own = 40 − 0.8 × 20 = 24 ms (a little more, as time passed since): 4 × 20 / 24 → 3.
         assert_eq!(steered, 3);
         assert_eq!(shortest, 0.020);
