@@ -119,6 +119,9 @@ fn has_aerosol() -> bool { return globals.options.z != 0u; }
 // Bruneton's scattering tables at the camera (bruneton/camera_slice.wgsl).
 @group(1) @binding(24) var<storage, read_write> camera_scattering_lut: array<vec4<f32>>;
 @group(1) @binding(25) var<storage, read_write> camera_single_mie_lut: array<vec4<f32>>;
+// Elek's Rayleigh and Mie tables at the camera (elek/camera_slice.wgsl).
+@group(1) @binding(27) var<storage, read_write> camera_rayleigh_lut: array<vec4<f32>>;
+@group(1) @binding(28) var<storage, read_write> camera_mie_lut: array<vec4<f32>>;
 // Gałaj's spline mesh (galaj_spline/mesh.wgsl).
 @group(1) @binding(22) var<storage, read_write> galaj_spline_mesh_lut: array<vec4<f32>>;
 // The moving sky of the marches per pixel (shared/moving_sky.wgsl).

@@ -350,7 +350,7 @@ pub const MODELS: &[ModelInfo] = &[
         id: "elek",
         label: "Elek 2009",
         citation: "O. Elek (2009), Rendering Parametrizable Planetary Atmospheres with Multiple Scattering in Real-Time, CESCG; as described in J. Boody's Atmosphere Plus notes after Bodare & Sandberg (2014)",
-        summary: "3D tables (altitude, view, sun) without the view–sun azimuth, Rayleigh and Mie apart with their phase functions applied at look-up (a modified Rayleigh phase), every order up to N gathered one by one; no table depends on the sun or the camera.",
+        summary: "3D tables (altitude, view, sun) without the view–sun azimuth, Rayleigh and Mie apart with their phase functions applied at look-up (a modified Rayleigh phase), every order up to N gathered one by one; only their rows at the camera (one blend per texel) depend on the sun or the camera's altitude.",
         domain: elek::DOMAIN,
         tables: &elek::TABLES,
         gathers_orders: true,

@@ -1,6 +1,7 @@
 //! Elek (2009) on the GPU: the passes of `shaders/elek/` as data. The gather, multiple
 //! scattering and accumulate passes run once per scattering order from 2 to the scene's count,
-//! each order reading the last one's tables. The f64 twin of every pass is
+//! each order reading the last one's tables; the camera slice, the tables' rows at the camera,
+//! runs again when the sun or the camera's altitude moves. The f64 twin of every pass is
 //! `atmoscope_model::methods::elek::<pass>`.
 
 use super::{
@@ -15,6 +16,8 @@ const RAYLEIGH: &str = "rayleigh-scattering";
 const MIE: &str = "mie-scattering";
 const GATHERED_RAYLEIGH: &str = "gathered-rayleigh";
 const GATHERED_MIE: &str = "gathered-mie";
+const CAMERA_RAYLEIGH: &str = "camera-rayleigh";
+const CAMERA_MIE: &str = "camera-mie";
 /// Every table pass runs one invocation per texel of the (equally sized) scattering tables.
 const VOLUME: Dispatch = Dispatch::Volume(RAYLEIGH);
 
@@ -56,6 +59,21 @@ pub const METHOD: GpuMethod = GpuMethod {
             VOLUME,
             Repeat::PerOrder,
         ),
-        PassSpec::sky(shader!("elek/sky.wgsl"), &[T, RAYLEIGH, MIE]),
+        PassSpec::table(
+            "camera-slice",
+            shader!("elek/camera_slice.wgsl"),
+            &[RAYLEIGH, MIE],
+            &[CAMERA_RAYLEIGH, CAMERA_MIE],
+            Dispatch::Table(CAMERA_RAYLEIGH),
+            Repeat::Once,
+        ),
+        PassSpec {
+            // Above the atmosphere rays start where they enter it: no slices at the camera.
+            reads_above_atmosphere: Some(&[T, RAYLEIGH, MIE]),
+            ..PassSpec::sky(
+                shader!("elek/sky.wgsl"),
+                &[T, RAYLEIGH, MIE, CAMERA_RAYLEIGH, CAMERA_MIE],
+            )
+        },
     ],
 };

@@ -173,8 +173,8 @@ pub struct PassSpec {
     pub constants: &'static [Constant],
     pub repeat: Repeat,
     /// What the pass reads when the camera is above the atmosphere, where it reads less (a sky
-    /// pass that marches every pixel instead of looking up the view tables, or reads the 4D
-    /// tables instead of their slices at the camera); None: `reads`.
+    /// pass that marches every pixel instead of looking up the view tables, or reads Bruneton's
+    /// 4D or Elek's 3D tables instead of their slices at the camera); None: `reads`.
     /// The engine leaves the passes that only the other reads need stale until they are.
     pub reads_above_atmosphere: Option<&'static [&'static str]>,
     /// What the pass reads when a view ray may start with the sun below Bruneton's tables

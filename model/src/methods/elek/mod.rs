@@ -25,6 +25,7 @@
 //! azimuth of a gathered direction, one look-up serves each zenith ring.
 
 pub mod accumulate;
+pub mod camera_slice;
 pub mod gather;
 pub mod multiple_scattering;
 pub mod single_scattering;
@@ -103,7 +104,7 @@ pub const GATHERED_RAYLEIGH: TableSpec =
 pub const GATHERED_MIE: TableSpec = table("gathered-mie", "gathered Mie (last order)");
 
 /// Every table of the method, in pass order.
-pub const TABLES: [TableSpec; 7] = [
+pub const TABLES: [TableSpec; 9] = [
     transmittance::TABLE,
     DELTA_RAYLEIGH,
     DELTA_MIE,
@@ -111,6 +112,8 @@ pub const TABLES: [TableSpec; 7] = [
     MIE,
     GATHERED_RAYLEIGH,
     GATHERED_MIE,
+    camera_slice::CAMERA_RAYLEIGH,
+    camera_slice::CAMERA_MIE,
 ];
 
 /// The notes' cosine axis: ½(1 + sign(c)·|c|^⅓), dense where the cosine is near 0.
@@ -181,12 +184,14 @@ pub struct Tables {
     pub mie: Lut,
     pub gathered_rayleigh: Lut,
     pub gathered_mie: Lut,
+    pub camera_rayleigh: Lut,
+    pub camera_mie: Lut,
 }
 
 impl Tables {
     /// The transmittance and single scattering, then orders 2..=`p.scattering_orders`, each
-    /// gathered from the one before.
-    pub fn compute(p: &Params) -> Tables {
+    /// gathered from the one before; and both tables' rows at viewpoint `vp`.
+    pub fn compute(p: &Params, vp: Viewpoint) -> Tables {
         let layers = p.batches.len();
         let t = compute_transmittance_lut(p);
         let (mut delta_rayleigh, mut delta_mie) =
@@ -215,6 +220,7 @@ impl Tables {
             rayleigh = accumulate::accumulate(&rayleigh, &delta_rayleigh);
             mie = accumulate::accumulate(&mie, &delta_mie);
         }
+        let (camera_rayleigh, camera_mie) = camera_slices(p, (&rayleigh, &mie), vp);
         Tables {
             params: p.clone(),
             transmittance: t,
@@ -224,8 +230,19 @@ impl Tables {
             mie,
             gathered_rayleigh,
             gathered_mie,
+            camera_rayleigh,
+            camera_mie,
         }
     }
+}
+
+/// The Rayleigh and Mie tables' rows at viewpoint `vp`.
+fn camera_slices(p: &Params, (rayleigh, mie): (&Lut, &Lut), vp: Viewpoint) -> (Lut, Lut) {
+    let slice = |spec, lut| camera_slice::compute_camera_slice(p, spec, lut, vp);
+    (
+        slice(&camera_slice::CAMERA_RAYLEIGH, rayleigh),
+        slice(&camera_slice::CAMERA_MIE, mie),
+    )
 }
 
 impl SkyModel for Tables {
@@ -246,15 +263,22 @@ impl SkyModel for Tables {
             "mie-scattering" => &self.mie,
             "gathered-rayleigh" => &self.gathered_rayleigh,
             "gathered-mie" => &self.gathered_mie,
+            "camera-rayleigh" => &self.camera_rayleigh,
+            "camera-mie" => &self.camera_mie,
             _ => return None,
         })
     }
+
+    fn move_to(&mut self, vp: Viewpoint) -> bool {
+        (self.camera_rayleigh, self.camera_mie) =
+            camera_slices(&self.params, (&self.rayleigh, &self.mie), vp);
+        true
+    }
 }
 
-/// Builds the method's CPU twin (the registry's constructor); no table depends on the
-/// viewpoint.
-pub fn build(params: &Params, _: Viewpoint) -> Box<dyn SkyModel> {
-    Box::new(Tables::compute(params))
+/// Builds the method's CPU twin (the registry's constructor).
+pub fn build(params: &Params, vp: Viewpoint) -> Box<dyn SkyModel> {
+    Box::new(Tables::compute(params, vp))
 }
 
 #[cfg(test)]
@@ -306,7 +330,10 @@ mod tests {
         let mut p = params();
         p.steps.sphere_directions = 6;
         let radiance = |orders: u32| {
-            let t = Tables::compute(&p.clone().with_scattering_orders(orders));
+            let t = Tables::compute(
+                &p.clone().with_scattering_orders(orders),
+                Viewpoint { h: 0.0, mu_s: 1.0 },
+            );
             let position = DVec3::new(0.0, 0.0, p.bottom_radius_m + 100.0);
             let dir = direction_from_angles(40.0, 90.0);
             let sun = direction_from_angles(20.0, 0.0);
