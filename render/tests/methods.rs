@@ -1155,7 +1155,7 @@ fn span_timing_reports_the_tables_and_the_frame_end_to_end() {
 }
 
 /// The tables of the models that gather scattering orders (Bruneton, Elek) depend on the
-/// atmosphere alone, but for the views of them at the camera (Bruneton's camera slices): a sun
+/// atmosphere alone, but for the views of them at the camera (their camera slices): a sun
 /// or camera move runs those and the sky, and from above the atmosphere, where the sky reads
 /// the tables themselves, the sky alone. Their order loop runs once per order from the second.
 #[test]
@@ -1254,6 +1254,66 @@ fn order_gathering_models_rebuild_only_their_view_tables_when_the_sun_or_the_cam
     }
 }
 
+/// Elek's tables at the camera are the GPU's own 3D tables blended at the viewpoint, between
+/// texels in both the altitude and the sun, to f32 rounding: the check of the slice alone,
+/// apart from how closely the 3D tables follow their twin.
+#[test]
+fn elek_s_tables_at_the_camera_blend_his_three_dimensional_tables_there() {
+    use atmoscope_model::methods::elek::{self, camera_slice};
+    let Some(gpu) = context() else { return };
+    let view = View::new(Projection::Perspective, 24, 16);
+    let mut scene = Scene::default();
+    scene.render.method = Method::Elek;
+    scene.render.quality = Quality::Low;
+    scene.render.wavelengths = WavelengthSet::Rgb3;
+    scene.render.scattering_orders = 2;
+    // 1234 m and the sun 20° up fall between texels on both axes (3.4 and 26.3).
+    scene.camera.altitude_m = 1234.0;
+    scene.sun = SunSettings::Angles {
+        elevation_deg: 20.0,
+        azimuth_deg: 120.0,
+    };
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    engine.try_render(&scene, &view).expect("Elek draws");
+    let radius = scene.atmosphere.planet_radius_km * 1000.0;
+    let camera = Camera::new(&scene.camera, radius, view.projection);
+    let cpu = methods::build(&scene, &camera).expect("a real-time model");
+    let p = cpu.params();
+    let vp = viewpoint(&scene, &camera);
+    let [w, h, d] = elek::SIZE.map(|n| n as usize);
+    for (table, slice) in [
+        (elek::RAYLEIGH, camera_slice::CAMERA_RAYLEIGH),
+        (elek::MIE, camera_slice::CAMERA_MIE),
+    ] {
+        let texels = engine.read_table(table.id).expect("read-back");
+        let lut = Lut {
+            width: w,
+            height: h,
+            depth: d,
+            layers: p.batches.len(),
+            data: texels.iter().map(|t| t.map(f64::from)).collect(),
+        };
+        let expected = camera_slice::compute_camera_slice(p, &slice, &lut, vp);
+        let got = engine.read_table(slice.id).expect("read-back");
+        let largest = expected
+            .data
+            .iter()
+            .flatten()
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
+        assert!(largest > 0.0, "{}", slice.id);
+        for (i, (g, e)) in got.iter().zip(&expected.data).enumerate() {
+            for l in 0..4 {
+                let tolerance = 1e-5 * (e[l].abs() + 1e-3 * largest);
+                assert!(
+                    (f64::from(g[l]) - e[l]).abs() <= tolerance,
+                    "{} texel {i}: GPU {g:?}, blend of the GPU's table {e:?}",
+                    slice.id
+                );
+            }
+        }
+    }
+}
+
 /// `render.fitted_constants` reaches García Liñán's passes: switching it rebuilds the sky
 /// texture, and the GPU matches the CPU twin with either set of constants.
 #[test]
@@ -1293,8 +1353,8 @@ fn fitted_constants_reach_the_gpu_and_rebuild_the_tables() {
     );
 }
 
-/// From above the atmosphere the models that march every pixel (or, as Bruneton's, read their
-/// 4D tables instead of their slices at the camera) leave the view tables they do not read
+/// From above the atmosphere the models that march every pixel (or, as Bruneton's and Elek's,
+/// read their 4D or 3D tables instead of their slices at the camera) leave the view tables they do not read
 /// stale, and build them when the camera comes back down: the image is then the same as a
 /// fresh engine's.
 #[test]
