@@ -18,7 +18,8 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
         rayleigh = read_rayleigh_scattering(t);
         mie = read_mie_scattering(t);
     } else {
-        let x = cosine_axis(c.mu) * f32(ELEK_SIZE.x - 1u);
+        // Only the mu coordinate is used; the compiler drops the others.
+        let x = elek_texel(c.h, c.mu, c.mu_s).x;
         let t = taps(vec2<u32>(ELEK_SIZE.x, 1u), layer, vec2<f32>(x, 0.0));
         rayleigh = mix(camera_rayleigh_lut[t.i.x], camera_rayleigh_lut[t.i.y], t.w.x);
         mie = mix(camera_mie_lut[t.i.x], camera_mie_lut[t.i.y], t.w.x);

@@ -18,6 +18,8 @@ const GATHERED_RAYLEIGH: &str = "gathered-rayleigh";
 const GATHERED_MIE: &str = "gathered-mie";
 const CAMERA_RAYLEIGH: &str = "camera-rayleigh";
 const CAMERA_MIE: &str = "camera-mie";
+/// What the sky pass reads from above the atmosphere, where rays start where they enter it.
+const WITHOUT_CAMERA_SLICES: &[&str] = &[T, RAYLEIGH, MIE];
 /// Every table pass runs one invocation per texel of the (equally sized) scattering tables.
 const VOLUME: Dispatch = Dispatch::Volume(RAYLEIGH);
 
@@ -68,8 +70,7 @@ pub const METHOD: GpuMethod = GpuMethod {
             Repeat::Once,
         ),
         PassSpec {
-            // Above the atmosphere rays start where they enter it: no slices at the camera.
-            reads_above_atmosphere: Some(&[T, RAYLEIGH, MIE]),
+            reads_above_atmosphere: Some(WITHOUT_CAMERA_SLICES),
             ..PassSpec::sky(
                 shader!("elek/sky.wgsl"),
                 &[T, RAYLEIGH, MIE, CAMERA_RAYLEIGH, CAMERA_MIE],

@@ -16,11 +16,7 @@ const fn camera_table(id: &'static str, label: &'static str) -> TableSpec {
         id,
         label,
         size: [MU, 1, 1],
-        axes: [
-            "x: view zenith cosine μ, −1 (nadir, left) to 1 (zenith, right), cube-root spacing (dense at the horizontal)",
-            "",
-            "",
-        ],
+        axes: [super::AXES[0], "", ""],
         invalidated_by: Inputs::ATMOSPHERE.union(Inputs::VIEWPOINT),
         transmittance: false,
         describe_texel: |_, _, [x, _, _]| {
@@ -117,7 +113,7 @@ mod tests {
     #[test]
     fn a_twin_moved_to_a_viewpoint_slices_its_tables_there() {
         let p = params().with_scattering_orders(1);
-        let mut tables = Tables::compute(&p, Viewpoint { h: 0.0, mu_s: 1.0 });
+        let mut tables = Tables::compute(&p, super::super::tests::GROUND_NOON);
         let vp = Viewpoint {
             h: 8000.0,
             mu_s: 0.1,

@@ -23,6 +23,9 @@
 //! samples towards the ray's lowest point ([`crate::methods::shared::ray`]); the sphere is
 //! integrated by the midpoint rule, and since the previous order does not depend on the
 //! azimuth of a gathered direction, one look-up serves each zenith ring.
+//!
+//! From inside the atmosphere the sky reads the tables' rows at the camera ([`camera_slice`]),
+//! the only tables that depend on the sun or the camera's altitude.
 
 pub mod accumulate;
 pub mod camera_slice;
@@ -58,7 +61,7 @@ pub const DOMAIN: Domain = Domain {
     refuses: false,
 };
 
-const AXES: [&str; 3] = [
+pub(crate) const AXES: [&str; 3] = [
     "x: view zenith cosine μ, −1 (nadir, left) to 1 (zenith, right), cube-root spacing (dense at the horizontal)",
     "y: sun zenith cosine μ_s, −1 (top) to 1 (bottom), cube-root spacing",
     "z: altitude, ground (slice 0) to the top, square-root spacing",
@@ -173,7 +176,7 @@ pub fn modified_rayleigh_phase(nu: f64) -> f64 {
     (a + b * nu) / (4.0 * std::f64::consts::PI)
 }
 
-/// Every table of the method for one atmosphere, in the state the GPU leaves them.
+/// Every table of the method for one atmosphere and viewpoint, in the state the GPU leaves them.
 #[derive(Debug, Clone)]
 pub struct Tables {
     pub params: Params,
@@ -184,6 +187,7 @@ pub struct Tables {
     pub mie: Lut,
     pub gathered_rayleigh: Lut,
     pub gathered_mie: Lut,
+    /// The Rayleigh and Mie tables' rows at the viewpoint ([`camera_slice`]).
     pub camera_rayleigh: Lut,
     pub camera_mie: Lut,
 }
@@ -287,6 +291,9 @@ mod tests {
     use crate::geometry::direction_from_angles;
     use crate::methods::shared::optics::tests::params;
 
+    /// The viewpoint of the tables at the camera where a test reads only the 3D tables.
+    pub(super) const GROUND_NOON: Viewpoint = Viewpoint { h: 0.0, mu_s: 1.0 };
+
     #[test]
     fn the_mapping_round_trips_and_puts_nodes_on_the_ends() {
         let p = params();
@@ -330,10 +337,7 @@ mod tests {
         let mut p = params();
         p.steps.sphere_directions = 6;
         let radiance = |orders: u32| {
-            let t = Tables::compute(
-                &p.clone().with_scattering_orders(orders),
-                Viewpoint { h: 0.0, mu_s: 1.0 },
-            );
+            let t = Tables::compute(&p.clone().with_scattering_orders(orders), GROUND_NOON);
             let position = DVec3::new(0.0, 0.0, p.bottom_radius_m + 100.0);
             let dir = direction_from_angles(40.0, 90.0);
             let sun = direction_from_angles(20.0, 0.0);
