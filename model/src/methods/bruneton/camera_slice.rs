@@ -78,7 +78,8 @@ mod tests {
     use super::super::{SCATTERING, Tables, scattering};
     use super::*;
     use crate::methods::SkyModel;
-    use crate::methods::shared::optics::tests::params;
+    use crate::methods::shared::optics::tests::{VIEWPOINTS_INSIDE, params};
+    use crate::methods::shared::table::tests::rough_table;
 
     /// A twin moved to another viewpoint reads there what the 4D tables read, for both tables.
     #[test]
@@ -116,23 +117,9 @@ mod tests {
     #[test]
     fn the_slice_reads_what_the_four_dimensional_table_reads_at_the_camera() {
         let p = params();
-        // A table whose every texel differs, smooth in no axis.
         let layers = p.batches.len();
-        let lut = Lut::from_spec(&SCATTERING, layers, |layer, z, y, x| {
-            let v = ((layer * 7919 + z * 104_729 + y * 31 + x) % 997) as f64;
-            [v, v.sqrt(), 1.0 + v * v, (v * 0.37).sin()]
-        });
-        for vp in [
-            Viewpoint { h: 0.0, mu_s: 0.7 },
-            Viewpoint {
-                h: 1234.0,
-                mu_s: -0.15,
-            },
-            Viewpoint {
-                h: 35_000.0,
-                mu_s: 0.05,
-            },
-        ] {
+        let lut = rough_table(&SCATTERING, layers);
+        for vp in VIEWPOINTS_INSIDE {
             let slice = compute_camera_slice(&p, &CAMERA_SCATTERING, &lut, vp);
             for (mu, nu) in [
                 (0.9, 0.8),

@@ -63,34 +63,22 @@ mod tests {
     use super::super::{RAYLEIGH, Tables, look_up};
     use super::*;
     use crate::methods::SkyModel;
-    use crate::methods::shared::optics::tests::params;
+    use crate::methods::shared::optics::tests::{VIEWPOINTS_INSIDE, params};
+    use crate::methods::shared::table::tests::rough_table;
 
     /// From a viewpoint inside the atmosphere, the slice's look-up gives the 3D look-up for
     /// every view zenith cosine, at texel centres and between them.
     #[test]
     fn the_slice_reads_what_the_three_dimensional_table_reads_at_the_camera() {
         let p = params();
-        // A table whose every texel differs, smooth in no axis.
         let layers = p.batches.len();
-        let lut = Lut::from_spec(&RAYLEIGH, layers, |layer, z, y, x| {
-            let v = ((layer * 7919 + z * 104_729 + y * 31 + x) % 997) as f64;
-            [v, v.sqrt(), 1.0 + v * v, (v * 0.37).sin()]
-        });
-        for vp in [
-            Viewpoint { h: 0.0, mu_s: 0.7 },
-            Viewpoint {
-                h: 1234.0,
-                mu_s: -0.15,
-            },
-            Viewpoint {
-                h: 35_000.0,
-                mu_s: 0.05,
-            },
-            Viewpoint {
-                h: p.thickness_m(),
-                mu_s: -1.0,
-            },
-        ] {
+        let lut = rough_table(&RAYLEIGH, layers);
+        // And the top of the atmosphere with the sun at the nadir: the tables' last texels.
+        let top = Viewpoint {
+            h: p.thickness_m(),
+            mu_s: -1.0,
+        };
+        for vp in VIEWPOINTS_INSIDE.into_iter().chain([top]) {
             let slice = compute_camera_slice(&p, &CAMERA_RAYLEIGH, &lut, vp);
             for mu in [0.9, -0.5, 0.01, -0.02, 0.0, 1.0, -1.0, 0.3] {
                 for layer in 0..layers {

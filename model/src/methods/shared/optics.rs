@@ -283,6 +283,20 @@ pub fn viewpoint(scene: &Scene, camera: &Camera) -> Viewpoint {
 pub(crate) mod tests {
     use super::*;
 
+    /// Viewpoints inside the atmosphere, between the texels of the tables' altitude and sun
+    /// axes (the ground, a hill at dusk, the stratosphere at sunrise).
+    pub(crate) const VIEWPOINTS_INSIDE: [Viewpoint; 3] = [
+        Viewpoint { h: 0.0, mu_s: 0.7 },
+        Viewpoint {
+            h: 1234.0,
+            mu_s: -0.15,
+        },
+        Viewpoint {
+            h: 35_000.0,
+            mu_s: 0.05,
+        },
+    ];
+
     #[test]
     fn aerosol_of_zero_amount_or_type_none_is_no_aerosol() {
         let of = |kind: crate::aerosol::AerosolType, aod550: f64| {

@@ -162,3 +162,17 @@ pub(crate) fn split(f: f64, n: usize) -> (usize, usize, f64) {
     let i1 = (i0 + 1).min(n - 1);
     (i0, i1, f - i0 as f64)
 }
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    /// A table of `spec`'s size whose every texel differs, smooth in no axis: a look-up that
+    /// blends the wrong texels or weights cannot match another that blends the right ones.
+    pub(crate) fn rough_table(spec: &TableSpec, layers: usize) -> Lut {
+        Lut::from_spec(spec, layers, |layer, z, y, x| {
+            let v = ((layer * 7919 + z * 104_729 + y * 31 + x) % 997) as f64;
+            [v, v.sqrt(), 1.0 + v * v, (v * 0.37).sin()]
+        })
+    }
+}
