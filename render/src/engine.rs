@@ -444,9 +444,9 @@ impl FrameSetup {
 /// input it reads changed, a table it reads was just rewritten or it was left stale before
 /// (`deferred`); it runs when the view needs what it writes (from above the atmosphere a
 /// marching sky pass reads fewer tables, Bruneton's and Elek's skies no camera slices there,
-/// Bruneton's none with the sun below its tables, a view without ground none of those only the ground's pixels read, and a
-/// frame not `in_motion` (drawn in tiles) no moving sky), and otherwise stays marked in
-/// `deferred`.
+/// Bruneton's none with the sun below its tables, a view without ground none of those only the
+/// ground's pixels read, and a frame not `in_motion` (drawn in tiles) no moving sky), and
+/// otherwise stays marked in `deferred`.
 fn plan(
     pipelines: &Pipelines,
     changed: Inputs,

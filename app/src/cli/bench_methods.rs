@@ -349,7 +349,8 @@ fn measure(
     }
     // The precompute of this view: the tables of the atmosphere, timed once per configuration
     // (no view changes them or their cost), and the view tables it needs (Hillaire's sky view
-    // and aerial perspective, none from space; Bruneton's and Elek's camera slices), timed per view.
+    // and aerial perspective, none from space; Bruneton's and Elek's camera slices), timed per
+    // view.
     let time_tables = |engine: &mut Engine, full: bool| -> anyhow::Result<f64> {
         let mut times = Vec::new();
         let start = Instant::now();

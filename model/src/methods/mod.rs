@@ -204,8 +204,8 @@ pub trait SkyModel: Send + Sync {
     fn table(&self, id: &str) -> Option<&Lut>;
 
     /// Moves the twin to viewpoint `vp` by rebuilding only what depends on it, where that is
-    /// cheap next to the rest (Bruneton's and Elek's camera slices); false where the model cannot, and the
-    /// caller builds it again.
+    /// cheap next to the rest (Bruneton's and Elek's camera slices); false where the model
+    /// cannot, and the caller builds it again.
     fn move_to(&mut self, _vp: Viewpoint) -> bool {
         false
     }
