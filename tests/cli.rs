@@ -1471,9 +1471,11 @@ fn bench_methods_writes_results_summary_and_pareto_chart() {
             "{r:?}: FLIP and RMSE"
         );
     }
-    // Hillaire's tables follow the viewpoint; Elek's do not, so his one precompute stands
-    // for both views.
-    assert_eq!(rows[2][4], rows[3][4]);
+    // Elek's tables of the atmosphere are timed once for both views; only his tables at the
+    // camera (a fraction of a millisecond) are timed per view.
+    let precompute = |r: &Vec<&str>| r[4].parse::<f64>().expect("precompute ms");
+    let (a, b) = (precompute(&rows[2]), precompute(&rows[3]));
+    assert!((a - b).abs() < 10.0, "Elek's precompute: {a} and {b} ms");
     let summary = std::fs::read_to_string(out.join("summary.md")).expect("summary.md");
     assert!(
         summary.contains("| hillaire | rgb3 | medium |"),
