@@ -270,6 +270,14 @@ impl SunSettings {
             SunSettings::Date { time, .. } => sun::distance_au(time.julian_day()),
         }
     }
+
+    /// Sunlight at the scene's Earth–Sun distance over that at 1 AU: 1/d² (0.967–1.034).
+    /// The real-time models hold sunlight at 1 AU in their optics and tables and draw their
+    /// radiance times this (every one is linear in the sunlight), so a sun moving by date
+    /// and time moves only what its direction moves.
+    pub fn sunlight_scale(&self) -> f64 {
+        self.distance_au().powi(-2)
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

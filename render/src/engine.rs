@@ -190,8 +190,6 @@ pub fn capture<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> Result<T, Eng
 #[derive(Debug, Clone, PartialEq)]
 struct AtmosphereKey {
     settings: AtmosphereSettings,
-    /// Sunlight scales with the Earth–Sun distance, which a sun placed by date sets.
-    sun_distance_au: f64,
     method: Method,
     wavelengths: WavelengthSet,
     quality: Quality,
@@ -203,7 +201,8 @@ struct AtmosphereKey {
 struct Snapshot {
     atmosphere: AtmosphereKey,
     viewpoint: [f64; 2],
-    sun: [f64; 3],
+    /// The sun's direction and the scale of its light (`SunSettings::sunlight_scale`).
+    sun: [f64; 4],
     camera: (CameraSettings, Projection),
     size: [u32; 2],
     display: (f64, ToneMap, DisplayMode, bool, WhiteBalance, bool),
@@ -264,7 +263,7 @@ impl FrameSetup {
         let snapshot = Snapshot {
             atmosphere: state.key.clone(),
             viewpoint: [viewpoint.h, viewpoint.mu_s],
-            sun: sun.to_array(),
+            sun: sun.extend(scene.sun.sunlight_scale()).to_array(),
             camera: (scene.camera.clone(), view.projection),
             size,
             display: (
@@ -1455,7 +1454,6 @@ impl Engine {
         })?;
         let key = AtmosphereKey {
             settings: scene.atmosphere.clone(),
-            sun_distance_au: scene.sun.distance_au(),
             method,
             wavelengths: scene.render.wavelengths,
             quality: scene.render.quality,
@@ -1817,8 +1815,14 @@ impl Engine {
         let Some(gpu) = gpu_method(key.method) else {
             unreachable!("the caller checked the model is a real-time one");
         };
-        let params = Params::new(&Atmosphere::for_scene(scene), key.wavelengths, key.quality)
-            .with_render(&scene.render);
+        // Sunlight at 1 AU: the sky pass scales the view to the scene's distance
+        // (`SunSettings::sunlight_scale`), so a sun placed by date keeps its tables all year.
+        let params = Params::new(
+            &Atmosphere::new(&key.settings),
+            key.wavelengths,
+            key.quality,
+        )
+        .with_render(&scene.render);
         let i = self.pipelines_of(gpu);
         let tables = TableBuffers::new(&self.device, &self.pipelines[i], gpu.info(), &params);
         let batches: Vec<uniforms::Batch> = params.batches.iter().map(Into::into).collect();

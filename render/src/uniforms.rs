@@ -99,6 +99,7 @@ pub struct Globals {
     pub steps_b: [u32; 4],
     pub display: [f32; 4],
     pub glare: [f32; 4],
+    pub sunlight: [f32; 4],
     pub white_balance: [[f32; 4]; 3],
     pub model: [[f32; 4]; 3],
 }
@@ -137,6 +138,7 @@ impl From<&FrameInputs<'_>> for Globals {
             } => (log10_min, log10_max),
             DisplayMode::Colour => (0.0, 1.0),
         };
+        let sunlight = f.scene.sun.sunlight_scale();
         Globals {
             planet: [
                 p.bottom_radius_m as f32,
@@ -192,9 +194,11 @@ impl From<&FrameInputs<'_>> for Globals {
                 log10_max as f32,
                 f32::from(u8::from(f.scene.display.dither)),
             ],
-            glare: f
-                .glare
-                .map_or([0.0; 4], |e| [e[0] as f32, e[1] as f32, e[2] as f32, 0.0]),
+            glare: f.glare.map_or([0.0; 4], |e| {
+                let e = e.map(|c| c * sunlight);
+                [e[0] as f32, e[1] as f32, e[2] as f32, 0.0]
+            }),
+            sunlight: [sunlight as f32, 0.0, 0.0, 0.0],
             white_balance: f
                 .balance
                 .map(|r| [r[0] as f32, r[1] as f32, r[2] as f32, 0.0]),

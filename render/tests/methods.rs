@@ -825,6 +825,58 @@ fn each_frame_runs_only_the_passes_whose_inputs_changed() {
     assert!(engine.render(&scene, &view).run.is_empty());
 }
 
+/// A sun placed by date moves through the day, and its light through the year, without a
+/// table rebuilt: the tables hold sunlight at 1 AU and the sky pass scales the view to the
+/// date's Earth–Sun distance. The view drawn so is the one drawn afresh and the twin's, and the
+/// same sun given by angles (at 1 AU) is 1/d² as bright.
+#[test]
+fn a_sun_placed_by_date_moves_without_rebuilding_the_tables() {
+    let Some(gpu) = context() else { return };
+    let mut scene = Scene::default();
+    let view = View::new(Projection::Fisheye, 24, 24);
+    let at = |hour: f64| SunSettings::Date {
+        time: atmoscope_model::sun::DateTime {
+            year: 2026,
+            month: 1,
+            day: 4,
+            hour,
+            utc_offset_h: 1.0,
+        },
+        latitude_deg: 47.4,
+        longitude_deg: 8.5,
+    };
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    scene.sun = at(10.0);
+    engine.render(&scene, &view);
+    scene.sun = at(11.0);
+    // The fisheye shows no ground: of the tables, only the sky view follows the sun.
+    assert_eq!(
+        engine.render(&scene, &view).run,
+        vec!["sky-view", "sky"],
+        "an hour later"
+    );
+    let moved = radiance_image(&engine);
+    let afresh = assert_render_matches_the_twin(&gpu, "by date", &scene, view.projection, 24, 24);
+    let a = scene.sun.angles();
+    scene.sun = SunSettings::Angles {
+        elevation_deg: a.elevation_deg,
+        azimuth_deg: a.azimuth_deg,
+    };
+    assert_eq!(engine.render(&scene, &view).run, vec!["sky"], "at 1 AU");
+    let at_1_au = radiance_image(&engine);
+    let scale = at(11.0).sunlight_scale();
+    assert!(scale > 1.03, "{scale}");
+    for ((m, f), u) in moved.iter().zip(&afresh).zip(&at_1_au) {
+        for c in 0..3 {
+            assert!((m[c] - f[c]).abs() <= 1e-6 * f[c].abs(), "{m:?} {f:?}");
+            assert!(
+                (m[c] - scale * u[c]).abs() <= 1e-5 * m[c].abs(),
+                "{m:?} {u:?}"
+            );
+        }
+    }
+}
+
 /// Where the engine slices its work (`Engine::set_rebuild_slices`), the still frame after frames
 /// in tiles is drawn half a row of workgroups per frame (a zero target), the image in tiles on screen
 /// meanwhile, and comes out as the still frame drawn whole.

@@ -35,6 +35,10 @@ struct Globals {
     // the sun's irradiance at the camera (linear sRGB, W/m²) where the display adds its veiling
     // glare (the GLARE pipeline constant; model::display::glare), else 0; w unused
     glare: vec4<f32>,
+    // x: the sunlight at the scene's Earth–Sun distance over that at 1 AU (1/d², d in AU), by
+    // which the sky pass scales every radiance it writes (the tables hold sunlight at 1 AU);
+    // yzw unused
+    sunlight: vec4<f32>,
     // white balance matrix rows on linear sRGB (model::white_balance), w unused
     white_balance: array<vec4<f32>, 3>,
     // constants of the model on screen, three rows (render::methods::GpuMethod::constants)

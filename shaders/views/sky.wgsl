@@ -4,7 +4,8 @@
 // views/moving_sky_radiance.wgsl), and, in the model's common files, `sun_through_atmosphere(layer, h, mu_s)`:
 // the transmittance along the sun's own ray (shared/sun_disk.wgsl for the table-based models).
 // The sun's disk is added here, averaged over the pixel (twin of model::methods::render_with). Sums the
-// batches into linear sRGB (Y = ∫ȳL dλ) and writes coverage in alpha (0 outside the projection).
+// batches into linear sRGB (Y = ∫ȳL dλ), scaled from sunlight at 1 AU to the scene's Earth–Sun
+// distance, and writes coverage in alpha (0 outside the projection).
 //
 // With SKY_TILE > 1 (the frames of a view in motion, `Engine::set_sky_tile`) the radiance is
 // computed at the corners of tiles of SKY_TILE × SKY_TILE pixels, shared through workgroup
@@ -44,10 +45,10 @@ fn store(p: vec2<u32>, l: vec4<f32>) {
     textureStore(display_out, p, displayed(p, l));
 }
 
-// A batch's radiance in linear sRGB.
+// A batch's radiance in linear sRGB, at the scene's Earth–Sun distance.
 fn batch_srgb(layer: u32, l: vec4<f32>) -> vec3<f32> {
-    return vec3<f32>(dot(batches[layer].to_srgb_r, l), dot(batches[layer].to_srgb_g, l),
-        dot(batches[layer].to_srgb_b, l));
+    return globals.sunlight.x * vec3<f32>(dot(batches[layer].to_srgb_r, l),
+        dot(batches[layer].to_srgb_g, l), dot(batches[layer].to_srgb_b, l));
 }
 
 // Linear sRGB of the sky and ground along `dir` (no sun disk), summed over the batches.

@@ -47,7 +47,8 @@ impl Inputs {
     pub const ATMOSPHERE: Inputs = Inputs(1);
     /// The camera's altitude and the sun's zenith angle there (what the view tables depend on).
     pub const VIEWPOINT: Inputs = Inputs(2);
-    /// The sun's direction in the world.
+    /// The sun's direction in the world, and the strength of its light at the scene's
+    /// Earth–Sun distance (`SunSettings::sunlight_scale`).
     pub const SUN: Inputs = Inputs(4);
     /// The camera's position, orientation, field of view and projection.
     pub const CAMERA: Inputs = Inputs(8);
@@ -589,7 +590,9 @@ pub enum CannotDraw {
     Refused(&'static str, String),
 }
 
-/// The CPU twin of the scene's model for `scene` seen through `camera`.
+/// The CPU twin of the scene's model for `scene` seen through `camera`. Its optics and tables
+/// hold sunlight at 1 AU, as the GPU's do: [`render_with`] scales its radiance to the scene's
+/// Earth–Sun distance ([`crate::scene::SunSettings::sunlight_scale`]).
 pub fn build(scene: &Scene, camera: &Camera) -> Result<Box<dyn SkyModel>, CannotDraw> {
     let row = info(scene.render.method);
     if let Some(why) = row.cannot_draw(scene) {
@@ -598,7 +601,7 @@ pub fn build(scene: &Scene, camera: &Camera) -> Result<Box<dyn SkyModel>, Cannot
     let build = row
         .build
         .ok_or_else(|| CannotDraw::NotRealtime(row.id, realtime_ids()))?;
-    let atm = Atmosphere::for_scene(&scene);
+    let atm = Atmosphere::new(&scene.atmosphere);
     let p = Params::new(&atm, scene.render.wavelengths, scene.render.quality)
         .with_render(&scene.render);
     Ok(build(&p, shared::viewpoint(scene, camera)))
@@ -621,7 +624,8 @@ pub fn render(
     Ok(render_with(model.as_ref(), scene, &camera, width, height))
 }
 
-/// CPU render with a model already built.
+/// CPU render with a model already built ([`build`]: sunlight at 1 AU), its radiance scaled to
+/// the scene's Earth–Sun distance.
 pub fn render_with(
     model: &dyn SkyModel,
     scene: &Scene,
@@ -634,6 +638,7 @@ pub fn render_with(
     let p = model.params();
     let colours: Vec<WavelengthBatch> = p.batches.iter().map(|b| b.colour.clone()).collect();
     let sun_in_view = camera.sun_in_view(sun, width, height);
+    let sunlight = scene.sun.sunlight_scale();
     (0..width * height)
         .into_par_iter()
         .map(|i| {
@@ -656,7 +661,7 @@ pub fn render_with(
                             )
                         })
                         .collect();
-                    to_linear_srgb(&colours, &lanes)
+                    to_linear_srgb(&colours, &lanes).map(|c| c * sunlight)
                 }
             }
         })
@@ -745,6 +750,72 @@ mod tests {
         scene.render.method = Method::PathTracer;
         let camera = Camera::new(&scene.camera, 6_360_000.0, Projection::Perspective);
         assert!(build(&scene, &camera).is_err());
+    }
+
+    /// Every real-time model is linear in the sunlight, so its optics and tables hold it at
+    /// 1 AU and the view is scaled to the date's distance: the twin drawn that way draws what a
+    /// twin built with the optics at the date's distance draws (4 January, the Earth nearest
+    /// the sun: 3.4 % more sunlight).
+    #[test]
+    fn every_real_time_model_draws_the_date_s_sunlight_by_scaling_its_view() {
+        let mut scene = Scene::default();
+        scene.render.quality = crate::scene::Quality::Low;
+        scene.render.wavelengths = crate::scene::WavelengthSet::Rgb3;
+        scene.camera.pitch_deg = -5.0;
+        // Two orders are enough to show the higher ones linear too, at a fraction of the time.
+        scene.render.scattering_orders = 2;
+        scene.sun = crate::scene::SunSettings::Date {
+            time: crate::sun::DateTime {
+                year: 2026,
+                month: 1,
+                day: 4,
+                hour: 11.0,
+                utc_offset_h: 1.0,
+            },
+            latitude_deg: 47.4,
+            longitude_deg: 8.5,
+        };
+        let a = scene.sun.angles();
+        let mut at_1_au = scene.clone();
+        at_1_au.sun = crate::scene::SunSettings::Angles {
+            elevation_deg: a.elevation_deg,
+            azimuth_deg: a.azimuth_deg,
+        };
+        let scale = scene.sun.sunlight_scale();
+        assert!((scale - 1.034).abs() < 0.001, "{scale}");
+        let camera = Camera::new(&scene.camera, 6_360_000.0, Projection::Perspective);
+        let (w, h) = (6, 4);
+        for row in realtime() {
+            scene.render.method = row.method;
+            at_1_au.render.method = row.method;
+            if row.cannot_draw(&scene).is_some() {
+                continue;
+            }
+            let twin_at_1_au = build(&scene, &camera).expect("real-time");
+            let scaled = render_with(twin_at_1_au.as_ref(), &scene, &camera, w, h);
+            let unscaled = render_with(twin_at_1_au.as_ref(), &at_1_au, &camera, w, h);
+            let optics = Params::new(
+                &Atmosphere::for_scene(&scene),
+                scene.render.wavelengths,
+                scene.render.quality,
+            )
+            .with_render(&scene.render);
+            let build_with = row.build.expect("a real-time model builds a twin");
+            let twin = build_with(&optics, shared::viewpoint(&scene, &camera));
+            // Drawn with the sun at the same angles, so that the view is not scaled again.
+            let at_distance = render_with(twin.as_ref(), &at_1_au, &camera, w, h);
+            for ((s, u), d) in scaled.iter().zip(&unscaled).zip(&at_distance) {
+                for c in 0..3 {
+                    let tol = 1e-9 * d[c].abs() + 1e-12;
+                    assert!(
+                        (s[c] - d[c]).abs() <= tol,
+                        "{}: {s:?} against {d:?}",
+                        row.id
+                    );
+                    assert!((s[c] - scale * u[c]).abs() <= tol, "{}", row.id);
+                }
+            }
+        }
     }
 
     #[test]
