@@ -197,9 +197,20 @@ struct AtmosphereKey {
     fitted_constants: FittedConstants,
 }
 
+impl AtmosphereKey {
+    /// The key with the ground albedo left out (`Inputs::GROUND_ALBEDO` apart).
+    fn without_albedo(&self) -> AtmosphereKey {
+        let mut k = self.clone();
+        k.settings.ground_albedo = 0.0;
+        k
+    }
+}
+
 #[derive(Debug, Clone, PartialEq)]
 struct Snapshot {
+    /// The atmosphere's key without the ground albedo, which is apart.
     atmosphere: AtmosphereKey,
+    ground_albedo: f64,
     viewpoint: [f64; 2],
     /// The sun's direction and the scale of its light (`SunSettings::sunlight_scale`).
     sun: [f64; 4],
@@ -220,6 +231,7 @@ impl Snapshot {
             }
         };
         mark(self.atmosphere != p.atmosphere, Inputs::ATMOSPHERE);
+        mark(self.ground_albedo != p.ground_albedo, Inputs::GROUND_ALBEDO);
         mark(self.viewpoint != p.viewpoint, Inputs::VIEWPOINT);
         mark(self.sun != p.sun, Inputs::SUN);
         mark(self.camera != p.camera, Inputs::CAMERA);
@@ -261,7 +273,8 @@ impl FrameSetup {
         let viewpoint = viewpoint(scene, &camera);
         let size = [view.width.max(1), view.height.max(1)];
         let snapshot = Snapshot {
-            atmosphere: state.key.clone(),
+            atmosphere: state.key.without_albedo(),
+            ground_albedo: state.key.settings.ground_albedo,
             viewpoint: [viewpoint.h, viewpoint.mu_s],
             sun: sun.extend(scene.sun.sunlight_scale()).to_array(),
             camera: (scene.camera.clone(), view.projection),
@@ -1462,12 +1475,27 @@ impl Engine {
         };
         let size = [view.width.max(1), view.height.max(1)];
         let current = self.atmosphere.as_ref().is_some_and(|a| a.key == key);
+        // Where no table holds the ground albedo, a change of it alone redraws the view with
+        // the tables on screen (Elek's ground reflects nothing into his tables).
+        let albedo_only = !current
+            && !gpu.info().tables_hold_the_albedo()
+            && self
+                .atmosphere
+                .as_ref()
+                .is_some_and(|a| a.key.without_albedo() == key.without_albedo());
         let mut rebuilt = false;
         let mut progress = None;
         let mut rebuild_done = false;
         if current {
             // The scene went back to what is on screen: a rebuild under way is moot.
             self.rebuild = None;
+        } else if albedo_only {
+            self.rebuild = None;
+            if let Some(state) = self.atmosphere.as_mut() {
+                state.params = state_params(scene, &key);
+                upload_batches(&self.queue, &state.tables, &state.params);
+                state.key = key;
+            }
         } else if let (Some(slice), Some(_), Some(_)) =
             (self.slicing, &self.atmosphere, &self.target)
         {
@@ -1513,6 +1541,11 @@ impl Engine {
             .snapshot
             .changes_from(self.last.as_ref())
             .union(std::mem::replace(&mut self.forced, Inputs::NONE));
+        if rebuilt {
+            // New tables, empty: every pass runs, whatever of the atmosphere changed (the
+            // ground albedo alone, for a model whose tables hold it).
+            changed = changed.union(Inputs::ATMOSPHERE);
+        }
         if rebuild_done {
             // The rebuild drew its view at full resolution.
             self.tiled_on_screen = false;
@@ -1815,19 +1848,10 @@ impl Engine {
         let Some(gpu) = gpu_method(key.method) else {
             unreachable!("the caller checked the model is a real-time one");
         };
-        // Sunlight at 1 AU: the sky pass scales the view to the scene's distance
-        // (`SunSettings::sunlight_scale`), so a sun placed by date keeps its tables all year.
-        let params = Params::new(
-            &Atmosphere::new(&key.settings),
-            key.wavelengths,
-            key.quality,
-        )
-        .with_render(&scene.render);
+        let params = state_params(scene, &key);
         let i = self.pipelines_of(gpu);
         let tables = TableBuffers::new(&self.device, &self.pipelines[i], gpu.info(), &params);
-        let batches: Vec<uniforms::Batch> = params.batches.iter().map(Into::into).collect();
-        self.queue
-            .write_buffer(&tables.batches, 0, bytemuck::cast_slice(&batches));
+        upload_batches(&self.queue, &tables, &params);
         self.queue.write_buffer(
             &tables.profile,
             0,
@@ -2096,6 +2120,24 @@ impl Engine {
             read_buffer_f32x4(&self.device, &self.queue, buffer)
         })??)
     }
+}
+
+/// The optics of an atmosphere for `key`. Sunlight at 1 AU: the sky pass scales the view to
+/// the scene's distance (`SunSettings::sunlight_scale`), so a sun placed by date keeps its
+/// tables all year.
+fn state_params(scene: &Scene, key: &AtmosphereKey) -> Params {
+    Params::new(
+        &Atmosphere::new(&key.settings),
+        key.wavelengths,
+        key.quality,
+    )
+    .with_render(&scene.render)
+}
+
+/// Uploads the optics of every batch of four wavelengths (`batches` in the shaders).
+fn upload_batches(queue: &wgpu::Queue, tables: &TableBuffers, params: &Params) {
+    let batches: Vec<uniforms::Batch> = params.batches.iter().map(Into::into).collect();
+    queue.write_buffer(&tables.batches, 0, bytemuck::cast_slice(&batches));
 }
 
 fn map_u64(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Option<Vec<u64>> {

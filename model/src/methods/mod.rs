@@ -43,7 +43,7 @@ pub struct Inputs(u8);
 
 impl Inputs {
     pub const NONE: Inputs = Inputs(0);
-    /// Atmosphere settings, model, wavelength set and quality.
+    /// Atmosphere settings but the ground albedo, model, wavelength set and quality.
     pub const ATMOSPHERE: Inputs = Inputs(1);
     /// The camera's altitude and the sun's zenith angle there (what the view tables depend on).
     pub const VIEWPOINT: Inputs = Inputs(2);
@@ -55,7 +55,10 @@ impl Inputs {
     pub const VIEW_SIZE: Inputs = Inputs(16);
     /// Exposure, tone map and display mode.
     pub const DISPLAY: Inputs = Inputs(32);
-    pub const ALL: Inputs = Inputs(63);
+    /// The ground's albedo: the sky pass draws the ground with it, and the tables of the
+    /// models whose multiple scattering bounces off the ground hold it.
+    pub const GROUND_ALBEDO: Inputs = Inputs(64);
+    pub const ALL: Inputs = Inputs(127);
 
     pub const fn union(self, other: Inputs) -> Inputs {
         Inputs(self.0 | other.0)
@@ -78,6 +81,7 @@ impl Inputs {
             (Inputs::CAMERA, "camera"),
             (Inputs::VIEW_SIZE, "view size"),
             (Inputs::DISPLAY, "display"),
+            (Inputs::GROUND_ALBEDO, "ground albedo"),
         ]
         .into_iter()
         .filter(|(i, _)| self.intersects(*i))
@@ -268,6 +272,14 @@ impl ModelInfo {
         self.tables
             .iter()
             .any(|t| t.invalidated_by.intersects(Inputs::VIEWPOINT) && !t.motion_only())
+    }
+
+    /// Whether any table but the moving sky holds the ground albedo: if none does, a change
+    /// of the albedo redraws the view alone.
+    pub fn tables_hold_the_albedo(&self) -> bool {
+        self.tables
+            .iter()
+            .any(|t| t.invalidated_by.intersects(Inputs::GROUND_ALBEDO) && !t.motion_only())
     }
 
     /// A table of the model by id.

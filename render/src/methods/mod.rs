@@ -319,14 +319,19 @@ impl PassSpec {
     }
 
     /// The scene inputs that make the pass stale directly: its own and those the registry
-    /// declares for the tables it writes.
+    /// declares for the tables it writes; a view pass's include the ground albedo, with which
+    /// the sky pass draws the ground.
     pub fn direct_inputs(&self, model: &ModelInfo) -> Inputs {
+        let own = self.inputs.union(Inputs::ATMOSPHERE);
+        let own = if self.is_table() {
+            own
+        } else {
+            own.union(Inputs::GROUND_ALBEDO)
+        };
         self.writes
             .iter()
             .filter_map(|id| model.table(id))
-            .fold(self.inputs.union(Inputs::ATMOSPHERE), |a, t| {
-                a.union(t.invalidated_by)
-            })
+            .fold(own, |a, t| a.union(t.invalidated_by))
     }
 }
 

@@ -148,9 +148,11 @@ pub const DELTA_RAYLEIGH: TableSpec =
 /// The last order's Mie part: single Mie, zero once the loop has run.
 pub const DELTA_MIE: TableSpec =
     scattering_table("delta-mie", "Δ scattering, Mie part (last order)");
-/// The scattering density J of the last order.
-pub const SCATTERING_DENSITY: TableSpec =
-    scattering_table("scattering-density", "scattering density J (last order)");
+/// The scattering density J of the last order, the light the ground reflects included.
+pub const SCATTERING_DENSITY: TableSpec = TableSpec {
+    invalidated_by: Inputs::ATMOSPHERE.union(Inputs::GROUND_ALBEDO),
+    ..scattering_table("scattering-density", "scattering density J (last order)")
+};
 
 /// Every table of the method, in pass order.
 pub const TABLES: [TableSpec; 10] = [

@@ -25,7 +25,10 @@ pub const TABLE: TableSpec = TableSpec {
         "y: elevation, zenith (top) to the horizontal (middle) to nadir (bottom), quadratic towards the horizontal",
         "",
     ],
-    invalidated_by: Inputs::ATMOSPHERE.union(Inputs::VIEWPOINT),
+    // The light the sunlit ground below scatters back into the sky (`ground_bounce`).
+    invalidated_by: Inputs::ATMOSPHERE
+        .union(Inputs::VIEWPOINT)
+        .union(Inputs::GROUND_ALBEDO),
     transmittance: false,
     describe_texel: |_, _, [x, y, _]| {
         let (phi, e) = sky_texture_angles_from_texel(x, y);

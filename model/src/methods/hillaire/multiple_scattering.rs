@@ -29,7 +29,8 @@ pub const TABLE: TableSpec = TableSpec {
         "y: altitude h, ground (top row) to the top (bottom row)",
         "",
     ],
-    invalidated_by: Inputs::ATMOSPHERE,
+    // Ψ_ms includes the light the ground reflects.
+    invalidated_by: Inputs::ATMOSPHERE.union(Inputs::GROUND_ALBEDO),
     transmittance: false,
     describe_texel: |p, _, [x, y, _]| {
         let (h, mu_s) = multiple_scattering_h_mu_s_from_texel(p, x, y);

@@ -19,7 +19,10 @@ use glam::DVec3;
 pub const TABLE: TableSpec = TableSpec {
     id: "moving-sky",
     label: "moving sky (built for frames in motion on a software GPU)",
-    invalidated_by: Inputs::ATMOSPHERE.union(Inputs::VIEWPOINT),
+    // The model's radiance, the ground's included.
+    invalidated_by: Inputs::ATMOSPHERE
+        .union(Inputs::VIEWPOINT)
+        .union(Inputs::GROUND_ALBEDO),
     transmittance: false,
     ..sky_view::TABLE
 };
