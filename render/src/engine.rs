@@ -1491,6 +1491,8 @@ impl Engine {
             self.rebuild = None;
         } else if albedo_only {
             self.rebuild = None;
+            // A moving sky under way would be published half with the old albedo.
+            self.drop_moving_sky_job();
             if let Some(state) = self.atmosphere.as_mut() {
                 state.params = state_params(scene, &key);
                 upload_batches(&self.queue, &state.tables, &state.params);

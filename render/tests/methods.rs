@@ -911,7 +911,7 @@ fn a_change_of_the_ground_albedo_alone_keeps_the_tables_that_do_not_hold_it() {
                 stats.tables_run
             );
             assert!(
-                stats.rebuild.is_none() && stats.run.contains(&"sky"),
+                stats.rebuild.is_none() && !stats.rebuild_done && stats.run.contains(&"sky"),
                 "{name}"
             );
             for (m, f) in radiance_image(&engine).iter().zip(&afresh) {
