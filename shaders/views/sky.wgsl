@@ -45,10 +45,10 @@ fn store(p: vec2<u32>, l: vec4<f32>) {
     textureStore(display_out, p, displayed(p, l));
 }
 
-// A batch's radiance in linear sRGB, at the scene's Earth–Sun distance.
+// A batch's radiance in linear sRGB (sunlight at 1 AU).
 fn batch_srgb(layer: u32, l: vec4<f32>) -> vec3<f32> {
-    return globals.sunlight.x * vec3<f32>(dot(batches[layer].to_srgb_r, l),
-        dot(batches[layer].to_srgb_g, l), dot(batches[layer].to_srgb_b, l));
+    return vec3<f32>(dot(batches[layer].to_srgb_r, l), dot(batches[layer].to_srgb_g, l),
+        dot(batches[layer].to_srgb_b, l));
 }
 
 // Linear sRGB of the sky and ground along `dir` (no sun disk), summed over the batches.
@@ -57,7 +57,8 @@ fn sky_rgb(dir: vec3<f32>) -> vec3<f32> {
     for (var layer = 0u; layer < batch_count(); layer++) {
         rgb += batch_srgb(layer, view_radiance(layer, dir));
     }
-    return rgb;
+    // Scaled once, to the scene's Earth–Sun distance.
+    return globals.sunlight.x * rgb;
 }
 
 // The pixel centred at (x, y): linear sRGB with the sun's disk where SUN_DISK, coverage in alpha.
@@ -80,7 +81,7 @@ fn pixel(x: f32, y: f32) -> vec4<f32> {
         }
         rgb += batch_srgb(layer, l);
     }
-    return vec4<f32>(rgb, 1.0);
+    return vec4<f32>(globals.sunlight.x * rgb, 1.0);
 }
 
 // A tile corner at pixel-grid point (x, y): linear sRGB without the disk, and what the ray sees.
