@@ -4,7 +4,8 @@
 
 use crate::methods::{
     COMMON, Constant, DISPLAY, GpuMethod, MOVING_SKY, MOVING_SKY_ENTRY_POINT, MOVING_SKY_RADIANCE,
-    PassSpec, RADIANCE, SKY_ENTRY_POINT, TONE, VIEW_PASSES, VIEW_RADIANCE,
+    PassSpec, RADIANCE, SKY_ENTRY_POINT, SUN_ROUTE, SUN_ROUTE_FROM_TABLE, SUN_ROUTE_MARCHED,
+    SUN_ROUTE_TABLE, TONE, VIEW_PASSES, VIEW_RADIANCE,
 };
 use crate::prelude::{march_split, wgsl_prelude};
 use crate::uniforms::{Batch, Globals, MIE_PHASE_ROWS_LEN};
@@ -103,6 +104,14 @@ pub fn shader_source(method: &GpuMethod, pass: &PassSpec, texel_group_size: u32)
     if !VIEW_PASSES.contains(pass) {
         for part in method.common {
             s.push_str(part.source);
+        }
+        if method.common.contains(&SUN_ROUTE) {
+            let way = if pass.reads.contains(&SUN_ROUTE_TABLE) {
+                SUN_ROUTE_FROM_TABLE
+            } else {
+                SUN_ROUTE_MARCHED
+            };
+            s.push_str(way.source);
         }
     }
     if pass.writes.contains(&DISPLAY) {

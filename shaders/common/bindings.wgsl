@@ -130,6 +130,8 @@ fn has_aerosol() -> bool { return globals.options.z != 0u; }
 @group(1) @binding(22) var<storage, read_write> galaj_spline_mesh_lut: array<vec4<f32>>;
 // The moving sky of the marches per pixel (shared/moving_sky.wgsl).
 @group(1) @binding(26) var<storage, read_write> moving_sky_lut: array<vec4<f32>>;
+// The nested marches' way to the sun, tabulated for their moving sky (shared/sun_route_table.wgsl).
+@group(1) @binding(29) var<storage, read_write> sun_route_lut: array<vec4<f32>>;
 @group(1) @binding(6) var radiance_out: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(7) var radiance_in: texture_2d<f32>;
 @group(1) @binding(8) var display_out: texture_storage_2d<rgba8unorm, write>;

@@ -33,18 +33,26 @@ fn optical_depth_to_top(layer: u32, h: f32, mu: f32) -> vec4<f32> {
     return depth;
 }
 
+// Optical depth from altitude h along zenith cosine mu to the top by the model's way; twin of
+// SunRoute::optical_depth.
+fn optical_depth_by_way(layer: u32, h: f32, mu: f32) -> vec4<f32> {
+    let way = way_to_sun();
+    if way >= 2u {
+        return exponential_optical_depth(layer, h, mu, columns_to_top(way, h, mu));
+    }
+    return optical_depth_to_top(layer, h, mu);
+}
+
 // Transmittance towards the sun at zenith cosine mu_s by the model's way, times the visible
 // fraction of its disk (0, and no integral, behind the planet); twin of SunRoute::transmittance.
-fn sun_transmittance_by_way(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
+// `sun_transmittance_by_way`, which the sky files call, is this (shared/sun_route_marched.wgsl)
+// or, in the moving sky of the nested marches, its table (shared/sun_route_from_table.wgsl).
+fn sun_transmittance_marched(layer: u32, h: f32, mu_s: f32) -> vec4<f32> {
     let visible = sun_visible_fraction(h, mu_s);
     if visible <= 0.0 {
         return vec4<f32>(0.0);
     }
-    let way = way_to_sun();
-    if way >= 2u {
-        return exp(-exponential_optical_depth(layer, h, mu_s, columns_to_top(way, h, mu_s))) * visible;
-    }
-    return exp(-optical_depth_to_top(layer, h, mu_s)) * visible;
+    return exp(-optical_depth_by_way(layer, h, mu_s)) * visible;
 }
 
 // The sun's disk seen from any altitude: from where its ray enters the atmosphere when the

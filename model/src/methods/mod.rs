@@ -205,6 +205,13 @@ pub trait SkyModel: Send + Sync {
     /// `dir`, with the sun in the unit direction `sun`; the sun's disk is [`SkyModel::sun`].
     fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes;
 
+    /// [`SkyModel::radiance`] as the moving sky tabulates it (`shared::moving_sky`): the
+    /// same but for the nested marches, whose way to the sun is looked up in their
+    /// `sun-route` table there (`single_scattering_sky::Way::tabulated_in_motion`).
+    fn radiance_in_motion(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
+        self.radiance(layer, at, dir, sun)
+    }
+
     /// One of the model's tables by its registry id.
     fn table(&self, id: &str) -> Option<&Lut>;
 
@@ -404,7 +411,7 @@ pub const MODELS: &[ModelInfo] = &[
         citation: "Nishita et al. (1993) as the nishita row, with the multiple-scattering table of S. Hillaire (2020) as its higher orders",
         summary: "The nishita row's table-free single scattering plus Hillaire's isotropic higher orders Ψ_ms, looked up at every sample: two small tables that depend on the atmosphere alone (and the moving sky for views in motion on a software GPU).",
         domain: nishita::DOMAIN_MS,
-        tables: &single_scattering_sky::TABLES_WITH_HIGHER_ORDERS,
+        tables: &single_scattering_sky::TABLES_WITH_HIGHER_ORDERS_NESTED,
         gathers_orders: false,
         refittable: false,
         baseline: false,

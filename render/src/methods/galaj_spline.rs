@@ -1,5 +1,6 @@
 //! Gałaj et al.'s (2021) spline transmittance on the GPU: the mesh pass
-//! (`shaders/galaj_spline/mesh.wgsl`), then the moving sky and the sky pass of the table-free
+//! (`shaders/galaj_spline/mesh.wgsl`), then the spline's way to the sun tabulated, the moving
+//! sky built from it and the sky pass of the table-free
 //! single-scattering sky
 //! (`shaders/shared/single_scattering_sky.wgsl`) whose way to the sun integrates the spline over
 //! that mesh (`shaders/galaj_spline/columns.wgsl`). Its f64 twin is
@@ -7,8 +8,8 @@
 
 use super::{
     Dispatch, EXPONENTIAL, GpuMethod, HIGHER_ORDERS_PASSES, HILLAIRE_HIGHER_ORDERS, MOVING_SKY,
-    NO_HIGHER_ORDERS, PassSpec, Repeat, SINGLE_SCATTERING_SKY, SUN_ROUTE, Shader, moving_sky_pass,
-    shader,
+    NO_HIGHER_ORDERS, PassSpec, Repeat, SINGLE_SCATTERING_SKY, SUN_ROUTE, SUN_ROUTE_TABLE, Shader,
+    moving_sky_pass, shader, sun_route_pass,
 };
 use atmoscope_model::methods::galaj_spline::MESH;
 use atmoscope_model::methods::shared::single_scattering_sky::{self, Way};
@@ -35,7 +36,8 @@ pub const METHOD: GpuMethod = GpuMethod {
     constants: |p| single_scattering_sky::constants(p, Way::GalajSpline),
     passes: &[
         MESH_PASS,
-        moving_sky_pass(SKY_SHADER, &[MESH.id]),
+        sun_route_pass(&[MESH.id]),
+        moving_sky_pass(SKY_SHADER, &[SUN_ROUTE_TABLE]),
         PassSpec::sky(SKY_SHADER, &[MESH.id, MOVING_SKY]).with_moving_sky(),
     ],
 };
@@ -49,7 +51,8 @@ pub const METHOD_MS: GpuMethod = GpuMethod {
         MESH_PASS,
         HIGHER_ORDERS_PASSES[0],
         HIGHER_ORDERS_PASSES[1],
-        moving_sky_pass(SKY_SHADER, &[MESH.id, "multiple-scattering"]),
+        sun_route_pass(&[MESH.id]),
+        moving_sky_pass(SKY_SHADER, &["multiple-scattering", SUN_ROUTE_TABLE]),
         PassSpec::sky(SKY_SHADER, &[MESH.id, "multiple-scattering", MOVING_SKY]).with_moving_sky(),
     ],
 };

@@ -461,6 +461,15 @@ pub const SINGLE_SCATTERING_PASSES: [PassSpec; 2] = [
     PassSpec::sky(SINGLE_SCATTERING_SKY, &[MOVING_SKY]).with_moving_sky(),
 ];
 
+/// The passes of a nested march (Nishita's midpoint rule towards the sun): its way to the sun
+/// tabulated, the moving sky built from that table, and the sky pass marching every sample's
+/// way to the sun.
+pub const NESTED_MARCH_PASSES: [PassSpec; 3] = [
+    sun_route_pass(&[]),
+    moving_sky_pass(SINGLE_SCATTERING_SKY, &[SUN_ROUTE_TABLE]),
+    PassSpec::sky(SINGLE_SCATTERING_SKY, &[MOVING_SKY]).with_moving_sky(),
+];
+
 /// Single scattering alone: the `psi` of the table-free sky pass is zero.
 pub const NO_HIGHER_ORDERS: Shader = shader!("shared/no_higher_orders.wgsl");
 
@@ -474,6 +483,30 @@ pub const CLOSED_FORM_COLUMNS: Shader = shader!("shared/closed_form_columns.wgsl
 
 /// The table-free models' way to the sun and the sun's disk through it.
 pub const SUN_ROUTE: Shader = shader!("shared/sun_route.wgsl");
+
+/// What `sun_transmittance_by_way` is in a pass of a model with [`SUN_ROUTE`]: the way marched
+/// at every sample, or, in a pass that reads [`SUN_ROUTE_TABLE`] (the nested marches' moving
+/// sky), looked up in it (`passes::shader_source` chooses).
+pub const SUN_ROUTE_MARCHED: Shader = shader!("shared/sun_route_marched.wgsl");
+pub const SUN_ROUTE_FROM_TABLE: Shader = shader!("shared/sun_route_from_table.wgsl");
+
+/// The nested marches' way to the sun tabulated for their moving sky
+/// (`single_scattering_sky::SUN_ROUTE_TABLE`).
+pub const SUN_ROUTE_TABLE: &str =
+    atmoscope_model::methods::shared::single_scattering_sky::SUN_ROUTE_TABLE.id;
+
+/// The pass that tabulates a nested march's way to the sun, reading what the way reads
+/// (Gałaj's spline its mesh); it depends on the atmosphere alone.
+pub const fn sun_route_pass(reads: &'static [&'static str]) -> PassSpec {
+    PassSpec::table(
+        "sun-route",
+        shader!("shared/sun_route_table.wgsl"),
+        reads,
+        &[SUN_ROUTE_TABLE],
+        Dispatch::Table(SUN_ROUTE_TABLE),
+        Repeat::Once,
+    )
+}
 
 /// Hillaire's Ψ_ms table as a single-scattering model's higher orders (the `-ms` rows).
 pub const HILLAIRE_HIGHER_ORDERS: Shader = shader!("hillaire/common.wgsl");
@@ -509,6 +542,19 @@ pub const SINGLE_SCATTERING_MS_PASSES: [PassSpec; 4] = [
     HIGHER_ORDERS_PASSES[0],
     HIGHER_ORDERS_PASSES[1],
     moving_sky_pass(SINGLE_SCATTERING_SKY, &["multiple-scattering"]),
+    PassSpec::sky(SINGLE_SCATTERING_SKY, &["multiple-scattering", MOVING_SKY]).with_moving_sky(),
+];
+
+/// [`SINGLE_SCATTERING_MS_PASSES`] of a nested march, its way to the sun tabulated for the
+/// moving sky as in [`NESTED_MARCH_PASSES`].
+pub const NESTED_MARCH_MS_PASSES: [PassSpec; 5] = [
+    HIGHER_ORDERS_PASSES[0],
+    HIGHER_ORDERS_PASSES[1],
+    sun_route_pass(&[]),
+    moving_sky_pass(
+        SINGLE_SCATTERING_SKY,
+        &["multiple-scattering", SUN_ROUTE_TABLE],
+    ),
     PassSpec::sky(SINGLE_SCATTERING_SKY, &["multiple-scattering", MOVING_SKY]).with_moving_sky(),
 ];
 
@@ -697,10 +743,23 @@ mod tests {
                     p.name
                 );
                 if p.writes.contains(&MOVING_SKY) {
-                    // The moving sky evaluates the sky pass's radiance: it reads what that reads.
-                    let sky: Vec<_> = last.reads.iter().filter(|&&r| r != MOVING_SKY).collect();
+                    // The moving sky evaluates the sky pass's radiance: it reads what that reads,
+                    // but for a nested march's way to the sun, which it reads from its table.
+                    let tabulated = p.reads.contains(&SUN_ROUTE_TABLE);
+                    let sky: Vec<_> = last
+                        .reads
+                        .iter()
+                        .filter(|&&r| {
+                            r != MOVING_SKY
+                                && !(tabulated
+                                    && r == atmoscope_model::methods::galaj_spline::MESH.id)
+                        })
+                        .collect();
                     assert_eq!(
-                        p.reads.iter().collect::<Vec<_>>(),
+                        p.reads
+                            .iter()
+                            .filter(|&&r| r != SUN_ROUTE_TABLE)
+                            .collect::<Vec<_>>(),
                         sky,
                         "{}: the moving sky reads what the sky pass reads",
                         row.id

@@ -1,10 +1,10 @@
-//! Nishita (1993) on the GPU: the moving sky and the sky pass of the table-free
-//! single-scattering sky (`shaders/shared/single_scattering_sky.wgsl`) with the midpoint rule
-//! towards the sun. Its f64 twin is `atmoscope_model::methods::nishita`.
+//! Nishita (1993) on the GPU: its way to the sun tabulated, the moving sky built from it and
+//! the sky pass of the table-free single-scattering sky
+//! (`shaders/shared/single_scattering_sky.wgsl`) with the midpoint rule towards the sun. Its f64 twin is `atmoscope_model::methods::nishita`.
 
 use super::{
-    GpuMethod, SINGLE_SCATTERING_COMMON, SINGLE_SCATTERING_MS_COMMON, SINGLE_SCATTERING_MS_PASSES,
-    SINGLE_SCATTERING_PASSES,
+    GpuMethod, NESTED_MARCH_MS_PASSES, NESTED_MARCH_PASSES, SINGLE_SCATTERING_COMMON,
+    SINGLE_SCATTERING_MS_COMMON,
 };
 use atmoscope_model::methods::shared::single_scattering_sky::{self, Rule, Way};
 use atmoscope_model::scene::Method;
@@ -13,7 +13,7 @@ pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Nishita,
     common: &SINGLE_SCATTERING_COMMON,
     constants: |p| single_scattering_sky::constants(p, Way::March(Rule::Midpoint)),
-    passes: &SINGLE_SCATTERING_PASSES,
+    passes: &NESTED_MARCH_PASSES,
 };
 
 /// With Hillaire's Ψ_ms table as the higher orders (the `nishita-ms` row).
@@ -21,5 +21,5 @@ pub const METHOD_MS: GpuMethod = GpuMethod {
     method: Method::NishitaMs,
     common: &SINGLE_SCATTERING_MS_COMMON,
     constants: |p| single_scattering_sky::constants(p, Way::March(Rule::Midpoint)),
-    passes: &SINGLE_SCATTERING_MS_PASSES,
+    passes: &NESTED_MARCH_MS_PASSES,
 };

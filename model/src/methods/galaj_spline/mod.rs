@@ -50,15 +50,21 @@ pub const MESH: TableSpec = TableSpec {
     describe_texel: describe_mesh_texel,
 };
 
-/// The model's tables: the mesh, then the moving sky (`shared::moving_sky`).
-pub const TABLES: [TableSpec; 2] = [MESH, moving_sky::TABLE];
+/// The model's tables: the mesh, then for views in motion the way to the sun tabulated and
+/// the moving sky built from it (`shared::moving_sky`).
+pub const TABLES: [TableSpec; 3] = [
+    MESH,
+    single_scattering_sky::SUN_ROUTE_TABLE,
+    moving_sky::TABLE,
+];
 
 /// With Hillaire's higher orders (the `galaj-spline-ms` row): the mesh, the transmittance and
-/// Ψ_ms tables, then the moving sky.
-pub const TABLES_MS: [TableSpec; 4] = [
+/// Ψ_ms tables, then the way to the sun tabulated and the moving sky.
+pub const TABLES_MS: [TableSpec; 5] = [
     MESH,
     single_scattering_sky::TABLES_WITH_HIGHER_ORDERS[0],
     single_scattering_sky::TABLES_WITH_HIGHER_ORDERS[1],
+    single_scattering_sky::SUN_ROUTE_TABLE,
     moving_sky::TABLE,
 ];
 

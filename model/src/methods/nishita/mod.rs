@@ -16,9 +16,9 @@ use super::shared::single_scattering_sky::{self, Rule, Way};
 use super::shared::{Params, TableSpec, Viewpoint};
 use super::{Domain, SkyModel};
 
-/// The method's one table: the moving sky its views in motion are drawn from on a software
-/// GPU (`shared::moving_sky`).
-pub const TABLES: [TableSpec; 1] = [super::shared::moving_sky::TABLE];
+/// The method's tables, for views in motion on a software GPU alone: its way to the sun
+/// tabulated and the moving sky built from it (`shared::moving_sky`).
+pub const TABLES: [TableSpec; 2] = super::shared::single_scattering_sky::TABLES_NESTED;
 
 /// Where the model is meant to work: anywhere with the sun up. Below the horizon the sky is
 /// lit by light scattered more than once, which the model leaves out; above it the sky lacks

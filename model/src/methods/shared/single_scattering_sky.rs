@@ -9,6 +9,7 @@
 use super::exponential::{self, ExponentialMedium};
 use super::ray::camera_coords;
 use super::sun::visible_fraction;
+use super::transmittance::{transmittance, transmittance_h_mu_from_texel};
 use super::{
     Lanes, Lut, Params, TableSpec, aerosol_phase, entry_into_atmosphere, rayleigh_phase,
     segment_weight,
@@ -16,6 +17,7 @@ use super::{
 use crate::geometry::{altitude_along, distance_to_ground, distance_to_top};
 use glam::DVec3;
 use std::f64::consts::PI;
+use std::sync::OnceLock;
 
 /// Samples of the view march and of each march towards the sun: (view, sun). Twice and once
 /// the sky-view march's count (64 and 32 at Medium), O'Neil's budget scaled with the quality;
@@ -192,7 +194,29 @@ impl Way {
             Way::GalajSpline => 5.0,
         }
     }
+
+    /// Whether the moving sky reads this way from [`SUN_ROUTE_TABLE`]: a nested integral per
+    /// view sample (the midpoint rule, the spline over its mesh) costs tens of medium
+    /// evaluations where the closed forms cost a few; tabulated, a sun move of these models
+    /// rebuilds the moving sky at about the closed forms' cost. The trapezoid rule stays
+    /// marched: its optical depth along grazing rays varies too fast for the table's columns
+    /// (its moving sky came 7 % off the march looking at a sun 4° up, against 1 % for the
+    /// midpoint rule).
+    pub fn tabulated_in_motion(self) -> bool {
+        matches!(self, Way::March(Rule::Midpoint) | Way::GalajSpline)
+    }
 }
+
+/// The model's own transmittance towards the top of the atmosphere by its way to the sun
+/// (not the visible fraction of the disk), on the transmittance table's grid and mapping: the
+/// nested integral of the marches, computed once per atmosphere, from which their moving sky
+/// (`super::moving_sky`) is built. The still frame marches every sample's way to the sun.
+pub const SUN_ROUTE_TABLE: TableSpec = TableSpec {
+    id: "sun-route",
+    label: "transmittance by the model's way to the sun (for the moving sky)",
+    invalidated_by: crate::methods::Inputs::ATMOSPHERE,
+    ..super::transmittance::TABLE
+};
 
 /// The way to the sun of a table-free model, with what it needs: the march's interval count,
 /// the fitted exponential medium of the closed forms, the spline's mesh.
@@ -202,6 +226,8 @@ pub struct SunRoute {
     pub medium: ExponentialMedium,
     /// The integrand's mesh of [`Way::GalajSpline`] (`galaj_spline::MESH`); None otherwise.
     pub mesh: Option<Lut>,
+    /// [`SUN_ROUTE_TABLE`] of a way tabulated in motion, built when first asked for.
+    table: OnceLock<Lut>,
 }
 
 impl SunRoute {
@@ -212,7 +238,31 @@ impl SunRoute {
             medium: ExponentialMedium::fit(p),
             mesh: (way == Way::GalajSpline)
                 .then(|| crate::methods::galaj_spline::compute_mesh_lut(p)),
+            table: OnceLock::new(),
         }
+    }
+
+    /// [`SUN_ROUTE_TABLE`] of this way: exp(−optical depth) at each texel's (h, mu).
+    pub fn table(&self, p: &Params) -> &Lut {
+        self.table.get_or_init(|| {
+            Lut::from_spec(&SUN_ROUTE_TABLE, p.batches.len(), |layer, _, y, x| {
+                let (h, mu) = transmittance_h_mu_from_texel(p, x as f64, y as f64);
+                self.optical_depth(p, layer, h, mu).map(|d| (-d).exp())
+            })
+        })
+    }
+
+    /// [`SunRoute::transmittance`] as the moving sky takes it: looked up in
+    /// [`SunRoute::table`] for a way tabulated in motion ([`Way::tabulated_in_motion`]).
+    pub fn transmittance_in_motion(&self, p: &Params, layer: usize, h: f64, mu_s: f64) -> Lanes {
+        if !self.way.tabulated_in_motion() {
+            return self.transmittance(p, layer, h, mu_s);
+        }
+        let visible = visible_fraction(h, mu_s, p.bottom_radius_m);
+        if visible <= 0.0 {
+            return [0.0; 4];
+        }
+        transmittance(p, self.table(p), layer, h, mu_s).map(|t| t * visible)
     }
 
     /// Optical depth per lane from altitude `h` (m) along zenith cosine `mu` to the top.
@@ -309,6 +359,18 @@ pub const TABLES_WITH_HIGHER_ORDERS: [TableSpec; 3] = [
     super::moving_sky::TABLE,
 ];
 
+/// The tables of a model whose way to the sun is tabulated in motion
+/// ([`Way::tabulated_in_motion`]): its way to the sun, then the moving sky built from it.
+pub const TABLES_NESTED: [TableSpec; 2] = [SUN_ROUTE_TABLE, super::moving_sky::TABLE];
+
+/// [`TABLES_WITH_HIGHER_ORDERS`] of such a model, its way to the sun before the moving sky.
+pub const TABLES_WITH_HIGHER_ORDERS_NESTED: [TableSpec; 4] = [
+    super::transmittance::TABLE,
+    crate::methods::hillaire::multiple_scattering::TABLE,
+    SUN_ROUTE_TABLE,
+    super::moving_sky::TABLE,
+];
+
 /// A single-scattering model: the optics, the view march's sample count, the model's way to
 /// the sun, and optionally Hillaire's higher orders.
 pub struct SingleScattering {
@@ -325,7 +387,49 @@ impl crate::methods::SkyModel for SingleScattering {
 
     fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
         let p = &self.params;
-        let sun_t = |h, mu_s| self.sun_path.transmittance(p, layer, h, mu_s);
+        self.radiance_through(layer, at, dir, sun, |h, mu_s| {
+            self.sun_path.transmittance(p, layer, h, mu_s)
+        })
+    }
+
+    fn radiance_in_motion(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
+        let p = &self.params;
+        self.radiance_through(layer, at, dir, sun, |h, mu_s| {
+            self.sun_path.transmittance_in_motion(p, layer, h, mu_s)
+        })
+    }
+
+    fn table(&self, id: &str) -> Option<&Lut> {
+        if id == crate::methods::galaj_spline::MESH.id {
+            return self.sun_path.mesh.as_ref();
+        }
+        if id == SUN_ROUTE_TABLE.id && self.sun_path.way.tabulated_in_motion() {
+            return Some(self.sun_path.table(&self.params));
+        }
+        let t = self.higher_orders.as_ref()?;
+        match id {
+            "transmittance" => Some(&t.transmittance),
+            "multiple-scattering" => Some(&t.multiple_scattering),
+            _ => None,
+        }
+    }
+
+    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: Lanes) -> Lanes {
+        self.sun_path.sun_disk(&self.params, layer, h, mu_s, disk)
+    }
+}
+
+impl SingleScattering {
+    /// The view march lit through `sun_t(h, mu_s)`, the transmittance to the sun.
+    fn radiance_through(
+        &self,
+        layer: usize,
+        at: (DVec3, f64),
+        dir: DVec3,
+        sun: DVec3,
+        sun_t: impl Fn(f64, f64) -> Lanes,
+    ) -> Lanes {
+        let p = &self.params;
         match &self.higher_orders {
             None => radiance(p, layer, at, dir, sun, self.view_steps, sun_t, |_, _| {
                 [0.0; 4]
@@ -340,22 +444,6 @@ impl crate::methods::SkyModel for SingleScattering {
                 )
             }),
         }
-    }
-
-    fn table(&self, id: &str) -> Option<&Lut> {
-        if id == crate::methods::galaj_spline::MESH.id {
-            return self.sun_path.mesh.as_ref();
-        }
-        let t = self.higher_orders.as_ref()?;
-        match id {
-            "transmittance" => Some(&t.transmittance),
-            "multiple-scattering" => Some(&t.multiple_scattering),
-            _ => None,
-        }
-    }
-
-    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: Lanes) -> Lanes {
-        self.sun_path.sun_disk(&self.params, layer, h, mu_s, disk)
     }
 }
 

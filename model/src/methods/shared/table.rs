@@ -31,10 +31,12 @@ impl TableSpec {
         self.size.iter().map(|&n| u64::from(n)).product()
     }
 
-    /// Whether only frames in motion read the table (the moving sky, `super::moving_sky`): no
-    /// CPU twin holds it, since no CPU image is drawn in motion.
+    /// Whether only frames in motion read the table (the moving sky, `super::moving_sky`, and
+    /// the nested marches' way to the sun it is built from): no CPU image is drawn from it, and
+    /// a still frame leaves it unbuilt.
     pub fn motion_only(&self) -> bool {
         self.id == super::moving_sky::TABLE.id
+            || self.id == super::single_scattering_sky::SUN_ROUTE_TABLE.id
     }
 
     /// Bytes of the table for `layers` batches (four f32 per texel on the GPU).
