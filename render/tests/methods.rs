@@ -14,7 +14,8 @@ use atmoscope_model::scene::{
     FittedConstants, Method, Quality, Scene, SunSettings, ToneMap, WavelengthSet,
 };
 use atmoscope_render::methods::{
-    DISPLAY_PASS, GPU_METHODS, MOVING_SKY, MOVING_SKY_PASS, Repeat, SUN_ROUTE_TABLE, gpu_method,
+    DISPLAY_PASS, GPU_METHODS, MOVING_SKY, MOVING_SKY_PASS, Repeat, SUN_ROUTE_PASS,
+    SUN_ROUTE_TABLE, gpu_method,
 };
 use atmoscope_render::passes::shader_source;
 use atmoscope_render::uniforms::{Batch, Globals};
@@ -486,13 +487,14 @@ fn radiance_image(engine: &Engine) -> Vec<[f64; 3]> {
 }
 
 /// The passes a still frame that draws everything runs: all but the display pass, whose image
-/// the sky pass draws too, and the moving sky, which frames in motion alone read.
+/// the sky pass draws too, and the moving sky with the sun-route table it reads, which frames in
+/// motion alone read.
 fn every_still_pass(stats: &FrameStats) -> Vec<&'static str> {
     stats
         .passes
         .iter()
         .copied()
-        .filter(|&p| p != DISPLAY_PASS.name && p != MOVING_SKY_PASS)
+        .filter(|&p| ![DISPLAY_PASS.name, MOVING_SKY_PASS, SUN_ROUTE_PASS].contains(&p))
         .collect()
 }
 

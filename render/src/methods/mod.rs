@@ -499,7 +499,7 @@ pub const SUN_ROUTE_TABLE: &str =
 /// (Gałaj's spline its mesh); it depends on the atmosphere alone.
 pub const fn sun_route_pass(reads: &'static [&'static str]) -> PassSpec {
     PassSpec::table(
-        "sun-route",
+        SUN_ROUTE_PASS,
         shader!("shared/sun_route_table.wgsl"),
         reads,
         &[SUN_ROUTE_TABLE],
@@ -507,6 +507,10 @@ pub const fn sun_route_pass(reads: &'static [&'static str]) -> PassSpec {
         Repeat::Once,
     )
 }
+
+/// The name of [`sun_route_pass`]; only the moving sky reads its table, so a still frame
+/// never runs it.
+pub const SUN_ROUTE_PASS: &str = "sun-route";
 
 /// Hillaire's Ψ_ms table as a single-scattering model's higher orders (the `-ms` rows).
 pub const HILLAIRE_HIGHER_ORDERS: Shader = shader!("hillaire/common.wgsl");
