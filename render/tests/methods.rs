@@ -234,7 +234,12 @@ fn every_lookup_table_matches_its_cpu_twin() {
 fn the_moving_sky_matches_its_cpu_twin_and_is_built_only_in_motion() {
     let Some(gpu) = context() else { return };
     let mut failures = Vec::new();
-    for method in [Method::Nishita, Method::SchulerMs, Method::GalajSpline] {
+    for method in [
+        Method::Nishita,
+        Method::TrapezoidMs,
+        Method::SchulerMs,
+        Method::GalajSpline,
+    ] {
         for scene in [Scene::default(), twilight_spectral8()] {
             let mut scene = scene.clone();
             scene.render.method = method;

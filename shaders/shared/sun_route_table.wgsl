@@ -1,6 +1,7 @@
-// Pass: the nested marches' way to the sun tabulated for their moving sky: exp(−optical depth
-// by the model's way, shared/sun_route.wgsl) from each texel's (h, mu) of the transmittance
-// table's grid to the top. Twin of model::methods::shared::single_scattering_sky::SunRoute::table.
+// Pass: the nested marches' way to the sun tabulated for their moving sky: the optical depth
+// by the model's way (shared/sun_route.wgsl) from each texel's (h, mu) of the transmittance
+// table's grid to the top; the look-up blends depths, not transmittances. Twin of
+// model::methods::shared::single_scattering_sky::SunRoute::table.
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
 fn main(
@@ -13,5 +14,5 @@ fn main(
     }
     let hm = transmittance_h_mu_from_texel(vec2<f32>(id.xy));
     sun_route_lut[(id.z * TRANSMITTANCE_SIZE.y + id.y) * TRANSMITTANCE_SIZE.x + id.x] =
-        exp(-optical_depth_by_way(id.z, hm.x, hm.y));
+        optical_depth_by_way(id.z, hm.x, hm.y);
 }

@@ -424,7 +424,7 @@ pub const MODELS: &[ModelInfo] = &[
         citation: "The trapezoid row, with the multiple-scattering table of S. Hillaire (2020) as its higher orders",
         summary: "The trapezoid row's single scattering plus Hillaire's isotropic higher orders Ψ_ms.",
         domain: trapezoid::DOMAIN_MS,
-        tables: &single_scattering_sky::TABLES_WITH_HIGHER_ORDERS,
+        tables: &single_scattering_sky::TABLES_WITH_HIGHER_ORDERS_NESTED,
         gathers_orders: false,
         refittable: false,
         baseline: false,

@@ -461,9 +461,9 @@ pub const SINGLE_SCATTERING_PASSES: [PassSpec; 2] = [
     PassSpec::sky(SINGLE_SCATTERING_SKY, &[MOVING_SKY]).with_moving_sky(),
 ];
 
-/// The passes of a nested march (Nishita's midpoint rule towards the sun): its way to the sun
-/// tabulated, the moving sky built from that table, and the sky pass marching every sample's
-/// way to the sun.
+/// The passes of a nested march (the midpoint or the trapezoid rule towards the sun): its way
+/// to the sun tabulated, the moving sky built from that table, and the sky pass marching every
+/// sample's way to the sun.
 pub const NESTED_MARCH_PASSES: [PassSpec; 3] = [
     sun_route_pass(&[]),
     moving_sky_pass(SINGLE_SCATTERING_SKY, &[SUN_ROUTE_TABLE]),

@@ -1,11 +1,12 @@
-//! Single scattering with the trapezoid rule towards the sun on the GPU: the moving sky and
-//! the sky pass of the table-free single-scattering sky
+//! Single scattering with the trapezoid rule towards the sun on the GPU: its way to the sun
+//! tabulated, the moving sky built from it and the sky pass of the table-free
+//! single-scattering sky
 //! (`shaders/shared/single_scattering_sky.wgsl`). Its f64 twin is
 //! `atmoscope_model::methods::trapezoid`.
 
 use super::{
-    GpuMethod, SINGLE_SCATTERING_COMMON, SINGLE_SCATTERING_MS_COMMON, SINGLE_SCATTERING_MS_PASSES,
-    SINGLE_SCATTERING_PASSES,
+    GpuMethod, NESTED_MARCH_MS_PASSES, NESTED_MARCH_PASSES, SINGLE_SCATTERING_COMMON,
+    SINGLE_SCATTERING_MS_COMMON,
 };
 use atmoscope_model::methods::shared::single_scattering_sky::{self, Rule, Way};
 use atmoscope_model::scene::Method;
@@ -14,7 +15,7 @@ pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Trapezoid,
     common: &SINGLE_SCATTERING_COMMON,
     constants: |p| single_scattering_sky::constants(p, Way::March(Rule::Trapezoid)),
-    passes: &SINGLE_SCATTERING_PASSES,
+    passes: &NESTED_MARCH_PASSES,
 };
 
 /// With Hillaire's Ψ_ms table as the higher orders (the `trapezoid-ms` row).
@@ -22,5 +23,5 @@ pub const METHOD_MS: GpuMethod = GpuMethod {
     method: Method::TrapezoidMs,
     common: &SINGLE_SCATTERING_MS_COMMON,
     constants: |p| single_scattering_sky::constants(p, Way::March(Rule::Trapezoid)),
-    passes: &SINGLE_SCATTERING_MS_PASSES,
+    passes: &NESTED_MARCH_MS_PASSES,
 };

@@ -115,9 +115,9 @@ mod tests {
         let up = DVec3::Z;
         let at = (up * (p.bottom_radius_m + 30.0), 30.0);
         let rows = [
-            (Way::March(Rule::Midpoint), 0.015),
-            (Way::GalajSpline, 0.015),
-            (Way::March(Rule::Trapezoid), 0.0),
+            (Way::March(Rule::Midpoint), 0.0075),
+            (Way::GalajSpline, 0.004),
+            (Way::March(Rule::Trapezoid), 0.015),
             (Way::SchulerChapman, 0.0),
         ];
         for (way, bound) in rows {

@@ -9,7 +9,7 @@
 use super::exponential::{self, ExponentialMedium};
 use super::ray::camera_coords;
 use super::sun::visible_fraction;
-use super::transmittance::{transmittance, transmittance_h_mu_from_texel};
+use super::transmittance::{transmittance_h_mu_from_texel, transmittance_texel_from_h_mu};
 use super::{
     Lanes, Lut, Params, TableSpec, aerosol_phase, entry_into_atmosphere, rayleigh_phase,
     segment_weight,
@@ -196,25 +196,26 @@ impl Way {
     }
 
     /// Whether the moving sky reads this way from [`SUN_ROUTE_TABLE`]: a nested integral per
-    /// view sample (the midpoint rule, the spline over its mesh) costs tens of medium
+    /// view sample (either rule's march, the spline over its mesh) costs tens of medium
     /// evaluations where the closed forms cost a few; tabulated, a sun move of these models
-    /// rebuilds the moving sky at about the closed forms' cost. The trapezoid rule stays
-    /// marched: its optical depth along grazing rays varies too fast for the table's columns
-    /// (its moving sky came 7 % off the march looking at a sun 4° up, against 1 % for the
-    /// midpoint rule).
+    /// rebuilds the moving sky at about the closed forms' cost. The table holds optical depth:
+    /// the trapezoid rule's grows fast along grazing rays (its first sample, at the point
+    /// itself, weighs half an interval of the whole ray), and a blend of its exponentials put
+    /// the moving sky 7 % off the march with the sun 4° up, a blend of the depths 1.3 %.
     pub fn tabulated_in_motion(self) -> bool {
-        matches!(self, Way::March(Rule::Midpoint) | Way::GalajSpline)
+        matches!(self, Way::March(_) | Way::GalajSpline)
     }
 }
 
-/// The model's own transmittance towards the top of the atmosphere by its way to the sun
-/// (not the visible fraction of the disk), on the transmittance table's grid and mapping: the
-/// nested integral of the marches, computed once per atmosphere, from which their moving sky
-/// (`super::moving_sky`) is built. The still frame marches every sample's way to the sun.
+/// The model's own optical depth towards the top of the atmosphere by its way to the sun (per
+/// lane), on the transmittance table's grid and mapping: the nested integral of the marches,
+/// computed once per atmosphere, from which their moving sky (`super::moving_sky`) is built.
+/// The still frame marches every sample's way to the sun.
 pub const SUN_ROUTE_TABLE: TableSpec = TableSpec {
     id: "sun-route",
-    label: "transmittance by the model's way to the sun (for the moving sky)",
+    label: "optical depth by the model's way to the sun (for the moving sky)",
     invalidated_by: crate::methods::Inputs::ATMOSPHERE,
+    transmittance: false,
     ..super::transmittance::TABLE
 };
 
@@ -242,12 +243,15 @@ impl SunRoute {
         }
     }
 
-    /// [`SUN_ROUTE_TABLE`] of this way: exp(−optical depth) at each texel's (h, mu).
+    /// [`SUN_ROUTE_TABLE`] of this way: the optical depth at each texel's (h, mu). The depth,
+    /// not its exponential, is what the look-up blends: along grazing rays the depth varies
+    /// about linearly between texels where exp(−depth) falls by orders of magnitude, so the
+    /// blend of exponentials overshoots where the blend of depths does not.
     pub fn table(&self, p: &Params) -> &Lut {
         self.table.get_or_init(|| {
             Lut::from_spec(&SUN_ROUTE_TABLE, p.batches.len(), |layer, _, y, x| {
                 let (h, mu) = transmittance_h_mu_from_texel(p, x as f64, y as f64);
-                self.optical_depth(p, layer, h, mu).map(|d| (-d).exp())
+                self.optical_depth(p, layer, h, mu)
             })
         })
     }
@@ -262,7 +266,9 @@ impl SunRoute {
         if visible <= 0.0 {
             return [0.0; 4];
         }
-        transmittance(p, self.table(p), layer, h, mu_s).map(|t| t * visible)
+        let (fx, fy) = transmittance_texel_from_h_mu(p, h, mu_s);
+        let depth = self.table(p).bilinear(layer, fx, fy, 0);
+        depth.map(|d| (-d).exp() * visible)
     }
 
     /// Optical depth per lane from altitude `h` (m) along zenith cosine `mu` to the top.

@@ -3,17 +3,17 @@
 //! The sky pass is the table-free single-scattering models' (`shared::single_scattering_sky`),
 //! with the same sample counts as `nishita`; the two differ only in the rule along the sun's
 //! ray — the trapezoid rule's samples include both ends, so the point being lit, where the air
-//! is densest along a rising ray, is sampled itself. No tables of the atmosphere (but the
-//! moving sky of views in motion, `shared::moving_sky`) and no higher orders. This
-//! module chooses that rule.
+//! is densest along a rising ray, is sampled itself. No tables but those of views in motion
+//! (the `sun-route` table and the moving sky, `shared::moving_sky`), and no higher orders.
+//! This module chooses that rule.
 
 use super::shared::single_scattering_sky::{self, Rule, Way};
 use super::shared::{Params, TableSpec, Viewpoint};
 use super::{Domain, SkyModel};
 
-/// The method's one table: the moving sky its views in motion are drawn from on a software
-/// GPU (`shared::moving_sky`).
-pub const TABLES: [TableSpec; 1] = [super::shared::moving_sky::TABLE];
+/// The method's tables, for views in motion on a software GPU alone: its way to the sun
+/// tabulated and the moving sky built from it (`shared::moving_sky`), as `nishita`'s.
+pub const TABLES: [TableSpec; 2] = single_scattering_sky::TABLES_NESTED;
 
 /// The domain of single scattering (as `nishita`'s).
 pub const DOMAIN: Domain = super::nishita::DOMAIN;
