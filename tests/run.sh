@@ -29,4 +29,14 @@ fi
 export WGPU_BACKEND="${WGPU_BACKEND:-vulkan}"
 export LP_NUM_THREADS="${LP_NUM_THREADS:-2}"
 
-cargo test --workspace --locked "$@"
+# cargo-nextest runs each test in a process of its own and keeps both cores busy to the end
+# (.config/nextest.toml); cargo test runs the binaries one after another, each waiting on its
+# slowest test. Either takes the same arguments: a test name filters, --no-fail-fast is the
+# default under nextest.
+if cargo nextest --version >/dev/null 2>&1; then
+    cargo nextest run --workspace --locked "$@"
+    # nextest runs no doc tests.
+    cargo test --workspace --locked --doc
+else
+    cargo test --workspace --locked "$@"
+fi

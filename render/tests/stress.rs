@@ -7,6 +7,7 @@
 mod common;
 
 use atmoscope_model::methods;
+use atmoscope_model::scene::Quality;
 use atmoscope_render::stress::{DIMENSIONS, Stress, scene_at};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
@@ -28,7 +29,10 @@ fn stress_model(id: &str, cases: u32) {
     let unit = prop::array::uniform11(0.0..1.0f64);
     const { assert!(DIMENSIONS == 11) };
     let result = runner.run(&unit, |u| {
-        let scene = scene_at(&u, model.method);
+        let mut scene = scene_at(&u, model.method);
+        // The twin and the GPU take the same steps at every quality; the fewest keep CI short
+        // (`atmoscope stress` keeps the default, Medium).
+        scene.render.quality = Quality::Low;
         let findings = stress.borrow_mut().check(&scene);
         prop_assert!(
             !findings.failed(),
