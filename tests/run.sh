@@ -31,8 +31,8 @@ export LP_NUM_THREADS="${LP_NUM_THREADS:-2}"
 
 # cargo-nextest runs each test in a process of its own and keeps both cores busy to the end
 # (.config/nextest.toml); cargo test runs the binaries one after another, each waiting on its
-# slowest test. Either takes the same arguments: a test name filters, --no-fail-fast is the
-# default under nextest.
+# slowest test. Under either a test name filters and --no-fail-fast goes on past a failure
+# (nextest's default here); other flags are the runner's own.
 if cargo nextest --version >/dev/null 2>&1; then
     cargo nextest run --workspace --locked "$@"
     # nextest runs no doc tests.
