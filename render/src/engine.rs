@@ -15,7 +15,7 @@ use crate::methods::{
     Constant, Dispatch, GpuMethod, HISTOGRAM, METER_PASS, PassSpec, RADIANCE, Repeat, gpu_method,
 };
 use crate::passes::{NextMovingSky, ORIGIN_SLOTS, Pipelines, TableBuffers, Variant};
-use crate::prelude::{WORKGROUP_SIZE, texel_group_size};
+use crate::prelude::{WORKGROUP_SIZE, texel_group_size, texel_run};
 use crate::readback::{
     ReadbackError, read_buffer_f32x4, read_buffer_u32, read_texture, read_texture_f32x4,
 };
@@ -518,6 +518,10 @@ fn grid(pipelines: &Pipelines, i: usize, layers: u32, size: [u32; 2]) -> [u32; 3
         Dispatch::TexelGroups(id) => {
             let [w, h, _] = info.table(id).map_or([1, 1, 1], |t| t.size);
             [w, h, layers]
+        }
+        Dispatch::TexelRuns(id) => {
+            let [w, h, _] = info.table(id).map_or([1, 1, 1], |t| t.size);
+            [w.div_ceil(texel_run(pipelines.texel_group_size)), h, layers]
         }
         Dispatch::Volume(id) => {
             let [w, h, d] = info.table(id).map_or([1, 1, 1], |t| t.size);

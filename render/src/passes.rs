@@ -7,7 +7,7 @@ use crate::methods::{
     PassSpec, RADIANCE, SKY_ENTRY_POINT, SUN_ROUTE, SUN_ROUTE_FROM_TABLE, SUN_ROUTE_MARCHED,
     SUN_ROUTE_TABLE, TONE, VIEW_PASSES, VIEW_RADIANCE,
 };
-use crate::prelude::{march_split, wgsl_prelude};
+use crate::prelude::{march_split, texel_run, wgsl_prelude};
 use crate::uniforms::{Batch, Globals, MIE_PHASE_ROWS_LEN};
 use atmoscope_model::methods::shared::{PROFILE_SAMPLES, Params};
 use atmoscope_model::methods::{ModelInfo, shared::TableSpec};
@@ -93,8 +93,10 @@ fn pass_layout(pass: &PassSpec) -> Vec<wgpu::BindGroupLayoutEntry> {
 pub fn shader_source(method: &GpuMethod, pass: &PassSpec, texel_group_size: u32) -> String {
     let mut s = wgsl_prelude();
     s.push_str(&format!(
-        "const TEXEL_GROUP_SIZE: u32 = {texel_group_size}u;\nconst MARCH_SPLIT: u32 = {}u;\n",
-        march_split(texel_group_size)
+        "const TEXEL_GROUP_SIZE: u32 = {texel_group_size}u;\nconst MARCH_SPLIT: u32 = {}u;\n\
+         const TEXEL_RUN: u32 = {}u;\n",
+        march_split(texel_group_size),
+        texel_run(texel_group_size)
     ));
     // COMMON[0] is bindings.wgsl.
     s.push_str(&with_read_only_tables(COMMON[0].source, pass));
@@ -164,6 +166,8 @@ struct PassObjects {
 /// Compiled passes of one model, the display pass last.
 pub struct Pipelines {
     pub method: GpuMethod,
+    /// Invocations of a workgroup that shares a texel, as compiled.
+    pub texel_group_size: u32,
     group0: wgpu::BindGroupLayout,
     passes: Vec<PassObjects>,
 }
@@ -224,6 +228,7 @@ impl Pipelines {
             .collect();
         let mut p = Pipelines {
             method: *method,
+            texel_group_size,
             group0,
             passes,
         };

@@ -15,7 +15,7 @@ pub const MULTIPLE_SCATTERING_PASS: PassSpec = PassSpec::table(
     shader!("hillaire/multiple_scattering.wgsl"),
     &["transmittance"],
     &["multiple-scattering"],
-    Dispatch::TexelGroups("multiple-scattering"),
+    Dispatch::TexelRuns("multiple-scattering"),
     Repeat::Once,
 );
 

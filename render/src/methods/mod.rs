@@ -125,6 +125,11 @@ pub enum Dispatch {
     /// slices, for tables of few texels and much work each (a GPU needs thousands of
     /// invocations in flight).
     TexelGroups(&'static str),
+    /// One workgroup per run of `prelude::texel_run` texels along a row (x) of the table with
+    /// this id, one z per batch: as `TexelGroups`, for a table whose texels along x share
+    /// their rays and differ only in the light along them (Hillaire's Ψ_ms over the sun's
+    /// angle), so that a workgroup marches each ray once for the run.
+    TexelRuns(&'static str),
     /// One invocation per texel (x, y, z) of the 3D table with this id, z running over the
     /// slices of every batch in turn.
     Volume(&'static str),
