@@ -1,9 +1,10 @@
 // Sums across a workgroup, for the passes dispatched one workgroup per texel whose invocations
-// share the texel's directions (render::methods::Dispatch::TexelGroups): workgroups of
-// TEXEL_GROUP_SIZE (Hillaire's multiple scattering, which splits each direction's march when
-// the group has twice as many invocations as directions), or WIDE_GROUP_SIZE (his ground
-// irradiance, whose 128 directions need the wider group for that). Those passes keep each
-// run's partial results in group_a and group_b before the sums.
+// share the texel's directions (render::methods::Dispatch::TexelGroups and TexelRuns):
+// workgroups of TEXEL_GROUP_SIZE (Hillaire's multiple scattering, which splits each
+// direction's march when the group has twice as many invocations as directions, and sums
+// its run of texels' L_2nd in an array of its own beside group_b), or WIDE_GROUP_SIZE (his
+// ground irradiance, whose 128 directions need the wider group for that). Those passes keep
+// each run's partial results in group_a and group_b before the sums.
 
 const WIDE_GROUP_SIZE: u32 = TEXEL_GROUP_SIZE * MARCH_SPLIT;
 

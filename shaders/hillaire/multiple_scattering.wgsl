@@ -3,7 +3,7 @@
 // on one side of the sun's vertical plane (their mirror images see the same). One workgroup per
 // run of TEXEL_RUN texels along a row (prelude::texel_run): the rays from one altitude are the
 // same for every sun angle, and only the sunlight along them differs, so each ray is marched
-// once for the run (a CPU adapter's 8; a GPU keeps one texel a workgroup, as Hillaire's own
+// once for the run (a CPU adapter's 4; a GPU keeps one texel a workgroup, as Hillaire's own
 // pass does, for the invocations in flight). The invocations share the directions; a workgroup
 // of more invocations than directions (64 on a GPU, for 32) splits each direction's march into
 // RUNS runs of steps, joined in order before the sums.
