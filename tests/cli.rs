@@ -1324,6 +1324,12 @@ fn bench_gpu_reports_multiples_of_the_floor_pass() {
     let rows: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
     let rows = rows.as_array().expect("rows");
     assert_eq!(rows.len(), 2);
+    // On a pipe, one progress line per model and set as it ends.
+    let err = stderr(&o);
+    let progress: Vec<&str> = err.lines().filter(|l| l.starts_with("progress ")).collect();
+    assert_eq!(progress.len(), 2, "{err}");
+    assert!(progress[0].starts_with("progress 1/2 hillaire/rgb3 in "));
+    assert!(progress[1].starts_with("progress 2/2 elek/rgb3 in "));
     for (row, id) in rows.iter().zip(["hillaire", "elek"]) {
         assert_eq!(row["method"].as_str(), Some(id));
         let f = |k: &str| row[k].as_f64().unwrap_or_else(|| panic!("{id}: no {k}"));

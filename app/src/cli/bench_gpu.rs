@@ -3,6 +3,7 @@
 //! `bench accuracy` measures ΔE2000 against path-traced references of the view suite.
 
 use super::SceneArgs;
+use super::progress::Progress;
 use super::render::{gpu, parse_wavelengths};
 use crate::images::read_exr;
 use anyhow::Context;
@@ -253,19 +254,20 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         .methods
         .clone()
         .map_or(vec![base.render.method], |m| m.0);
+    // A run over the registry takes many minutes on a software adapter: say where it is.
+    let progress = Progress::new((methods.len() * args.sets.len()) as u64);
     for (method, &set) in methods
         .iter()
         .flat_map(|&m| args.sets.iter().map(move |s| (m, s)))
     {
+        let case_start = Instant::now();
+        let case = format!("{}/{}", super::method_id(method), set_name(set));
         let mut scene = base.clone();
         scene.render.method = method;
         scene.render.wavelengths = set;
         if let Some(why) = atmoscope_model::methods::info(method).cannot_draw(&scene) {
-            eprintln!(
-                "{}/{}: {why}; left out",
-                super::method_id(method),
-                set_name(set)
-            );
+            eprintln!("{case}: {why}; left out");
+            progress.step(&format!("{case} left out"));
             continue;
         }
         let mut engine = Engine::new(&context.device, &context.queue);
@@ -481,7 +483,12 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             sun_drag_floors: drag.mean / floor_ms,
             sun_drag_catch_up_frames,
         });
+        progress.step(&format!(
+            "{case} in {:.1} s",
+            case_start.elapsed().as_secs_f64()
+        ));
     }
+    progress.finish();
     if args.json {
         println!("{}", serde_json::to_string_pretty(&rows)?);
         return Ok(ExitCode::SUCCESS);

@@ -7,6 +7,7 @@
 //! (`pareto.svg`, `pareto.png`) of frame time against mean ΔE2000.
 
 use super::bench_gpu::{median, set_name};
+use super::progress::Progress;
 use super::render::{gpu, parse_wavelengths};
 use crate::bench_results::{Config, Row, summarise, to_csv};
 use crate::images::read_exr;
@@ -20,8 +21,6 @@ use atmoscope_model::scene::{Quality, WavelengthSet};
 use atmoscope_model::views;
 use atmoscope_render::{Engine, View};
 use clap::Args;
-use indicatif::{ProgressBar, ProgressStyle};
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -451,53 +450,6 @@ pub(super) fn outside_sun_disk(scene: &Scene, projection: Projection, w: u32, h:
             })
         })
         .collect()
-}
-
-/// A progress bar on a terminal; elsewhere (a pipe: the explorer's Bench tab reads it) one
-/// line per step, `progress DONE/TOTAL LABEL`.
-struct Progress {
-    bar: Option<ProgressBar>,
-    total: u64,
-    done: std::cell::Cell<u64>,
-}
-
-impl Progress {
-    fn new(total: u64) -> Progress {
-        let bar = std::io::stderr().is_terminal().then(|| {
-            let bar = ProgressBar::new(total);
-            bar.set_style(
-                ProgressStyle::with_template(
-                    "[{bar:30}] {pos}/{len} {msg} ({elapsed}, {eta} left)",
-                )
-                .unwrap_or_else(|_| ProgressStyle::default_bar()),
-            );
-            bar
-        });
-        Progress {
-            bar,
-            total,
-            done: std::cell::Cell::new(0),
-        }
-    }
-
-    fn step(&self, label: &str) {
-        match &self.bar {
-            Some(bar) => {
-                bar.set_message(label.to_string());
-                bar.inc(1);
-            }
-            None => {
-                self.done.set(self.done.get() + 1);
-                eprintln!("progress {}/{} {label}", self.done.get(), self.total);
-            }
-        }
-    }
-
-    fn finish(&self) {
-        if let Some(bar) = &self.bar {
-            bar.finish();
-        }
-    }
 }
 
 /// What the summary and the chart say about the run itself.

@@ -15,6 +15,7 @@ mod info;
 mod learn;
 mod presets_cmd;
 mod probe;
+mod progress;
 mod reference;
 mod render;
 mod scene_args;
