@@ -345,3 +345,25 @@ fn roulette_by_prospects_changes_the_noise_not_the_sky() {
     ];
     default_agrees_with(by_weight, "by weight", &cases, 100_000);
 }
+
+/// Where the sun is below part of a segment's horizon, half the vertices are drawn toward the
+/// light the guide's table finds along the segment: the estimate is the one that draws every
+/// vertex from the extinction's exponential, within the noise (a density that misreported the
+/// stretches it favours would brighten or darken every order from the second), in clear air
+/// and in haze, from the ground and from orbit, with the sun from 3° to 9° down.
+#[test]
+fn vertices_drawn_toward_the_light_change_the_noise_not_the_sky() {
+    let clear = Atmosphere::new(&AtmosphereSettings::default());
+    let hazy = rural_atmosphere();
+    let by_extinction = PathTracerSettings {
+        vertex_light_share: 0.0,
+        ..PathTracerSettings::default()
+    };
+    let cases = [
+        (&clear, -9.0, at_altitude(&clear, 1.0, 89.0, 0.0)),
+        (&clear, -6.0, at_altitude(&clear, 1.0, 10.0, 180.0)),
+        (&hazy, -3.0, at_altitude(&hazy, 1.0, 20.0, 0.0)),
+        (&clear, -6.0, at_altitude(&clear, 200_000.0, -15.0, 180.0)),
+    ];
+    default_agrees_with(by_extinction, "by extinction", &cases, 60_000);
+}

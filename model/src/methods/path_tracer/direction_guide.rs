@@ -9,9 +9,12 @@
 //! twilight image's noise. A guide in the spirit of path guiding (Vorba et al. 2014), but
 //! computed ahead from the atmosphere rather than learned from paths: for each vertex altitude
 //! and local sun elevation, a piecewise-constant density over (cosine of zenith angle, azimuth
-//! from the sun), proportional to a coarse march of the single-scattered radiance seen in each
-//! cell's middle direction (three wavelengths, the wavelength-independent sun columns). Its
-//! slices are built on first use, since a scene's vertices meet few local sun elevations.
+//! from the sun), proportional to a coarse march of the single-scattered radiance seen in
+//! three directions across each cell's zenith band (three wavelengths, the
+//! wavelength-independent sun columns). Its slices are built on first use, since a scene's
+//! vertices meet few local sun elevations. Each slice's whole light (its fluence), interpolated
+//! between the slices' middles into a table by altitude and μ_s, also tells the path tracer
+//! where along a segment a vertex finds light.
 //! It is a proposal only: the vertex draws from it in a one-sample mixture with the phase
 //! function (balance heuristic, Veach 1997 §9.2) and weighs by the mixture's density, so the
 //! estimate stays unbiased and no direction's weight grows by more than 1 / (1 − share) over
@@ -26,12 +29,26 @@ use crate::methods::rng::Rng;
 use glam::DVec3;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Nodes of the fluence table ([`PathTracer::fluence_at`]): altitude rows 500 m apart on the
+/// Earth, from the ground to the top, and columns of the sun's zenith cosine from −1 to 1
+/// (0.45° apart at the horizon). A segment looks it up once for each of its intervals: the
+/// slices' own look-up (a search of the altitude bins, an arcsine and four slices) cost the
+/// twilight views a third more time.
+const FLUENCE_ROWS: usize = 201;
+const FLUENCE_COLUMNS: usize = 257;
 
 /// Altitude bins of the guide, m: a vertex uses the slice of the bin it lies in, computed at
-/// the bin's middle. Dense low down, where most vertices are.
-const ALTITUDE_EDGES_M: [f64; 14] = [
-    0.0, 500.0, 1000.0, 2000.0, 3000.0, 5000.0, 8000.0, 12_000.0, 18_000.0, 25_000.0, 35_000.0,
-    50_000.0, 70_000.0, 100_000.0,
+/// the bin's middle. Dense low down, where most vertices are, and every 5 km from 20 to 50 km,
+/// where in twilight the sunlit air seen from a vertex moves fast with its height. The guide
+/// before (bins of 10 and 15 km there, the zenith bins below without their 0.01 steps, one
+/// direction per cell) left twilight-12 at 11.7 % noise after 2 048 paths per pixel; this one
+/// at 9.5 % in the same time (9.7 % with one direction per cell).
+const ALTITUDE_EDGES_M: [f64; 21] = [
+    0.0, 500.0, 1000.0, 2000.0, 3000.0, 5000.0, 8000.0, 12_000.0, 15_000.0, 18_000.0, 21_000.0,
+    25_000.0, 30_000.0, 35_000.0, 40_000.0, 45_000.0, 50_000.0, 60_000.0, 70_000.0, 85_000.0,
+    100_000.0,
 ];
 
 /// Width of the local sun elevation bins, degrees: narrow enough that the Earth's shadow moves
@@ -39,10 +56,12 @@ const ALTITUDE_EDGES_M: [f64; 14] = [
 const ELEVATION_STEP_DEG: f64 = 2.0;
 const ELEVATION_BINS: usize = (180.0 / ELEVATION_STEP_DEG) as usize;
 
-/// Edges of the bins in the cosine of the zenith angle: narrow near the horizon, where the
-/// twilight arch and the haze lie.
-const COS_ZENITH_EDGES: [f64; 16] = [
-    -1.0, -0.6, -0.3, -0.15, -0.08, -0.04, -0.02, 0.0, 0.02, 0.04, 0.08, 0.15, 0.3, 0.5, 0.75, 1.0,
+/// Edges of the bins in the cosine of the zenith angle: narrow near the horizon and down to
+/// the horizon's dip seen from 50 km, where the twilight arch, the haze and the sunlit limb
+/// lie.
+const COS_ZENITH_EDGES: [f64; 24] = [
+    -1.0, -0.6, -0.3, -0.2, -0.15, -0.12, -0.1, -0.08, -0.06, -0.05, -0.04, -0.03, -0.02, -0.01,
+    0.0, 0.01, 0.02, 0.04, 0.08, 0.15, 0.3, 0.5, 0.75, 1.0,
 ];
 const ZENITH_BINS: usize = COS_ZENITH_EDGES.len() - 1;
 
@@ -50,6 +69,10 @@ const ZENITH_BINS: usize = COS_ZENITH_EDGES.len() - 1;
 /// plane, so each bin stands for two mirror cells.
 const AZIMUTH_BINS: usize = 12;
 const CELLS: usize = ZENITH_BINS * AZIMUTH_BINS;
+
+/// Directions across a cell's zenith band whose radiance the cell takes the mean of: a band of
+/// sunlit air narrower than the cell is seen whether or not it crosses the cell's middle.
+const CELL_DIRECTIONS: usize = 3;
 
 /// Steps of the radiance march per cell (quadratic spacing, dense near the vertex).
 const MARCH_STEPS: usize = 24;
@@ -87,6 +110,11 @@ pub(super) struct DirectionGuide {
     slices: Vec<OnceLock<Box<Slice>>>,
     optics: [Optics; GUIDE_WAVELENGTHS_NM.len()],
     solar_irradiance: [f64; GUIDE_WAVELENGTHS_NM.len()],
+    /// The slices' fluence interpolated at the table's nodes, as f64 bits: NaN until a thread
+    /// first needs the node, which every thread would fill with the same value.
+    fluence_nodes: Vec<AtomicU64>,
+    /// Altitude between the table's rows, m.
+    fluence_step_m: f64,
 }
 
 /// A vertex's local frame: its up, the sun's horizontal direction and the third axis, with the
@@ -106,6 +134,10 @@ impl DirectionGuide {
                 .collect(),
             optics: GUIDE_WAVELENGTHS_NM.map(|w| atmosphere.optics(w)),
             solar_irradiance: GUIDE_WAVELENGTHS_NM.map(|w| atmosphere.solar_irradiance(w, None)),
+            fluence_nodes: (0..FLUENCE_ROWS * FLUENCE_COLUMNS)
+                .map(|_| AtomicU64::new(f64::NAN.to_bits()))
+                .collect(),
+            fluence_step_m: atmosphere.thickness_m() / (FLUENCE_ROWS - 1) as f64,
         }
     }
 }
@@ -150,15 +182,66 @@ impl PathTracer<'_> {
         } else {
             basis(up).0
         };
-        let h = r - self.atmosphere.bottom_radius_m;
-        let elevation_deg = 90.0 - mu_s.acos().to_degrees();
-        let e = (((elevation_deg + 90.0) / ELEVATION_STEP_DEG) as usize).min(ELEVATION_BINS - 1);
         Frame {
             up,
             sun_horizontal,
             side: up.cross(sun_horizontal),
-            slice: bin(&ALTITUDE_EDGES_M, h) * ELEVATION_BINS + e,
+            slice: self.slice_index(r, mu_s),
         }
+    }
+
+    /// The slice of a vertex at radius `r` (m) with the sun at zenith cosine `mu_s`.
+    fn slice_index(&self, r: f64, mu_s: f64) -> usize {
+        let h = r - self.atmosphere.bottom_radius_m;
+        let elevation_deg = mu_s.asin().to_degrees();
+        let e = (((elevation_deg + 90.0) / ELEVATION_STEP_DEG) as usize).min(ELEVATION_BINS - 1);
+        bin(&ALTITUDE_EDGES_M, h) * ELEVATION_BINS + e
+    }
+
+    /// The single-scattered light reaching point `x`, interpolated in the guide's fluence
+    /// table.
+    pub(super) fn fluence_at(&self, x: DVec3) -> f64 {
+        let guide = &self.prepared.guide;
+        let r = x.length();
+        let fr = ((r - self.atmosphere.bottom_radius_m) / guide.fluence_step_m)
+            .clamp(0.0, (FLUENCE_ROWS - 1) as f64);
+        let fc = ((x.dot(self.sun) / r + 1.0) * 0.5 * (FLUENCE_COLUMNS - 1) as f64)
+            .clamp(0.0, (FLUENCE_COLUMNS - 1) as f64);
+        let (i, j) = (
+            (fr as usize).min(FLUENCE_ROWS - 2),
+            (fc as usize).min(FLUENCE_COLUMNS - 2),
+        );
+        let (wr, wc) = (fr - i as f64, fc - j as f64);
+        let node = |i: usize, j: usize| {
+            let cell = &guide.fluence_nodes[i * FLUENCE_COLUMNS + j];
+            let v = f64::from_bits(cell.load(Ordering::Relaxed));
+            if !v.is_nan() {
+                return v;
+            }
+            let h = i as f64 * guide.fluence_step_m;
+            let mu_s = j as f64 / (FLUENCE_COLUMNS - 1) as f64 * 2.0 - 1.0;
+            let v = self.slices_fluence(h, mu_s);
+            cell.store(v.to_bits(), Ordering::Relaxed);
+            v
+        };
+        (1.0 - wr) * ((1.0 - wc) * node(i, j) + wc * node(i, j + 1))
+            + wr * ((1.0 - wc) * node(i + 1, j) + wc * node(i + 1, j + 1))
+    }
+
+    /// The slices' fluence at altitude `h` (m) and sun zenith cosine `mu_s`, interpolated
+    /// between their middles.
+    fn slices_fluence(&self, h: f64, mu_s: f64) -> f64 {
+        // Between the slices' middles: altitude bins' middles, sun elevation bins' middles.
+        let n = ALTITUDE_EDGES_M.len() - 1;
+        let middle = |i: usize| 0.5 * (ALTITUDE_EDGES_M[i] + ALTITUDE_EDGES_M[i + 1]);
+        let i = (0..n - 1).rev().find(|&i| middle(i) <= h).unwrap_or(0);
+        let fh = ((h - middle(i)) / (middle(i + 1) - middle(i))).clamp(0.0, 1.0);
+        let e = (mu_s.asin().to_degrees() + 90.0) / ELEVATION_STEP_DEG - 0.5;
+        let j = (e.floor().max(0.0) as usize).min(ELEVATION_BINS - 2);
+        let fe = (e - j as f64).clamp(0.0, 1.0);
+        let f = |i: usize, j: usize| self.guide_slice(i * ELEVATION_BINS + j).fluence;
+        (1.0 - fh) * ((1.0 - fe) * f(i, j) + fe * f(i, j + 1))
+            + fh * ((1.0 - fe) * f(i + 1, j) + fe * f(i + 1, j + 1))
     }
 
     fn guide_slice(&self, slice: usize) -> &Slice {
@@ -201,9 +284,10 @@ impl PathTracer<'_> {
         (cdf[cell + 1] - cdf[cell]) / cdf[CELLS] / cell_solid_angle(z)
     }
 
-    /// The slice's cells: the single-scattered radiance in each cell's middle direction from
-    /// the middle of its altitude bin under the middle of its sun elevation bin, times the
-    /// cell's solid angle, plus the floor.
+    /// The slice's cells: the mean single-scattered radiance in [`CELL_DIRECTIONS`] directions
+    /// across each cell's zenith band (at its middle azimuth) from the middle of its altitude
+    /// bin under the middle of its sun elevation bin, times the cell's solid angle, plus the
+    /// floor.
     fn build_slice(&self, slice: usize) -> Slice {
         let (k_h, k_e) = (slice / ELEVATION_BINS, slice % ELEVATION_BINS);
         let h = (0.5 * (ALTITUDE_EDGES_M[k_h] + ALTITUDE_EDGES_M[k_h + 1]))
@@ -219,12 +303,18 @@ impl PathTracer<'_> {
         };
         let mut mass = [0.0; CELLS];
         for z in 0..ZENITH_BINS {
-            let cos_zenith = 0.5 * (COS_ZENITH_EDGES[z] + COS_ZENITH_EDGES[z + 1]);
             for a in 0..AZIMUTH_BINS {
                 let phi = (a as f64 + 0.5) * PI / AZIMUTH_BINS as f64;
-                let dir = frame_direction(&frame, cos_zenith, phi);
                 let cell = z * AZIMUTH_BINS + a;
-                let m = self.single_scattered(x, dir, sun) * cell_solid_angle(z);
+                let m = (0..CELL_DIRECTIONS)
+                    .map(|q| {
+                        let f = (q as f64 + 0.5) / CELL_DIRECTIONS as f64;
+                        let cos_zenith = COS_ZENITH_EDGES[z] + f * (COS_ZENITH_EDGES[z + 1] - COS_ZENITH_EDGES[z]);
+                        self.single_scattered(x, frame_direction(&frame, cos_zenith, phi), sun)
+                    })
+                    .sum::<f64>()
+                    / CELL_DIRECTIONS as f64
+                    * cell_solid_angle(z);
                 mass[cell] = if m.is_finite() { m.max(0.0) } else { 0.0 };
             }
         }
