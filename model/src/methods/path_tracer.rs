@@ -73,6 +73,10 @@ const ROULETTE_WEIGHT: f64 = 0.5;
 /// 0.3 and 0.5 were within the noise of each other.
 const VERTEX_LIGHT_SHARE: f64 = 0.5;
 
+/// The largest share of vertices drawn toward the light: the exponential must keep some, or
+/// stretches that the table puts in the dark would never scatter a path.
+const MAX_VERTEX_LIGHT_SHARE: f64 = 0.99;
+
 /// A segment's intervals under the light-seeking density of a path's next vertex
 /// ([`PathTracer::light_masses`]).
 struct LightMasses {
@@ -157,11 +161,13 @@ pub struct PathTracerSettings {
     /// `guide_share` 0 every path is judged by its weight. Either way the estimate is unbiased:
     /// only its noise changes (at twilight, much).
     pub roulette_by_prospect: bool,
-    /// Share (0–1) of a path's scattering vertices drawn, on segments where the sun is below
-    /// some point's horizon, from a density that seeks the light: the exponential of the
-    /// extinction times the single-scattered light each stretch of the segment receives
-    /// ([`VERTEX_LIGHT_SHARE`]); the rest from the exponential alone. 0 draws every vertex from
-    /// the exponential. Either way the estimate is unbiased: only its noise changes.
+    /// Share (0 to below 1; larger values count as 0.99) of a path's scattering vertices drawn,
+    /// on segments where the sun is below some point's horizon, from a density that seeks the
+    /// light: the exponential of the extinction times the single-scattered light each stretch
+    /// of the segment receives ([`VERTEX_LIGHT_SHARE`]); the rest from the exponential alone,
+    /// which keeps every point of the segment possible (the light-seeking density gives none
+    /// to stretches its table puts in the dark). 0 draws every vertex from the exponential.
+    /// Either way the estimate is unbiased: only its noise changes.
     pub vertex_light_share: f64,
 }
 
@@ -703,7 +709,7 @@ impl<'a> PathTracer<'a> {
         }
         let light = self.light_masses(ray, intervals, rates);
         let share = if light.is_some() {
-            self.settings.vertex_light_share
+            self.settings.vertex_light_share.min(MAX_VERTEX_LIGHT_SHARE)
         } else {
             0.0
         };
@@ -718,7 +724,12 @@ impl<'a> PathTracer<'a> {
                 let (a, b, s) = intervals[k];
                 let step = rates[s] * (b - a);
                 let f = -(-rng.uniform() * -(-step).exp_m1()).ln_1p();
-                (k, if step > 0.0 { a + (b - a) * f / step } else { a })
+                let t = if step > 0.0 {
+                    a + (b - a) * f / step
+                } else {
+                    a
+                };
+                (k, t)
             }
             _ => locate(intervals, rates, -(-rng.uniform() * p_any).ln_1p())?,
         };
@@ -734,15 +745,16 @@ impl<'a> PathTracer<'a> {
     /// The mass of each of a segment's intervals under the light-seeking density of a
     /// path's next vertex: the exponential of the `rates` (the lanes' mean extinction) times the
     /// single-scattered light at the interval's middle ([`Self::fluence_at`]). None where the
-    /// sun is above every point's horizon (the light then varies little along a segment) or
-    /// the segment finds no light.
+    /// share of such vertices is zero (or not a number), where the sun is above every point's
+    /// horizon (the light then varies little along a segment) or where the segment finds no
+    /// light.
     fn light_masses(
         &self,
         ray: &Ray,
         intervals: &[(f64, f64, usize)],
         rates: &[f64],
     ) -> Option<LightMasses> {
-        if self.settings.vertex_light_share <= 0.0 {
+        if !(self.settings.vertex_light_share > 0.0) {
             return None;
         }
         // x · sun is linear along a straight segment: lowest at one of its ends.
