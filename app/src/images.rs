@@ -38,7 +38,7 @@ pub fn write_exr(path: &Path, rgb: &[[f64; 3]], width: u32, height: u32) -> anyh
         .write()
         .to_buffered(&mut bytes)
         .with_context(|| format!("cannot encode {}", path.display()))?;
-    crate::cli::write_atomic(path, bytes.get_ref())
+    crate::files::write_atomic(path, bytes.get_ref())
 }
 
 /// The EXR attribute naming the unit of the pixel values, and the unit.
@@ -55,7 +55,7 @@ fn save_atomic(
     let mut bytes = std::io::Cursor::new(Vec::new());
     img.write_to(&mut bytes, format)
         .with_context(|| format!("cannot encode {}", path.display()))?;
-    crate::cli::write_atomic(path, bytes.get_ref())
+    crate::files::write_atomic(path, bytes.get_ref())
 }
 
 /// Reads an EXR written by `write_exr` back as linear sRGB.

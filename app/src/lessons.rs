@@ -9,9 +9,9 @@
 //! the full list is [`Quantity`]. Literal numbers in the text may only be wavelengths
 //! ("450 nm"): anything measured comes from the model.
 
-use crate::gui::Tab;
 use crate::presets::load_shipped;
 use crate::summary;
+use crate::tab::Tab;
 use atmoscope_model::Scene;
 use serde::Deserialize;
 use std::path::Path;

@@ -4,7 +4,7 @@
 //! through the hours of the scene's day when the sun is placed by date, time and place. A
 //! scene with automatic exposure is metered frame by frame, as a time-lapse camera does.
 
-use crate::cli::write_atomic;
+use crate::files::write_atomic;
 use anyhow::Context;
 use atmoscope_model::Scene;
 use atmoscope_model::scene::SunSettings;

@@ -16,7 +16,7 @@ pub struct CompareArgs {
     /// The reference (linear EXR, e.g. from `atmoscope reference`).
     pub reference: PathBuf,
     /// Exposure of the display-referred metrics, EV.
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = super::parse_finite)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = crate::args::parse_finite)]
     pub exposure_ev: f64,
     /// Write `<stem>-delta-e.png` and `<stem>-flip.png` heat maps into this directory.
     #[arg(long, value_name = "DIR")]

@@ -1,6 +1,6 @@
 //! `atmoscope info`: the scene summary of `crate::summary` as a table or JSON.
 
-use super::SceneArgs;
+use crate::scene_args::SceneArgs;
 use crate::summary::{Info, compute};
 use clap::Args;
 use std::process::ExitCode;
@@ -23,7 +23,7 @@ pub struct InfoArgs {
 }
 
 pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
-    super::check_wavelengths(&args.wavelengths_nm)?;
+    crate::args::check_wavelengths(&args.wavelengths_nm)?;
     let scene = args.scene.scene()?;
     let info = compute(&scene, &args.wavelengths_nm);
     if args.json {

@@ -2,20 +2,17 @@
 //! linear EXR plus a PNG preview, with a progress bar showing samples per second and the noise.
 //! Results are cached under a hash of the scene and settings, so asking again is instant.
 
-use super::SceneArgs;
+use crate::args::parse_size;
+use crate::cli::common::{PathTrace, path_traced};
 use crate::images::{write_exr, write_png};
+use crate::scene_args::SceneArgs;
 use anyhow::{Context, bail};
 use atmoscope_model::Scene;
 use atmoscope_model::camera::Projection;
-use atmoscope_model::methods::path_tracer::PathTracerSettings;
-use atmoscope_model::reference::ReferenceRender;
 use atmoscope_model::views::{self, View};
 use clap::{Args, ValueEnum};
-use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::sync::atomic::AtomicBool;
-use std::time::Instant;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum ProjectionArg {
@@ -60,7 +57,7 @@ pub struct ReferenceArgs {
     #[arg(long, value_name = "N", conflicts_with = "noise", value_parser = clap::value_parser!(u64).range(1..))]
     pub spp: Option<u64>,
     /// Stop when the mean relative standard error of pixel luminance falls to REL (e.g. 0.01).
-    #[arg(long, value_name = "REL", value_parser = super::parse_positive, allow_hyphen_values = true)]
+    #[arg(long, value_name = "REL", value_parser = crate::args::parse_positive, allow_hyphen_values = true)]
     pub noise: Option<f64>,
     /// Highest scattering order (1 = single scattering); default all.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
@@ -76,18 +73,6 @@ pub struct ReferenceArgs {
     /// Ignore and overwrite the cache.
     #[arg(long)]
     pub no_cache: bool,
-}
-
-pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .ok_or("expected WxH, e.g. 320x180")?;
-    let w: u32 = w.parse().map_err(|_| format!("bad width {w:?}"))?;
-    let h: u32 = h.parse().map_err(|_| format!("bad height {h:?}"))?;
-    if w == 0 || h == 0 || w > 8192 || h > 8192 {
-        return Err("width and height must be 1 to 8192".into());
-    }
-    Ok((w, h))
 }
 
 /// What to render.
@@ -141,7 +126,7 @@ pub fn run(args: &ReferenceArgs) -> anyhow::Result<ExitCode> {
                 out.display()
             );
         }
-        super::check_writable(&out)?;
+        crate::files::check_writable(&out)?;
         match &args.view {
             Some(name) => {
                 let v = views::find(name).with_context(|| {
@@ -192,112 +177,4 @@ fn render_job(job: &Job, args: &ReferenceArgs) -> anyhow::Result<()> {
     write_png(&png, &rgb, w, h, &job.scene)?;
     eprintln!("{}: preview {}", job.out.display(), png.display());
     Ok(())
-}
-
-/// How a path-traced reference is rendered.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct PathTrace {
-    /// Paths per pixel (default 64, or until `noise` is reached).
-    pub spp: Option<u64>,
-    /// Stop at this mean relative standard error of pixel luminance.
-    pub noise: Option<f64>,
-    /// Highest scattering order (None: all).
-    pub max_order: Option<u32>,
-    pub seed: u64,
-    /// Ignore and overwrite the cache.
-    pub no_cache: bool,
-}
-
-/// The path-traced linear sRGB image (W·m⁻²·sr⁻¹, row-major) of `scene` through `projection`
-/// at `size`: from the cache when an entry reads back whole, else rendered with a progress bar
-/// labelled `label` and cached.
-pub(crate) fn path_traced(
-    scene: &Scene,
-    projection: Projection,
-    (w, h): (u32, u32),
-    pt: &PathTrace,
-    label: &str,
-) -> anyhow::Result<Vec<[f64; 3]>> {
-    let key = format!(
-        "{}|{}|{:?}|{w}x{h}|{:?}|{:?}|{:?}|{}",
-        env!("ATMOSCOPE_MODEL_SOURCES"),
-        scene.to_ron(),
-        projection,
-        pt.spp,
-        pt.noise,
-        pt.max_order,
-        pt.seed
-    );
-    let cached = crate::cache::dir("references")
-        .join(format!("{:016x}.exr", crate::cache::key(key.as_bytes())));
-    // A cache entry that does not read back whole (cut short, corrupted, another size) is
-    // ignored and replaced.
-    let hit = (cached.exists() && !pt.no_cache)
-        .then(|| crate::images::read_exr(&cached))
-        .and_then(|r| match r {
-            Ok((rgb, cw, ch)) if (cw, ch) == (w, h) => Some(rgb),
-            Ok(_) | Err(_) => {
-                eprintln!(
-                    "{}: unreadable cache entry, rendering anew",
-                    cached.display()
-                );
-                None
-            }
-        });
-    if let Some(rgb) = hit {
-        eprintln!("{label}: from the cache ({})", cached.display());
-        return Ok(rgb);
-    }
-    let settings = PathTracerSettings {
-        max_order: pt.max_order,
-        ..PathTracerSettings::default()
-    };
-    let mut render = ReferenceRender::new(scene, projection, w, h, pt.seed, settings);
-    let target_spp = pt
-        .spp
-        .unwrap_or(if pt.noise.is_some() { 1 << 20 } else { 64 });
-    let bar = ProgressBar::new(target_spp);
-    bar.set_style(
-        ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} spp  {msg}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    bar.set_prefix(label.to_string());
-    let never = AtomicBool::new(false);
-    let start = Instant::now();
-    let mut pass = 1u64;
-    loop {
-        let done = render.samples_per_pixel();
-        if done >= target_spp {
-            break;
-        }
-        let step = pass.min(target_spp - done);
-        render.run_pass(step as u32, &never);
-        pass = (pass * 2).min(64);
-        let noise = render.mean_relative_error();
-        let rate =
-            render.samples_per_pixel() as f64 * (w * h) as f64 / start.elapsed().as_secs_f64();
-        bar.set_position(render.samples_per_pixel());
-        bar.set_message(format!("noise {:.2} %  {:.0} paths/s", noise * 100.0, rate));
-        if pt
-            .noise
-            .is_some_and(|target| noise <= target && render.samples_per_pixel() >= 16)
-        {
-            break;
-        }
-    }
-    bar.finish();
-    let rgb = render.linear_srgb();
-    if let Some(dir) = cached.parent()
-        && std::fs::create_dir_all(dir).is_ok()
-    {
-        // The cache is an optimisation: failing to fill it loses nothing.
-        let _ = write_exr(&cached, &rgb, w, h);
-    }
-    eprintln!(
-        "{label}: {} spp, noise {:.2} % (mean per-pixel relative standard error of luminance), {:.1} s",
-        render.samples_per_pixel(),
-        render.mean_relative_error() * 100.0,
-        start.elapsed().as_secs_f64(),
-    );
-    Ok(rgb)
 }

@@ -1,37 +1,18 @@
 //! `atmoscope render`: one view of a scene rendered headless by the real-time engine, written as
 //! a display-referred PNG (a luminance map gets a legend strip) or as linear EXR radiance.
 
-use super::SceneArgs;
+use crate::args::{parse_range, parse_wavelengths};
+use crate::cli::common::{ViewArg, gpu};
 use crate::images::{legend_strip, save_rgb8, write_exr};
+use crate::scene_args::SceneArgs;
 use anyhow::{Context, bail};
 use atmoscope_model::camera::Projection;
 use atmoscope_model::scene::{Method, WavelengthSet};
 use atmoscope_model::views;
-use atmoscope_render::{DisplayMode, Engine, GpuContext, View};
-use clap::{Args, ValueEnum};
+use atmoscope_render::{DisplayMode, Engine, View};
+use clap::Args;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ViewArg {
-    Perspective,
-    Fisheye,
-    Panorama,
-    /// Luminance in cd/m², log scale in false colour, on the fisheye sky dome.
-    Luminance,
-}
-
-impl ViewArg {
-    /// The projection and display mode the argument asks for.
-    pub fn projection_and_mode(self) -> (Projection, DisplayMode) {
-        match self {
-            ViewArg::Perspective => (Projection::Perspective, DisplayMode::Colour),
-            ViewArg::Fisheye => (Projection::Fisheye, DisplayMode::Colour),
-            ViewArg::Panorama => (Projection::Panorama, DisplayMode::Colour),
-            ViewArg::Luminance => (Projection::Fisheye, DisplayMode::LUMINANCE),
-        }
-    }
-}
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
@@ -42,7 +23,7 @@ pub struct RenderArgs {
     pub view: Option<String>,
     /// Sky model, a real-time model's registry id (default: the scene's; an unknown id is
     /// answered with the list).
-    #[arg(long, value_name = "ID", value_parser = super::parse_method)]
+    #[arg(long, value_name = "ID", value_parser = crate::args::parse_method)]
     pub method: Option<Method>,
     /// Wavelength set: rgb3, spectral4 or spectralN (N a multiple of 4, 4–128, e.g. spectral32).
     #[arg(long, value_name = "SET", value_parser = parse_wavelengths)]
@@ -51,7 +32,7 @@ pub struct RenderArgs {
     #[arg(long, value_enum)]
     pub projection: Option<ViewArg>,
     /// Image size WxH (default: the view's size, or 1280x720).
-    #[arg(long, value_name = "WxH", value_parser = super::reference::parse_size)]
+    #[arg(long, value_name = "WxH", value_parser = crate::args::parse_size)]
     pub size: Option<(u32, u32)>,
     /// Luminance map range as log10 of cd/m²: MIN,MAX.
     #[arg(long, value_name = "MIN,MAX", value_parser = parse_range, allow_hyphen_values = true)]
@@ -63,37 +44,6 @@ pub struct RenderArgs {
     /// Output file: .png (as displayed) or .exr (linear radiance, W·m⁻²·sr⁻¹ as linear sRGB).
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
-}
-
-/// Parses rgb3 | spectral4 | spectralN.
-pub fn parse_wavelengths(s: &str) -> Result<WavelengthSet, String> {
-    let lower = s.to_ascii_lowercase();
-    match lower.as_str() {
-        "rgb3" => Ok(WavelengthSet::Rgb3),
-        "spectral4" => Ok(WavelengthSet::Spectral4),
-        _ => {
-            let n: u32 = lower
-                .strip_prefix("spectral")
-                .and_then(|n| n.parse().ok())
-                .ok_or_else(|| format!("{s:?}: expected rgb3, spectral4 or spectralN"))?;
-            if !n.is_multiple_of(4) || !(4..=128).contains(&n) {
-                return Err(format!(
-                    "spectral{n}: N must be a multiple of 4 from 4 to 128"
-                ));
-            }
-            Ok(WavelengthSet::SpectralN(n))
-        }
-    }
-}
-
-pub(crate) fn parse_range(s: &str) -> Result<(f64, f64), String> {
-    let (a, b) = s.split_once(',').ok_or("expected MIN,MAX, e.g. -2,5")?;
-    let a: f64 = a.trim().parse().map_err(|_| format!("bad minimum {a:?}"))?;
-    let b: f64 = b.trim().parse().map_err(|_| format!("bad maximum {b:?}"))?;
-    if !(a < b) || a < -10.0 || b > 12.0 {
-        return Err("need -10 ≤ MIN < MAX ≤ 12 (log10 cd/m²)".into());
-    }
-    Ok((a, b))
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -117,11 +67,6 @@ fn format_of(path: &Path) -> anyhow::Result<Format> {
     }
 }
 
-/// Opens the headless GPU the engine renders on.
-pub fn gpu() -> anyhow::Result<GpuContext> {
-    GpuContext::headless().context("the real-time engine needs a GPU adapter")
-}
-
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let format = format_of(&args.out)?;
     if args.caption && matches!(format, Format::Exr) {
@@ -130,7 +75,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
             args.out.display()
         );
     }
-    super::check_writable(&args.out)?;
+    crate::files::check_writable(&args.out)?;
     let mut scene = args.scene.scene()?;
     let mut projection = Projection::Perspective;
     let mut size = (1280, 720);
@@ -148,7 +93,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     if let Some(m) = args.method {
         scene.render.method = m;
     }
-    if let Err(e) = super::parse_method(super::method_id(scene.render.method)) {
+    if let Err(e) = crate::args::parse_method(crate::args::method_id(scene.render.method)) {
         bail!("the scene's method: {e}");
     }
     let mut mode = DisplayMode::Colour;

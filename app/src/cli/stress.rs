@@ -5,10 +5,10 @@
 //! case is written as a preset that `--replay` re-checks; the exit code is non-zero on any
 //! failure.
 
-use super::{MethodList, parse_methods};
+use crate::args::{MethodList, parse_methods, set_name};
 use anyhow::Context;
 use atmoscope_model::methods::{self, rng::Rng};
-use atmoscope_model::scene::{Scene, WavelengthSet};
+use atmoscope_model::scene::Scene;
 use atmoscope_render::stress::{
     DIMENSIONS, Findings, GPU_CPU_BOUND, GPU_CPU_DARKEST_CD_M2, GPU_CPU_FLOOR, Stress, VIEW_SIZE,
     scene_at,
@@ -58,14 +58,6 @@ fn altitude_class(scene: &Scene) -> &'static str {
         h if h == atmoscope_model::scene::MAX_CAMERA_ALTITUDE_M => "1e8 m",
         h if h < top => "inside (other)",
         _ => "above (other)",
-    }
-}
-
-fn set_name(set: WavelengthSet) -> String {
-    match set {
-        WavelengthSet::Rgb3 => "rgb3".into(),
-        WavelengthSet::Spectral4 => "spectral4".into(),
-        WavelengthSet::SpectralN(n) => format!("spectral{n}"),
     }
 }
 
@@ -229,7 +221,7 @@ pub fn run(args: &StressArgs) -> anyhow::Result<ExitCode> {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("--out {}: cannot create the directory", dir.display()))?;
     }
-    let gpu = super::render::gpu()?;
+    let gpu = crate::cli::common::gpu()?;
     let mut stress = Stress::new(&gpu.device, &gpu.queue);
     if !args.replay.is_empty() {
         let mut code = ExitCode::SUCCESS;
@@ -279,7 +271,7 @@ pub fn run(args: &StressArgs) -> anyhow::Result<ExitCode> {
             let preset = match &args.out {
                 Some(dir) => {
                     let path = dir.join(format!("case-{case:07}.ron"));
-                    super::write_atomic(&path, scene.to_ron().as_bytes())?;
+                    crate::files::write_atomic(&path, scene.to_ron().as_bytes())?;
                     Some(path)
                 }
                 None => None,
@@ -311,8 +303,8 @@ pub fn run(args: &StressArgs) -> anyhow::Result<ExitCode> {
     let markdown = report.markdown();
     print!("{markdown}");
     if let Some(dir) = &args.out {
-        super::write_atomic(&dir.join("report.md"), markdown.as_bytes())?;
-        super::write_atomic(
+        crate::files::write_atomic(&dir.join("report.md"), markdown.as_bytes())?;
+        crate::files::write_atomic(
             &dir.join("report.json"),
             serde_json::to_string_pretty(&report)?.as_bytes(),
         )?;
@@ -327,11 +319,11 @@ pub fn run(args: &StressArgs) -> anyhow::Result<ExitCode> {
 
 fn replay(stress: &mut Stress, path: &Path) -> anyhow::Result<ExitCode> {
     let scene = Scene::load(path)?;
-    if let Err(e) = super::parse_method(super::method_id(scene.render.method)) {
+    if let Err(e) = crate::args::parse_method(crate::args::method_id(scene.render.method)) {
         anyhow::bail!("{}: {e}", path.display());
     }
     let f = stress.check(&scene);
-    let id = super::method_id(scene.render.method);
+    let id = crate::args::method_id(scene.render.method);
     let set = set_name(scene.render.wavelengths);
     if f.failed() {
         println!("{}: {id}, {set}: {}", path.display(), describe(&f));

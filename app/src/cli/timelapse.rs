@@ -1,7 +1,7 @@
 //! `atmoscope timelapse`: a sweep of the sun as a PNG sequence and an animated PNG.
 
-use super::SceneArgs;
-use super::render::{ViewArg, gpu};
+use crate::cli::common::{ViewArg, gpu};
+use crate::scene_args::SceneArgs;
 use crate::timelapse::{self, Sweep};
 use anyhow::Context;
 use atmoscope_render::View;
@@ -33,7 +33,7 @@ pub struct TimelapseArgs {
     #[arg(long, value_enum, default_value = "perspective")]
     pub projection: ViewArg,
     /// Frame size WxH.
-    #[arg(long, value_name = "WxH", value_parser = super::reference::parse_size, default_value = "640x360")]
+    #[arg(long, value_name = "WxH", value_parser = crate::args::parse_size, default_value = "640x360")]
     pub size: (u32, u32),
     /// Output folder: frame_0000.png, frame_0001.png, … and timelapse.png (the animation).
     #[arg(long, value_name = "DIR")]

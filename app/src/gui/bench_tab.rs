@@ -319,8 +319,8 @@ fn render_command(scene: &Scene, c: &Config) -> Option<Command> {
     s.render.method = methods::by_id(&c.method)
         .filter(|m| m.is_realtime())?
         .method;
-    s.render.wavelengths = crate::cli::parse_wavelengths(&c.wavelengths).ok()?;
-    s.render.quality = crate::cli::parse_quality(&c.quality).ok()?;
+    s.render.wavelengths = crate::args::parse_wavelengths(&c.wavelengths).ok()?;
+    s.render.quality = crate::args::parse_quality(&c.quality).ok()?;
     Some(Command::SetScene(Box::new(s)))
 }
 

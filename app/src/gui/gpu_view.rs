@@ -35,7 +35,7 @@ impl Gpu {
             renderer: rs.renderer.clone(),
             adapter: format!("{} ({:?}, {:?})", info.name, info.backend, info.device_type),
             software: info.device_type == wgpu::DeviceType::Cpu,
-            rebuild_slice: Some(REBUILD_SLICE),
+            rebuild_slice: Some(crate::engine_setup::REBUILD_SLICE),
         }
     }
 }
@@ -63,13 +63,6 @@ impl Radiance {
     }
 }
 
-/// GPU time a slice of a rebuild aims at: well inside the 100 ms a window may take per frame
-/// and still feel live, with room for the frame's own work (15–18 ms on lavapipe) and for a
-/// slice that costs three times what the last one promised, as slices of Bruneton's
-/// scattering density do on lavapipe (with 30 ms, the longest frames of his Spectral32
-/// rebuild were 84–114 ms there in the runs of 2026-11-27).
-pub(crate) const REBUILD_SLICE: Duration = Duration::from_millis(20);
-
 pub struct GpuView {
     engine: Engine,
     gpu: Gpu,
@@ -90,17 +83,12 @@ pub struct GpuView {
 
 impl GpuView {
     pub fn new(gpu: &Gpu) -> GpuView {
-        let mut engine = Engine::new(&gpu.device, &gpu.queue);
-        engine.set_timing(true);
-        engine.set_rebuild_slices(gpu.rebuild_slice);
-        // On a software adapter a view in motion draws its sky in tiles (it sharpens in the
-        // first still frame) and in bands; on a GPU every pixel, in one dispatch.
-        let device_type = gpu.device.adapter_info().device_type;
-        engine.set_sky_tile(atmoscope_render::views::moving_sky_tile(device_type));
-        engine.set_view_bands(atmoscope_render::views::view_bands(device_type));
-        if gpu.software {
-            engine.force_cpu_timing();
-        }
+        let setup = crate::engine_setup::EngineSetup {
+            rebuild_slice: gpu.rebuild_slice,
+            cpu_timing: gpu.software,
+            ..crate::engine_setup::EngineSetup::explorer(&gpu.device)
+        };
+        let engine = setup.engine(&gpu.device, &gpu.queue);
         GpuView {
             engine,
             gpu: gpu.clone(),

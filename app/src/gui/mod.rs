@@ -19,14 +19,13 @@ mod state;
 mod summary_panel;
 mod thumbnails;
 
-use crate::cli::SceneArgs;
 use crate::lessons::{self, Lesson, LessonError};
 use crate::presets::load_shipped;
+use crate::scene_args::SceneArgs;
 use atmoscope_model::Scene;
 use compare_tab::CompareTab;
 use eframe::egui;
 use files::ExportKind;
-pub(crate) use gpu_view::REBUILD_SLICE;
 use gpu_view::{Gpu, GpuView};
 use inspector::{Inspector, Probe};
 use jobs::Job;

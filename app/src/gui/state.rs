@@ -4,6 +4,7 @@
 //! imports another.
 
 use super::files::ExportKind;
+pub use crate::tab::Tab;
 use atmoscope_model::Scene;
 use atmoscope_model::camera::Projection;
 use atmoscope_model::scene::{Method, WavelengthSet};
@@ -11,78 +12,6 @@ use eframe::egui;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
-
-/// The centre tabs, with their shortcut keys 1–7.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-pub enum Tab {
-    #[default]
-    Sky,
-    Fisheye,
-    Luminance,
-    Compare,
-    Luts,
-    Reference,
-    Bench,
-}
-
-impl Tab {
-    pub const ALL: [Tab; 7] = [
-        Tab::Sky,
-        Tab::Fisheye,
-        Tab::Luminance,
-        Tab::Compare,
-        Tab::Luts,
-        Tab::Reference,
-        Tab::Bench,
-    ];
-
-    pub fn label(self) -> &'static str {
-        match self {
-            Tab::Sky => "Sky",
-            Tab::Fisheye => "Fisheye",
-            Tab::Luminance => "Luminance",
-            Tab::Compare => "Compare",
-            Tab::Luts => "LUTs",
-            Tab::Reference => "Reference",
-            Tab::Bench => "Bench",
-        }
-    }
-
-    pub fn description(self) -> &'static str {
-        match self {
-            Tab::Sky => "The view from the camera, drawn live by the scene's sky model.",
-            Tab::Fisheye => {
-                "The whole sky dome from the camera, zenith in the centre, horizon on the circle."
-            }
-            Tab::Luminance => {
-                "Brightness as the eye weighs it (cd/m²), in false colour on a log scale."
-            }
-            Tab::Compare => {
-                "The same view by two models or wavelength sets, and how much their colours differ (ΔE2000)."
-            }
-            Tab::Luts => "The lookup tables the sky model precomputes, and what their axes mean.",
-            Tab::Reference => {
-                "A spectral path tracer's ground truth of the view, next to the real-time render."
-            }
-            Tab::Bench => {
-                "Every model's frame time against its error from the path tracer, from `atmoscope bench methods`; click a point to render that model."
-            }
-        }
-    }
-
-    pub fn key(self) -> egui::Key {
-        const KEYS: [egui::Key; 7] = [
-            egui::Key::Num1,
-            egui::Key::Num2,
-            egui::Key::Num3,
-            egui::Key::Num4,
-            egui::Key::Num5,
-            egui::Key::Num6,
-            egui::Key::Num7,
-        ];
-        KEYS[Tab::ALL.iter().position(|&t| t == self).unwrap_or(0)]
-    }
-}
 
 /// The range of render and drag scales, texels per screen pixel.
 pub const SCALE_RANGE: std::ops::RangeInclusive<f32> = 0.25..=1.0;

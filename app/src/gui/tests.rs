@@ -1003,7 +1003,7 @@ proptest::proptest! {
 fn a_new_atmosphere_is_built_across_frames_while_the_last_one_shows() {
     let mut h = harness();
     h.state_mut()
-        .set_rebuild_slices(Some(crate::gui::REBUILD_SLICE));
+        .set_rebuild_slices(Some(crate::engine_setup::REBUILD_SLICE));
     let generation = |h: &Harness<'static, ExplorerApp>| views(h).main.generation();
     let (before, drawn) = (radiance(&mut h), generation(&h));
     h.state_mut().scene.render.wavelengths = atmoscope_model::scene::WavelengthSet::SpectralN(32);

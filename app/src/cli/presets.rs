@@ -1,6 +1,6 @@
 //! `atmoscope presets validate|list|gallery`.
 
-use super::render::gpu;
+use crate::cli::common::gpu;
 use crate::images::save_rgb8;
 use crate::presets::{SHIPPED, load_shipped};
 use anyhow::Context;
@@ -86,7 +86,7 @@ pub fn gallery(out: &Path, (width, height): (u32, u32)) -> anyhow::Result<ExitCo
         )?;
         eprintln!("{stem}");
     }
-    super::write_atomic(&out.join("README.md"), page.as_bytes())?;
+    crate::files::write_atomic(&out.join("README.md"), page.as_bytes())?;
     eprintln!(
         "wrote {} images and {}",
         SHIPPED.len(),

@@ -6,15 +6,15 @@
 //! relative RMSE of luminance outside the sun's disk); it writes `results.csv`, `summary.md` and the Pareto chart
 //! (`pareto.svg`, `pareto.png`) of frame time against mean ΔE2000.
 
-use super::bench_gpu::{median, set_name};
-use super::progress::Progress;
-use super::render::{gpu, parse_wavelengths};
+use crate::args::parse_wavelengths;
+use crate::args::set_name;
+use crate::args::{parse_quality, quality_name};
 use crate::bench_results::{Config, Row, summarise, to_csv};
+use crate::cli::common::{gpu, median, outside_sun_disk};
+use crate::cli::progress::Progress;
 use crate::images::read_exr;
 use anyhow::{Context, anyhow, bail};
 use atmoscope_model::Scene;
-use atmoscope_model::camera::{Camera, Projection};
-use atmoscope_model::geometry::direction_from_angles;
 use atmoscope_model::methods::Inputs;
 use atmoscope_model::metrics::{DisplaySetup, compare, luminance_relative_rmse_where};
 use atmoscope_model::scene::{Quality, WavelengthSet};
@@ -50,8 +50,8 @@ pub struct MethodsBench {
     #[arg(long)]
     pub full: bool,
     /// Sky models, comma-separated registry ids, or `all` (default: all).
-    #[arg(long, value_name = "IDS", value_parser = super::parse_methods)]
-    pub methods: Option<super::MethodList>,
+    #[arg(long, value_name = "IDS", value_parser = crate::args::parse_methods)]
+    pub methods: Option<crate::args::MethodList>,
     /// Wavelength sets, comma-separated (overrides --quick/--full).
     #[arg(long, value_delimiter = ',', value_parser = parse_wavelengths)]
     pub sets: Vec<WavelengthSet>,
@@ -67,7 +67,7 @@ pub struct MethodsBench {
     pub refs: PathBuf,
     /// Size WxH of the frames that are timed (errors are measured at the references' size);
     /// default 480x270, or 320x180 with --full.
-    #[arg(long, value_name = "WxH", value_parser = super::reference::parse_size)]
+    #[arg(long, value_name = "WxH", value_parser = crate::args::parse_size)]
     pub frame_size: Option<(u32, u32)>,
     /// Most frames timed per view (median reported; default 3 quick, 10 full); fewer once
     /// they have taken two seconds, as the nested marches of a table-free model can.
@@ -80,23 +80,6 @@ pub struct MethodsBench {
     /// Output folder (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
-}
-
-pub fn parse_quality(s: &str) -> Result<Quality, String> {
-    match s.to_ascii_lowercase().as_str() {
-        "low" => Ok(Quality::Low),
-        "medium" => Ok(Quality::Medium),
-        "high" => Ok(Quality::High),
-        _ => Err(format!("{s:?}: expected low, medium or high")),
-    }
-}
-
-pub fn quality_name(q: Quality) -> &'static str {
-    match q {
-        Quality::Low => "low",
-        Quality::Medium => "medium",
-        Quality::High => "high",
-    }
 }
 
 /// What one run measures, from the flags.
@@ -278,8 +261,8 @@ pub fn run(args: &MethodsBench) -> anyhow::Result<ExitCode> {
         frame_views: plan.frame_views.clone(),
         seconds: start.elapsed().as_secs_f64(),
     };
-    super::write_atomic(&args.out.join("results.csv"), to_csv(&rows).as_bytes())?;
-    super::write_atomic(
+    crate::files::write_atomic(&args.out.join("results.csv"), to_csv(&rows).as_bytes())?;
+    crate::files::write_atomic(
         &args.out.join("summary.md"),
         summary_markdown(&configs, &header).as_bytes(),
     )?;
@@ -432,26 +415,6 @@ fn measure(
     })
 }
 
-/// Which pixels of a `w`×`h` view of `scene` the sun's disk does not touch.
-pub(super) fn outside_sun_disk(scene: &Scene, projection: Projection, w: u32, h: u32) -> Vec<bool> {
-    let camera = Camera::new(
-        &scene.camera,
-        scene.atmosphere.planet_radius_km * 1000.0,
-        projection,
-    );
-    let a = scene.sun.angles();
-    let sun = direction_from_angles(a.elevation_deg, a.azimuth_deg);
-    let disk = camera.sun_in_view(sun, w, h);
-    (0..w * h)
-        .map(|i| {
-            disk.as_ref().is_none_or(|d| {
-                d.pixel((i % w) as f64 + 0.5, (i / w) as f64 + 0.5)
-                    .is_none()
-            })
-        })
-        .collect()
-}
-
 /// What the summary and the chart say about the run itself.
 struct Header<'a> {
     /// Cases that failed and were left out, each with why.
@@ -558,7 +521,7 @@ fn write_charts(out: &Path, configs: &[Config], header: &Header) -> anyhow::Resu
     let size = (960u32, 640u32);
     let mut svg = String::new();
     draw_chart(SVGBackend::with_string(&mut svg, size), configs, header)?;
-    super::write_atomic(&out.join("pareto.svg"), svg.as_bytes())?;
+    crate::files::write_atomic(&out.join("pareto.svg"), svg.as_bytes())?;
     let mut rgb = vec![0u8; (size.0 * size.1 * 3) as usize];
     draw_chart(BitMapBackend::with_buffer(&mut rgb, size), configs, header)?;
     let mut png = Vec::new();
@@ -569,7 +532,7 @@ fn write_charts(out: &Path, configs: &[Config], header: &Header) -> anyhow::Resu
         size.1,
         image::ExtendedColorType::Rgb8,
     )?;
-    super::write_atomic(&out.join("pareto.png"), &png)
+    crate::files::write_atomic(&out.join("pareto.png"), &png)
 }
 
 /// Axis ticks at 1, 2 and 5 times the powers of ten inside `range` (a log axis of less than a

@@ -9,7 +9,7 @@
 //! model and not the texture's interpolation. The objective is the mean squared log ratio of
 //! luminance, which weighs a dark view as much as a bright one.
 
-use super::render::parse_wavelengths;
+use crate::args::parse_wavelengths;
 use crate::images::read_exr;
 use anyhow::{Context, bail};
 use atmoscope_model::camera::Camera;
@@ -190,7 +190,7 @@ pub fn run(args: &FitGarciaLinanArgs) -> anyhow::Result<ExitCode> {
         bail!("--grid: {} is outside 1 to 64", args.grid);
     }
     if let Some(out) = &args.out {
-        super::check_writable(out)?;
+        crate::files::check_writable(out)?;
     }
     let views = load(args)?;
     let published = Constants::published();
@@ -270,7 +270,7 @@ pub fn run(args: &FitGarciaLinanArgs) -> anyhow::Result<ExitCode> {
             fitted.ms_b,
             fitted.reference_wavelength_nm
         )?;
-        super::write_atomic(path, csv.as_bytes())?;
+        crate::files::write_atomic(path, csv.as_bytes())?;
         eprintln!("wrote {}", path.display());
     }
     Ok(ExitCode::SUCCESS)

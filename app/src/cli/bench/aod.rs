@@ -2,8 +2,8 @@
 //! as the aerosol optical depth grows, which sets the AOD range each model states in its
 //! domain (`Domain::max_aod550`).
 
-use super::probe::{ProbeMethod, ProbeRequest, probe};
-use super::scene_args::SceneArgs;
+use crate::cli::sky_probe::{ProbeMethod, ProbeRequest, probe};
+use crate::scene_args::SceneArgs;
 use anyhow::bail;
 use atmoscope_model::Scene;
 use atmoscope_model::methods::{self, AOD_RANGE_ERROR};
@@ -18,14 +18,14 @@ pub struct AodBench {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Aerosol optical depths at 550 nm, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "0.05,0.1,0.15,0.2,0.3,0.5,1,2,5", value_parser = super::parse_positive)]
+    #[arg(long, value_delimiter = ',', default_value = "0.05,0.1,0.15,0.2,0.3,0.5,1,2,5", value_parser = crate::args::parse_positive)]
     pub aods: Vec<f64>,
     /// Sun elevations, degrees, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "30,5", value_parser = super::parse_finite, allow_hyphen_values = true)]
+    #[arg(long, value_delimiter = ',', default_value = "30,5", value_parser = crate::args::parse_finite, allow_hyphen_values = true)]
     pub suns: Vec<f64>,
     /// Sky models, comma-separated registry ids, or `all`.
-    #[arg(long, value_name = "IDS", value_parser = super::parse_methods, default_value = "all")]
-    pub methods: super::MethodList,
+    #[arg(long, value_name = "IDS", value_parser = crate::args::parse_methods, default_value = "all")]
+    pub methods: crate::args::MethodList,
     /// Path-tracer paths per direction.
     #[arg(long, default_value_t = 40_000, value_parser = clap::value_parser!(u64).range(2..))]
     pub spp: u64,

@@ -10,7 +10,7 @@
 //! repeats their grid search for the Taylor parameters (a, b) on this atmosphere's fitted
 //! scale heights.
 
-use super::SceneArgs;
+use crate::scene_args::SceneArgs;
 use atmoscope_model::atmosphere::Atmosphere;
 use atmoscope_model::geometry::{altitude_along, distance_to_top, hits_ground};
 use atmoscope_model::methods::shared::exponential::{

@@ -4,7 +4,7 @@
 //! (`model/data/spectral4_fitted.csv`); with `--hold-out` it judges the fit out of sample
 //! instead, each half of the views under the fit made on the other.
 
-use super::render::parse_wavelengths;
+use crate::args::parse_wavelengths;
 use anyhow::{Context, bail};
 use atmoscope_model::Atmosphere;
 use atmoscope_model::Scene;
@@ -539,7 +539,7 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     }
     match &args.out {
         Some(path) => {
-            super::write_atomic(path, csv.as_bytes())?;
+            crate::files::write_atomic(path, csv.as_bytes())?;
             eprintln!("wrote {}", path.display());
         }
         None => print!("{csv}"),

@@ -1,43 +1,18 @@
-//! `atmoscope bench`: run-time benchmarks (never timed tests). `bench path-tracer` renders views
-//! of the suite progressively and reports paths per second and the time each takes to reach a
-//! noise level, both for the mean per-pixel relative standard error of luminance and for the
-//! relative standard error of the image's mean luminance. `bench gpu` and `bench accuracy` (in
-//! `bench_gpu`) measure the real-time engine.
+//! `atmoscope bench path-tracer`: renders views of the suite progressively and reports paths
+//! per second and the time each takes to reach a noise level, both for the mean per-pixel
+//! relative standard error of luminance and for the relative standard error of the image's
+//! mean luminance.
 
 use anyhow::{Context, bail};
 use atmoscope_model::Scene;
 use atmoscope_model::methods::path_tracer::PathTracerSettings;
 use atmoscope_model::reference::ReferenceRender;
 use atmoscope_model::views;
-use clap::{Args, Subcommand};
+use clap::Args;
 use serde::Serialize;
 use std::process::ExitCode;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
-
-#[derive(Subcommand, Debug)]
-pub enum Bench {
-    /// Path tracer speed and time to a noise level on views of the suite.
-    PathTracer(PathTracerBench),
-    /// GPU time of each pass of the real-time engine and of whole frames, per wavelength set.
-    Gpu(super::bench_gpu::GpuBench),
-    /// ΔE2000 of the real-time engine against path-traced references of the view suite.
-    Accuracy(super::bench_gpu::AccuracyBench),
-    /// Each model's sky radiance against the path tracer as the aerosol optical depth grows:
-    /// the measurement behind each model's stated AOD range.
-    Aod(super::bench_aod::AodBench),
-    /// Every model × wavelength set × quality over views of the suite: precompute and frame
-    /// time, table memory and error against path-traced references; results.csv, a summary
-    /// and the Pareto chart of time against error.
-    Methods(super::bench_methods::MethodsBench),
-    /// Optical depth to the top of the atmosphere by the midpoint rule, the trapezoid rule and
-    /// the transmittance table against adaptive quadrature, with the CPU time per evaluation.
-    Transmittance(super::bench_transmittance::TransmittanceBench),
-    /// Leenman's (2025) comparison replayed: his Earth, views and metrics (his appendices
-    /// A–D), every model he compares and ours; leenman.csv and leenman.md with his value
-    /// beside ours.
-    Leenman(super::bench_leenman::LeenmanBench),
-}
 
 #[derive(Args, Debug)]
 pub struct PathTracerBench {
@@ -52,10 +27,10 @@ pub struct PathTracerBench {
     #[arg(long, default_value_t = 128, value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub size: u32,
     /// Target relative standard error of luminance.
-    #[arg(long, default_value_t = 0.01, value_parser = super::parse_positive, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 0.01, value_parser = crate::args::parse_positive, allow_hyphen_values = true)]
     pub noise: f64,
     /// Give up on a view after this many seconds.
-    #[arg(long, default_value_t = 600.0, value_parser = super::parse_positive, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 600.0, value_parser = crate::args::parse_positive, allow_hyphen_values = true)]
     pub max_seconds: f64,
     #[arg(long)]
     pub json: bool,
@@ -75,19 +50,7 @@ struct Row {
     pixel_noise_at_end: f64,
 }
 
-pub fn run(bench: &Bench) -> anyhow::Result<ExitCode> {
-    match bench {
-        Bench::PathTracer(args) => path_tracer(args),
-        Bench::Gpu(args) => super::bench_gpu::gpu_bench(args),
-        Bench::Accuracy(args) => super::bench_gpu::accuracy(args),
-        Bench::Aod(args) => super::bench_aod::run(args),
-        Bench::Methods(args) => super::bench_methods::run(args),
-        Bench::Leenman(args) => super::bench_leenman::run(args),
-        Bench::Transmittance(args) => super::bench_transmittance::run(args),
-    }
-}
-
-fn path_tracer(args: &PathTracerBench) -> anyhow::Result<ExitCode> {
+pub fn run(args: &PathTracerBench) -> anyhow::Result<ExitCode> {
     if !(args.noise > 0.0 && args.noise < 1.0) {
         bail!("--noise: {} is outside (0, 1)", args.noise);
     }

@@ -14,9 +14,7 @@
 //! of about 0.1, and Hillaire 9·10⁻⁵ at ground-noon, below what a 4 096-path reference's own
 //! noise allows for a root mean square.
 
-use super::bench_methods::outside_sun_disk;
-use super::reference::{PathTrace, path_traced};
-use super::render::gpu;
+use crate::cli::common::{PathTrace, gpu, outside_sun_disk, path_traced};
 use anyhow::{Context, bail};
 use atmoscope_model::Atmosphere;
 use atmoscope_model::camera::Camera;
@@ -48,15 +46,15 @@ const SUN_COLOUR_BINS: u32 = 96;
 #[derive(Args, Debug)]
 pub struct LeenmanBench {
     /// Size WxH of every image (his are 1920x1080, far beyond a CPU path tracer here).
-    #[arg(long, value_name = "WxH", value_parser = super::reference::parse_size, default_value = "160x90")]
+    #[arg(long, value_name = "WxH", value_parser = crate::args::parse_size, default_value = "160x90")]
     pub size: (u32, u32),
     /// Paths per pixel of the path-traced references (cached).
     #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u64).range(1..=1_000_000))]
     pub spp: u64,
     /// Sky models, comma-separated registry ids, or `all` (default: his, then every other
     /// real-time model).
-    #[arg(long, value_name = "IDS", value_parser = super::parse_methods)]
-    pub methods: Option<super::MethodList>,
+    #[arg(long, value_name = "IDS", value_parser = crate::args::parse_methods)]
+    pub methods: Option<crate::args::MethodList>,
     /// His views, comma-separated (default: all twelve; the transmittance views always run).
     #[arg(long, value_delimiter = ',')]
     pub views: Vec<String>,
@@ -76,7 +74,8 @@ struct Cell {
 
 /// The name a model goes by in the tables: his, where he compares it, else the registry id.
 fn model_name(method: Method) -> String {
-    leenman::his_name(method).map_or_else(|| super::method_id(method).to_string(), String::from)
+    leenman::his_name(method)
+        .map_or_else(|| crate::args::method_id(method).to_string(), String::from)
 }
 
 /// The sun's irradiance in linear sRGB as the images of `set` see it (for the spectral path
@@ -226,8 +225,8 @@ pub fn run(args: &LeenmanBench) -> anyhow::Result<ExitCode> {
     cells.extend(transmittance_cells((w, h))?);
     let csv = to_csv(&cells);
     let md = to_markdown(&cells, &views, (w, h), args.spp);
-    super::write_atomic(&args.out.join("leenman.csv"), csv.as_bytes())?;
-    super::write_atomic(&args.out.join("leenman.md"), md.as_bytes())?;
+    crate::files::write_atomic(&args.out.join("leenman.csv"), csv.as_bytes())?;
+    crate::files::write_atomic(&args.out.join("leenman.md"), md.as_bytes())?;
     print!("{md}");
     eprintln!("wrote leenman.csv and leenman.md to {}", args.out.display());
     if !failures.is_empty() {

@@ -1,22 +1,19 @@
 //! Benchmarks of the real-time engine: `bench gpu` times every pass (GPU timestamps where the
 //! adapter has them, fenced CPU wall time otherwise) and whole frames per wavelength set;
-//! `bench accuracy` measures ΔE2000 against path-traced references of the view suite.
+//! the sliced rebuilds, still frames and sun drags as the explorer draws them.
 
-use super::SceneArgs;
-use super::progress::Progress;
-use super::render::{gpu, parse_wavelengths};
-use crate::images::read_exr;
-use anyhow::Context;
+use crate::args::parse_wavelengths;
+use crate::args::set_name;
+use crate::cli::common::{gpu, median};
+use crate::cli::progress::Progress;
+use crate::engine_setup::EngineSetup;
+use crate::scene_args::SceneArgs;
 use atmoscope_model::Scene;
 use atmoscope_model::camera::Projection;
-use atmoscope_model::metrics::{DisplaySetup, compare};
-use atmoscope_model::scene::Method;
 use atmoscope_model::scene::{SunSettings, WavelengthSet};
-use atmoscope_model::views;
 use atmoscope_render::{Engine, View};
 use clap::Args;
 use serde::Serialize;
-use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -25,14 +22,14 @@ pub struct GpuBench {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Frame size WxH.
-    #[arg(long, value_name = "WxH", value_parser = super::reference::parse_size, default_value = "1280x720")]
+    #[arg(long, value_name = "WxH", value_parser = crate::args::parse_size, default_value = "1280x720")]
     pub size: (u32, u32),
     /// Wavelength sets, comma-separated.
     #[arg(long, value_delimiter = ',', value_parser = parse_wavelengths, default_value = "rgb3,spectral4,spectral32")]
     pub sets: Vec<WavelengthSet>,
     /// Sky models, comma-separated registry ids, or `all` (default: the scene's).
-    #[arg(long, value_name = "IDS", value_parser = super::parse_methods)]
-    pub methods: Option<super::MethodList>,
+    #[arg(long, value_name = "IDS", value_parser = crate::args::parse_methods)]
+    pub methods: Option<crate::args::MethodList>,
     /// Repetitions of each measurement (the median is reported).
     #[arg(long, default_value_t = 10)]
     pub repeats: usize,
@@ -169,7 +166,7 @@ fn sliced_frames(
     more: &dyn Fn(&Engine, usize) -> bool,
 ) -> anyhow::Result<(Vec<f64>, f64)> {
     engine.set_timing(false);
-    engine.set_rebuild_slices(Some(crate::gui::REBUILD_SLICE));
+    engine.set_rebuild_slices(Some(crate::engine_setup::REBUILD_SLICE));
     if let Some(lead) = lead {
         engine.try_render(lead, view)?;
         engine.wait();
@@ -216,35 +213,19 @@ impl SlicedFrames {
     }
 }
 
-/// The median (the mean of the middle two of an even count; NaN of none).
-pub(super) fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    match v.len() {
-        0 => f64::NAN,
-        n if n % 2 == 1 => v[n / 2],
-        n => 0.5 * (v[n / 2 - 1] + v[n / 2]),
-    }
-}
-
-pub(super) fn set_name(s: WavelengthSet) -> String {
-    match s {
-        WavelengthSet::Rgb3 => "rgb3".into(),
-        WavelengthSet::Spectral4 => "spectral4".into(),
-        WavelengthSet::SpectralN(n) => format!("spectral{n}"),
-    }
-}
-
-pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
+pub fn run(args: &GpuBench) -> anyhow::Result<ExitCode> {
     let base = args.scene.scene()?;
     let context = gpu()?;
     eprintln!("adapter: {}", context.describe());
-    let device_type = context.device.adapter_info().device_type;
-    let sky_tile = args
-        .sky_tile
-        .unwrap_or_else(|| atmoscope_render::views::moving_sky_tile(device_type));
-    let view_bands = args
-        .bands
-        .unwrap_or_else(|| atmoscope_render::views::view_bands(device_type));
+    // The explorer's settings, but for what the flags set: a whole rebuild is timed built in
+    // one frame, and the sliced frames turn slicing on themselves.
+    let explorer = EngineSetup::explorer(&context.device);
+    let setup = EngineSetup {
+        sky_tile: args.sky_tile.unwrap_or(explorer.sky_tile),
+        view_bands: args.bands.unwrap_or(explorer.view_bands),
+        cpu_timing: args.cpu_timing,
+        rebuild_slice: None,
+    };
     let (w, h) = args.size;
     let view = View::new(Projection::Perspective, w, h);
     let repeats = args.repeats.max(1);
@@ -261,7 +242,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         .flat_map(|&m| args.sets.iter().map(move |s| (m, s)))
     {
         let case_start = Instant::now();
-        let case = format!("{}/{}", super::method_id(method), set_name(set));
+        let case = format!("{}/{}", crate::args::method_id(method), set_name(set));
         let mut scene = base.clone();
         scene.render.method = method;
         scene.render.wavelengths = set;
@@ -270,13 +251,7 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             progress.step(&format!("{case} left out"));
             continue;
         }
-        let mut engine = Engine::new(&context.device, &context.queue);
-        engine.set_timing(true);
-        engine.set_sky_tile(sky_tile);
-        engine.set_view_bands(view_bands);
-        if args.cpu_timing {
-            engine.force_cpu_timing();
-        }
+        let mut engine = setup.engine(&context.device, &context.queue);
         let first = engine.try_render(&scene, &view)?.clone();
         engine.wait();
         // Repetitions of the frame, sun-move and table timings (none with --rebuild-only:
@@ -446,13 +421,13 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
         };
         let (frame_span_ms, sun_move_span_ms) = (median(frame_spans), median(sun_spans));
         rows.push(GpuRow {
-            method: super::method_id(method).into(),
+            method: crate::args::method_id(method).into(),
             wavelengths: set_name(set),
             timing: engine.timing_source().label().into(),
             lut_total_ms,
             lut_ms,
-            sky_tile,
-            view_bands,
+            sky_tile: setup.sky_tile,
+            view_bands: setup.view_bands,
             sky_ms,
             display_ms,
             sky_still_ms: median(sky_still),
@@ -501,12 +476,12 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
     println!(
         "{w}x{h} perspective, {measured}; times from {}; moving frames draw the sky in {t}×{t} tiles (a march per pixel from its moving sky where tiles are on), a still frame every pixel; the sky pass {}",
         rows.first().map_or("", |r| r.timing.as_str()),
-        if view_bands {
+        if setup.view_bands {
             "in bands, the sun's disk apart"
         } else {
             "in one dispatch"
         },
-        t = sky_tile
+        t = setup.sky_tile
     );
     println!(
         "{:14} {:12} {:>10} {:>8} {:>10} {:>8} {:>12} {:>12} {:>9} {:>8}   spans: {:>8} {:>8} {:>8}   ×floor: {:>6} {:>6} {:>7}   rebuild: {:>9} {:>28} {:>9}   still: {:>16}   sun drag: {:>20}   table passes",
@@ -570,224 +545,6 @@ pub fn gpu_bench(args: &GpuBench) -> anyhow::Result<ExitCode> {
             r.sun_drag_catch_up_frames,
             passes.join(", ")
         );
-    }
-    Ok(ExitCode::SUCCESS)
-}
-
-#[derive(Args, Debug)]
-pub struct AccuracyBench {
-    /// Directory of path-traced references named `<view>.exr`
-    /// (from `atmoscope reference --suite --out-dir DIR`).
-    #[arg(long, value_name = "DIR")]
-    pub refs: PathBuf,
-    /// Views of the suite, comma-separated (default: every view with a reference in --refs).
-    #[arg(long, value_delimiter = ',')]
-    pub views: Vec<String>,
-    /// The spectral set the others are compared with.
-    #[arg(long, value_parser = parse_wavelengths, default_value = "spectral32")]
-    pub spectral: WavelengthSet,
-    /// Wavelength sets to measure, comma-separated, the first being the one the others are
-    /// compared with (default: the --spectral set, spectral4, rgb3).
-    #[arg(long, value_delimiter = ',', value_parser = parse_wavelengths)]
-    pub sets: Vec<WavelengthSet>,
-    /// Sky models, comma-separated registry ids, or `all`.
-    #[arg(long, value_name = "IDS", value_parser = super::parse_methods, default_value = "hillaire")]
-    pub methods: super::MethodList,
-    #[arg(long)]
-    pub json: bool,
-}
-
-#[derive(Serialize, Debug)]
-struct AccuracyRow {
-    view: String,
-    sun_elevation_deg: f64,
-    exposure_ev: f64,
-    /// (model/set, mean, p95) ΔE2000 against the path-traced reference, per model and set.
-    vs_reference: Vec<(String, f64, f64)>,
-    /// (model/set, mean, p95) ΔE2000 of Spectral4 and RGB3 against the model's spectral set.
-    vs_spectral: Vec<(String, f64, f64)>,
-}
-
-pub fn accuracy(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
-    let context = gpu()?;
-    let sets = if args.sets.is_empty() {
-        vec![args.spectral, WavelengthSet::Spectral4, WavelengthSet::Rgb3]
-    } else {
-        args.sets.clone()
-    };
-    let runs: Vec<(Method, WavelengthSet)> = args
-        .methods
-        .0
-        .iter()
-        .flat_map(|&m| sets.iter().map(move |&s| (m, s)))
-        .collect();
-    let name = |(m, s): (Method, WavelengthSet)| format!("{}/{}", super::method_id(m), set_name(s));
-    let mut rows = Vec::new();
-    // One engine per run, kept across views: a table whose inputs a view leaves unchanged is
-    // not rebuilt (Bruneton's 4D tables, which depend on the atmosphere alone, are built once).
-    let mut engines: Vec<Engine> = runs
-        .iter()
-        .map(|_| Engine::new(&context.device, &context.queue))
-        .collect();
-    for v in views::suite() {
-        if !args.views.is_empty() && !args.views.iter().any(|n| n == v.name.as_str()) {
-            continue;
-        }
-        let path = args.refs.join(format!("{}.exr", v.name));
-        if !path.exists() {
-            if !args.views.is_empty() {
-                anyhow::bail!(
-                    "{}: no reference (run `atmoscope reference --suite --out-dir {}`)",
-                    path.display(),
-                    args.refs.display()
-                );
-            }
-            continue;
-        }
-        let (reference, w, h) =
-            read_exr(&path).with_context(|| format!("reference of {}", v.name))?;
-        let scene: Scene = v.apply(&Scene::default());
-        let setup = DisplaySetup {
-            exposure_ev: scene.display.exposure_ev,
-            tone_map: scene.display.tone_map,
-            ..DisplaySetup::default()
-        };
-        // None where the model refuses the view (its figures are then NaN, null in JSON).
-        let images: Vec<Option<Vec<[f64; 3]>>> = runs
-            .iter()
-            .zip(engines.iter_mut())
-            .map(|(&(method, set), engine)| {
-                let mut s = scene.clone();
-                s.render.method = method;
-                s.render.wavelengths = set;
-                if atmoscope_model::methods::info(method)
-                    .cannot_draw(&s)
-                    .is_some()
-                {
-                    return Ok(None);
-                }
-                engine.try_render(&s, &View::new(v.projection, w, h))?;
-                Ok(Some(
-                    engine
-                        .read_radiance()?
-                        .iter()
-                        .map(|p| [p[0], p[1], p[2]].map(f64::from))
-                        .collect(),
-                ))
-            })
-            .collect::<anyhow::Result<_>>()?;
-        let de = |a: &Option<Vec<[f64; 3]>>, b: &[[f64; 3]]| match a {
-            Some(a) => {
-                let (c, _) = compare(a, b, w, h, setup);
-                (c.delta_e2000_mean, c.delta_e2000_p95)
-            }
-            None => (f64::NAN, f64::NAN),
-        };
-        let vs_reference = runs
-            .iter()
-            .zip(&images)
-            .map(|(&run, img)| {
-                let (m, p) = de(img, &reference);
-                (name(run), m, p)
-            })
-            .collect();
-        // Each model's other sets against its first (by default Spectral4 and RGB3 against
-        // the spectral set).
-        let vs_spectral = runs
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| i % sets.len() != 0)
-            .map(|(i, &run)| {
-                let (m, p) = match &images[i - i % sets.len()] {
-                    Some(first) => de(&images[i], first),
-                    None => (f64::NAN, f64::NAN),
-                };
-                (name(run), m, p)
-            })
-            .collect();
-        rows.push(AccuracyRow {
-            view: v.name.clone(),
-            sun_elevation_deg: scene.sun.angles().elevation_deg,
-            exposure_ev: scene.display.exposure_ev,
-            vs_reference,
-            vs_spectral,
-        });
-        eprintln!("{} done", v.name);
-    }
-    if rows.is_empty() {
-        anyhow::bail!("no references found in {}", args.refs.display());
-    }
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&rows)?);
-        return Ok(ExitCode::SUCCESS);
-    }
-    let s = set_name(sets[0]);
-    println!("ΔE2000 mean / p95, display-referred at each view's exposure");
-    print!("{:20} {:>6} ", "view", "sun°");
-    let first = &rows[0];
-    for (n, _, _) in &first.vs_reference {
-        print!(" {:>17}", format!("{n} vs ref"));
-    }
-    for (n, _, _) in &first.vs_spectral {
-        print!(" {:>17}", format!("{n} vs {s}"));
-    }
-    println!();
-    for r in &rows {
-        print!("{:20} {:>6.1} ", r.view, r.sun_elevation_deg);
-        for (_, m, p) in r.vs_reference.iter().chain(&r.vs_spectral) {
-            if m.is_nan() {
-                print!(" {:>17}", "refused");
-            } else {
-                print!(" {:>9.2} / {:>5.2}", m, p);
-            }
-        }
-        println!();
-    }
-    for (label, daylight) in [
-        ("daylight (sun ≥ 0°)", true),
-        ("twilight (sun < 0°)", false),
-    ] {
-        let group: Vec<&AccuracyRow> = rows
-            .iter()
-            .filter(|r| (r.sun_elevation_deg >= 0.0) == daylight)
-            .collect();
-        if group.is_empty() {
-            continue;
-        }
-        // Over the views each run draws (a refusing model's are fewer).
-        let mean = |f: &dyn Fn(&AccuracyRow) -> f64| {
-            let drawn: Vec<f64> = group.iter().map(|r| f(r)).filter(|v| !v.is_nan()).collect();
-            drawn.iter().sum::<f64>() / drawn.len() as f64
-        };
-        println!("{label}, {} views, mean ΔE2000 (mean / p95):", group.len());
-        for (i, (n, _, _)) in first.vs_reference.iter().enumerate() {
-            let drawn = group
-                .iter()
-                .filter(|r| !r.vs_reference[i].1.is_nan())
-                .count();
-            if drawn == 0 {
-                println!("  {n} vs ref: refuses these views");
-                continue;
-            }
-            println!(
-                "  {n} vs ref {:.2} / {:.2}{}",
-                mean(&|r| r.vs_reference[i].1),
-                mean(&|r| r.vs_reference[i].2),
-                if drawn < group.len() {
-                    format!(" (over the {drawn} views it draws)")
-                } else {
-                    String::new()
-                }
-            );
-        }
-        for (i, (n, _, _)) in first.vs_spectral.iter().enumerate() {
-            let m = mean(&|r| r.vs_spectral[i].1);
-            if m.is_nan() {
-                println!("  {n} vs {s}: refuses these views");
-            } else {
-                println!("  {n} vs {s} {m:.2}");
-            }
-        }
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -1,0 +1,48 @@
+//! `atmoscope bench`: run-time and accuracy benchmarks (never timed tests), one module each.
+
+mod accuracy;
+mod aod;
+mod gpu;
+mod leenman;
+mod methods;
+mod path_tracer;
+mod transmittance;
+
+use clap::Subcommand;
+use std::process::ExitCode;
+
+#[derive(Subcommand, Debug)]
+pub enum Bench {
+    /// Path tracer speed and time to a noise level on views of the suite.
+    PathTracer(path_tracer::PathTracerBench),
+    /// GPU time of each pass of the real-time engine and of whole frames, per wavelength set.
+    Gpu(gpu::GpuBench),
+    /// ΔE2000 of the real-time engine against path-traced references of the view suite.
+    Accuracy(accuracy::AccuracyBench),
+    /// Each model's sky radiance against the path tracer as the aerosol optical depth grows:
+    /// the measurement behind each model's stated AOD range.
+    Aod(aod::AodBench),
+    /// Every model × wavelength set × quality over views of the suite: precompute and frame
+    /// time, table memory and error against path-traced references; results.csv, a summary
+    /// and the Pareto chart of time against error.
+    Methods(methods::MethodsBench),
+    /// Optical depth to the top of the atmosphere by the midpoint rule, the trapezoid rule and
+    /// the transmittance table against adaptive quadrature, with the CPU time per evaluation.
+    Transmittance(transmittance::TransmittanceBench),
+    /// Leenman's (2025) comparison replayed: his Earth, views and metrics (his appendices
+    /// A–D), every model he compares and ours; leenman.csv and leenman.md with his value
+    /// beside ours.
+    Leenman(leenman::LeenmanBench),
+}
+
+pub fn run(bench: &Bench) -> anyhow::Result<ExitCode> {
+    match bench {
+        Bench::PathTracer(args) => path_tracer::run(args),
+        Bench::Gpu(args) => gpu::run(args),
+        Bench::Accuracy(args) => accuracy::run(args),
+        Bench::Aod(args) => aod::run(args),
+        Bench::Methods(args) => methods::run(args),
+        Bench::Leenman(args) => leenman::run(args),
+        Bench::Transmittance(args) => transmittance::run(args),
+    }
+}

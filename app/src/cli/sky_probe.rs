@@ -1,0 +1,237 @@
+//! The sky-radiance probe `atmoscope probe` and `atmoscope bench aod` share: diffuse sky
+//! radiance seen from the scene's camera in given directions, by the path tracer, the exact
+//! single-scattering integrator or a real-time model's f64 CPU twin, with the direct
+//! transmittance to the sun.
+
+use atmoscope_model::camera::{Camera, Projection};
+use atmoscope_model::geometry::{Ray, direction_from_angles};
+use atmoscope_model::methods::path_tracer::{LANES, LaneOptics, PathTracer, PathTracerSettings};
+use atmoscope_model::methods::rng::Rng;
+use atmoscope_model::methods::shared::{Params, sun_disk, viewpoint};
+use atmoscope_model::methods::{self, single_scattering};
+use atmoscope_model::scene::Method;
+use atmoscope_model::{Atmosphere, Scene};
+use clap::Args;
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// What computes the radiance.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ProbeMethod {
+    PathTracer,
+    SingleScattering,
+    /// The CPU twin of a real-time model.
+    Model(Method),
+}
+
+impl ProbeMethod {
+    fn id(self) -> &'static str {
+        match self {
+            ProbeMethod::PathTracer => "path-tracer",
+            ProbeMethod::SingleScattering => "single-scattering",
+            ProbeMethod::Model(m) => crate::args::method_id(m),
+        }
+    }
+}
+
+fn parse_probe_method(s: &str) -> Result<ProbeMethod, String> {
+    match s {
+        "path-tracer" => Ok(ProbeMethod::PathTracer),
+        "single-scattering" => Ok(ProbeMethod::SingleScattering),
+        id => crate::args::parse_method(id)
+            .map(ProbeMethod::Model)
+            .map_err(|_| {
+                format!(
+                    "no method `{id}` (path-tracer, single-scattering, {})",
+                    methods::realtime_ids()
+                )
+            }),
+    }
+}
+
+/// What to probe: directions, wavelengths and method.
+#[derive(Args, Debug, Clone)]
+pub struct ProbeRequest {
+    /// View zenith angles, degrees (0 = straight up, 180 = straight down).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        required = true,
+        value_name = "LIST",
+        value_parser = crate::args::parse_finite,
+        allow_hyphen_values = true
+    )]
+    pub view_zenith_deg: Vec<f64>,
+    /// View azimuths measured from the sun's azimuth, degrees (0 = towards the sun).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        required = true,
+        value_name = "LIST",
+        value_parser = crate::args::parse_finite,
+        allow_hyphen_values = true
+    )]
+    pub view_azimuth_deg: Vec<f64>,
+    /// Wavelengths, nm (360 to 830).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "440,550,680",
+        value_name = "LIST"
+    )]
+    pub wavelengths_nm: Vec<f64>,
+    /// path-tracer, single-scattering, or a real-time model's registry id (its f64 CPU twin;
+    /// an unknown id is answered with the list).
+    #[arg(long, value_parser = parse_probe_method, default_value = "path-tracer")]
+    pub method: ProbeMethod,
+    /// Highest scattering order (path tracer; 1 = single scattering). Default: all orders.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub max_order: Option<u32>,
+    /// Paths per direction and wavelength batch (path tracer).
+    #[arg(long, default_value_t = 4096, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    pub spp: u64,
+    /// Random seed (path tracer).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+}
+
+#[derive(Serialize, Debug)]
+pub struct Sample {
+    pub view_zenith_deg: f64,
+    pub view_azimuth_deg: f64,
+    pub wavelength_nm: f64,
+    /// W·m⁻²·sr⁻¹·nm⁻¹ for the scene's solar spectrum.
+    pub radiance: f64,
+    /// Radiance over the extraterrestrial solar irradiance at that wavelength, sr⁻¹.
+    pub radiance_per_irradiance: f64,
+    /// Monte Carlo standard error of `radiance_per_irradiance` (0 for deterministic methods).
+    pub std_error: f64,
+}
+
+#[derive(Serialize, Debug)]
+pub struct Transmittance {
+    pub wavelength_nm: f64,
+    pub value: f64,
+}
+
+#[derive(Serialize, Debug)]
+pub struct Probe {
+    pub samples: Vec<Sample>,
+    pub direct_transmittance: Vec<Transmittance>,
+    pub method: String,
+    pub spp: u64,
+}
+
+/// Runs the probe.
+pub fn probe(scene: &Scene, args: &ProbeRequest) -> Probe {
+    let atm = Atmosphere::for_scene(&scene);
+    let sun_angles = scene.sun.angles();
+    let sun = direction_from_angles(sun_angles.elevation_deg, sun_angles.azimuth_deg);
+    let camera = Camera::new(&scene.camera, atm.bottom_radius_m, Projection::Perspective);
+    let directions: Vec<(f64, f64)> = args
+        .view_zenith_deg
+        .iter()
+        .flat_map(|&z| args.view_azimuth_deg.iter().map(move |&a| (z, a)))
+        .collect();
+    let settings = PathTracerSettings {
+        max_order: args.max_order,
+        ..PathTracerSettings::default()
+    };
+    let tracer = PathTracer::new(&atm, sun, settings);
+    let model = match args.method {
+        ProbeMethod::Model(m) => methods::info(m).build.map(|build| {
+            let p = Params::at_wavelengths(&atm, &args.wavelengths_nm, scene.render.quality)
+                .with_render(&scene.render);
+            build(&p, viewpoint(scene, &camera))
+        }),
+        _ => None,
+    };
+    let batches: Vec<Vec<f64>> = args
+        .wavelengths_nm
+        .chunks(LANES)
+        .map(<[f64]>::to_vec)
+        .collect();
+    let jobs: Vec<(usize, usize)> = (0..directions.len())
+        .flat_map(|d| (0..batches.len()).map(move |b| (d, b)))
+        .collect();
+    let results: Vec<Vec<Sample>> = jobs
+        .par_iter()
+        .map(|&(d, b)| {
+            let (zenith, azimuth) = directions[d];
+            let dir = camera.local_to_world(direction_from_angles(
+                90.0 - zenith,
+                sun_angles.azimuth_deg + azimuth,
+            ));
+            let ray = Ray::new(camera.position, dir);
+            let batch = &batches[b];
+            let lanes_nm: [f64; LANES] = std::array::from_fn(|i| batch[i.min(batch.len() - 1)]);
+            let (mean, se) = match args.method {
+                ProbeMethod::Model(_) => (
+                    model.as_ref().map_or([f64::NAN; LANES], |m| {
+                        let h = scene.camera.altitude_m;
+                        let sky = m.radiance(b, (camera.position, h), dir, sun);
+                        let mu_s = sun.dot(camera.position.normalize());
+                        let disk = m.sun(b, h, mu_s, sun_disk(dir, sun, &lanes_nm));
+                        std::array::from_fn(|i| sky[i] + disk[i])
+                    }),
+                    [0.0; LANES],
+                ),
+                ProbeMethod::SingleScattering => (
+                    lanes_nm.map(|w| single_scattering::radiance(&atm, &ray, sun, w)),
+                    [0.0; LANES],
+                ),
+                ProbeMethod::PathTracer => {
+                    let lanes = LaneOptics::new(&atm, lanes_nm);
+                    let (mut sum, mut sum2) = ([0.0; LANES], [0.0; LANES]);
+                    for k in 0..args.spp {
+                        let mut rng = Rng::new(args.seed, (d * 1000 + b) as u64, k);
+                        let l = tracer.radiance(&ray, &lanes, &mut rng);
+                        for i in 0..LANES {
+                            sum[i] += l[i];
+                            sum2[i] += l[i] * l[i];
+                        }
+                    }
+                    let n = args.spp.max(2) as f64;
+                    let mean = sum.map(|s| s / n);
+                    let se = std::array::from_fn(|i| {
+                        ((sum2[i] / n - mean[i] * mean[i]).max(0.0) / (n - 1.0)).sqrt()
+                    });
+                    (mean, se)
+                }
+            };
+            batch
+                .iter()
+                .enumerate()
+                .map(|(i, &w)| {
+                    let e = atm.solar_irradiance(w, None);
+                    Sample {
+                        view_zenith_deg: zenith,
+                        view_azimuth_deg: azimuth,
+                        wavelength_nm: w,
+                        radiance: mean[i],
+                        radiance_per_irradiance: mean[i] / e,
+                        std_error: se[i] / e,
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    let direct_transmittance = args
+        .wavelengths_nm
+        .iter()
+        .map(|&w| Transmittance {
+            wavelength_nm: w,
+            value: atm.transmittance_to_sun(&atm.optics(w), camera.position, sun),
+        })
+        .collect();
+    Probe {
+        samples: results.into_iter().flatten().collect(),
+        direct_transmittance,
+        method: args.method.id().into(),
+        spp: if args.method == ProbeMethod::PathTracer {
+            args.spp
+        } else {
+            0
+        },
+    }
+}

@@ -1,0 +1,41 @@
+//! Atmoscope's app as a library: the egui explorer (`gui`), the headless subcommands (`cli`),
+//! and what both use. `main.rs` only parses the command line and calls [`run`]; tests drive the
+//! app through this library.
+//!
+//! Modules import downward: `cli` and `gui` use the root modules and never each other; no
+//! subcommand imports another (their shared helpers are `cli::common`, `cli::progress` and
+//! `cli::sky_probe`).
+
+pub mod args;
+pub mod bench_results;
+pub mod cache;
+pub mod cli;
+pub mod engine_setup;
+pub mod files;
+pub mod gui;
+pub mod images;
+pub mod lessons;
+pub mod presets;
+pub mod scene_args;
+pub mod source_key;
+pub mod summary;
+pub mod tab;
+pub mod timelapse;
+
+use std::process::ExitCode;
+
+/// Runs the app for parsed command-line arguments: the explorer without a subcommand, else the
+/// subcommand. An error is printed with its causes and exits with failure.
+pub fn run(args: cli::Cli) -> ExitCode {
+    let result = match args.command {
+        None => gui::run(args.scene),
+        Some(command) => cli::run(command),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
