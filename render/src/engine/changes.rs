@@ -1,0 +1,58 @@
+//! What changed since the last frame: the scene's inputs as a snapshot, compared field by
+//! field into the set of `Inputs` that changed.
+
+use super::*;
+
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct AtmosphereKey {
+    pub(super) settings: AtmosphereSettings,
+    pub(super) method: Method,
+    pub(super) wavelengths: WavelengthSet,
+    pub(super) quality: Quality,
+    pub(super) scattering_orders: u32,
+    pub(super) fitted_constants: FittedConstants,
+}
+
+impl AtmosphereKey {
+    /// The key with the ground albedo left out (`Inputs::GROUND_ALBEDO` apart).
+    pub(super) fn without_albedo(&self) -> AtmosphereKey {
+        let mut k = self.clone();
+        k.settings.ground_albedo = 0.0;
+        k
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Snapshot {
+    /// The atmosphere's key without the ground albedo, which is apart.
+    pub(super) atmosphere: AtmosphereKey,
+    pub(super) ground_albedo: f64,
+    pub(super) viewpoint: [f64; 2],
+    /// The sun's direction and the scale of its light (`SunSettings::sunlight_scale`).
+    pub(super) sun: [f64; 4],
+    pub(super) camera: (CameraSettings, Projection),
+    pub(super) size: [u32; 2],
+    pub(super) display: (f64, ToneMap, DisplayMode, bool, WhiteBalance, bool),
+}
+
+impl Snapshot {
+    pub(super) fn changes_from(&self, previous: Option<&Snapshot>) -> Inputs {
+        let Some(p) = previous else {
+            return Inputs::ALL;
+        };
+        let mut c = Inputs::NONE;
+        let mut mark = |changed: bool, i: Inputs| {
+            if changed {
+                c = c.union(i);
+            }
+        };
+        mark(self.atmosphere != p.atmosphere, Inputs::ATMOSPHERE);
+        mark(self.ground_albedo != p.ground_albedo, Inputs::GROUND_ALBEDO);
+        mark(self.viewpoint != p.viewpoint, Inputs::VIEWPOINT);
+        mark(self.sun != p.sun, Inputs::SUN);
+        mark(self.camera != p.camera, Inputs::CAMERA);
+        mark(self.size != p.size, Inputs::VIEW_SIZE);
+        mark(self.display != p.display, Inputs::DISPLAY);
+        c
+    }
+}

@@ -1,0 +1,317 @@
+//! The plan of a frame, pure and testable without a device: from the inputs that changed,
+//! which passes run (`plan`), with which pipeline constants and grids (`FrameSetup`), and the
+//! order loop that repeats a pass once per scattering order (`with_order_loop`).
+
+use super::*;
+
+/// What a frame draws, from the scene and the atmosphere on screen.
+pub(super) struct FrameSetup {
+    pub(super) snapshot: Snapshot,
+    pub(super) globals: Globals,
+    pub(super) sun: DVec3,
+    pub(super) size: [u32; 2],
+    pub(super) camera: Camera,
+    pub(super) bottom_radius_m: f64,
+    /// Whether the camera is above the top of the atmosphere.
+    pub(super) above: bool,
+    /// Whether a view ray may start with the sun below Bruneton's tables (from above the
+    /// atmosphere, or with the sun that low at the camera).
+    pub(super) sun_below_tables: bool,
+    /// Pixels on a side of the sky pass's interpolated tiles this frame (1: every pixel).
+    pub(super) sky_tile: u32,
+    /// Whether the sky pass writes the radiance image: all but a frame in tiles that nothing
+    /// meters.
+    pub(super) write_radiance: bool,
+    /// Whether the sky pass runs in bands of what the rows see, the sun's disk apart
+    /// (`Engine::set_view_bands`), or as one dispatch.
+    pub(super) bands: bool,
+}
+
+impl FrameSetup {
+    pub(super) fn new(
+        scene: &Scene,
+        view: &View,
+        state: &AtmosphereState,
+        gpu: &GpuMethod,
+    ) -> FrameSetup {
+        let params = &state.params;
+        let camera = Camera::new(&scene.camera, params.bottom_radius_m, view.projection);
+        let a = scene.sun.angles();
+        let sun = direction_from_angles(a.elevation_deg, a.azimuth_deg);
+        let viewpoint = viewpoint(scene, &camera);
+        let size = [view.width.max(1), view.height.max(1)];
+        let snapshot = Snapshot {
+            atmosphere: state.key.without_albedo(),
+            ground_albedo: state.key.settings.ground_albedo,
+            viewpoint: [viewpoint.h, viewpoint.mu_s],
+            sun: sun.extend(scene.sun.sunlight_scale()).to_array(),
+            camera: (scene.camera.clone(), view.projection),
+            size,
+            display: (
+                scene.display.exposure_ev,
+                scene.display.tone_map,
+                view.mode,
+                scene.display.dither,
+                scene.display.white_balance,
+                scene.display.glare,
+            ),
+        };
+        let globals = Globals::from(&FrameInputs {
+            scene,
+            params,
+            camera: &camera,
+            sun,
+            viewpoint,
+            size,
+            mode: view.mode,
+            model: (gpu.constants)(params),
+            // Only a display that shows glare pays for its source.
+            glare: (scene.display.glare && view.mode == DisplayMode::Colour).then(|| {
+                atmoscope_model::display::sun_irradiance_rgb(params, viewpoint.h, viewpoint.mu_s)
+            }),
+            balance: white_balance::matrix_with(scene, || {
+                *state.noon_white.get_or_init(|| {
+                    white_balance::noon_sun_white(&Atmosphere::new(&state.key.settings))
+                })
+            }),
+        });
+        let above = viewpoint.h > params.thickness_m();
+        FrameSetup {
+            snapshot,
+            globals,
+            sun,
+            size,
+            camera,
+            bottom_radius_m: params.bottom_radius_m,
+            above,
+            sun_below_tables: above
+                || viewpoint.mu_s < atmoscope_model::methods::bruneton::MU_S_MIN,
+            sky_tile: 1,
+            write_radiance: true,
+            bands: true,
+        }
+    }
+
+    pub(super) fn shows_ground(&self, view: &View) -> bool {
+        self.camera
+            .shows_ground(self.bottom_radius_m, view.width, view.height)
+    }
+
+    /// A pipeline constant's value in this frame; a dispatch over the whole view draws the
+    /// sun's disk and decides sky or ground per pixel.
+    pub(super) fn value(&self, c: Constant, scene: &Scene, view: &View) -> u32 {
+        match c {
+            Constant::Projection => uniforms::projection_code(view.projection),
+            Constant::AboveAtmosphere => u32::from(self.above),
+            Constant::DisplayMode => uniforms::display_code(view.mode),
+            Constant::ToneMap => uniforms::tone_map_code(scene.display.tone_map),
+            Constant::SunDisk => 1,
+            Constant::ViewRegion => uniforms::region_code(Sees::Both),
+            Constant::SkyTile => 1,
+            Constant::SkyTileExact => 0,
+            Constant::Glare => u32::from(scene.display.glare && view.mode == DisplayMode::Colour),
+            Constant::WriteRadiance => u32::from(self.write_radiance),
+            Constant::FirstOrder => 1,
+            Constant::SunBelowTables => u32::from(self.sun_below_tables),
+        }
+    }
+
+    /// Each pass's pipeline constants for a dispatch over all of it.
+    pub(super) fn variants(
+        &self,
+        pipelines: &Pipelines,
+        scene: &Scene,
+        view: &View,
+    ) -> Vec<Variant> {
+        (0..pipelines.len())
+            .map(|i| pipelines.variant(i, |c| self.value(c, scene, view)))
+            .collect()
+    }
+
+    /// The dispatches of pass `i` this frame. A view pass that takes the region runs in bands
+    /// of rows that see sky alone, ground alone or both (`Camera::rows_see`), and one that
+    /// takes the sun's disk draws it in one more dispatch over the pixels the disk reaches
+    /// (`SunInView::pixel_box`), so that no pixel runs the code of what it cannot see (a
+    /// software GPU runs both sides of every branch). A frame with tiles (`sky_tile` > 1)
+    /// runs the sky pass as one dispatch of tiles, which decides sky or ground per corner and
+    /// lists the tiles it cannot interpolate, an indirect dispatch over those, then the sun's
+    /// disk pixel by pixel. Without bands (`Engine::set_view_bands`) a frame at full
+    /// resolution is one dispatch, as is any other pass.
+    pub(super) fn work(
+        &self,
+        pipelines: &Pipelines,
+        step: Step,
+        layers: u32,
+        scene: &Scene,
+        view: &View,
+    ) -> Vec<Work> {
+        let i = step.pass;
+        let grid = grid(pipelines, i, layers, self.size);
+        let constants = pipelines.specs().nth(i).map_or(&[][..], |s| s.constants);
+        let variant = |region: Sees, sun: bool, tile: u32, exact: bool| {
+            pipelines.variant(i, |c| match c {
+                Constant::SunDisk => u32::from(sun),
+                Constant::ViewRegion => uniforms::region_code(region),
+                Constant::SkyTile => tile,
+                Constant::SkyTileExact => u32::from(exact),
+                Constant::FirstOrder => step.first_order(),
+                other => self.value(other, scene, view),
+            })
+        };
+        let takes = |c: Constant| constants.contains(&c);
+        let tile = self.sky_tile;
+        let tiled = takes(Constant::SkyTile) && tile > 1;
+        if (!takes(Constant::ViewRegion) && !takes(Constant::SunDisk)) || (!self.bands && !tiled) {
+            return vec![Work::whole(i, variant(Sees::Both, true, 1, false), grid)];
+        }
+        let [w, h] = self.size;
+        let mut work = Vec::new();
+        if tiled {
+            let span = WORKGROUP_SIZE * tile;
+            work.push(Work {
+                tiles: TilePhase::Fill,
+                ..Work::whole(
+                    i,
+                    variant(Sees::Both, false, tile, false),
+                    [w.div_ceil(span), h.div_ceil(span), 1],
+                )
+            });
+            work.push(Work {
+                tiles: TilePhase::Compute,
+                ..Work::whole(i, variant(Sees::Both, false, tile, true), [0; 3])
+            });
+        } else if takes(Constant::ViewRegion) && !self.above {
+            let rows = self.camera.rows_see(self.bottom_radius_m, w, h);
+            let group_rows: Vec<Sees> = rows
+                .chunks(WORKGROUP_SIZE as usize)
+                .map(|c| {
+                    if c.iter().all(|&s| s == c[0]) {
+                        c[0]
+                    } else {
+                        Sees::Both
+                    }
+                })
+                .collect();
+            let mut start = 0;
+            for (g, &seen) in group_rows.iter().enumerate() {
+                if group_rows.get(g + 1) != Some(&seen) {
+                    work.push(Work {
+                        pass: i,
+                        variant: variant(seen, false, 1, false),
+                        origin: [0, start as u32 * WORKGROUP_SIZE, 0],
+                        groups: [grid[0], (g + 1 - start) as u32, 1],
+                        tiles: TilePhase::None,
+                    });
+                    start = g + 1;
+                }
+            }
+        } else {
+            work.push(Work::whole(i, variant(Sees::Both, false, 1, false), grid));
+        }
+        let sun_box = self
+            .camera
+            .sun_in_view(self.sun, w, h)
+            .and_then(|s| s.pixel_box(w, h));
+        if let (true, Some([x0, y0, x1, y1])) = (takes(Constant::SunDisk), sun_box) {
+            work.push(Work {
+                pass: i,
+                variant: variant(Sees::Both, true, 1, false),
+                origin: [x0, y0, 0],
+                groups: [groups(x1 - x0), groups(y1 - y0), 1],
+                tiles: TilePhase::None,
+            });
+        }
+        work
+    }
+}
+
+/// The passes to run (indices in order) when `changed` inputs changed: a pass is stale when an
+/// input it reads changed, a table it reads was just rewritten or it was left stale before
+/// (`deferred`); it runs when the view needs what it writes (from above the atmosphere a
+/// marching sky pass reads fewer tables, Bruneton's and Elek's skies no camera slices there,
+/// Bruneton's none with the sun below its tables, a view without ground none of those only the
+/// ground's pixels read, and a frame not `in_motion` (drawn in tiles) no moving sky), and
+/// otherwise stays marked in `deferred`.
+pub(super) fn plan(
+    pipelines: &Pipelines,
+    changed: Inputs,
+    above: bool,
+    sun_below_tables: bool,
+    ground: bool,
+    in_motion: bool,
+    unwanted: &[&str],
+    deferred: &mut [bool],
+) -> Vec<usize> {
+    let info = pipelines.method.info();
+    let specs: Vec<&PassSpec> = pipelines.specs().collect();
+    let mut needed = vec![false; specs.len()];
+    let mut needed_resources: Vec<&str> = Vec::new();
+    for (i, spec) in specs.iter().enumerate().rev() {
+        let wanted = !spec.is_table() && !unwanted.contains(&spec.name);
+        if wanted || spec.writes.iter().any(|w| needed_resources.contains(w)) {
+            needed[i] = true;
+            needed_resources.extend(spec.reads_where(above, sun_below_tables, ground, in_motion));
+        }
+    }
+    let mut written: Vec<&str> = Vec::new();
+    let mut run = Vec::new();
+    for (i, spec) in specs.iter().enumerate() {
+        let stale = deferred[i]
+            || spec.direct_inputs(info).intersects(changed)
+            || spec.reads.iter().any(|r| written.contains(r));
+        // A view pass whose every output an earlier pass of this frame wrote with the frame's
+        // inputs (the sky pass draws the display image too) has nothing left to do.
+        let covered = !spec.is_table() && spec.writes.iter().all(|w| written.contains(w));
+        if covered {
+            deferred[i] = false;
+        } else if stale {
+            deferred[i] = !needed[i];
+            // A pass left stale rewrites nothing: its readers are not stale for it.
+            if needed[i] {
+                written.extend(spec.writes);
+                run.push(i);
+            }
+        }
+    }
+    run
+}
+
+/// One pass to encode, and the scattering order it computes when it is in an order loop (0
+/// when it is not).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct Step {
+    pub(super) pass: usize,
+    pub(super) order: u32,
+}
+
+impl Step {
+    /// The value of [`Constant::FirstOrder`]: whether the deltas this step reads are single
+    /// scattering (outside an order loop, or at its order 2).
+    pub(super) fn first_order(self) -> u32 {
+        u32::from(self.order <= 2)
+    }
+}
+
+/// The passes to encode: `run` (pass indices in order) with each stretch of consecutive
+/// order-loop passes repeated once per scattering order from 2 to `orders`.
+pub(super) fn with_order_loop(run: &[usize], pipelines: &Pipelines, orders: u32) -> Vec<Step> {
+    let specs: Vec<&PassSpec> = pipelines.specs().collect();
+    let mut out = Vec::with_capacity(run.len());
+    let mut group: Vec<usize> = Vec::new();
+    let flush = |group: &mut Vec<usize>, out: &mut Vec<Step>| {
+        for order in 2..=orders {
+            out.extend(group.iter().map(|&pass| Step { pass, order }));
+        }
+        group.clear();
+    };
+    for &i in run {
+        if specs[i].repeat == Repeat::PerOrder {
+            group.push(i);
+        } else {
+            flush(&mut group, &mut out);
+            out.push(Step { pass: i, order: 0 });
+        }
+    }
+    flush(&mut group, &mut out);
+    out
+}
