@@ -510,7 +510,7 @@ impl MiePhase {
 }
 
 /// The tabulated Mie phase function of a mixture type (None for `None` and `Custom`), computed
-/// once per process (under a second here, though the coarse modes reach x ≈ 1 800).
+/// once per process and cached, as the coarse modes reach size parameters x ≈ 1 800.
 pub fn type_phase(t: AerosolType) -> Option<&'static MiePhase> {
     static CACHE: OnceLock<Mutex<HashMap<AerosolType, &'static MiePhase>>> = OnceLock::new();
     per_type(&CACHE, t, compute_phase)

@@ -14,7 +14,7 @@ pub const STANDARD_AIR_NUMBER_DENSITY_M3: f64 = 2.546899e25;
 /// Maximum luminous efficacy of photopic vision, lm/W (CIE).
 pub const MAX_LUMINOUS_EFFICACY_LM_PER_W: f64 = 683.0;
 
-/// Earth's mean radius used by the renderer, m (Bruneton 2017, Hillaire 2020; docs/ARCHITECTURE.md).
+/// Earth's mean radius used by the renderer, m (Bruneton 2017, Hillaire 2020; docs/architecture.md).
 pub const EARTH_RADIUS_M: f64 = 6_360_000.0;
 /// Height of the top of the atmosphere above the ground, m.
 pub const EARTH_ATMOSPHERE_TOP_M: f64 = 100_000.0;

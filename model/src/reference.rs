@@ -39,8 +39,7 @@ pub const SPECTRAL_CELL_NM: f64 = 0.1;
 /// their cells: the estimate becomes the midpoint rule on these cells, within a part per
 /// million of the continuous integral (the spectra being linear across a cell, the error is
 /// their products' curvature times the cell width squared; a test measures it), and a path's
-/// optics cost four look-ups instead of some thirty interpolations in the spectra, which had
-/// been about a seventh of a sunlit sky's run time.
+/// optics cost four look-ups instead of some thirty interpolations in the spectra.
 pub struct SpectralCells {
     cells: Vec<SpectralCell>,
 }

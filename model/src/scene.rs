@@ -402,10 +402,10 @@ pub enum FittedConstants {
     Refit,
 }
 
-/// Scattering orders by default: six, where Bruneton 2017 gathers four. In the default hazy sky
-/// (AOD 0.15, albedo 0.3) the orders beyond the fourth add 10 % of the blue 10° above the
-/// horizon, and Bruneton's daylight ΔE2000 against the path tracer falls from 1.72 (four) to
-/// 1.41 (six; eight give 1.38 for a third more precompute).
+/// Scattering orders by default: six, where Bruneton 2017 gathers four. In a hazy sky the
+/// orders beyond the fourth still add a visible share of the blue near the horizon, so four
+/// leave the sky too dark there against the path tracer; past six the gain is small for the
+/// added precompute of every further order.
 pub const DEFAULT_SCATTERING_ORDERS: u32 = 6;
 
 impl Default for RenderSettings {

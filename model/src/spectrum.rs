@@ -17,9 +17,9 @@ pub struct Spectrum {
 
 /// Where to start looking for a wavelength's neighbours: the sampled range cut into as many
 /// equal cells as there are samples, each with the index of the first sample past its lower
-/// edge. The path tracer samples spectra at every path's wavelengths, and a binary search of
-/// the solar spectrum's thousands of samples was a tenth of its time; from the guide the
-/// search is a step or two.
+/// edge. The path tracer samples spectra at every path's wavelengths, where a binary search of
+/// the solar spectrum's thousands of samples is a noticeable cost; from the guide the search
+/// is a step or two.
 #[derive(Debug, Clone, PartialEq)]
 struct Guide {
     cells_per_nm: f64,

@@ -280,9 +280,8 @@ mod tests {
         let b = batches(WavelengthSet::Spectral4);
         assert_eq!((b[0].wavelengths_nm, b[0].to_srgb), (w, m));
         // Sunlight blued as a clear or hazy sky does, (550/λ)ⁿ, and the sun's own colour: each
-        // within 5 % of the exact colour's green (measured at most 2.7 %, and 4.2 % for García
-        // Liñán's wavelengths under the matrix this project fitted there; the shipped matrix at
-        // those wavelengths is 20 % off, and the red and green lanes swapped up to 21 %).
+        // within 5 % of the exact colour's green. The bound is wide enough for a matrix fitted at
+        // the shipped wavelengths and too narrow for one fitted at others or for swapped lanes.
         let sun = crate::solar::SolarSpectrum::AstmG173;
         let grid: Vec<f64> = (360..=830).map(f64::from).collect();
         for n in [4.0, 2.0, 1.0, 0.0] {

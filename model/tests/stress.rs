@@ -1,5 +1,5 @@
 //! Property tests over the whole scene parameter space: every optical quantity stays finite and
-//! physical for any valid scene, wavelength and ray (a small run in CI; docs/ARCHITECTURE.md).
+//! physical for any valid scene, wavelength and ray (a small run in CI; docs/testing.md).
 
 use atmoscope_model::Atmosphere;
 use atmoscope_model::aerosol::AerosolType;

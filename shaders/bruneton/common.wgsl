@@ -108,7 +108,7 @@ fn scattering_index(layer: u32, x: u32, y: u32, z: u32) -> u32 {
 // The cell of sixteen texels a look-up blends: trilinear in (mu_s, mu, r) in the two nu slices
 // around nu, then linear in nu. Its texels are computed where they are read, so the readers
 // below hold no array of sixteen indices: a GPU would keep a dynamically indexed array in slow
-// per-invocation memory (a 3 times slower sky pass on an H200).
+// per-invocation memory, which makes the sky pass several times slower.
 struct ScatteringCell {
     // The index of the texel at the cell's lower corner.
     base: u32,

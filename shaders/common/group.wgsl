@@ -34,7 +34,7 @@ fn group_sums(size: u32, index: u32, a: vec4<f32>, b: vec4<f32>) -> array<vec4<f
 // workgroups of WORKGROUP_SIZE × WORKGROUP_SIZE texels × MARCH_SPLIT parts, each part
 // marching a contiguous run of its texel's steps; the parts are then joined in the order a
 // single march adds them. MARCH_SPLIT (generated) is 1 on a CPU adapter, where the join is
-// compiled away and each invocation marches all its steps as before.
+// compiled away and each invocation marches all its steps, as an unsplit march does.
 
 const SPLIT_TEXELS: u32 = WORKGROUP_SIZE * WORKGROUP_SIZE;
 

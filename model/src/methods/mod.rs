@@ -692,8 +692,8 @@ mod tests {
     use super::*;
 
     /// The sun's disk goes through the transmittance along the sun's own ray, whatever the
-    /// pixel's centre sees: nothing once the sun is below the horizon (a pixel straddling it
-    /// used to let a set sun through the air above), all of it from space.
+    /// pixel's centre sees: nothing once the sun is below the horizon (so a pixel straddling
+    /// the horizon cannot let a set sun through the air above it), all of it from space.
     #[test]
     fn the_sun_is_seen_along_its_own_ray() {
         let mut scene = Scene::default();

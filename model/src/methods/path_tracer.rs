@@ -55,22 +55,19 @@ const SHELL_ALTITUDES_M: [f64; 28] = [
 ];
 
 /// Weight under which Russian roulette may end a path, from the second order on: it goes on
-/// with probability weight / `ROULETTE_WEIGHT` (at most 1), its weight divided by that. Once
-/// every segment scattered its path (no escapes to end it), sparing paths down to 0.5 rather
-/// than 1 bought more noise than time: `reference --spp 256 --size 128x128` on the fisheye
-/// with the sun at 2°, noise² × time 232 / 222 at 1, 212 / 207 at 0.5, 218 / 220 at 1/3,
-/// 218 / 221 at 0.25 (seeds 5 / 6); at CI size, 1 024 paths, 1 → 0.5: twilight-12 1 311 →
-/// 1 240, ground-dawn 370 → 290, the fisheye with the sun overhead 9.1 → 7.9, orbit-dawn
-/// 1 025 → 1 055.
+/// with probability weight / `ROULETTE_WEIGHT` (at most 1), its weight divided by that. Every
+/// segment scatters its path (no escapes end it), so paths live long; sparing them down to 0.5
+/// rather than 1 lowers the noise more than it adds time, and lower thresholds gain nothing
+/// more (noise² × time by threshold in docs/measurements/from-code-comments.md).
 const ROULETTE_WEIGHT: f64 = 0.5;
 
 /// The default [`PathTracerSettings::vertex_light_share`]. Deep in twilight the light a vertex
 /// can find grows a thousandfold from the ground to 50 km, while the extinction's exponential
-/// puts a vertex there once in a few thousand paths: those few made most of the noise (at the
-/// zenith with the sun 12° down, vertices above 35 km held 5 % of order 2's light and 53 % of
-/// its second moment). Of 0.3, 0.5, 0.7 and 0.85, at 2 048 paths per pixel (CI size), noise² ×
-/// time twilight-12 696 / 687 / 764 / 967, orbit-dawn 774 / 827 / 857 / 844; at 8 192 paths
-/// 0.3 and 0.5 were within the noise of each other.
+/// puts a vertex there once in a few thousand paths: those few carry a small share of the
+/// light but most of its second moment, hence most of the noise. Half the vertices drawn
+/// toward the light keeps that noise down while the exponential still serves the rest of the
+/// segment; larger shares cost noise elsewhere (the shares compared in
+/// docs/measurements/from-code-comments.md).
 const VERTEX_LIGHT_SHARE: f64 = 0.5;
 
 /// The largest share of vertices drawn toward the light: the exponential must keep some, or
@@ -94,7 +91,7 @@ const DENSITY_STEP_M: f64 = 20.0;
 /// values just inside both ends and interpolating linearly between them: steps in a profile at
 /// a node (the mixing layer's top) stay steps, an exponential with the air's 8 km scale height is
 /// within 1e-6 of itself and one with an aerosol's 700 m within 1e-4. Paths look densities up dozens of times each; the profiles' own
-/// evaluation (table search and exponential) was the tracer's largest cost.
+/// evaluation (table search and exponential) would be the tracer's largest cost.
 struct DensityTable {
     /// Per cell: [air at its bottom, at its top, ozone …, aerosol …].
     cells: Vec<[f64; 6]>,
@@ -255,8 +252,8 @@ pub struct PathTracer<'a> {
 }
 
 /// What a path tracer prepares from the atmosphere alone, whatever the sun: built once and
-/// shared by the tracers of a render's passes ([`PathTracer::with_prepared`]), which otherwise
-/// built it again for every pass (a twentieth of a small twilight reference's time).
+/// shared by the tracers of a render's passes ([`PathTracer::with_prepared`]), which would
+/// otherwise build it again for every pass.
 pub struct Prepared {
     /// Shell boundary radii, m, increasing, ending at the top of the atmosphere.
     shell_radii: Vec<f64>,
@@ -522,7 +519,7 @@ impl<'a> PathTracer<'a> {
     /// The intervals of [start, end] along the ray, each inside one shell, with the shell index.
     fn intervals(&self, ray: &Ray, start: f64, end: f64) -> Intervals {
         let (r, mu) = ray.r_mu();
-        // Stack buffers: this runs several times per path, and allocation dominated its cost.
+        // Stack buffers: this runs several times per path, and allocation would dominate its cost.
         // Each cut carries the change of shell index across it: −1 where the ray goes down
         // through a shell boundary (its near root), +1 where it comes back up (its far root).
         let mut cuts = [(0.0f64, 0isize); MAX_CUTS];
@@ -857,10 +854,8 @@ impl<'a> PathTracer<'a> {
             // The path goes on from the ground, with the probability that the lanes' mean
             // extinction lets light through to it, or else from a point of the segment drawn
             // apart from the in-scattering point, from the sky's own attenuation
-            // ([`Self::scattering_point`]). Delta tracking picked that point before: its null
-            // collisions, escapes and per-lane probabilities made the weights of every order
-            // above random, and the fisheye with the sun at 2° took 12 % less noise² × time
-            // without them.
+            // ([`Self::scattering_point`]). Not delta tracking: its null collisions, escapes and
+            // per-lane probabilities would make the weights of every order above random.
             let tau_mean = mean_depth(&intervals, &medium);
             let p_ground = if seg.ground && albedo > 0.0 {
                 (-tau_mean).exp()
@@ -913,8 +908,8 @@ impl<'a> PathTracer<'a> {
                 // The roulette below judges the path by its weight before this direction: a
                 // direction the guide draws often has a low weight because it was likely, not
                 // because the light it leads to is faint, and judging it after would end most
-                // guided paths and multiply the survivors' weights (at sun −6°, the noise per
-                // path of orders ≥ 3 twice that of unguided paths).
+                // guided paths and multiply the survivors' weights, more noise than unguided
+                // paths have.
                 let guide = self.guide(x);
                 let mut judged = max_weight(&weight);
                 // With the sun below a vertex's horizon, the light it can find varies by
@@ -926,11 +921,11 @@ impl<'a> PathTracer<'a> {
                 // roulette (Vorba and Křivánek 2016). Otherwise a path kept in the dark below
                 // the twilight arch that found it late, spared with a weight near 1, brought a
                 // thousand times the pixel's mean. With the sun above the horizon that light
-                // varies little and judging by it only cost time (the fisheye at sun 2°, 256
-                // paths: 0.95 of the noise for 1.14–1.18 of the time). A slice with no light
-                // (its bins' middles in the full shadow) says nothing of what a path may still
-                // find beyond it: the weight alone judges there, as it does wherever the first
-                // vertex had the sun above its horizon, or the guide is off.
+                // varies little and judging by it costs more time than the noise it saves,
+                // so it is not done there. A slice with no light (its bins' middles in the full
+                // shadow) says nothing of what a path may still find beyond it: the weight alone
+                // judges there, as it does wherever the first vertex had the sun above its
+                // horizon, or the guide is off.
                 let sun_below = self.settings.roulette_by_prospect && x.dot(self.sun) < 0.0;
                 if let Some((_, frame)) = guide.as_ref().filter(|_| sun_below) {
                     let prospect = judged * self.fluence(frame);

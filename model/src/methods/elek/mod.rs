@@ -17,7 +17,7 @@
 //! ground reflects nothing into the sky (it is drawn lit by the sun alone). Without the azimuth
 //! the Earth's shadow cannot appear in twilight: the domain is daylight.
 //!
-//! Departures, each recorded in docs/ARCHITECTURE.md: the medium (profiles, cross-sections,
+//! Departures, each recorded in docs/models/elek.md: the medium (profiles, cross-sections,
 //! ozone, the aerosol phase function) is the scene's, as for every model; transmittance comes
 //! from the shared table; integrals along a texel's ray use the shared placement that crowds
 //! samples towards the ray's lowest point ([`crate::methods::shared::ray`]); the sphere is

@@ -81,8 +81,8 @@ pub const DOMAIN: Domain = Domain {
 
 /// The domain with Hillaire's higher orders added (the `galaj-spline-ms` row). No AOD passes
 /// the registry's criterion, which asks for a sun 5° high too: there, below the mesh, the
-/// sunlight is too bright (+38 % at AOD 0.05); with the sun 30° high the sky stays within
-/// 25 % up to AOD 0.5 (24 %, `atmoscope bench aod`).
+/// sunlight is too bright; with the sun 30° high the sky stays within 25 % up to AOD 0.5
+/// (`atmoscope bench aod`).
 pub const DOMAIN_MS: Domain = Domain {
     max_aod550: 0.0,
     min_sun_elevation_deg: 18.0,

@@ -9,9 +9,9 @@
 //! same integrand.
 //!
 //! Where the thesis text is incomplete, the form used by the author's published shaders is
-//! followed (recorded in docs/ARCHITECTURE.md): the single-scattering term carries the sun's
-//! transmittance, and L_g and L_ms are multiplied by the local scattering coefficient (of air
-//! and aerosol), by the solar irradiance and by the view transmittance like the rest.
+//! followed (recorded in docs/models/garcia_linan.md): the single-scattering term carries the
+//! sun's transmittance, and L_g and L_ms are multiplied by the local scattering coefficient (of
+//! air and aerosol), by the solar irradiance and by the view transmittance like the rest.
 //!
 //! The medium (profiles, cross-sections, phase functions, sun) is the scene's, shared with
 //! every other model, so that comparisons measure the method and not the inputs. One file per

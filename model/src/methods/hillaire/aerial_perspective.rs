@@ -93,7 +93,7 @@ pub fn aerial_perspective_slice_from_distance(d: f64) -> f64 {
 /// The aerial-perspective volume: (in-scattered radiance, transmittance) from the camera to the
 /// end of each slice. A column marches on past its ground point (through the ground's medium
 /// and light): a pixel between two rows reads both at its own, farther ground, and one that
-/// stopped at its nearer ground would hold too little depth there (14–34 % by the rows' span).
+/// stopped at its nearer ground would hold too little depth there.
 pub fn compute_aerial_perspective(p: &Params, t: &Lut, ms: &Lut, vp: Viewpoint) -> (Lut, Lut) {
     let [w, hh, d] = AERIAL_PERSPECTIVE_SIZE;
     // One march per column, as on the GPU; then split into the two volumes.
@@ -226,7 +226,7 @@ mod tests {
     /// slices are 125 m, 500 m and 1.1 km long: 12 % at 200 m), from 1 km within 4.5 %; from
     /// 10 km within 3.3 % at 34 km, 10.5 % at 59 km and 23 % at 120 km, where grazing rows
     /// 8 km-long slices apart still differ steeply. Columns that stopped at their own ground
-    /// gave 15–20 %, 14–16 % and 27–34 % too little between rows (30 m, 1 km, 10 km).
+    /// would fall short between rows: hence the march on past it.
     #[test]
     fn distant_ground_optical_depth_follows_the_exact_between_rows() {
         let p = params();

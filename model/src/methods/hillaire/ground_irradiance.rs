@@ -199,8 +199,8 @@ mod tests {
     }
 
     /// The rings about the sun catch aerosol's circumsolar peak: within 1.5 % of the converged
-    /// integral in haze and dust at every sun (the former 8 × 16 cosine-weighted grid was 3.9 %
-    /// high under desert dust with the sun 5° up, 2.6 % in rural haze at 2°).
+    /// integral in haze and dust at every sun (a cosine-weighted grid, blind to where the sun
+    /// is, misses the peak's share at low sun).
     #[test]
     fn ground_irradiance_follows_the_converged_integral_at_low_sun_in_haze() {
         for (kind, aod) in [

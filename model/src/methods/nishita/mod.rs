@@ -22,8 +22,8 @@ pub const TABLES: [TableSpec; 2] = super::shared::single_scattering_sky::TABLES_
 
 /// Where the model is meant to work: anywhere with the sun up. Below the horizon the sky is
 /// lit by light scattered more than once, which the model leaves out; above it the sky lacks
-/// the higher orders too (35 % below the path tracer's radiance with the sun at 30° and almost
-/// no aerosol, `atmoscope bench aod`), so no aerosol amount is inside its AOD range.
+/// the higher orders too (more than 25 % below the path tracer's radiance even in clean air,
+/// `atmoscope bench aod`), so no aerosol amount is inside its AOD range.
 pub const DOMAIN: Domain = Domain {
     max_altitude_m: f64::INFINITY,
     min_sun_elevation_deg: 0.0,
@@ -33,9 +33,9 @@ pub const DOMAIN: Domain = Domain {
 };
 
 /// The domain with Hillaire's higher orders added (the `nishita-ms` row): daylight views, and
-/// aerosol up to AOD 0.5, where the sky stays within 25 % of the path tracer's (9 / 21 % at
-/// sun 30° / 5°, `atmoscope bench aod`; 17 / 27 % at AOD 1): the single scattering, marched
-/// per pixel with the exact phase functions, carries aerosol's forward peak.
+/// aerosol up to AOD 0.5, where the sky stays within 25 % of the path tracer's
+/// (`atmoscope bench aod`): the single scattering, marched per pixel with the exact phase
+/// functions, carries aerosol's forward peak.
 pub const DOMAIN_MS: Domain = Domain {
     note: "ground, plane and space views in daylight; Hillaire's isotropic higher orders added to single scattering",
     max_aod550: 0.5,

@@ -33,18 +33,16 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Nodes of the fluence table ([`PathTracer::fluence_at`]): altitude rows 500 m apart on the
 /// Earth, from the ground to the top, and columns of the sun's zenith cosine from −1 to 1
-/// (0.45° apart at the horizon). A segment looks it up once for each of its intervals: the
-/// slices' own look-up (a search of the altitude bins, an arcsine and four slices) cost the
-/// twilight views a third more time.
+/// (0.45° apart at the horizon). A segment looks it up once for each of its intervals, so the
+/// look-up must be cheaper than the slices' own (a search of the altitude bins, an arcsine and
+/// four slices).
 const FLUENCE_ROWS: usize = 201;
 const FLUENCE_COLUMNS: usize = 257;
 
 /// Altitude bins of the guide, m: a vertex uses the slice of the bin it lies in, computed at
 /// the bin's middle. Dense low down, where most vertices are, and 3 to 5 km apart from 12 to
-/// 50 km, where in twilight the sunlit air seen from a vertex moves fast with its height. The
-/// guide before (bins of 6 to 15 km there, the zenith bins below without their 0.01 steps, one
-/// direction per cell) left twilight-12 at 11.7 % noise after 2 048 paths per pixel; this one
-/// at 9.5 % in the same time (9.7 % with one direction per cell).
+/// 50 km, where in twilight the sunlit air seen from a vertex moves fast with its height:
+/// coarser bins there blur the twilight arch the guide is meant to find.
 const ALTITUDE_EDGES_M: [f64; 21] = [
     0.0, 500.0, 1000.0, 2000.0, 3000.0, 5000.0, 8000.0, 12_000.0, 15_000.0, 18_000.0, 21_000.0,
     25_000.0, 30_000.0, 35_000.0, 40_000.0, 45_000.0, 50_000.0, 60_000.0, 70_000.0, 85_000.0,
@@ -84,16 +82,16 @@ const GUIDE_WAVELENGTHS_NM: [f64; 3] = [450.0, 550.0, 650.0];
 /// direction misses a bright feature still draws some directions.
 const FLOOR_SHARE: f64 = 0.02;
 
-/// The default [`super::PathTracerSettings::guide_share`]. Of 0.3, 0.5 and 0.7, mean
-/// per-pixel noise at 512 paths: twilight-6 12.1 / 11.0 / 11.4 %, ground-dawn 12.8 / 11.9 /
-/// 11.9 %, the fisheye with the sun at 2° 3.97 / 4.05 / 4.36 %.
+/// The default [`super::PathTracerSettings::guide_share`]: half the directions from the
+/// guide, half from the phase function, which keeps every direction's weight within twice the
+/// phase function's while the guide still finds the twilight arch (the shares compared are in
+/// docs/measurements/from-code-comments.md).
 pub const GUIDE_SHARE: f64 = 0.5;
 
 /// Cosine of the sun's zenith angle at a vertex above which no direction is drawn from the
 /// guide (about 17° of elevation): higher, the sky's light is spread widely enough that the
-/// phase function alone does as well (with the sun overhead the guide made the fisheye's
-/// noise 2.80 → 3.20 % at 512 paths). Below it the share grows linearly to its most at the
-/// horizon.
+/// phase function alone does as well, and the guide would only add noise. Below it the share
+/// grows linearly to its most at the horizon.
 const GUIDE_MU_S: f64 = 0.3;
 
 /// One slice: the cumulative mass of the cells, zenith bin major.

@@ -4,10 +4,10 @@
 //! there — scattering times phase, the phase being the same all along a straight ray — scaled
 //! so that the segment holds the optical depth of their mean extinction: where sunlight is the
 //! same all along the segment this follows the single-scattering integrand. (The majorant's
-//! exponential falls as fast as the bluest lane's bound: along a level ray it put most points
-//! within a few kilometres and gave the rare far ones weights 30–80 times the mean. The
-//! extinction's own exponential, without the phase, put as many points in the thin air above
-//! as in the aerosol's forward peak below, with the sun ahead.) It still
+//! exponential falls as fast as the bluest lane's bound: along a level ray it would put most
+//! points within a few kilometres and give the rare far ones weights many times the mean. The
+//! extinction's own exponential, without the phase, would put as many points in the thin air
+//! above as in the aerosol's forward peak below, with the sun ahead.) It still
 //! wastes most points where light does not come from: in the Earth's shadow at low sun. So
 //! each segment whose sunlight varies gets a piecewise-constant density shaped like its
 //! single-scattering integrand — scattering times phase, the view's transmittance and the
@@ -15,7 +15,7 @@
 //! sub-interval's two ends, from wavelength-independent sun columns ([`SunColumns`]). That
 //! density is only a proposal: the point's contribution is still weighed with ratio-tracked
 //! transmittances and divided by the density it was drawn with, so the estimate stays unbiased.
-//! A share of points is drawn from the exponential as before (one-sample mixture, Veach 1997
+//! A share of points is drawn from the exponential above (one-sample mixture, Veach 1997
 //! §9.2), which keeps the density positive wherever the proposal's approximations say too
 //! little: the tabulated sun, the view's optical depth summed piece by piece from each piece's
 //! far end, and a peak inside a piece that both its ends miss (a grazing ray's lowest point).
@@ -52,7 +52,7 @@ const COLUMNS_ROWS: usize = 64;
 /// fastest (the horizon's air mass of about 40 falls to 5 within 11°), then `COLUMNS_COARSE`
 /// evenly up to 1. Indexed by μ_s itself rather than Bruneton's x_mu, whose distance to the
 /// top of the atmosphere is a chain of a square root and two divisions: the proposal looks
-/// the sun up 17 times per segment, and that chain was most of the look-up's time.
+/// the sun up 17 times per segment, and that chain would be most of the look-up's time.
 const COLUMNS_FINE: usize = 96;
 const COLUMNS_COARSE: usize = 32;
 const COLUMNS_MU_S: usize = COLUMNS_FINE + COLUMNS_COARSE + 1;
@@ -183,7 +183,7 @@ impl SunColumns {
         let (x0, y0) = (fx as usize, fy as usize);
         let (ax, ay) = (fx - x0 as f64, fy - y0 as f64);
         // Written out rather than per component through a closure: this runs 17 times per
-        // proposal, and the closure's look-ups were a tenth of a low-sun path's time.
+        // proposal, on the hot path of every low-sun segment.
         let below = &self.columns[y0 * COLUMNS_MU_S + x0..y0 * COLUMNS_MU_S + x0 + 2];
         let above = &self.columns[(y0 + 1) * COLUMNS_MU_S + x0..(y0 + 1) * COLUMNS_MU_S + x0 + 2];
         let mut column = [0.0; 3];
@@ -375,7 +375,7 @@ impl PathTracer<'_> {
         // With the sun high over every point, no column toward it exceeds the vertical one from
         // the ground over μ_s (an upward ray only steepens through the shells): where even that
         // leaves more than SUNLIGHT_SPREAD of the sunlight, the table need not be read (most
-        // segments under a high sun end here, a twentieth of the tracer's time).
+        // segments under a high sun end here).
         if self.sun_high_over(points, grey) {
             return false;
         }
@@ -472,12 +472,10 @@ impl PathTracer<'_> {
         };
         // Each piece's density is the larger of the integrand at its two ends. Across the
         // terminator the integrand changes by orders of magnitude within a piece; taken at the
-        // piece's middle, in the shadow, it left the sunlit end to the defensive share, with
-        // weights hundreds of times the mean (order 1 looking into the twilight arch, sun 6°
-        // down, default atmosphere: a standard deviation per path 12 times the mean, against
-        // 1.3 now). The integrand at an edge, with the view's transmittance, serves the pieces
-        // on both its sides: one exponential per edge (three per piece were a tenth of the
-        // tracer's time at low sun).
+        // piece's middle, in the shadow, it would leave the sunlit end to the defensive share,
+        // with weights hundreds of times the mean. The integrand at an edge, with the view's
+        // transmittance, serves the pieces on both its sides: one exponential per edge rather
+        // than three per piece, on the hot path at low sun.
         let mut cdf = [0.0; SUB_INTERVALS + 1];
         let (mut left, mut view_depth) = at(edges[0], 0.0, 0.0);
         for k in 0..SUB_INTERVALS {

@@ -34,7 +34,7 @@ pub const DOMAIN: Domain = Domain {
     max_altitude_m: GROUND_VIEW_MAX_ALTITUDE_M,
     min_sun_elevation_deg: 0.0,
     note: "Preetham's fit describes the daytime sky seen from the ground (turbidity 2–10)",
-    // A fit to another atmosphere, not the scene's: 61 % / 184 % too bright at sun 30° / 5°
+    // A fit to another atmosphere, not the scene's: far too bright against the path tracer
     // already at AOD 0.15, more in cleaner air, where the turbidity stops at 2 (`bench aod`).
     max_aod550: 0.0,
     refuses: true,

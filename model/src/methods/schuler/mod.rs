@@ -25,10 +25,9 @@ pub const TABLES: [TableSpec; 1] = [super::shared::moving_sky::TABLE];
 pub const DOMAIN: Domain = super::nishita::DOMAIN;
 
 /// The domain with Hillaire's higher orders added (the `schuler-ms` row): as `nishita-ms`'s
-/// but for aerosol, up to AOD 0.3 (14 / 19 % at sun 30° / 5°, `atmoscope bench aod --methods
-/// schuler-ms --spp 200000`). At AOD 0.5 it is 20 / 24.4 %, inside the 25 % but by less than
-/// the noise of a quick check at 2 000 paths (24.3 and 25.2 % with two path tracers), where
-/// `nishita-ms`, marching the exact optical depth, keeps 21 %.
+/// but for aerosol, up to AOD 0.3 (`atmoscope bench aod`): at 0.5 the low sun sits on the 25 %
+/// bound, closer to it than a quick check's noise can tell apart, where `nishita-ms`,
+/// marching the exact optical depth, stays clearly inside.
 pub const DOMAIN_MS: Domain = Domain {
     max_aod550: 0.3,
     ..super::nishita::DOMAIN_MS

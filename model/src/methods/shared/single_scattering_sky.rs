@@ -200,8 +200,9 @@ impl Way {
     /// evaluations where the closed forms cost a few; tabulated, a sun move of these models
     /// rebuilds the moving sky at about the closed forms' cost. The table holds optical depth:
     /// the trapezoid rule's grows fast along grazing rays (its first sample, at the point
-    /// itself, weighs half an interval of the whole ray), and a blend of its exponentials put
-    /// the moving sky 7 % off the march with the sun 4° up, a blend of the depths 1.3 %.
+    /// itself, weighs half an interval of the whole ray), so blending the depths and then
+    /// taking the exponential follows the march with a low sun where blending the
+    /// exponentials does not.
     pub fn tabulated_in_motion(self) -> bool {
         matches!(self, Way::March(_) | Way::GalajSpline)
     }

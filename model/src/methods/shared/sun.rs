@@ -317,7 +317,7 @@ mod tests {
 
     /// Hestroffer & Magnan's exponent: 0.508 at 550 nm, larger in the blue; the disk's centre
     /// is brighter than its mean and its edge redder than its centre (a linear law with one
-    /// coefficient for every wavelength, as before, had both the same colour).
+    /// coefficient for every wavelength would give both the same colour).
     #[test]
     fn the_limb_is_darker_and_redder_than_the_centre() {
         assert!((limb_exponent(550.0) - 0.5079).abs() < 1e-3);
@@ -348,8 +348,8 @@ mod tests {
     }
 
     /// A pixel centred on the sun as wide as its radius sees the limb law's exact mean over
-    /// the disk of the pixel's area: ∫₀^q (1 − x²)^(α/2) 2x dx / q², times (α + 2)/2. (Reading
-    /// the law at one point, as before, made it 7 % too dark there.)
+    /// the disk of the pixel's area: ∫₀^q (1 − x²)^(α/2) 2x dx / q², times (α + 2)/2, not the
+    /// law read at one point, which is too dark there.
     #[test]
     fn a_pixel_averages_the_limb_over_the_part_of_the_sun_it_sees() {
         let a = SUN_ANGULAR_RADIUS_RAD;

@@ -19,7 +19,7 @@ pub const TABLES: [TableSpec; 2] = single_scattering_sky::TABLES_NESTED;
 pub const DOMAIN: Domain = super::nishita::DOMAIN;
 
 /// The domain with Hillaire's higher orders added (the `trapezoid-ms` row): AOD up to 0.2
-/// (15 / 22 % at sun 30° / 5°; the trapezoid rule's darker haze costs it against the midpoint
+/// (`atmoscope bench aod`; the trapezoid rule's darker haze costs it against the midpoint
 /// rule's 0.5).
 pub const DOMAIN_MS: Domain = Domain {
     max_aod550: 0.2,
