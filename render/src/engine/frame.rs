@@ -159,7 +159,7 @@ impl Engine {
         let stale = !changed.is_empty() || self.deferred.iter().any(|&d| d);
         let ground = stale && frame.shows_ground(view);
         let mut run = plan(
-            pipelines,
+            &pipelines.method,
             changed,
             frame.above,
             frame.sun_below_tables,

@@ -52,7 +52,7 @@ impl Engine {
         let mut deferred = vec![false; pipelines.len()];
         let ground = frame.shows_ground(view);
         let run = plan(
-            pipelines,
+            &pipelines.method,
             Inputs::ALL,
             frame.above,
             frame.sun_below_tables,

@@ -233,7 +233,7 @@ impl FrameSetup {
 /// ground's pixels read, and a frame not `in_motion` (drawn in tiles) no moving sky), and
 /// otherwise stays marked in `deferred`.
 pub(super) fn plan(
-    pipelines: &Pipelines,
+    method: &GpuMethod,
     changed: Inputs,
     above: bool,
     sun_below_tables: bool,
@@ -242,8 +242,8 @@ pub(super) fn plan(
     unwanted: &[&str],
     deferred: &mut [bool],
 ) -> Vec<usize> {
-    let info = pipelines.method.info();
-    let specs: Vec<&PassSpec> = pipelines.specs().collect();
+    let info = method.info();
+    let specs: Vec<&PassSpec> = method.specs().collect();
     let mut needed = vec![false; specs.len()];
     let mut needed_resources: Vec<&str> = Vec::new();
     for (i, spec) in specs.iter().enumerate().rev() {
@@ -314,4 +314,181 @@ pub(super) fn with_order_loop(run: &[usize], pipelines: &Pipelines, orders: u32)
     }
     flush(&mut group, &mut out);
     out
+}
+
+/// The scheduler on the CPU, with no device: every real-time model of the registry, as the
+/// engine plans its frames. A model added to the registry (and its passes as data) is covered
+/// with no edit here.
+#[cfg(test)]
+mod tests {
+    use super::plan;
+    use crate::methods::{DISPLAY, GpuMethod, METER_PASS, RADIANCE, gpu_method};
+    use atmoscope_model::methods::{self, Inputs};
+
+    /// Every real-time model's passes as data, from the registry.
+    fn models() -> Vec<&'static GpuMethod> {
+        let models: Vec<_> = methods::realtime()
+            .map(|m| {
+                gpu_method(m.method)
+                    .unwrap_or_else(|| panic!("{}: a real-time model with no GPU passes", m.id))
+            })
+            .collect();
+        assert!(models.len() > 1, "the registry lists real-time models");
+        models
+    }
+
+    /// The names of the passes a frame that changes `changed` runs, from inside the atmosphere,
+    /// the ground in view, still and not metering.
+    fn names(method: &GpuMethod, changed: Inputs, deferred: &mut [bool]) -> Vec<&'static str> {
+        let specs: Vec<_> = method.specs().collect();
+        plan(
+            method,
+            changed,
+            false,
+            false,
+            true,
+            false,
+            &[METER_PASS.name],
+            deferred,
+        )
+        .into_iter()
+        .map(|i| specs[i].name)
+        .collect()
+    }
+
+    /// The pass that draws the radiance of the view (the sky pass).
+    fn sky(method: &GpuMethod) -> &'static str {
+        let sky = method
+            .specs()
+            .find(|s| !s.is_table() && s.writes.contains(&RADIANCE));
+        sky.unwrap_or_else(|| panic!("{}: no pass draws the view", method.info().id))
+            .name
+    }
+
+    #[test]
+    fn a_new_atmosphere_runs_every_table_then_the_sky_and_an_unchanged_frame_nothing() {
+        for method in models() {
+            let id = method.info().id;
+            let mut deferred = vec![false; method.specs().count()];
+            let first = names(method, Inputs::ALL, &mut deferred);
+            assert_eq!(first.last(), Some(&sky(method)), "{id}: {first:?}");
+            // The sky pass draws the display image too: no display pass after it.
+            let display = method
+                .specs()
+                .find(|s| s.writes == [DISPLAY])
+                .map(|s| s.name);
+            assert!(
+                !first.iter().any(|n| Some(*n) == display),
+                "{id}: {first:?}"
+            );
+            // A new atmosphere leaves no table behind: each one runs, or stays marked stale
+            // for the first frame that reads it (in motion, say).
+            for (i, t) in method.specs().enumerate().filter(|(_, s)| s.is_table()) {
+                assert!(
+                    first.contains(&t.name) || deferred[i],
+                    "{id}: the table pass {} neither ran nor was left stale: {first:?}",
+                    t.name
+                );
+            }
+            assert_eq!(
+                names(method, Inputs::NONE, &mut deferred),
+                Vec::<&str>::new(),
+                "{id}: an unchanged frame runs nothing"
+            );
+        }
+    }
+
+    #[test]
+    fn turning_the_camera_redraws_the_sky_and_the_exposure_only_the_display() {
+        for method in models() {
+            let id = method.info().id;
+            let mut deferred = vec![false; method.specs().count()];
+            names(method, Inputs::ALL, &mut deferred);
+            assert_eq!(
+                names(method, Inputs::CAMERA, &mut deferred),
+                vec![sky(method)],
+                "{id}: turning"
+            );
+            assert_eq!(
+                names(method, Inputs::DISPLAY, &mut deferred),
+                vec!["display"],
+                "{id}: exposure"
+            );
+        }
+    }
+
+    #[test]
+    fn a_sun_move_reruns_a_subset_and_never_a_table_of_the_atmosphere_alone() {
+        for method in models() {
+            let id = method.info().id;
+            let mut deferred = vec![false; method.specs().count()];
+            let all = names(method, Inputs::ALL, &mut deferred);
+            let moved = names(method, Inputs::SUN.union(Inputs::VIEWPOINT), &mut deferred);
+            assert!(
+                moved.iter().all(|n| all.contains(n)),
+                "{id}: {moved:?} ⊄ {all:?}"
+            );
+            assert!(moved.contains(&sky(method)), "{id}: the sky is redrawn");
+            if let Some(t) = method.specs().find(|s| s.writes == ["transmittance"]) {
+                assert!(!moved.contains(&t.name), "{id}: {moved:?}");
+            }
+        }
+    }
+
+    /// A pass left stale because the view does not need it (from above the atmosphere) runs in
+    /// the first frame that does, so nothing is lost by deferring it.
+    #[test]
+    fn passes_left_stale_from_above_run_once_a_view_needs_them() {
+        for method in models() {
+            let id = method.info().id;
+            let n = method.specs().count();
+            let specs: Vec<_> = method.specs().collect();
+            let mut deferred = vec![false; n];
+            let above = plan(
+                method,
+                Inputs::ALL,
+                true,
+                false,
+                true,
+                false,
+                &[],
+                &mut deferred,
+            );
+            let inside = plan(
+                method,
+                Inputs::NONE,
+                false,
+                false,
+                true,
+                false,
+                &[],
+                &mut deferred,
+            );
+            let mut fresh = vec![false; n];
+            let whole = plan(
+                method,
+                Inputs::ALL,
+                false,
+                false,
+                true,
+                false,
+                &[],
+                &mut fresh,
+            );
+            for i in whole {
+                assert!(
+                    above.contains(&i) || inside.contains(&i),
+                    "{id}: {} never ran after the camera came down",
+                    specs[i].name
+                );
+            }
+            for i in &inside {
+                assert!(
+                    !(above.contains(i) && specs[*i].is_table()),
+                    "{id}: {} ran twice for one atmosphere",
+                    specs[*i].name
+                );
+            }
+        }
+    }
 }

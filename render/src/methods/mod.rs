@@ -368,6 +368,11 @@ impl GpuMethod {
     pub fn info(&self) -> &'static ModelInfo {
         methods::info(self.method)
     }
+
+    /// Every pass in the order a frame runs them: the model's, then the views' shared ones.
+    pub fn specs(&self) -> impl Iterator<Item = &PassSpec> {
+        self.passes.iter().chain(&VIEW_PASSES)
+    }
 }
 
 /// The display pass every model ends with: radiance → exposure, tone map, sRGB or false colour
