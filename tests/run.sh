@@ -29,14 +29,24 @@ fi
 export WGPU_BACKEND="${WGPU_BACKEND:-vulkan}"
 export LP_NUM_THREADS="${LP_NUM_THREADS:-2}"
 
+# Two tiers. Without arguments this is the fast tier CI runs: units, GPU/CPU twins, the
+# scheduler, the GUI and the command line. `--research` adds the research tier: the tests
+# marked `#[ignore = "research tier: …"]` (accuracy over the view suite, AOD ranges, the fits,
+# Leenman's replay, long stress runs), to run whenever the physics changes (docs/testing.md).
+research=""
+if [ "${1:-}" = "--research" ]; then
+    shift
+    research=1
+fi
+
 # cargo-nextest runs each test in a process of its own and keeps both cores busy to the end
 # (.config/nextest.toml); cargo test runs the binaries one after another, each waiting on its
 # slowest test. Under either a test name filters and --no-fail-fast goes on past a failure
 # (nextest's default here); other flags are the runner's own.
 if cargo nextest --version >/dev/null 2>&1; then
-    cargo nextest run --workspace --locked "$@"
+    cargo nextest run --workspace --locked ${research:+--run-ignored all} "$@"
     # nextest runs no doc tests.
     cargo test --workspace --locked --doc
 else
-    cargo test --workspace --locked "$@"
+    cargo test --workspace --locked "$@" -- ${research:+--include-ignored}
 fi

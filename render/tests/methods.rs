@@ -1563,6 +1563,7 @@ fn from_above_the_atmosphere_the_view_tables_wait_until_a_view_needs_them() {
 }
 
 #[test]
+#[ignore = "research tier: the scheduler end to end on the GPU; the fast tier tests its plan on the CPU (engine::schedule)"]
 fn every_model_skips_its_tables_when_only_the_view_or_the_display_changes() {
     let Some(gpu) = context() else { return };
     let mut engine = Engine::new(&gpu.device, &gpu.queue);

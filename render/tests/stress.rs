@@ -57,6 +57,7 @@ const CASES: [(&str, u32); 4] = [
 const DEFAULT_CASES: u32 = 8;
 
 #[test]
+#[ignore = "research tier: a long property run of every model on the GPU against its twin (atmoscope stress)"]
 fn every_real_time_model_holds_under_stress() {
     for model in methods::realtime() {
         let cases = CASES

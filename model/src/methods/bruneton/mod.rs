@@ -609,6 +609,7 @@ mod tests {
     /// not in view) in a sky of air and ozone, sun at 30°, at 450, 550 and 650 nm, in several
     /// directions, at the reference implementation's sample counts (High quality).
     #[test]
+    #[ignore = "research tier: four gathered orders against the path tracer"]
     fn four_orders_match_the_path_tracer_in_a_rayleigh_and_ozone_sky() {
         let mut scene = Scene::default();
         scene.atmosphere.aerosol.kind = AerosolType::None;
@@ -754,6 +755,7 @@ mod tests {
     }
 
     #[test]
+    #[ignore = "research tier: the convergence of the gathered orders"]
     fn each_order_adds_light_and_the_deltas_shrink() {
         let mut p = params();
         p.steps.sphere_directions = 6;
