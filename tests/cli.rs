@@ -291,40 +291,13 @@ fn probe_runs_every_real_time_model_within_a_bound_of_the_path_tracer() {
         // The stated bound of each model in this hazy daylight sky (rural aerosol, AOD 0.15,
         // sun 30°, at the ground). García Liñán's published L_ms was fitted at 10 km and
         // underestimates multiple scattering at the ground (measured: 25–32 % low).
-        let bound = match model.id {
-            "hillaire" => 0.15,
-            // Bruneton at Medium quality with 6 orders: 3–5 % low (with 4 orders 5–10 %; the
-            // coarser sphere quadrature of Medium; High is within 3 % of 4 path-traced orders).
-            "bruneton" => 0.1,
-            "garcia-linan" => 0.4,
-            // Elek: 16–38 % low here (within 6 % without aerosol): as in his method, light
-            // scattered by aerosol is never scattered again by air (orders stay Rayleigh or
-            // Mie), and every order carries the view's phase function.
-            "elek" => 0.45,
-            // Nishita: single scattering alone, 32–60 % low here.
-            "nishita" => 0.65,
-            // The trapezoid rule over 32 intervals (Medium) overestimates the depth of the low
-            // aerosol layer: 38–63 % low here.
-            "trapezoid" => 0.7,
-            // Schuler's and Gałaj's closed forms towards the sun: 38–62 % and 38–63 % low;
-            // Gałaj's spline: 36–62 %.
-            "schuler" | "galaj-taylor" | "galaj-spline" => 0.65,
-            // Leenman's slabs: 28–63 % low, as single scattering.
-            "flat" | "raymarched" => 0.65,
-            // With Hillaire's Ψ_ms: within 10 %, 13 %, 12 %, 13 % and 12 % here.
-            "nishita-ms" | "trapezoid-ms" | "schuler-ms" | "galaj-taylor-ms"
-            | "galaj-spline-ms" => 0.15,
-            // Preetham's fit, blind to the scene's atmosphere but for its turbidity: 49–153 %
-            // too bright here.
-            "preetham" => 1.7,
-            "empty" => {
-                // No air: the sky is black.
-                let values = probe_values(model.id, &[]);
-                assert_eq!(values.len(), truth.len());
-                assert!(values.iter().all(|&v| v == 0.0), "{values:?}");
-                continue;
-            }
-            other => panic!("state the bound of {other} here"),
+        // The stated bound of each model in this hazy daylight sky (its registry row); a
+        // model that draws no sky is black.
+        let Some(bound) = model.stated.probe_relative_error else {
+            let values = probe_values(model.id, &[]);
+            assert_eq!(values.len(), truth.len());
+            assert!(values.iter().all(|&v| v == 0.0), "{}: {values:?}", model.id);
+            continue;
         };
         let values = probe_values(model.id, &[]);
         for (v, t) in values.iter().zip(&truth) {
@@ -656,7 +629,7 @@ fn fit_wavelengths_beats_the_published_matrix_and_writes_csv() {
     assert_eq!(csv.lines().filter(|l| !l.starts_with('#')).count(), 17);
     // The model reads it back as it reads the CSV it embeds.
     let (lanes, matrix) = atmoscope_model::wavelengths::spectral4_from(
-        &atmoscope_model::table::Table::parse("written", &csv),
+        &atmoscope_model::csv_table::Table::parse("written", &csv),
     );
     assert_eq!(lanes, [630.0, 560.0, 490.0, 430.0]);
     assert!(matrix.iter().flatten().all(|v| v.is_finite()), "{matrix:?}");
@@ -931,52 +904,15 @@ fn fit_garcia_linan_reports_before_and_after_and_writes_csv() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// Each real-time model's stated bound on the mean ΔE2000 against the path tracer, at Spectral4
-/// and each view's exposure: (daylight views, twilight views — None for a daylight model), over
-/// the suite views of its domain. The references (`tests/data/references`, see the README there) carry their own
-/// noise, large in twilight, which these bounds include.
+/// A model's stated ΔE2000 bounds from its registry row: (daylight, twilight).
 fn delta_e_bound(id: &str) -> (f64, Option<f64>) {
-    // Measured worst views (mean ΔE2000, Spectral4): hillaire ground-sunrise 4.0, plane-dawn 4.1 (and
-    // twilight-12 4.0); bruneton fisheye-sun90 2.2, twilight-12 1.8 (orbit-dawn 4.0 before
-    // rays starting past the tables' 102° were looked up from where they come back to it, now
-    // 1.1); garcia-linan ground-sunrise 11.7 (its L_ms,
-    // fitted at 10 km, is far too dark at the ground at low sun); elek ground-sunrise 10.8
-    // (no coupling of Rayleigh and Mie orders, no ground bounce). The baseline without air has
-    // no bound: it is held to being far off instead.
-    match id {
-        "hillaire" => (4.5, Some(5.5)),
-        "bruneton" => (3.0, Some(3.0)),
-        "garcia-linan" => (13.0, None),
-        "elek" => (12.0, None),
-        // Single scattering: the sky lacks the higher orders (worst ground-sunrise 13.7; 16.2
-        // with the trapezoid rule's darker haze).
-        "nishita" => (14.5, None),
-        "trapezoid" => (17.0, None),
-        // With Hillaire's Ψ_ms: worst ground-sunrise 10.0 and 12.4 (daylight means 3.0, 4.0).
-        "nishita-ms" => (11.0, None),
-        "trapezoid-ms" => (13.0, None),
-        // Schuler's closed form towards the sun: worst ground-sunrise 13.7, with Ψ_ms 10.6
-        // (daylight means 8.2 and 3.2).
-        "schuler" => (14.5, None),
-        "schuler-ms" => (11.5, None),
-        // Gałaj's Taylor form: inside its domain (sun ≥ 30°) worst fisheye-sun90 12.5, with
-        // Ψ_ms ground-noon 4.1; the daylight bound also covers the low suns outside it, where
-        // the Taylor integral's overshoot darkens the sunlight (ground-sunrise 25.4 and 20.2).
-        "galaj-taylor" => (26.0, None),
-        "galaj-taylor-ms" => (21.0, None),
-        // Gałaj's spline: inside its domain (sun ≥ 18°) worst fisheye-sun90 12.6, with Ψ_ms
-        // ground-noon 4.0; the daylight bound also covers the low suns below it, where the
-        // mesh's last column brightens the sunlight (worst fisheye-sun2 9.7 with Ψ_ms).
-        "galaj-spline" => (14.5, None),
-        "galaj-spline-ms" => (11.0, None),
-        // Leenman's slabs (single scattering, homogeneous-shell depths): worst fisheye-sun0
-        // 16.2 and ground-sunrise 15.7 (daylight means 10.1 and 9.5).
-        "flat" | "raymarched" => (17.0, None),
-        // Preetham's fit to another atmosphere, on the ground views it draws: worst
-        // fisheye-sun0 30.2 (ground-sunrise 17.7, ground-noon 5.5; daylight mean 15.5).
-        "preetham" => (31.0, None),
-        other => panic!("state the ΔE2000 bound of {other} here"),
-    }
+    let stated = atmoscope_model::methods::by_id(id)
+        .unwrap_or_else(|| panic!("{id} is in the registry"))
+        .stated;
+    let day = stated
+        .daylight_delta_e2000
+        .unwrap_or_else(|| panic!("state the daylight ΔE2000 bound of {id} in its registry row"));
+    (day, stated.twilight_delta_e2000)
 }
 
 #[test]

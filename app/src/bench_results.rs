@@ -3,8 +3,8 @@
 //! untrusted file: every line is checked), and summarised per configuration with the Pareto
 //! front of frame time against error.
 
+use atmoscope_eval::metrics::pareto_front;
 use atmoscope_model::methods;
-use atmoscope_model::metrics::pareto_front;
 
 /// The columns of `results.csv`, in order.
 pub const COLUMNS: [&str; 11] = [

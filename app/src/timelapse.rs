@@ -216,7 +216,7 @@ mod tests {
         );
         let mut dated = base.clone();
         dated.sun = SunSettings::Date {
-            time: atmoscope_model::sun::DateTime {
+            time: atmoscope_model::sun_position::DateTime {
                 year: 2026,
                 month: 6,
                 day: 21,

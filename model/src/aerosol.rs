@@ -18,8 +18,8 @@
 //! layers alone.
 
 use crate::constants::AOD_REFERENCE_NM;
+use crate::csv_table::tables;
 use crate::mie::{self, BulkOptics, LogNormal};
-use crate::table::tables;
 use num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;

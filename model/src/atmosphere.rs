@@ -18,7 +18,7 @@ use crate::profiles::{AirProfile, ScaledOzone};
 use crate::quadrature::integrate_adaptive;
 use crate::rayleigh;
 use crate::scene::{AerosolPhase, AtmosphereSettings};
-use crate::solar::SolarSpectrum;
+use crate::solar_spectrum::SolarSpectrum;
 use glam::DVec3;
 
 /// Relative tolerance of optical-depth integrals.
@@ -492,7 +492,7 @@ mod tests {
         use crate::methods::path_tracer::LaneOptics;
         use crate::methods::shared::optics::Params;
         use crate::scene::{Quality, SunSettings, WavelengthSet};
-        use crate::sun::DateTime;
+        use crate::sun_position::DateTime;
         let on = |month| {
             let mut s = Scene::default();
             s.sun = SunSettings::Date {

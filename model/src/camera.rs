@@ -6,7 +6,7 @@
 //! views); its own local frame then turns with the surface.
 
 use crate::geometry::{Ray, direction_from_angles};
-use crate::methods::shared::sun::SunInView;
+use crate::methods::shared::sun_disk::SunInView;
 use crate::scene::CameraSettings;
 use glam::{DMat3, DVec3};
 use serde::{Deserialize, Serialize};

@@ -5,8 +5,8 @@
 //! published test pairs pin it in the tests.
 
 use crate::constants::{MAX_LUMINOUS_EFFICACY_LM_PER_W, VISIBLE_MAX_NM};
+use crate::csv_table::tables;
 use crate::spectrum::Spectrum;
-use crate::table::tables;
 use std::sync::OnceLock;
 
 /// CIE 1931 2° colour-matching functions x̄, ȳ, z̄, 360–830 nm at 1 nm.

@@ -6,8 +6,8 @@
 //! means of Dütsch (1973) used by Guimera et al. (2018), or a zonal mean by latitude and month
 //! from the AFGL standard atmospheres (Anderson et al. 1986).
 
+use crate::csv_table::tables;
 use crate::spectrum::Spectrum;
-use crate::table::tables;
 use serde::{Deserialize, Serialize};
 use std::sync::OnceLock;
 

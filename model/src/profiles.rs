@@ -13,8 +13,8 @@ use crate::constants::{
     AIR_DENSITY_FIT_A, AIR_DENSITY_FIT_B, DOBSON_UNIT_PER_M2, EXPONENTIAL_AIR_SCALE_HEIGHT_M,
     OZONE_FIT_C, OZONE_FIT_K, OZONE_TENT_HALF_WIDTH_M, OZONE_TENT_PEAK_M,
 };
+use crate::csv_table::tables;
 use crate::quadrature::integrate_adaptive;
-use crate::table::tables;
 use serde::{Deserialize, Serialize};
 use std::sync::OnceLock;
 

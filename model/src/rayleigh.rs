@@ -6,8 +6,8 @@
 //! Bodhaine et al. (1999), which feeds the phase function's anisotropy correction.
 
 use crate::constants::STANDARD_AIR_NUMBER_DENSITY_M3;
+use crate::csv_table::tables;
 use crate::spectrum::Spectrum;
-use crate::table::tables;
 use std::sync::OnceLock;
 
 fn beta_standard_per_km() -> &'static Spectrum {

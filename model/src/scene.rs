@@ -9,8 +9,8 @@ use crate::aerosol::AerosolType;
 use crate::constants::{EARTH_ATMOSPHERE_TOP_M, EARTH_RADIUS_M};
 use crate::ozone::{self, OzoneCrossSection};
 use crate::profiles::{AirProfile, OzoneProfile};
-use crate::solar::SolarSpectrum;
-use crate::sun::{self, DateTime, SunAngles};
+use crate::solar_spectrum::SolarSpectrum;
+use crate::sun_position::{self, DateTime, SunAngles};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -258,7 +258,7 @@ impl SunSettings {
                 time,
                 latitude_deg,
                 longitude_deg,
-            } => sun::position(&time, latitude_deg, longitude_deg),
+            } => sun_position::position(&time, latitude_deg, longitude_deg),
         }
     }
 
@@ -267,7 +267,7 @@ impl SunSettings {
     pub fn distance_au(&self) -> f64 {
         match self {
             SunSettings::Angles { .. } => 1.0,
-            SunSettings::Date { time, .. } => sun::distance_au(time.julian_day()),
+            SunSettings::Date { time, .. } => sun_position::distance_au(time.julian_day()),
         }
     }
 

@@ -94,7 +94,7 @@ impl Spectrum {
     }
 
     /// A spectrum from two columns of an embedded table, which the tests prove valid.
-    pub(crate) fn from_table(table: &crate::table::Table, x: &str, y: &str) -> Spectrum {
+    pub(crate) fn from_table(table: &crate::csv_table::Table, x: &str, y: &str) -> Spectrum {
         Spectrum::new(table.numbers(x), table.numbers(y))
             .expect("embedded table is a valid spectrum")
     }

@@ -15,8 +15,8 @@
 
 use crate::colour::{Xyz, cie1931, xyz_to_linear_srgb};
 use crate::constants::{VISIBLE_MAX_NM, VISIBLE_MIN_NM};
+use crate::csv_table::{Table, tables};
 use crate::scene::WavelengthSet;
-use crate::table::{Table, tables};
 
 /// Lanes per batch (one `vec4<f32>` on the GPU).
 pub const LANES: usize = 4;
@@ -282,7 +282,7 @@ mod tests {
         // Sunlight blued as a clear or hazy sky does, (550/λ)ⁿ, and the sun's own colour: each
         // within 5 % of the exact colour's green. The bound is wide enough for a matrix fitted at
         // the shipped wavelengths and too narrow for one fitted at others or for swapped lanes.
-        let sun = crate::solar::SolarSpectrum::AstmG173;
+        let sun = crate::solar_spectrum::SolarSpectrum::AstmG173;
         let grid: Vec<f64> = (360..=830).map(f64::from).collect();
         for n in [4.0, 2.0, 1.0, 0.0] {
             let tint = |l: f64| (550.0 / l).powf(n);

@@ -72,7 +72,7 @@ proptest! {
 fn preset_text() -> String {
     let mut s = atmoscope_model::Scene::default();
     s.sun = atmoscope_model::scene::SunSettings::Date {
-        time: atmoscope_model::sun::DateTime {
+        time: atmoscope_model::sun_position::DateTime {
             year: 2024,
             month: 6,
             day: 21,

@@ -255,7 +255,11 @@ pub fn wgsl_prelude() -> String {
         "f32",
         f(SUN_LIMB_ALPHA_BREAK_PER_UM),
     );
-    c("LIMB_RINGS", "u32", format!("{}u", shared::sun::LIMB_RINGS));
+    c(
+        "LIMB_RINGS",
+        "u32",
+        format!("{}u", shared::sun_disk::LIMB_RINGS),
+    );
     c("VERTICAL_RAD", "f32", f(shared::VERTICAL_RAD));
     c(
         "MAX_LUMINOUS_EFFICACY_LM_PER_W",

@@ -5,11 +5,11 @@
 
 mod common;
 
+use atmoscope_eval::metrics::{DisplaySetup, compare};
 use atmoscope_model::camera::{Camera, Projection};
 use atmoscope_model::colour::{linear_srgb_to_xyz, srgb_decode};
 use atmoscope_model::methods::shared::{Lut, moving_sky, viewpoint};
 use atmoscope_model::methods::{self, CannotDraw, Inputs, ModelInfo};
-use atmoscope_model::metrics::{DisplaySetup, compare};
 use atmoscope_model::scene::{
     FittedConstants, Method, Quality, Scene, SunSettings, ToneMap, WavelengthSet,
 };
@@ -858,7 +858,7 @@ fn a_sun_placed_by_date_moves_without_rebuilding_the_tables() {
     let mut scene = Scene::default();
     let view = View::new(Projection::Fisheye, 24, 24);
     let at = |hour: f64| SunSettings::Date {
-        time: atmoscope_model::sun::DateTime {
+        time: atmoscope_model::sun_position::DateTime {
             year: 2026,
             month: 1,
             day: 4,
@@ -1062,7 +1062,7 @@ fn a_moving_frame_in_tiles_is_close_and_the_still_frame_after_it_exact() {
             let exact = radiance_image(&engine);
             let exact_shown = displayed_image(&engine);
             let close = |what: &str, image: &[[f64; 3]], exact: &[[f64; 3]], setup| {
-                let de = atmoscope_model::metrics::delta_e2000_map(image, exact, setup);
+                let de = atmoscope_eval::metrics::delta_e2000_map(image, exact, setup);
                 let mean = de.iter().sum::<f64>() / de.len() as f64;
                 let max = de.iter().copied().fold(0.0, f64::max);
                 eprintln!("{name}: {what} in tiles: ΔE2000 mean {mean:.3}, max {max:.3}");

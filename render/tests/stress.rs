@@ -46,24 +46,10 @@ fn stress_model(id: &str, cases: u32) {
     }
 }
 
-/// Cases per model: Bruneton's and Elek's twins take seconds to build, so they get fewer; a
-/// model not listed gets [`DEFAULT_CASES`].
-const CASES: [(&str, u32); 4] = [
-    ("hillaire", 24),
-    ("garcia-linan", 24),
-    ("bruneton", 3),
-    ("elek", 4),
-];
-const DEFAULT_CASES: u32 = 8;
-
 #[test]
 #[ignore = "research tier: a long property run of every model on the GPU against its twin (atmoscope stress)"]
 fn every_real_time_model_holds_under_stress() {
     for model in methods::realtime() {
-        let cases = CASES
-            .iter()
-            .find(|(id, _)| *id == model.id)
-            .map_or(DEFAULT_CASES, |(_, n)| *n);
-        stress_model(model.id, cases);
+        stress_model(model.id, model.stated.stress_cases);
     }
 }

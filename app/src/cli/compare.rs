@@ -1,9 +1,9 @@
-//! `atmoscope compare TEST.exr REFERENCE.exr`: every error metric of `atmoscope_model::metrics`,
+//! `atmoscope compare TEST.exr REFERENCE.exr`: every error metric of `atmoscope_eval::metrics`,
 //! and the ΔE2000 and FLIP error maps as PNG heat maps.
 
 use crate::images::{read_exr, write_heat_map};
 use anyhow::bail;
-use atmoscope_model::metrics::{DisplaySetup, compare};
+use atmoscope_eval::metrics::{DisplaySetup, compare};
 use atmoscope_model::scene::ToneMap;
 use clap::Args;
 use std::path::PathBuf;

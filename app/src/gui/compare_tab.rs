@@ -6,9 +6,9 @@
 
 use super::gpu_view::{Gpu, GpuView, mark, notice, pixels};
 use super::state::{CompareMode, DELTA_E_SCALE_MAX, Layout, Tab, projection};
+use atmoscope_eval::metrics::{DisplaySetup, delta_e2000_map, percentile};
 use atmoscope_model::Scene;
 use atmoscope_model::methods;
-use atmoscope_model::metrics::{DisplaySetup, delta_e2000_map, percentile};
 use atmoscope_model::scene::{Method, WavelengthSet};
 use atmoscope_render::View;
 use atmoscope_render::views::false_colour;

@@ -4,11 +4,11 @@
 
 use super::gpu_view::{Gpu, GpuView};
 use super::jobs::Job;
+use atmoscope_eval::metrics::{DisplaySetup, delta_e2000_map};
 use atmoscope_model::Scene;
 use atmoscope_model::camera::Projection;
 use atmoscope_model::display::{display_balanced, to_u8};
 use atmoscope_model::methods::path_tracer::PathTracerSettings;
-use atmoscope_model::metrics::{DisplaySetup, delta_e2000_map};
 use atmoscope_model::reference::ReferenceRender;
 use atmoscope_render::View;
 use atmoscope_render::views::false_colour;

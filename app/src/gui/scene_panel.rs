@@ -16,8 +16,8 @@ use atmoscope_model::scene::{
     AerosolPhase, FittedConstants, OzoneColumn, Quality, SunSettings, ToneMap, WavelengthSet,
     WhiteBalance,
 };
-use atmoscope_model::solar::SolarSpectrum;
-use atmoscope_model::sun::DateTime;
+use atmoscope_model::solar_spectrum::SolarSpectrum;
+use atmoscope_model::sun_position::DateTime;
 use eframe::egui::{self, ComboBox, DragValue, Slider};
 
 const MONTHS: [&str; 12] = [

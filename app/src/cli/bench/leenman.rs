@@ -1,4 +1,4 @@
-//! `atmoscope bench leenman`: Leenman's (2025) comparison replayed (`atmoscope_model::leenman`):
+//! `atmoscope bench leenman`: Leenman's (2025) comparison replayed (`atmoscope_eval::leenman`):
 //! his Earth in linear sRGB (RGB3), his twelve views and exposures, every model he compares
 //! (his neural network excepted) and Atmoscope's others, against path-traced references with
 //! his four scattering events; and the transmittance along each pixel's ray of his five
@@ -16,17 +16,17 @@
 
 use crate::cli::common::{PathTrace, gpu, outside_sun_disk, path_traced};
 use anyhow::{Context, bail};
+use atmoscope_eval::leenman::{self, LeenmanView, TRANSMITTANCE_VIEWS, VIEWS};
+use atmoscope_eval::metrics::{DisplaySetup, compare};
 use atmoscope_model::Atmosphere;
 use atmoscope_model::camera::Camera;
 use atmoscope_model::display::EXPOSURE_SCALE;
 use atmoscope_model::geometry::altitude_along;
-use atmoscope_model::leenman::{self, LeenmanView, TRANSMITTANCE_VIEWS, VIEWS};
 use atmoscope_model::methods::shared::Params;
 use atmoscope_model::methods::shared::segments_sky::Segments;
 use atmoscope_model::methods::shared::transmittance::{
     compute_transmittance_lut, transmittance_between,
 };
-use atmoscope_model::metrics::{DisplaySetup, compare};
 use atmoscope_model::scene::{Method, Quality, ToneMap, WavelengthSet};
 use atmoscope_model::wavelengths::to_linear_srgb;
 use atmoscope_render::{Engine, View};

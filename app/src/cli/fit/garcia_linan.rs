@@ -12,14 +12,14 @@
 use crate::args::parse_wavelengths;
 use crate::images::read_exr;
 use anyhow::{Context, bail};
+use atmoscope_eval::optimize::nelder_mead;
 use atmoscope_model::camera::Camera;
 use atmoscope_model::colour::linear_srgb_to_xyz;
 use atmoscope_model::geometry::direction_from_angles;
 use atmoscope_model::methods::garcia_linan::{Constants, DOMAIN, sky::radiance_marched};
-use atmoscope_model::methods::shared::sun::in_sun_disk;
+use atmoscope_model::methods::shared::sun_disk::in_sun_disk;
 use atmoscope_model::methods::shared::transmittance::compute_transmittance_lut;
 use atmoscope_model::methods::shared::{Lut, Params};
-use atmoscope_model::optimize::nelder_mead;
 use atmoscope_model::scene::WavelengthSet;
 use atmoscope_model::wavelengths::to_linear_srgb;
 use atmoscope_model::{Atmosphere, Scene, views};

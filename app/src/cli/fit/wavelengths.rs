@@ -6,6 +6,8 @@
 
 use crate::args::parse_wavelengths;
 use anyhow::{Context, bail};
+use atmoscope_eval::metrics::{DisplaySetup, delta_e2000_map, percentile};
+use atmoscope_eval::optimize::nelder_mead;
 use atmoscope_model::Atmosphere;
 use atmoscope_model::Scene;
 use atmoscope_model::camera::Camera;
@@ -13,9 +15,7 @@ use atmoscope_model::colour::linear_srgb_to_xyz;
 use atmoscope_model::constants::{VISIBLE_MAX_NM, VISIBLE_MIN_NM};
 use atmoscope_model::geometry::direction_from_angles;
 use atmoscope_model::methods::hillaire::{self, Params, Tables};
-use atmoscope_model::methods::shared::sun::in_sun_disk;
-use atmoscope_model::metrics::{DisplaySetup, delta_e2000_map, percentile};
-use atmoscope_model::optimize::nelder_mead;
+use atmoscope_model::methods::shared::sun_disk::in_sun_disk;
 use atmoscope_model::scene::WavelengthSet;
 use atmoscope_model::views;
 use atmoscope_model::wavelengths::{

@@ -11,7 +11,7 @@ use super::{
     TableSpec, Viewpoint, mu_s_texel, mu_texel, nu_texel, r_texel,
 };
 use crate::methods::Inputs;
-use crate::methods::shared::table::split;
+use crate::methods::shared::lut::split;
 use crate::wavelengths::LANES;
 
 /// The slice's size: nu slices × mu texels of the 4D tables.
@@ -78,8 +78,8 @@ mod tests {
     use super::super::{SCATTERING, Tables, scattering};
     use super::*;
     use crate::methods::SkyModel;
+    use crate::methods::shared::lut::tests::rough_table;
     use crate::methods::shared::optics::tests::{VIEWPOINTS_INSIDE, params};
-    use crate::methods::shared::table::tests::rough_table;
 
     /// A twin moved to another viewpoint reads there what the 4D tables read, for both tables.
     #[test]

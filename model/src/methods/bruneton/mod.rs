@@ -37,8 +37,8 @@ pub mod scattering_density;
 pub mod single_scattering;
 pub mod sky;
 
+use super::shared::lut::split;
 pub use super::shared::ray::Coords;
-use super::shared::table::split;
 use super::shared::transmittance::{self, compute_transmittance_lut};
 use super::shared::{Lanes, Lut, Params, TableSpec, Viewpoint};
 pub use super::shared::{aerosol_phase, rayleigh_phase};

@@ -8,7 +8,7 @@
 
 use super::{H, Lanes, Lut, MU, MU_S, Params, TableSpec, Viewpoint, texel_from_h_mu_mu_s};
 use crate::methods::Inputs;
-use crate::methods::shared::table::split;
+use crate::methods::shared::lut::split;
 use crate::wavelengths::LANES;
 
 const fn camera_table(id: &'static str, label: &'static str) -> TableSpec {
@@ -63,8 +63,8 @@ mod tests {
     use super::super::{RAYLEIGH, Tables, look_up};
     use super::*;
     use crate::methods::SkyModel;
+    use crate::methods::shared::lut::tests::rough_table;
     use crate::methods::shared::optics::tests::{VIEWPOINTS_INSIDE, params};
-    use crate::methods::shared::table::tests::rough_table;
 
     /// From a viewpoint inside the atmosphere, the slice's look-up gives the 3D look-up for
     /// every view zenith cosine, at texel centres and between them.

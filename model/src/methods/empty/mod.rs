@@ -6,7 +6,7 @@
 
 pub mod sky;
 
-use super::shared::sun::visible_fraction;
+use super::shared::sun_disk::visible_fraction;
 use super::shared::{Lanes, Lut, Params, TableSpec, Viewpoint};
 use super::{Domain, SkyModel};
 use glam::DVec3;

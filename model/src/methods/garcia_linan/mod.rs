@@ -24,9 +24,9 @@ use super::shared::march::march_inscattering;
 use super::shared::transmittance::{self, compute_transmittance_lut, sun_transmittance};
 use super::shared::{Lanes, Lut, Params, Spacing, TableSpec, Viewpoint, add};
 use super::{Domain, SkyModel};
+use crate::csv_table::tables;
 use crate::geometry::rho_squared;
 use crate::scene::FittedConstants;
-use crate::table::tables;
 use glam::DVec3;
 use std::f64::consts::PI;
 

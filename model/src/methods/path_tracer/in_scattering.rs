@@ -25,7 +25,7 @@ use crate::Atmosphere;
 use crate::constants::SUN_ANGULAR_RADIUS_RAD;
 use crate::geometry::{Ray, altitude_along, distance_to_top, hits_ground, rho_squared};
 use crate::methods::rng::Rng;
-use crate::methods::shared::sun::visible_fraction;
+use crate::methods::shared::sun_disk::visible_fraction;
 use glam::DVec3;
 
 /// Sub-intervals of a segment's proposal density.

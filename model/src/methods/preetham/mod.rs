@@ -16,13 +16,13 @@
 
 pub mod sky;
 
-use super::shared::sun::visible_fraction;
+use super::shared::sun_disk::visible_fraction;
 use super::shared::{Lanes, Lut, Params, TableSpec, Viewpoint};
 use super::{Domain, GROUND_VIEW_MAX_ALTITUDE_M, SkyModel};
 use crate::colour::cie1931;
 use crate::constants::{VISIBLE_MAX_NM, VISIBLE_MIN_NM};
-use crate::solar::SolarSpectrum;
-use crate::table::tables;
+use crate::csv_table::tables;
+use crate::solar_spectrum::SolarSpectrum;
 use glam::DVec3;
 use std::sync::OnceLock;
 

@@ -6,7 +6,7 @@ use super::{
     spectral_basis, sun_transmittance,
 };
 use crate::geometry::{distance_to_ground, hits_ground};
-use crate::methods::shared::sun::visible_fraction;
+use crate::methods::shared::sun_disk::visible_fraction;
 use crate::methods::shared::{Lanes, Params};
 use glam::DVec3;
 use std::f64::consts::PI;

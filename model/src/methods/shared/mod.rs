@@ -6,20 +6,20 @@
 //! in [`crate::geometry`]. WGSL twins are in `shaders/common/`.
 
 pub mod exponential;
+pub mod lut;
 pub mod march;
 pub mod moving_sky;
 pub mod optics;
 pub mod ray;
 pub mod segments_sky;
 pub mod single_scattering_sky;
-pub mod sun;
-pub mod table;
+pub mod sun_disk;
 pub mod transmittance;
 
+pub use lut::{Lut, TableSpec};
 pub use march::{SMALL_OPTICAL_THICKNESS, Spacing, segment_weight};
 pub use optics::{BatchOptics, Medium, PROFILE_SAMPLES, Params, Steps, Viewpoint, viewpoint};
-pub use sun::sun_disk;
-pub use table::{Lut, TableSpec};
+pub use sun_disk::sun_disk;
 
 use crate::wavelengths::LANES;
 use glam::DVec3;

@@ -8,7 +8,7 @@
 
 use super::exponential::{self, ExponentialMedium};
 use super::ray::camera_coords;
-use super::sun::visible_fraction;
+use super::sun_disk::visible_fraction;
 use super::transmittance::{transmittance_h_mu_from_texel, transmittance_texel_from_h_mu};
 use super::{
     Lanes, Lut, Params, TableSpec, aerosol_phase, entry_into_atmosphere, rayleigh_phase,

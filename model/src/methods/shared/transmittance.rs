@@ -85,7 +85,7 @@ pub fn ground_to_top(t: &Lut, layer: usize) -> Lanes {
 /// Transmittance to the sun from (h, mu_s), times the visible fraction of the sun's disk above
 /// the horizon (Earth's shadow with its penumbra, as in Bruneton 2017).
 pub fn sun_transmittance(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -> Lanes {
-    let visible = super::sun::visible_fraction(h, mu_s, p.bottom_radius_m);
+    let visible = super::sun_disk::visible_fraction(h, mu_s, p.bottom_radius_m);
     scale(transmittance(p, t, layer, h, mu_s), visible)
 }
 

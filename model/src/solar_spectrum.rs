@@ -3,8 +3,8 @@
 //! ASTM G173-03 (Gueymard) is the default; Gueymard (2004), Bruneton's 10 nm bins of ASTM G173
 //! and the Wehrli (1985) table of Skytracer are selectable to reproduce other renderers.
 
+use crate::csv_table::tables;
 use crate::spectrum::Spectrum;
-use crate::table::tables;
 use serde::{Deserialize, Serialize};
 use std::sync::OnceLock;
 

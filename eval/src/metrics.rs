@@ -5,9 +5,9 @@
 //! `nv-flip`) on those display images; and HDR-FLIP (Andersson et al. 2021): LDR-FLIP under the
 //! ACES tone curve at exposures spanning the reference's luminance range, per-pixel maximum.
 
-use crate::colour::{delta_e2000, linear_srgb_to_lab, linear_srgb_to_xyz, srgb_decode};
-use crate::display::{EXPOSURE_SCALE, display, to_u8};
-use crate::scene::ToneMap;
+use atmoscope_model::colour::{delta_e2000, linear_srgb_to_lab, linear_srgb_to_xyz, srgb_decode};
+use atmoscope_model::display::{EXPOSURE_SCALE, display, to_u8};
+use atmoscope_model::scene::ToneMap;
 use serde::Serialize;
 
 /// The display transform under which display-referred metrics are computed.

@@ -119,10 +119,11 @@ fn split_csv(line: &str) -> Vec<String> {
 /// Declares a lazily parsed embedded table.
 macro_rules! embedded_table {
     ($fn_name:ident, $file:literal) => {
-        pub fn $fn_name() -> &'static $crate::table::Table {
-            static TABLE: std::sync::OnceLock<$crate::table::Table> = std::sync::OnceLock::new();
+        pub fn $fn_name() -> &'static $crate::csv_table::Table {
+            static TABLE: std::sync::OnceLock<$crate::csv_table::Table> =
+                std::sync::OnceLock::new();
             TABLE.get_or_init(|| {
-                $crate::table::Table::parse($file, include_str!(concat!("../data/", $file)))
+                $crate::csv_table::Table::parse($file, include_str!(concat!("../data/", $file)))
             })
         }
     };

@@ -25,10 +25,12 @@
 //! planet-shadow views the sun is 3° below the horizon to the viewer's right (the suite's has it
 //! behind).
 
-use crate::aerosol::AerosolType;
-use crate::scene::{AerosolPhase, Method, OzoneColumn, Scene, SunSettings, WavelengthSet};
-use crate::table::Table;
-use crate::views::{self, View};
+use atmoscope_model::aerosol::AerosolType;
+use atmoscope_model::csv_table::Table;
+use atmoscope_model::scene::{
+    AerosolPhase, Method, OzoneColumn, Scene, SunSettings, WavelengthSet,
+};
+use atmoscope_model::views::{self, View};
 use std::sync::OnceLock;
 
 /// His sun's irradiance, per channel (no unit).
@@ -41,7 +43,7 @@ pub const OZONE_COLUMN_DU: f64 = 300.0;
 /// One value of Hillaire's (2020) demo Earth (`data/hillaire2020_earth_defaults.csv`), in the
 /// table's unit.
 pub fn hillaire_earth(parameter: &str) -> f64 {
-    let t = crate::table::tables::hillaire_earth().filter("parameter", parameter);
+    let t = atmoscope_model::csv_table::tables::hillaire_earth().filter("parameter", parameter);
     *t.numbers("value")
         .first()
         .unwrap_or_else(|| panic!("hillaire2020_earth_defaults.csv lacks {parameter}"))
@@ -150,17 +152,20 @@ pub fn scene() -> Scene {
     let a = &mut s.atmosphere;
     a.planet_radius_km = bottom_km;
     a.top_km = top_km - bottom_km;
-    a.air_profile = crate::profiles::AirProfile::Exponential8km;
+    a.air_profile = atmoscope_model::profiles::AirProfile::Exponential8km;
     // His air scatters as Bruneton's λ⁻⁴ fit, 17 % more than air at sea level: the density
     // that gives his green channel's coefficient at 550 nm.
-    let green = crate::table::tables::hillaire_earth()
+    let green = atmoscope_model::csv_table::tables::hillaire_earth()
         .filter("parameter", "rayleigh_scattering")
         .filter("channel", "G")
         .numbers("value")[0];
-    let ground_m3 = crate::profiles::AirProfile::Exponential8km.number_density_m3(0.0);
+    let ground_m3 = atmoscope_model::profiles::AirProfile::Exponential8km.number_density_m3(0.0);
     a.air_density_scale = green
         / 1000.0
-        / (ground_m3 * crate::rayleigh::cross_section_m2(crate::wavelengths::RGB3_NM[1]));
+        / (ground_m3
+            * atmoscope_model::rayleigh::cross_section_m2(
+                atmoscope_model::wavelengths::RGB3_NM[1],
+            ));
     a.rayleigh_depolarisation = false;
     a.aerosol.kind = AerosolType::Custom;
     // Extinction (km⁻¹) at the ground over the scale height (km): the vertical optical depth.
@@ -170,7 +175,7 @@ pub fn scene() -> Scene {
     a.aerosol.custom.asymmetry_g = hillaire_earth("mie_phase_g");
     a.aerosol.custom.angstrom_exponent = 0.0;
     a.aerosol.custom.scale_height_km = aerosol_scale_height_km;
-    a.ozone.profile = crate::profiles::OzoneProfile::Tent;
+    a.ozone.profile = atmoscope_model::profiles::OzoneProfile::Tent;
     a.ozone.column = OzoneColumn::Du(OZONE_COLUMN_DU);
     a.ground_albedo = hillaire_earth("ground_albedo");
     s.render.wavelengths = WavelengthSet::Rgb3;
@@ -271,18 +276,18 @@ mod tests {
     /// their cross-sections close to his coefficients.
     #[test]
     fn his_earth_has_his_coefficients() {
-        use crate::methods::shared::Params;
+        use atmoscope_model::methods::shared::Params;
         let p = Params::new(
-            &crate::Atmosphere::for_scene(&scene()),
+            &atmoscope_model::Atmosphere::for_scene(&scene()),
             WavelengthSet::Rgb3,
-            crate::scene::Quality::Medium,
+            atmoscope_model::scene::Quality::Medium,
         );
         let per_km = |m: f64| m * 1000.0;
         let ground = p.medium(0, 0.0);
         let peak = p.medium(0, 25_000.0);
         for (lane, channel) in ["R", "G", "B"].into_iter().enumerate() {
             let his = |name: &str| {
-                let t = crate::table::tables::hillaire_earth()
+                let t = atmoscope_model::csv_table::tables::hillaire_earth()
                     .filter("parameter", name)
                     .filter("channel", channel);
                 t.numbers("value")[0]
