@@ -309,7 +309,10 @@ impl Default for CameraSettings {
 }
 
 /// Rendering method: a row of the model registry (`methods::MODELS`), which says what each is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+/// Written as the variant's name (`Bruneton`); read back also by its registry id, as the
+/// command line spells it (`--set render.method=garcia-linan`; in a RON preset, where an
+/// identifier cannot hold a hyphen, `method: garcia_linan`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Default)]
 pub enum Method {
     #[default]
     Hillaire,
@@ -331,6 +334,66 @@ pub enum Method {
     Preetham,
     Empty,
     PathTracer,
+}
+
+impl<'de> Deserialize<'de> for Method {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Method, D::Error> {
+        use serde::de::{self, EnumAccess, VariantAccess, Visitor};
+        use std::fmt;
+
+        /// A model's name where an enum's variant stands: an identifier in RON, a string in
+        /// JSON (`--set render.method=bruneton`).
+        struct Name(String);
+        impl<'de> Deserialize<'de> for Name {
+            fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Name, D::Error> {
+                struct NameVisitor;
+                impl Visitor<'_> for NameVisitor {
+                    type Value = Name;
+                    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                        f.write_str("a model's name")
+                    }
+                    fn visit_str<E: de::Error>(self, s: &str) -> Result<Name, E> {
+                        Ok(Name(s.to_string()))
+                    }
+                }
+                d.deserialize_identifier(NameVisitor)
+            }
+        }
+
+        struct MethodVisitor;
+        impl<'de> Visitor<'de> for MethodVisitor {
+            type Value = Method;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a model: its registry id or name")
+            }
+            fn visit_enum<A: EnumAccess<'de>>(self, data: A) -> Result<Method, A::Error> {
+                let (Name(name), variant) = data.variant()?;
+                variant.unit_variant()?;
+                Method::from_name(&name).ok_or_else(|| {
+                    let ids: Vec<&str> = crate::methods::MODELS.iter().map(|m| m.id).collect();
+                    de::Error::custom(format!(
+                        "unknown model `{name}`, expected one of {}",
+                        ids.join(", ")
+                    ))
+                })
+            }
+        }
+
+        deserializer.deserialize_enum("Method", &[], MethodVisitor)
+    }
+}
+
+impl Method {
+    /// The method a user named: its registry id (`garcia-linan`, or `garcia_linan` where a
+    /// hyphen cannot stand, as in a RON identifier) or its variant's name (`GarciaLinan`).
+    pub fn from_name(name: &str) -> Option<Method> {
+        crate::methods::MODELS
+            .iter()
+            .find(|m| {
+                m.id == name || m.id.replace('-', "_") == name || format!("{:?}", m.method) == name
+            })
+            .map(|m| m.method)
+    }
 }
 
 /// Wavelengths a render samples.
@@ -1270,6 +1333,40 @@ mod tests {
                 .is_err()
         );
         assert_eq!(s, before, "a failed override changes nothing");
+    }
+
+    /// A model is read by its registry id as well as by its variant's name: in a preset, in
+    /// `--set` and in old presets alike; an unknown name lists the ids.
+    #[test]
+    fn a_model_is_read_by_its_registry_id_or_its_name() {
+        let mut s = Scene::default();
+        for (written, method) in [
+            ("bruneton", Method::Bruneton),
+            ("garcia-linan", Method::GarciaLinan),
+            ("GalajSplineMs", Method::GalajSplineMs),
+            ("galaj-spline-ms", Method::GalajSplineMs),
+        ] {
+            s.set_path("render.method", written).unwrap();
+            assert_eq!(s.render.method, method, "--set render.method={written}");
+        }
+        let err = s.set_path("render.method", "bruneton-2099").unwrap_err();
+        assert!(err.to_string().contains("garcia-linan"), "{err}");
+        for (written, method) in [
+            ("Bruneton", Method::Bruneton),
+            ("bruneton", Method::Bruneton),
+            ("garcia_linan", Method::GarciaLinan),
+        ] {
+            let mut preset = Scene::default();
+            preset.render.method = Method::Hillaire;
+            let text = preset
+                .to_ron()
+                .replace("method: Hillaire", &format!("method: {written}"));
+            assert_ne!(text, preset.to_ron(), "the preset names its method");
+            let read = Scene::from_ron(&text, Path::new("test.ron")).unwrap();
+            assert_eq!(read.render.method, method, "method: {written}");
+        }
+        let written = Scene::from_ron(&Scene::default().to_ron(), Path::new("a.ron")).unwrap();
+        assert_eq!(written, Scene::default(), "a written preset reads back");
     }
 
     /// With the sun placed by date and place, a zonal-mean ozone column takes the sun's
