@@ -290,7 +290,13 @@ impl Engine {
         self.last = Some(frame.snapshot);
         self.stats = FrameStats {
             method: method_on_screen,
-            sky_tile: if ran.iter().any(|&i| names[i] == "sky") {
+            // The tiles are those of the pass that draws the view's radiance, when it ran.
+            sky_tile: if ran.iter().any(|&i| {
+                pipelines
+                    .specs()
+                    .nth(i)
+                    .is_some_and(|s| !s.is_table() && s.writes.contains(&RADIANCE))
+            }) {
                 frame.sky_tile
             } else {
                 1

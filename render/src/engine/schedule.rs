@@ -85,7 +85,9 @@ impl FrameSetup {
             bottom_radius_m: params.bottom_radius_m,
             above,
             sun_below_tables: above
-                || viewpoint.mu_s < atmoscope_model::methods::bruneton::MU_S_MIN,
+                || gpu
+                    .lowest_table_mu_s
+                    .is_some_and(|lowest| viewpoint.mu_s < lowest),
             sky_tile: 1,
             write_radiance: true,
             bands: true,

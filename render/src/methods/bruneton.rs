@@ -36,6 +36,7 @@ const SKY_CONSTANTS_BELOW_TABLES: [Constant; 11] = {
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Bruneton,
+    lowest_table_mu_s: Some(atmoscope_model::methods::bruneton::MU_S_MIN),
     common: &[SUN_DISK_FROM_TABLE, shader!("bruneton/common.wgsl")],
     constants: |_| [0.0; 12],
     passes: &[

@@ -25,6 +25,7 @@ const VOLUME: Dispatch = Dispatch::Volume(RAYLEIGH);
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Elek,
+    lowest_table_mu_s: None,
     common: &[SUN_DISK_FROM_TABLE, shader!("elek/common.wgsl")],
     constants: |_| [0.0; 12],
     passes: &[

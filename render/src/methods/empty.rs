@@ -6,6 +6,7 @@ use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Empty,
+    lowest_table_mu_s: None,
     common: &[],
     constants: |_| [0.0; 12],
     passes: &[PassSpec::sky(shader!("empty/sky.wgsl"), &[])],

@@ -8,6 +8,7 @@ use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Flat,
+    lowest_table_mu_s: None,
     common: &SEGMENTS_COMMON,
     constants: |p| segments_sky::constants(p, FLAT_SEGMENTS),
     passes: &[SEGMENTS_SKY_PASS],

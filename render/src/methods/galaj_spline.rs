@@ -32,6 +32,7 @@ const SKY_SHADER: Shader = SINGLE_SCATTERING_SKY;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::GalajSpline,
+    lowest_table_mu_s: None,
     common: &[NO_HIGHER_ORDERS, EXPONENTIAL, COLUMNS, SUN_ROUTE],
     constants: |p| single_scattering_sky::constants(p, Way::GalajSpline),
     passes: &[
@@ -45,6 +46,7 @@ pub const METHOD: GpuMethod = GpuMethod {
 /// With Hillaire's Ψ_ms table as the higher orders (the `galaj-spline-ms` row).
 pub const METHOD_MS: GpuMethod = GpuMethod {
     method: Method::GalajSplineMs,
+    lowest_table_mu_s: None,
     common: &[HILLAIRE_HIGHER_ORDERS, EXPONENTIAL, COLUMNS, SUN_ROUTE],
     constants: |p| single_scattering_sky::constants(p, Way::GalajSpline),
     passes: &[

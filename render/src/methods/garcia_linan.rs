@@ -9,6 +9,7 @@ use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::GarciaLinan,
+    lowest_table_mu_s: None,
     common: &[
         SUN_DISK_FROM_TABLE,
         shader!("common/march.wgsl"),

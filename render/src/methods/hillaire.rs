@@ -21,6 +21,7 @@ pub const MULTIPLE_SCATTERING_PASS: PassSpec = PassSpec::table(
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Hillaire,
+    lowest_table_mu_s: None,
     common: &[
         SUN_DISK_FROM_TABLE,
         shader!("common/march.wgsl"),

@@ -344,6 +344,11 @@ impl PassSpec {
 #[derive(Debug, Clone, Copy)]
 pub struct GpuMethod {
     pub method: Method,
+    /// The cosine of the largest sun zenith angle the model's tables cover, where a view ray
+    /// may start with the sun below it and the passes read other tables
+    /// (`Constant::SunBelowTables`, `PassSpec::reads_with_sun_below_tables`); None: tables
+    /// that cover every sun. −1 to 1.
+    pub lowest_table_mu_s: Option<f64>,
     /// WGSL files every pass of the model includes after `shaders/common/`.
     pub common: &'static [Shader],
     /// Table passes in dependency order, then the sky pass (which writes [`RADIANCE`]).

@@ -11,6 +11,7 @@ use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Nishita,
+    lowest_table_mu_s: None,
     common: &SINGLE_SCATTERING_COMMON,
     constants: |p| single_scattering_sky::constants(p, Way::March(Rule::Midpoint)),
     passes: &NESTED_MARCH_PASSES,
@@ -19,6 +20,7 @@ pub const METHOD: GpuMethod = GpuMethod {
 /// With Hillaire's Ψ_ms table as the higher orders (the `nishita-ms` row).
 pub const METHOD_MS: GpuMethod = GpuMethod {
     method: Method::NishitaMs,
+    lowest_table_mu_s: None,
     common: &SINGLE_SCATTERING_MS_COMMON,
     constants: |p| single_scattering_sky::constants(p, Way::March(Rule::Midpoint)),
     passes: &NESTED_MARCH_MS_PASSES,

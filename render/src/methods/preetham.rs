@@ -7,6 +7,7 @@ use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Preetham,
+    lowest_table_mu_s: None,
     common: &[],
     constants: preetham::constants,
     passes: &[PassSpec::sky(shader!("preetham/sky.wgsl"), &[])],

@@ -12,6 +12,7 @@ use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Schuler,
+    lowest_table_mu_s: None,
     common: &SINGLE_SCATTERING_COMMON,
     constants: |p| single_scattering_sky::constants(p, Way::SchulerChapman),
     passes: &SINGLE_SCATTERING_PASSES,
@@ -20,6 +21,7 @@ pub const METHOD: GpuMethod = GpuMethod {
 /// With Hillaire's Ψ_ms table as the higher orders (the `schuler-ms` row).
 pub const METHOD_MS: GpuMethod = GpuMethod {
     method: Method::SchulerMs,
+    lowest_table_mu_s: None,
     common: &SINGLE_SCATTERING_MS_COMMON,
     constants: |p| single_scattering_sky::constants(p, Way::SchulerChapman),
     passes: &SINGLE_SCATTERING_MS_PASSES,

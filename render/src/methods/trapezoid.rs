@@ -13,6 +13,7 @@ use atmoscope_model::scene::Method;
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Trapezoid,
+    lowest_table_mu_s: None,
     common: &SINGLE_SCATTERING_COMMON,
     constants: |p| single_scattering_sky::constants(p, Way::March(Rule::Trapezoid)),
     passes: &NESTED_MARCH_PASSES,
@@ -21,6 +22,7 @@ pub const METHOD: GpuMethod = GpuMethod {
 /// With Hillaire's Ψ_ms table as the higher orders (the `trapezoid-ms` row).
 pub const METHOD_MS: GpuMethod = GpuMethod {
     method: Method::TrapezoidMs,
+    lowest_table_mu_s: None,
     common: &SINGLE_SCATTERING_MS_COMMON,
     constants: |p| single_scattering_sky::constants(p, Way::March(Rule::Trapezoid)),
     passes: &NESTED_MARCH_MS_PASSES,
