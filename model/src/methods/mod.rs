@@ -889,9 +889,13 @@ mod tests {
             let s = m.stated;
             assert!(s.stress_cases > 0, "{}", m.id);
             assert_eq!(s.daylight_delta_e2000.is_none(), m.baseline, "{}", m.id);
-            for bound in [s.daylight_delta_e2000, s.twilight_delta_e2000, s.probe_relative_error]
-                .into_iter()
-                .flatten()
+            for bound in [
+                s.daylight_delta_e2000,
+                s.twilight_delta_e2000,
+                s.probe_relative_error,
+            ]
+            .into_iter()
+            .flatten()
             {
                 assert!(bound.is_finite() && bound > 0.0, "{}: {bound}", m.id);
             }
