@@ -1773,3 +1773,32 @@ fn render_burns_a_caption_under_a_png_and_refuses_one_on_an_exr() {
     assert!(!exr.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A view named on the command line whose reference is missing is an error that says how to
+/// render the references, for every command that reads them; unnamed, it is skipped.
+#[test]
+fn a_named_view_without_its_reference_is_an_error_that_says_how_to_render_it() {
+    let empty = std::env::temp_dir().join(format!("atmoscope-no-refs-{}", std::process::id()));
+    std::fs::create_dir_all(&empty).expect("empty folder");
+    let refs = empty.to_str().expect("UTF-8 path");
+    for args in [
+        vec![
+            "bench",
+            "accuracy",
+            "--refs",
+            refs,
+            "--views",
+            "ground-noon",
+        ],
+        vec!["fit-garcia-linan", "--refs", refs, "--views", "ground-noon"],
+    ] {
+        let o = atmoscope(&args);
+        assert!(!o.status.success(), "{args:?}");
+        let err = stderr(&o);
+        assert!(
+            err.contains("ground-noon.exr: no reference")
+                && err.contains("atmoscope reference --suite"),
+            "{args:?}: {err}"
+        );
+    }
+}

@@ -1,7 +1,7 @@
 //! What several subcommands share: the headless GPU, the path-traced references and their
 //! cache, medians and the sun's disk in a view. No subcommand imports another; they import this.
 
-use crate::images::write_exr;
+use crate::images::{read_exr, write_exr};
 use anyhow::Context;
 use atmoscope_model::Scene;
 use atmoscope_model::camera::{Camera, Projection};
@@ -10,6 +10,7 @@ use atmoscope_model::methods::path_tracer::PathTracerSettings;
 use atmoscope_model::reference::ReferenceRender;
 use atmoscope_render::{DisplayMode, GpuContext};
 use indicatif::{ProgressBar, ProgressStyle};
+use std::path::Path;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
@@ -176,4 +177,28 @@ impl ViewArg {
             ViewArg::Luminance => (Projection::Fisheye, DisplayMode::LUMINANCE),
         }
     }
+}
+
+/// The path-traced reference of suite view `view` in `refs` (`<view>.exr`: linear sRGB,
+/// width, height). A missing file is skipped (None) unless the user `named` the view, when it
+/// is an error that says how to render the references.
+pub fn suite_reference(
+    refs: &Path,
+    view: &str,
+    named: bool,
+) -> anyhow::Result<Option<(Vec<[f64; 3]>, u32, u32)>> {
+    let path = refs.join(format!("{view}.exr"));
+    if !path.exists() {
+        if named {
+            anyhow::bail!(
+                "{}: no reference (run `atmoscope reference --suite --out-dir {}`)",
+                path.display(),
+                refs.display()
+            );
+        }
+        return Ok(None);
+    }
+    read_exr(&path)
+        .with_context(|| format!("reference of {view}"))
+        .map(Some)
 }

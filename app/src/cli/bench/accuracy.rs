@@ -4,9 +4,8 @@
 
 use crate::args::parse_wavelengths;
 use crate::args::set_name;
-use crate::cli::common::gpu;
-use crate::images::read_exr;
-use anyhow::Context;
+use crate::cli::common::{gpu, suite_reference};
+
 use atmoscope_eval::metrics::{DisplaySetup, compare};
 use atmoscope_model::Scene;
 use atmoscope_model::scene::Method;
@@ -78,19 +77,10 @@ pub fn run(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
         if !args.views.is_empty() && !args.views.iter().any(|n| n == v.name.as_str()) {
             continue;
         }
-        let path = args.refs.join(format!("{}.exr", v.name));
-        if !path.exists() {
-            if !args.views.is_empty() {
-                anyhow::bail!(
-                    "{}: no reference (run `atmoscope reference --suite --out-dir {}`)",
-                    path.display(),
-                    args.refs.display()
-                );
-            }
+        let Some((reference, w, h)) = suite_reference(&args.refs, &v.name, !args.views.is_empty())?
+        else {
             continue;
-        }
-        let (reference, w, h) =
-            read_exr(&path).with_context(|| format!("reference of {}", v.name))?;
+        };
         let scene: Scene = v.apply(&Scene::default());
         let setup = DisplaySetup {
             exposure_ev: scene.display.exposure_ev,

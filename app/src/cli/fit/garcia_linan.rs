@@ -10,8 +10,9 @@
 //! luminance, which weighs a dark view as much as a bright one.
 
 use crate::args::parse_wavelengths;
-use crate::images::read_exr;
-use anyhow::{Context, bail};
+use crate::cli::common::suite_reference;
+
+use anyhow::bail;
 use atmoscope_eval::optimize::nelder_mead;
 use atmoscope_model::camera::Camera;
 use atmoscope_model::colour::linear_srgb_to_xyz;
@@ -124,19 +125,9 @@ fn load(args: &FitGarciaLinanArgs) -> anyhow::Result<Vec<ViewSamples>> {
             }
             continue;
         }
-        let path = args.refs.join(format!("{}.exr", v.name));
-        if !path.exists() {
-            if named {
-                bail!(
-                    "{}: no reference (run `atmoscope reference --suite --out-dir {}`)",
-                    path.display(),
-                    args.refs.display()
-                );
-            }
+        let Some((reference, w, h)) = suite_reference(&args.refs, &v.name, named)? else {
             continue;
-        }
-        let (reference, w, h) =
-            read_exr(&path).with_context(|| format!("reference of {}", v.name))?;
+        };
         let atm = Atmosphere::for_scene(&scene);
         let params = Params::new(&atm, args.wavelengths, scene.render.quality);
         let transmittance = compute_transmittance_lut(&params);
