@@ -288,9 +288,6 @@ fn probe_runs_every_real_time_model_within_a_bound_of_the_path_tracer() {
     // of it, past its 15 %.
     let truth = probe_values("path-tracer", &["--spp", "32768"]);
     for model in atmoscope_model::methods::realtime() {
-        // The stated bound of each model in this hazy daylight sky (rural aerosol, AOD 0.15,
-        // sun 30°, at the ground). García Liñán's published L_ms was fitted at 10 km and
-        // underestimates multiple scattering at the ground (measured: 25–32 % low).
         // The stated bound of each model in this hazy daylight sky (its registry row); a
         // model that draws no sky is black.
         let Some(bound) = model.stated.probe_relative_error else {

@@ -48,5 +48,13 @@ if cargo nextest --version >/dev/null 2>&1; then
     # nextest runs no doc tests.
     cargo test --workspace --locked --doc
 else
-    cargo test --workspace --locked "$@" -- ${research:+--include-ignored}
+    # --include-ignored is the test harness's own flag: after the user's `--`, if any.
+    if [ -n "$research" ]; then
+        if printf '%s\n' "$@" | grep -qx -- '--'; then
+            set -- "$@" --include-ignored
+        else
+            set -- "$@" -- --include-ignored
+        fi
+    fi
+    cargo test --workspace --locked "$@"
 fi

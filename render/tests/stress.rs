@@ -1,8 +1,10 @@
-//! Numerical stress in CI: property tests over the whole scene space (`atmoscope_render::stress`)
+//! Numerical stress, in the research tier: property tests over the whole scene space
+//! (`atmoscope_render::stress`)
 //! for every real-time model — radiance finite and non-negative on the GPU and in the CPU twin,
 //! the GPU within the stated bound of the twin, direct transmittance falling with more aerosol,
-//! the zenith brightening as the sun climbs. Few cases per model here; `atmoscope stress` is the
-//! long run.
+//! the zenith brightening as the sun climbs. Each model draws the cases its registry row states
+//! (`stated.stress_cases`); `atmoscope stress` runs longer sweeps, and the fast tier's
+//! `stress_reports_every_model_and_replays_a_preset` a short one.
 
 mod common;
 

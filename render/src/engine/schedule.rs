@@ -324,7 +324,7 @@ pub(super) fn with_order_loop(run: &[usize], pipelines: &Pipelines, orders: u32)
 #[cfg(test)]
 mod tests {
     use super::plan;
-    use crate::methods::{DISPLAY, GpuMethod, METER_PASS, RADIANCE, gpu_method};
+    use crate::methods::{DISPLAY, GpuMethod, METER_PASS, PassSpec, RADIANCE, gpu_method};
     use atmoscope_model::methods::{self, Inputs};
 
     /// Every real-time model's passes as data, from the registry.
@@ -383,14 +383,28 @@ mod tests {
                 !first.iter().any(|n| Some(*n) == display),
                 "{id}: {first:?}"
             );
-            // A new atmosphere leaves no table behind: each one runs, or stays marked stale
-            // for the first frame that reads it (in motion, say).
-            for (i, t) in method.specs().enumerate().filter(|(_, s)| s.is_table()) {
-                assert!(
-                    first.contains(&t.name) || deferred[i],
-                    "{id}: the table pass {} neither ran nor was left stale: {first:?}",
-                    t.name
-                );
+            // A new atmosphere runs exactly the tables the sky reads, directly or through
+            // other tables (from inside, still, the ground in view), in the model's order,
+            // then the sky; every other table stays marked stale for a frame that reads it.
+            let specs: Vec<_> = method.specs().collect();
+            let reads = |s: &PassSpec| s.reads_where(false, false, true, false);
+            let mut wanted: Vec<&str> = specs
+                .iter()
+                .filter(|s| s.name == sky(method))
+                .flat_map(|s| reads(s))
+                .collect();
+            let mut expected = Vec::new();
+            for s in specs.iter().rev().filter(|s| s.is_table()) {
+                if s.writes.iter().any(|w| wanted.contains(w)) {
+                    wanted.extend(reads(s));
+                    expected.push(s.name);
+                }
+            }
+            expected.reverse();
+            expected.push(sky(method));
+            assert_eq!(first, expected, "{id}: a new atmosphere");
+            for (i, t) in specs.iter().enumerate().filter(|(_, s)| s.is_table()) {
+                assert_eq!(deferred[i], !first.contains(&t.name), "{id}: {}", t.name);
             }
             assert_eq!(
                 names(method, Inputs::NONE, &mut deferred),
