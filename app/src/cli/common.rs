@@ -179,6 +179,9 @@ impl ViewArg {
     }
 }
 
+/// Linear sRGB radiance, row-major, with its width and height.
+pub type LinearImage = (Vec<[f64; 3]>, u32, u32);
+
 /// The path-traced reference of suite view `view` in `refs` (`<view>.exr`: linear sRGB,
 /// width, height). A missing file is skipped (None) unless the user `named` the view, when it
 /// is an error that says how to render the references.
@@ -186,7 +189,7 @@ pub fn suite_reference(
     refs: &Path,
     view: &str,
     named: bool,
-) -> anyhow::Result<Option<(Vec<[f64; 3]>, u32, u32)>> {
+) -> anyhow::Result<Option<LinearImage>> {
     let path = refs.join(format!("{view}.exr"));
     if !path.exists() {
         if named {
