@@ -530,8 +530,8 @@ impl TableBuffers {
 
     /// Zeroes up to `len` bytes of the tables from byte `start` of all of them laid end to end,
     /// and returns how many it zeroed. wgpu zero-fills a buffer where it is first used, all of
-    /// it in that submission (Bruneton's Spectral32 tables, 170 MB, took 100 ms on lavapipe);
-    /// cleared ahead in pieces they are not filled again.
+    /// it in that submission (a large frame for tables of hundreds of MB, such as Bruneton's at
+    /// Spectral32); cleared ahead in pieces they are not filled again.
     pub fn clear(&self, encoder: &mut wgpu::CommandEncoder, start: u64, len: u64) -> u64 {
         let sizes: Vec<u64> = self.tables.iter().map(|(_, b)| b.size()).collect();
         let mut cleared = 0;

@@ -54,9 +54,9 @@ pub fn march_split(texel_group_size: u32) -> u32 {
 /// Texels along a row of Hillaire's Ψ_ms table that one workgroup computes together
 /// (`Dispatch::TexelRuns`): the rays from one altitude are the same for every sun angle, so a
 /// workgroup too small to split its directions' marches (a CPU adapter's 16) marches each ray
-/// once for 4 sun angles: on lavapipe the pass took 17.3 ms a texel a workgroup, 13.2 with
-/// runs of 2, 11.1 with 4 and 13.2 with 8 (Spectral4, `bench gpu --methods hillaire`). A group
-/// of 64 or more (a GPU, which wants the invocations in flight) keeps one texel a workgroup.
+/// once for 4 sun angles, the run length that timed fastest (`bench gpu --methods hillaire`).
+/// A group of 64 or more (a GPU, which wants the invocations in flight) keeps one texel a
+/// workgroup.
 pub fn texel_run(texel_group_size: u32) -> u32 {
     if texel_group_size >= 64 { 1 } else { 4 }
 }

@@ -31,8 +31,8 @@ pub(super) fn grid(pipelines: &Pipelines, i: usize, layers: u32, size: [u32; 2])
 }
 
 /// Units of work a pass is cut into when it runs in slices: its workgroups (a layer of a 3D
-/// table being one of its slices of one batch; workgroups are one deep in z). Not rows: one
-/// row of Bruneton's scattering density takes 60–117 ms on lavapipe, longer than a frame may.
+/// table being one of its slices of one batch; workgroups are one deep in z). Not rows: on a
+/// CPU adapter one row of Bruneton's scattering density takes longer than a frame may.
 pub(super) fn units(grid: [u32; 3]) -> u32 {
     grid[0] * grid[1] * grid[2]
 }

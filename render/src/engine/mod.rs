@@ -79,8 +79,8 @@ struct AtmosphereState {
 }
 
 /// The moving sky of a march per pixel (`methods::MOVING_SKY`) where the engine slices its
-/// work. Built whole, it cost a frame 216–599 ms on lavapipe at Spectral4 (1.6 s for Nishita
-/// at Spectral32) each time the sun moved in motion. Once one is complete, a new one is built
+/// work. Built whole it would cost a frame many times its budget each time the sun moves in
+/// motion, so once one is complete, a new one is built
 /// in slices across frames in `TableBuffers::next_moving_sky`, from the globals of the frame
 /// that started it, while the sky pass reads the last complete one (the sky of a slightly
 /// earlier sun or altitude, turned to the sun's azimuth of the moment), then copied over it.

@@ -58,9 +58,9 @@ impl Engine {
             frame.sun_below_tables,
             ground,
             // A rebuild draws its view at full resolution, and builds the moving sky of a
-            // march per pixel where frames in motion are drawn in tiles: the first of them
-            // would build it whole (216 ms for Nishita on lavapipe at Spectral4, 1.6 s at
-            // Spectral32), a few percent of the still frame the rebuild draws.
+            // march per pixel where frames in motion are drawn in tiles: otherwise the first
+            // of them would build it whole, in one frame, at a small share of the cost of the
+            // still frame the rebuild draws anyway.
             self.sky_tile > 1,
             self.unwanted(),
             &mut deferred,

@@ -20,8 +20,8 @@ pub(super) struct Slicing {
 /// Share of the target a slice timed alone aims at. Its time is its own, where an interval
 /// until a later frame saw it done also held a share of that frame's work, which had left
 /// room for a slice costing more per workgroup than the last (rows of the sky with the sun or
-/// the horizon in them, Bruneton's scattering density): aimed at the whole target, Hillaire's
-/// Spectral32 still frame after a turn took up to 104 ms a frame on lavapipe.
+/// the horizon in them, Bruneton's scattering density): aimed at the whole target, such a
+/// slice overshoots the frame's budget several times over.
 pub(super) const ALONE_AIM: f64 = 0.75;
 
 /// How long a slice took: timed alone ([`Slicing::alone`]), or from its submission to the
@@ -133,8 +133,8 @@ pub(super) fn steered_units(count: u32, took_s: f64, shortest_s: f64, target_s: 
 /// resolution (a march per pixel takes seconds on a software adapter; the image in tiles stays
 /// on screen and sharpens from the top down), and the next moving sky of a march per pixel
 /// (`MovingSky`). Slices are counted in workgroups along rows, as a rebuild's ([`units`],
-/// [`slice`]): one row of workgroups 1280 pixels wide takes about 105 ms of Nishita's march on
-/// lavapipe and 230 ms of Gałaj's spline, longer than a frame may.
+/// [`slice`]): on a CPU adapter one row of workgroups across a wide view takes longer than a
+/// frame may for the nested marches.
 pub(super) struct Slices {
     /// The frame's dispatches at full resolution, in order.
     pub(super) work: Vec<Work>,
