@@ -235,13 +235,19 @@ impl Engine {
     /// speed differs. Forgets every compiled pass and table.
     pub fn set_texel_group_size(&mut self, n: u32) {
         self.texel_group_size = n.clamp(1, 256).next_power_of_two();
+        self.forget_gpu_state();
+        self.deferred.clear();
+    }
+
+    /// Drops every compiled pass, table and target and the last frame's inputs, so that the
+    /// next frame builds everything anew.
+    fn forget_gpu_state(&mut self) {
         self.pipelines.clear();
         self.atmosphere = None;
         self.rebuild = None;
         self.refine = None;
         self.target = None;
         self.last = None;
-        self.deferred.clear();
     }
 
     /// Forgets the previous frame, so the next one runs every pass (a full rebuild).
@@ -394,12 +400,7 @@ impl Engine {
             }
             Err(fault) => {
                 // Whatever the frame created may be invalid: start from nothing.
-                self.pipelines.clear();
-                self.atmosphere = None;
-                self.rebuild = None;
-                self.refine = None;
-                self.target = None;
-                self.last = None;
+                self.forget_gpu_state();
                 Err(fault)
             }
         }
