@@ -13,6 +13,7 @@ pub mod methods;
 pub mod passes;
 pub mod prelude;
 pub mod readback;
+pub mod spec;
 pub mod stress;
 pub mod uniforms;
 pub mod views;

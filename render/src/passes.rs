@@ -2,12 +2,8 @@
 //! writes, shader modules, pipeline variants compiled on first use, and the storage buffers of
 //! the model's tables (vec4 texels in the order of `model::methods::shared::Lut`).
 
-use crate::methods::{
-    COMMON, Constant, DISPLAY, GpuMethod, MOVING_SKY, MOVING_SKY_ENTRY_POINT, MOVING_SKY_RADIANCE,
-    PassSpec, RADIANCE, SKY_ENTRY_POINT, SUN_ROUTE, SUN_ROUTE_FROM_TABLE, SUN_ROUTE_MARCHED,
-    SUN_ROUTE_TABLE, TONE, VIEW_PASSES, VIEW_RADIANCE,
-};
 use crate::prelude::{march_split, texel_run, wgsl_prelude};
+use crate::spec::{Constant, GpuMethod, MOVING_SKY, PassSpec, RADIANCE, Resource, bindings};
 use crate::uniforms::{Batch, Globals, MIE_PHASE_ROWS_LEN};
 use atmoscope_model::methods::shared::{PROFILE_SAMPLES, Params};
 use atmoscope_model::methods::{ModelInfo, shared::TableSpec};
@@ -49,47 +45,45 @@ fn storage_texture(binding: u32, format: wgpu::TextureFormat) -> wgpu::BindGroup
     )
 }
 
-/// Binding of a name in `shaders/common/bindings.wgsl`; the registry tests make sure it exists.
-fn bound(id: &str) -> u32 {
-    crate::methods::binding(id).unwrap_or(u32::MAX)
+/// The group-1 binding of `resource` in `pass` (`spec::bindings`); every resource a pass
+/// binds is declared in the registry or is one of the view's (the registry tests check it).
+fn bound(pass: &PassSpec, resource: Resource) -> u32 {
+    bindings::binding(resource, pass.writes.contains(&resource)).unwrap_or(u32::MAX)
 }
 
-/// Binding of the display pass's radiance input.
-fn radiance_in() -> u32 {
-    crate::methods::binding_of("radiance_in").unwrap_or(u32::MAX)
-}
-
-/// The group-1 layout of a pass: its tables, then its image inputs and outputs.
+/// The group-1 layout of a pass: what it reads, then what it writes.
 fn pass_layout(pass: &PassSpec) -> Vec<wgpu::BindGroupLayoutEntry> {
     pass.resources()
         .into_iter()
-        .map(|id| match id {
-            RADIANCE if pass.writes.contains(&RADIANCE) => {
-                storage_texture(bound(RADIANCE), wgpu::TextureFormat::Rgba32Float)
+        .map(|r| {
+            let binding = bound(pass, r);
+            match r {
+                Resource::Radiance if pass.writes.contains(&RADIANCE) => {
+                    storage_texture(binding, wgpu::TextureFormat::Rgba32Float)
+                }
+                Resource::Radiance => entry(
+                    binding,
+                    wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                ),
+                Resource::Display => storage_texture(binding, wgpu::TextureFormat::Rgba8Unorm),
+                _ => buffer_entry(
+                    binding,
+                    wgpu::BufferBindingType::Storage {
+                        read_only: pass.reads_only(r),
+                    },
+                ),
             }
-            RADIANCE => entry(
-                radiance_in(),
-                wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-            ),
-            DISPLAY => storage_texture(bound(DISPLAY), wgpu::TextureFormat::Rgba8Unorm),
-            table => buffer_entry(
-                bound(table),
-                wgpu::BufferBindingType::Storage {
-                    read_only: pass.reads_only(table),
-                },
-            ),
         })
         .collect()
 }
 
-/// The complete WGSL module of a pass of `method` (the display pass takes no model files; a
-/// sky pass ends with the shared entry point, and the moving sky's pass with its own after the
-/// model's sky file), for workgroups of `texel_group_size` where a
-/// workgroup shares a texel (`prelude::texel_group_size`).
+/// The complete WGSL module of a pass of `method`: the generated prelude and group-1
+/// bindings, then the files `GpuMethod::files` lists, for workgroups of `texel_group_size`
+/// where a workgroup shares a texel (`prelude::texel_group_size`).
 pub fn shader_source(method: &GpuMethod, pass: &PassSpec, texel_group_size: u32) -> String {
     let mut s = wgsl_prelude();
     s.push_str(&format!(
@@ -98,61 +92,11 @@ pub fn shader_source(method: &GpuMethod, pass: &PassSpec, texel_group_size: u32)
         march_split(texel_group_size),
         texel_run(texel_group_size)
     ));
-    // COMMON[0] is bindings.wgsl.
-    s.push_str(&with_read_only_tables(COMMON[0].source, pass));
-    for part in &COMMON[1..] {
-        s.push_str(part.source);
-    }
-    if !VIEW_PASSES.contains(pass) {
-        for part in method.common {
-            s.push_str(part.source);
-        }
-        if method.common.contains(&SUN_ROUTE) {
-            let way = if pass.reads.contains(&SUN_ROUTE_TABLE) {
-                SUN_ROUTE_FROM_TABLE
-            } else {
-                SUN_ROUTE_MARCHED
-            };
-            s.push_str(way.source);
-        }
-    }
-    if pass.writes.contains(&DISPLAY) {
-        s.push_str(TONE.source);
-    }
-    s.push_str(pass.shader.source);
-    if pass.writes.contains(&MOVING_SKY) {
-        s.push_str(MOVING_SKY_ENTRY_POINT.source);
-    }
-    if pass.writes.contains(&RADIANCE) {
-        let radiance = if pass.reads_in_motion.contains(&MOVING_SKY) {
-            MOVING_SKY_RADIANCE
-        } else {
-            VIEW_RADIANCE
-        };
-        s.push_str(radiance.source);
-        s.push_str(SKY_ENTRY_POINT.source);
+    s.push_str(&bindings::wgsl(pass));
+    for file in method.files(pass) {
+        s.push_str(file.source);
     }
     s
-}
-
-/// `bindings.wgsl` with each table the pass only reads (`PassSpec::reads_only`) declared
-/// `var<storage, read>` instead of `read_write`, as its bind group layout binds it.
-fn with_read_only_tables(bindings: &str, pass: &PassSpec) -> String {
-    let mut out = String::with_capacity(bindings.len());
-    for line in bindings.lines() {
-        let table = line
-            .split_once("var<storage, read_write> ")
-            .and_then(|(_, rest)| rest.split_once("_lut:"))
-            .map(|(name, _)| name.replace('_', "-"));
-        match table {
-            Some(id) if line.starts_with("@group(1)") && pass.reads_only(&id) => {
-                out.push_str(&line.replacen("read_write", "read", 1));
-            }
-            _ => out.push_str(line),
-        }
-        out.push('\n');
-    }
-    out
 }
 
 struct PassObjects {
@@ -199,14 +143,14 @@ impl Pipelines {
         let passes = method
             .passes
             .iter()
-            .chain(&VIEW_PASSES)
+            .chain(&crate::spec::VIEW_PASSES)
             .map(|&spec| {
                 let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                     label: Some(spec.name),
                     entries: &pass_layout(&spec),
                 });
                 let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some(spec.shader.path),
+                    label: Some(spec.name),
                     source: wgpu::ShaderSource::Wgsl(
                         shader_source(method, &spec, texel_group_size).into(),
                     ),
@@ -319,23 +263,19 @@ impl Pipelines {
         variant
     }
 
-    /// A bind group for pass `i` over `resources` (each binding's resource, by id).
+    /// A bind group for pass `i` over `resource` (each binding's resource).
     pub fn bind<'a>(
         &self,
         device: &wgpu::Device,
         i: usize,
-        resource: impl Fn(&str) -> Option<wgpu::BindingResource<'a>>,
+        resource: impl Fn(Resource) -> Option<wgpu::BindingResource<'a>>,
     ) -> Option<wgpu::BindGroup> {
         let spec = &self.passes[i].spec;
         let mut entries = Vec::new();
-        for id in spec.resources() {
-            let binding = match id {
-                RADIANCE if !spec.writes.contains(&RADIANCE) => radiance_in(),
-                other => bound(other),
-            };
+        for r in spec.resources() {
             entries.push(wgpu::BindGroupEntry {
-                binding,
-                resource: resource(id)?,
+                binding: bound(spec, r),
+                resource: resource(r)?,
             });
         }
         Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -453,20 +393,20 @@ impl TableBuffers {
             .map(|t| (*t, buffer(t.label, t.bytes(layers), table_usage)))
             .collect::<Vec<_>>();
         let next_moving_sky = pipelines.moving_sky_pass().and_then(|i| {
-            let spec = model.table(MOVING_SKY)?;
+            let spec = model.table(MOVING_SKY.id())?;
             let table = buffer("moving sky (next)", spec.bytes(layers), table_usage);
             let globals = buffer(
                 "globals (next moving sky)",
                 std::mem::size_of::<Globals>() as u64,
                 uniform,
             );
-            let group1 = pipelines.bind(device, i, |id| {
-                if id == MOVING_SKY {
+            let group1 = pipelines.bind(device, i, |r| {
+                if r == MOVING_SKY {
                     Some(table.as_entire_binding())
                 } else {
                     tables
                         .iter()
-                        .find(|(t, _): &&(TableSpec, wgpu::Buffer)| t.id == id)
+                        .find(|(t, _): &&(TableSpec, wgpu::Buffer)| t.id == r.id())
                         .map(|(_, b)| b.as_entire_binding())
                 }
             })?;
@@ -493,8 +433,8 @@ impl TableBuffers {
             .map(|i| {
                 let spec = &pipelines.passes[i].spec;
                 if spec.is_table() {
-                    pipelines.bind(device, i, |id| {
-                        b.buffer(id).map(|buf| buf.as_entire_binding())
+                    pipelines.bind(device, i, |r| {
+                        b.buffer(r.id()).map(|buf| buf.as_entire_binding())
                     })
                 } else {
                     None
@@ -518,7 +458,7 @@ impl TableBuffers {
     /// Encodes the copy of the next moving sky, once every slice of it has finished, over the
     /// one the sky pass reads.
     pub fn publish_next_moving_sky(&self, encoder: &mut wgpu::CommandEncoder) {
-        if let (Some(next), Some(table)) = (&self.next_moving_sky, self.buffer(MOVING_SKY)) {
+        if let (Some(next), Some(table)) = (&self.next_moving_sky, self.buffer(MOVING_SKY.id())) {
             encoder.copy_buffer_to_buffer(&next.table, 0, table, 0, None);
         }
     }

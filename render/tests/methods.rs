@@ -14,8 +14,8 @@ use atmoscope_model::scene::{
     FittedConstants, Method, Quality, Scene, SunSettings, ToneMap, WavelengthSet,
 };
 use atmoscope_render::methods::{
-    DISPLAY_PASS, GPU_METHODS, MOVING_SKY, MOVING_SKY_PASS, Repeat, SUN_ROUTE_PASS,
-    SUN_ROUTE_TABLE, gpu_method,
+    DISPLAY_PASS, MOVING_SKY, MOVING_SKY_PASS, Repeat, SUN_ROUTE_PASS, SUN_ROUTE_TABLE, gpu_method,
+    gpu_methods,
 };
 use atmoscope_render::passes::shader_source;
 use atmoscope_render::uniforms::{Batch, Globals};
@@ -45,11 +45,10 @@ fn refused(scene: &Scene) -> bool {
 
 #[test]
 fn every_shader_parses_validates_and_matches_the_rust_layouts() {
-    for (method, pass) in GPU_METHODS
-        .iter()
-        .flat_map(|m| m.passes.iter().chain([&DISPLAY_PASS]).map(move |p| (m, p)))
+    for (method, pass) in
+        gpu_methods().flat_map(|m| m.passes.iter().chain([&DISPLAY_PASS]).map(move |p| (m, p)))
     {
-        let file = pass.shader.path;
+        let file = format!("{:?} {}", method.method, pass.name);
         let src = shader_source(method, pass, 64);
         let module = naga::front::wgsl::parse_str(&src)
             .unwrap_or_else(|e| panic!("{file}: {}", e.emit_to_string(&src)));
@@ -72,7 +71,7 @@ fn every_shader_parses_validates_and_matches_the_rust_layouts() {
             let id = table.replace('_', "-");
             assert_eq!(
                 access.contains(naga::StorageAccess::STORE),
-                pass.writes.iter().any(|w| *w == id),
+                pass.writes.iter().any(|w| w.id() == id),
                 "{file}: access of {name}"
             );
         }
@@ -101,11 +100,10 @@ fn every_shader_parses_validates_and_matches_the_rust_layouts() {
 fn every_pass_fits_the_workgroup_limits_at_every_group_size() {
     let limits = wgpu::Limits::default();
     for n in (0..=8).map(|k| 1u32 << k) {
-        for (method, pass) in GPU_METHODS
-            .iter()
-            .flat_map(|m| m.passes.iter().chain([&DISPLAY_PASS]).map(move |p| (m, p)))
+        for (method, pass) in
+            gpu_methods().flat_map(|m| m.passes.iter().chain([&DISPLAY_PASS]).map(move |p| (m, p)))
         {
-            let file = pass.shader.path;
+            let file = format!("{:?} {}", method.method, pass.name);
             let src = shader_source(method, pass, n);
             let module = naga::front::wgsl::parse_str(&src)
                 .unwrap_or_else(|e| panic!("{file}: {}", e.emit_to_string(&src)));
@@ -275,8 +273,8 @@ fn the_moving_sky_matches_its_cpu_twin_and_is_built_only_in_motion() {
             let cpu = methods::build(&turned, &camera).expect("a real-time model");
             let vp = viewpoint(&turned, &camera);
             // A nested march builds its moving sky from its way to the sun tabulated.
-            let nested = methods::info(method).table(SUN_ROUTE_TABLE).map(|_| {
-                cpu.table(SUN_ROUTE_TABLE)
+            let nested = methods::info(method).table(SUN_ROUTE_TABLE.id()).map(|_| {
+                cpu.table(SUN_ROUTE_TABLE.id())
                     .expect("the twin's way to the sun")
             });
             assert_eq!(
@@ -285,7 +283,10 @@ fn the_moving_sky_matches_its_cpu_twin_and_is_built_only_in_motion() {
                 "{name}: only the nested marches tabulate their way to the sun"
             );
             let cpu_lut = moving_sky::compute_lut(&*cpu, vp);
-            for (id, cpu_lut) in [(MOVING_SKY, Some(&cpu_lut)), (SUN_ROUTE_TABLE, nested)] {
+            for (id, cpu_lut) in [
+                (MOVING_SKY.id(), Some(&cpu_lut)),
+                (SUN_ROUTE_TABLE.id(), nested),
+            ] {
                 let Some(cpu_lut) = cpu_lut else { continue };
                 let gpu_lut = engine.read_table(id).expect("read-back");
                 let (e, texel) = worst_error(&gpu_lut, cpu_lut, 1e-3);
@@ -356,7 +357,7 @@ fn a_moving_sky_built_in_slices_is_the_one_built_whole() {
         let mut engine = Engine::new(&gpu.device, &gpu.queue);
         engine.set_sky_tile(4);
         assert!(engine.render(scene, &view).ran(MOVING_SKY_PASS));
-        engine.read_table(MOVING_SKY).expect("read-back")
+        engine.read_table(MOVING_SKY.id()).expect("read-back")
     };
     // The same dispatches over the same inputs: equal but for a table of another sun (a
     // degree moves texels by percents).
@@ -378,7 +379,7 @@ fn a_moving_sky_built_in_slices_is_the_one_built_whole() {
         first.ran(MOVING_SKY_PASS),
         "none is complete yet: the first frame in motion builds it whole"
     );
-    let mut on_screen = engine.read_table(MOVING_SKY).expect("read-back");
+    let mut on_screen = engine.read_table(MOVING_SKY.id()).expect("read-back");
     assert!(same(&on_screen, &built_whole(&frame)));
 
     // The sun moves in the first two frames, the camera turns in the first three, then the
@@ -400,7 +401,7 @@ fn a_moving_sky_built_in_slices_is_the_one_built_whole() {
             "frame {k}: a complete moving sky is on screen, the next is built in slices"
         );
         assert_eq!(stats.sky_tile, if k < 3 { 4 } else { 1 }, "frame {k}");
-        let table = engine.read_table(MOVING_SKY).expect("read-back");
+        let table = engine.read_table(MOVING_SKY.id()).expect("read-back");
         match stats.moving_sky {
             MovingSkyStep::Published => {
                 published.push(k);
@@ -459,7 +460,7 @@ fn a_moving_sky_built_in_slices_is_the_one_built_whole() {
         after.run,
         after.moving_sky
     );
-    let table = engine.read_table(MOVING_SKY).expect("read-back");
+    let table = engine.read_table(MOVING_SKY.id()).expect("read-back");
     assert!(
         same(&table, &built_whole(&frame)),
         "the rebuild's moving sky"
@@ -476,7 +477,7 @@ fn a_moving_sky_built_in_slices_is_the_one_built_whole() {
     assert!(!engine.building_moving_sky());
     frame.camera.heading_deg += 1.0;
     assert!(engine.render(&frame, &view).ran(MOVING_SKY_PASS));
-    let table = engine.read_table(MOVING_SKY).expect("read-back");
+    let table = engine.read_table(MOVING_SKY.id()).expect("read-back");
     assert!(same(&table, &built_whole(&frame)));
 }
 
@@ -1313,7 +1314,7 @@ fn order_gathering_models_rebuild_only_their_view_tables_when_the_sun_or_the_cam
             .filter(|p| {
                 !p.writes.is_empty()
                     && p.writes.iter().all(|w| {
-                        model.table(w).is_some_and(|t| {
+                        w.as_table().is_some_and(|t| {
                             t.invalidated_by.intersects(methods::Inputs::VIEWPOINT)
                         })
                     })
@@ -1414,7 +1415,7 @@ fn elek_s_tables_at_the_camera_blend_his_three_dimensional_tables_there() {
             height: h,
             depth: d,
             layers: p.batches.len(),
-            data: texels.iter().map(|t| t.map(f64::from)).collect(),
+            data: texels.iter().map(|t| t.map(f64::from).into()).collect(),
         };
         let expected = camera_slice::compute_camera_slice(p, &slice, &lut, vp);
         let got = engine.read_table(slice.id).expect("read-back");

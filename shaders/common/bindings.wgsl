@@ -97,44 +97,8 @@ fn batch_count() -> u32 { return globals.options.y; }
 // is uniform, so no invocation takes it).
 fn has_aerosol() -> bool { return globals.options.z != 0u; }
 
-// Group 1: every table of every model and the view's images, declared once for every pass. The
-// engine finds a table's binding here by its name (the registry id with `_` for `-`, then
-// `_lut`); a pass's bind group layout holds only the bindings it reads or writes. A pass's own
-// module declares the tables it only reads `read` (render::passes), so that the GPU needs no
-// barrier between passes that read the same tables and write others.
-@group(1) @binding(0) var<storage, read_write> transmittance_lut: array<vec4<f32>>;
-@group(1) @binding(1) var<storage, read_write> multiple_scattering_lut: array<vec4<f32>>;
-@group(1) @binding(2) var<storage, read_write> ground_irradiance_lut: array<vec4<f32>>;
-@group(1) @binding(3) var<storage, read_write> sky_view_lut: array<vec4<f32>>;
-@group(1) @binding(4) var<storage, read_write> aerial_perspective_inscattering_lut: array<vec4<f32>>;
-@group(1) @binding(5) var<storage, read_write> aerial_perspective_transmittance_lut: array<vec4<f32>>;
-@group(1) @binding(9) var<storage, read_write> sky_texture_lut: array<vec4<f32>>;
-@group(1) @binding(10) var<storage, read_write> delta_irradiance_lut: array<vec4<f32>>;
-@group(1) @binding(11) var<storage, read_write> irradiance_lut: array<vec4<f32>>;
-@group(1) @binding(12) var<storage, read_write> delta_rayleigh_lut: array<vec4<f32>>;
-@group(1) @binding(13) var<storage, read_write> delta_mie_lut: array<vec4<f32>>;
-@group(1) @binding(14) var<storage, read_write> scattering_lut: array<vec4<f32>>;
-@group(1) @binding(15) var<storage, read_write> single_mie_lut: array<vec4<f32>>;
-@group(1) @binding(16) var<storage, read_write> scattering_density_lut: array<vec4<f32>>;
-@group(1) @binding(17) var<storage, read_write> gathered_rayleigh_lut: array<vec4<f32>>;
-@group(1) @binding(18) var<storage, read_write> gathered_mie_lut: array<vec4<f32>>;
-@group(1) @binding(19) var<storage, read_write> rayleigh_scattering_lut: array<vec4<f32>>;
-@group(1) @binding(20) var<storage, read_write> mie_scattering_lut: array<vec4<f32>>;
-// Bruneton's scattering tables at the camera (bruneton/camera_slice.wgsl).
-@group(1) @binding(24) var<storage, read_write> camera_scattering_lut: array<vec4<f32>>;
-@group(1) @binding(25) var<storage, read_write> camera_single_mie_lut: array<vec4<f32>>;
-// Elek's Rayleigh and Mie tables at the camera (elek/camera_slice.wgsl).
-@group(1) @binding(27) var<storage, read_write> camera_rayleigh_lut: array<vec4<f32>>;
-@group(1) @binding(28) var<storage, read_write> camera_mie_lut: array<vec4<f32>>;
-// Gałaj's spline mesh (galaj_spline/mesh.wgsl).
-@group(1) @binding(22) var<storage, read_write> galaj_spline_mesh_lut: array<vec4<f32>>;
-// The moving sky of the marches per pixel (shared/moving_sky.wgsl).
-@group(1) @binding(26) var<storage, read_write> moving_sky_lut: array<vec4<f32>>;
-// The nested marches' way to the sun, tabulated for their moving sky (shared/sun_route_table.wgsl).
-@group(1) @binding(29) var<storage, read_write> sun_route_lut: array<vec4<f32>>;
-@group(1) @binding(6) var radiance_out: texture_storage_2d<rgba32float, write>;
-@group(1) @binding(7) var radiance_in: texture_2d<f32>;
-@group(1) @binding(8) var display_out: texture_storage_2d<rgba8unorm, write>;
+// Group 1 (the tables and the view's images) is generated from the registry for each pass
+// (render::spec::bindings); the exact-tile list it binds has this layout.
 // The tiles of a moving frame's sky that their corners could not interpolate (views/sky.wgsl):
 // the workgroups of the indirect dispatch that computes them pixel by pixel (x, y, z), their
 // number, then each tile as x | y << 16.
@@ -145,6 +109,3 @@ struct ExactTiles {
     count: atomic<u32>,
     tiles: array<u32>,
 }
-@group(1) @binding(23) var<storage, read_write> exact_tiles: ExactTiles;
-// Pixels of the view per bin of log10 luminance (model::display::HISTOGRAM_LOG10_RANGE).
-@group(1) @binding(21) var<storage, read_write> histogram: array<atomic<u32>>;

@@ -8,25 +8,16 @@ pub(super) fn grid(pipelines: &Pipelines, i: usize, layers: u32, size: [u32; 2])
     let Some(spec) = pipelines.specs().nth(i) else {
         return [0; 3];
     };
-    let info = pipelines.method.info();
     match spec.dispatch {
         Dispatch::View => [groups(size[0]), groups(size[1]), 1],
-        Dispatch::Table(id) => {
-            let [w, h, _] = info.table(id).map_or([1, 1, 1], |t| t.size);
-            [groups(w), groups(h), layers]
-        }
-        Dispatch::TexelGroups(id) => {
-            let [w, h, _] = info.table(id).map_or([1, 1, 1], |t| t.size);
-            [w, h, layers]
-        }
-        Dispatch::TexelRuns(id) => {
-            let [w, h, _] = info.table(id).map_or([1, 1, 1], |t| t.size);
-            [w.div_ceil(texel_run(pipelines.texel_group_size)), h, layers]
-        }
-        Dispatch::Volume(id) => {
-            let [w, h, d] = info.table(id).map_or([1, 1, 1], |t| t.size);
-            [groups(w), groups(h), d * layers]
-        }
+        Dispatch::Table(t) => [groups(t.size[0]), groups(t.size[1]), layers],
+        Dispatch::TexelGroups(t) => [t.size[0], t.size[1], layers],
+        Dispatch::TexelRuns(t) => [
+            t.size[0].div_ceil(texel_run(pipelines.texel_group_size)),
+            t.size[1],
+            layers,
+        ],
+        Dispatch::Volume(t) => [groups(t.size[0]), groups(t.size[1]), t.size[2] * layers],
     }
 }
 

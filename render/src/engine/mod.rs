@@ -23,7 +23,8 @@ mod timing;
 
 use crate::DisplayMode;
 use crate::methods::{
-    Constant, Dispatch, GpuMethod, HISTOGRAM, METER_PASS, PassSpec, RADIANCE, Repeat, gpu_method,
+    Constant, Dispatch, GpuMethod, HISTOGRAM, METER_PASS, PassSpec, RADIANCE, Repeat, Resource,
+    Situation, gpu_method,
 };
 use crate::passes::{NextMovingSky, ORIGIN_SLOTS, Pipelines, TableBuffers, Variant};
 use crate::prelude::{WORKGROUP_SIZE, texel_group_size, texel_run};

@@ -51,17 +51,20 @@ impl Engine {
         let target = Target::new(&self.device, pipelines, &state.tables, size, self.sky_tile);
         let mut deferred = vec![false; pipelines.len()];
         let ground = frame.shows_ground(view);
-        let run = plan(
-            &pipelines.method,
-            Inputs::ALL,
-            frame.above,
-            frame.sun_below_tables,
-            ground,
+        let situation = Situation {
+            above_atmosphere: frame.above,
+            sun_below_tables: frame.sun_below_tables,
+            ground_in_view: ground,
             // A rebuild draws its view at full resolution, and builds the moving sky of a
             // march per pixel where frames in motion are drawn in tiles: otherwise the first
             // of them would build it whole, in one frame, at a small share of the cost of the
             // still frame the rebuild draws anyway.
-            self.sky_tile > 1,
+            in_motion: self.sky_tile > 1,
+        };
+        let run = plan(
+            &pipelines.method,
+            Inputs::ALL,
+            &situation,
             self.unwanted(),
             &mut deferred,
         );

@@ -229,38 +229,31 @@ impl FrameSetup {
 
 /// The passes to run (indices in order) when `changed` inputs changed: a pass is stale when an
 /// input it reads changed, a table it reads was just rewritten or it was left stale before
-/// (`deferred`); it runs when the view needs what it writes (from above the atmosphere a
-/// marching sky pass reads fewer tables, Bruneton's and Elek's skies no camera slices there,
-/// Bruneton's none with the sun below its tables, a view without ground none of those only the
-/// ground's pixels read, and a frame not `in_motion` (drawn in tiles) no moving sky), and
-/// otherwise stays marked in `deferred`.
+/// (`deferred`); it runs when the view needs what it writes in a frame like `situation` (each
+/// read says when it is needed, `spec::Read`), and otherwise stays marked in `deferred`.
 pub(super) fn plan(
     method: &GpuMethod,
     changed: Inputs,
-    above: bool,
-    sun_below_tables: bool,
-    ground: bool,
-    in_motion: bool,
+    situation: &Situation,
     unwanted: &[&str],
     deferred: &mut [bool],
 ) -> Vec<usize> {
-    let info = method.info();
     let specs: Vec<&PassSpec> = method.specs().collect();
     let mut needed = vec![false; specs.len()];
-    let mut needed_resources: Vec<&str> = Vec::new();
+    let mut needed_resources: Vec<Resource> = Vec::new();
     for (i, spec) in specs.iter().enumerate().rev() {
         let wanted = !spec.is_table() && !unwanted.contains(&spec.name);
         if wanted || spec.writes.iter().any(|w| needed_resources.contains(w)) {
             needed[i] = true;
-            needed_resources.extend(spec.reads_where(above, sun_below_tables, ground, in_motion));
+            needed_resources.extend(spec.reads_in(situation));
         }
     }
-    let mut written: Vec<&str> = Vec::new();
+    let mut written: Vec<Resource> = Vec::new();
     let mut run = Vec::new();
     for (i, spec) in specs.iter().enumerate() {
         let stale = deferred[i]
-            || spec.direct_inputs(info).intersects(changed)
-            || spec.reads.iter().any(|r| written.contains(r));
+            || spec.direct_inputs().intersects(changed)
+            || spec.reads.iter().any(|r| written.contains(&r.resource));
         // A view pass whose every output an earlier pass of this frame wrote with the frame's
         // inputs (the sky pass draws the display image too) has nothing left to do.
         let covered = !spec.is_table() && spec.writes.iter().all(|w| written.contains(w));
@@ -324,7 +317,10 @@ pub(super) fn with_order_loop(run: &[usize], pipelines: &Pipelines, orders: u32)
 #[cfg(test)]
 mod tests {
     use super::plan;
-    use crate::methods::{DISPLAY, GpuMethod, METER_PASS, PassSpec, RADIANCE, gpu_method};
+    use crate::methods::{
+        DISPLAY, GpuMethod, METER_PASS, PassSpec, RADIANCE, Resource, Situation, TRANSMITTANCE,
+        gpu_method,
+    };
     use atmoscope_model::methods::{self, Inputs};
 
     /// Every real-time model's passes as data, from the registry.
@@ -339,23 +335,22 @@ mod tests {
         models
     }
 
+    /// A still frame from inside the atmosphere with the ground in view.
+    const INSIDE: Situation = Situation {
+        above_atmosphere: false,
+        sun_below_tables: false,
+        ground_in_view: true,
+        in_motion: false,
+    };
+
     /// The names of the passes a frame that changes `changed` runs, from inside the atmosphere,
     /// the ground in view, still and not metering.
     fn names(method: &GpuMethod, changed: Inputs, deferred: &mut [bool]) -> Vec<&'static str> {
         let specs: Vec<_> = method.specs().collect();
-        plan(
-            method,
-            changed,
-            false,
-            false,
-            true,
-            false,
-            &[METER_PASS.name],
-            deferred,
-        )
-        .into_iter()
-        .map(|i| specs[i].name)
-        .collect()
+        plan(method, changed, &INSIDE, &[METER_PASS.name], deferred)
+            .into_iter()
+            .map(|i| specs[i].name)
+            .collect()
     }
 
     /// The pass that draws the radiance of the view (the sky pass).
@@ -387,8 +382,8 @@ mod tests {
             // other tables (from inside, still, the ground in view), in the model's order,
             // then the sky; every other table stays marked stale for a frame that reads it.
             let specs: Vec<_> = method.specs().collect();
-            let reads = |s: &PassSpec| s.reads_where(false, false, true, false);
-            let mut wanted: Vec<&str> = specs
+            let reads = |s: &PassSpec| s.reads_in(&INSIDE).collect::<Vec<_>>();
+            let mut wanted: Vec<Resource> = specs
                 .iter()
                 .filter(|s| s.name == sky(method))
                 .flat_map(|s| reads(s))
@@ -445,7 +440,7 @@ mod tests {
                 "{id}: {moved:?} ⊄ {all:?}"
             );
             assert!(moved.contains(&sky(method)), "{id}: the sky is redrawn");
-            if let Some(t) = method.specs().find(|s| s.writes == ["transmittance"]) {
+            if let Some(t) = method.specs().find(|s| s.writes == [TRANSMITTANCE]) {
                 assert!(!moved.contains(&t.name), "{id}: {moved:?}");
             }
         }
@@ -460,37 +455,14 @@ mod tests {
             let n = method.specs().count();
             let specs: Vec<_> = method.specs().collect();
             let mut deferred = vec![false; n];
-            let above = plan(
-                method,
-                Inputs::ALL,
-                true,
-                false,
-                true,
-                false,
-                &[],
-                &mut deferred,
-            );
-            let inside = plan(
-                method,
-                Inputs::NONE,
-                false,
-                false,
-                true,
-                false,
-                &[],
-                &mut deferred,
-            );
+            let from_space = Situation {
+                above_atmosphere: true,
+                ..INSIDE
+            };
+            let above = plan(method, Inputs::ALL, &from_space, &[], &mut deferred);
+            let inside = plan(method, Inputs::NONE, &INSIDE, &[], &mut deferred);
             let mut fresh = vec![false; n];
-            let whole = plan(
-                method,
-                Inputs::ALL,
-                false,
-                false,
-                true,
-                false,
-                &[],
-                &mut fresh,
-            );
+            let whole = plan(method, Inputs::ALL, &INSIDE, &[], &mut fresh);
             for i in whole {
                 assert!(
                     above.contains(&i) || inside.contains(&i),

@@ -87,16 +87,12 @@ impl Target {
                 if spec.is_table() {
                     return None;
                 }
-                pipelines.bind(device, i, |id| match id {
-                    crate::methods::RADIANCE => {
-                        Some(wgpu::BindingResource::TextureView(&radiance_view))
-                    }
-                    crate::methods::DISPLAY => {
-                        Some(wgpu::BindingResource::TextureView(&display_view))
-                    }
-                    crate::methods::HISTOGRAM => Some(histogram.as_entire_binding()),
-                    crate::methods::EXACT_TILES => Some(exact_tiles.as_entire_binding()),
-                    table => tables.buffer(table).map(|b| b.as_entire_binding()),
+                pipelines.bind(device, i, |r| match r {
+                    Resource::Radiance => Some(wgpu::BindingResource::TextureView(&radiance_view)),
+                    Resource::Display => Some(wgpu::BindingResource::TextureView(&display_view)),
+                    Resource::Histogram => Some(histogram.as_entire_binding()),
+                    Resource::ExactTiles => Some(exact_tiles.as_entire_binding()),
+                    Resource::Table(t) => tables.buffer(t.id).map(|b| b.as_entire_binding()),
                 })
             })
             .collect();

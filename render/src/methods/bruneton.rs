@@ -4,24 +4,22 @@
 //! `atmoscope_model::methods::bruneton::<pass>`.
 
 use super::{
-    Constant, Dispatch, GpuMethod, PassSpec, Repeat, SKY_CONSTANTS, SUN_DISK_FROM_TABLE,
-    TRANSMITTANCE_PASS, shader,
+    Constant, Dispatch, GpuMethod, PassSpec, Repeat, Resource, SKY_CONSTANTS, SKY_ENTRY_POINT,
+    SUN_DISK_FROM_TABLE, TONE, TRANSMITTANCE as T, TRANSMITTANCE_PASS, Table, VIEW_RADIANCE,
+    no_constants, read, shader,
 };
+use atmoscope_model::methods::bruneton::{self as model, camera_slice};
 use atmoscope_model::scene::Method;
 
-const T: &str = "transmittance";
-const DELTA_IRRADIANCE: &str = "delta-irradiance";
-const IRRADIANCE: &str = "irradiance";
-const DELTA_RAYLEIGH: &str = "delta-rayleigh";
-const DELTA_MIE: &str = "delta-mie";
-const SCATTERING: &str = "scattering";
-const SINGLE_MIE: &str = "single-mie";
-const DENSITY: &str = "scattering-density";
-const CAMERA_SCATTERING: &str = "camera-scattering";
-const CAMERA_SINGLE_MIE: &str = "camera-single-mie";
-
-/// What the sky pass reads where no view ray starts at the camera with the sun in the tables.
-const WITHOUT_CAMERA_SLICES: &[&str] = &[T, SCATTERING, SINGLE_MIE, IRRADIANCE];
+const DELTA_IRRADIANCE: Resource = Resource::table(&model::DELTA_IRRADIANCE);
+const IRRADIANCE: Resource = Resource::table(&model::IRRADIANCE);
+const DELTA_RAYLEIGH: Resource = Resource::table(&model::DELTA_RAYLEIGH);
+const DELTA_MIE: Resource = Resource::table(&model::DELTA_MIE);
+const SCATTERING: Resource = Resource::table(&model::SCATTERING);
+const SINGLE_MIE: Resource = Resource::table(&model::SINGLE_MIE);
+const DENSITY: Resource = Resource::table(&model::SCATTERING_DENSITY);
+const CAMERA_SCATTERING: Resource = Resource::table(&camera_slice::CAMERA_SCATTERING);
+const CAMERA_SINGLE_MIE: Resource = Resource::table(&camera_slice::CAMERA_SINGLE_MIE);
 
 /// The sky pass's constants, and whether a ray may start with the sun below the tables.
 const SKY_CONSTANTS_BELOW_TABLES: [Constant; 11] = {
@@ -36,35 +34,40 @@ const SKY_CONSTANTS_BELOW_TABLES: [Constant; 11] = {
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Bruneton,
-    lowest_table_mu_s: Some(atmoscope_model::methods::bruneton::MU_S_MIN),
+    lowest_table_mu_s: Some(model::MU_S_MIN),
     common: &[SUN_DISK_FROM_TABLE, shader!("bruneton/common.wgsl")],
-    constants: |_| [0.0; 12],
+    constants: no_constants,
     passes: &[
         TRANSMITTANCE_PASS,
         PassSpec::table(
             "direct-irradiance",
-            shader!("bruneton/direct_irradiance.wgsl"),
-            &[T],
+            &[shader!("bruneton/direct_irradiance.wgsl")],
+            &[read(T)],
             &[DELTA_IRRADIANCE, IRRADIANCE],
-            Dispatch::Table(IRRADIANCE),
+            Dispatch::Table(Table(&model::IRRADIANCE)),
             Repeat::Once,
         ),
         PassSpec::table(
             "single-scattering",
-            shader!("bruneton/single_scattering.wgsl"),
-            &[T],
+            &[shader!("bruneton/single_scattering.wgsl")],
+            &[read(T)],
             &[DELTA_RAYLEIGH, DELTA_MIE, SCATTERING, SINGLE_MIE],
-            Dispatch::Volume(SCATTERING),
+            Dispatch::Volume(Table(&model::SCATTERING)),
             Repeat::Once,
         ),
         PassSpec {
             constants: &[Constant::FirstOrder],
             ..PassSpec::table(
                 "scattering-density",
-                shader!("bruneton/scattering_density.wgsl"),
-                &[T, DELTA_RAYLEIGH, DELTA_MIE, DELTA_IRRADIANCE],
+                &[shader!("bruneton/scattering_density.wgsl")],
+                &[
+                    read(T),
+                    read(DELTA_RAYLEIGH),
+                    read(DELTA_MIE),
+                    read(DELTA_IRRADIANCE),
+                ],
                 &[DENSITY],
-                Dispatch::Volume(DENSITY),
+                Dispatch::Volume(Table(&model::SCATTERING_DENSITY)),
                 Repeat::PerOrder,
             )
         },
@@ -72,46 +75,46 @@ pub const METHOD: GpuMethod = GpuMethod {
             constants: &[Constant::FirstOrder],
             ..PassSpec::table(
                 "indirect-irradiance",
-                shader!("bruneton/indirect_irradiance.wgsl"),
-                &[DELTA_RAYLEIGH, DELTA_MIE, IRRADIANCE],
+                &[shader!("bruneton/indirect_irradiance.wgsl")],
+                &[read(DELTA_RAYLEIGH), read(DELTA_MIE), read(IRRADIANCE)],
                 &[DELTA_IRRADIANCE, IRRADIANCE],
-                Dispatch::Table(IRRADIANCE),
+                Dispatch::Table(Table(&model::IRRADIANCE)),
                 Repeat::PerOrder,
             )
         },
         PassSpec::table(
             "multiple-scattering",
-            shader!("bruneton/multiple_scattering.wgsl"),
-            &[T, DENSITY, SCATTERING],
+            &[shader!("bruneton/multiple_scattering.wgsl")],
+            &[read(T), read(DENSITY), read(SCATTERING)],
             &[DELTA_RAYLEIGH, DELTA_MIE, SCATTERING],
-            Dispatch::Volume(SCATTERING),
+            Dispatch::Volume(Table(&model::SCATTERING)),
             Repeat::PerOrder,
         ),
         PassSpec::table(
             "camera-slice",
-            shader!("bruneton/camera_slice.wgsl"),
-            &[SCATTERING, SINGLE_MIE],
+            &[shader!("bruneton/camera_slice.wgsl")],
+            &[read(SCATTERING), read(SINGLE_MIE)],
             &[CAMERA_SCATTERING, CAMERA_SINGLE_MIE],
-            Dispatch::Table(CAMERA_SCATTERING),
+            Dispatch::Table(Table(&camera_slice::CAMERA_SCATTERING)),
             Repeat::Once,
         ),
         PassSpec {
             constants: &SKY_CONSTANTS_BELOW_TABLES,
             // Above the atmosphere rays start where they enter it, and with the sun below the
             // tables at the camera they read past the tables' edge: no camera slices in either.
-            reads_above_atmosphere: Some(WITHOUT_CAMERA_SLICES),
-            reads_with_sun_below_tables: Some(WITHOUT_CAMERA_SLICES),
             ..PassSpec::sky(
-                shader!("bruneton/sky.wgsl"),
+                &[TONE, shader!("bruneton/sky.wgsl"), VIEW_RADIANCE, SKY_ENTRY_POINT],
                 &[
-                    T,
-                    SCATTERING,
-                    SINGLE_MIE,
-                    IRRADIANCE,
-                    CAMERA_SCATTERING,
-                    CAMERA_SINGLE_MIE,
+                    read(T),
+                    read(SCATTERING),
+                    read(SINGLE_MIE),
+                    read(IRRADIANCE),
+                    read(CAMERA_SCATTERING).inside_atmosphere().with_sun_in_tables(),
+                    read(CAMERA_SINGLE_MIE).inside_atmosphere().with_sun_in_tables(),
                 ],
             )
         },
     ],
 };
+
+pub const METHODS: &[GpuMethod] = &[METHOD];

@@ -5,77 +5,87 @@
 //! `atmoscope_model::methods::elek::<pass>`.
 
 use super::{
-    Dispatch, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS, shader,
+    Dispatch, GpuMethod, PassSpec, Repeat, Resource, SKY_ENTRY_POINT, SUN_DISK_FROM_TABLE, TONE,
+    TRANSMITTANCE as T, TRANSMITTANCE_PASS, Table, VIEW_RADIANCE, no_constants, read, shader,
 };
+use atmoscope_model::methods::elek::{self as model, camera_slice};
 use atmoscope_model::scene::Method;
 
-const T: &str = "transmittance";
-const DELTA_RAYLEIGH: &str = "delta-rayleigh";
-const DELTA_MIE: &str = "delta-mie";
-const RAYLEIGH: &str = "rayleigh-scattering";
-const MIE: &str = "mie-scattering";
-const GATHERED_RAYLEIGH: &str = "gathered-rayleigh";
-const GATHERED_MIE: &str = "gathered-mie";
-const CAMERA_RAYLEIGH: &str = "camera-rayleigh";
-const CAMERA_MIE: &str = "camera-mie";
-/// What the sky pass reads from above the atmosphere, where rays start where they enter it.
-const WITHOUT_CAMERA_SLICES: &[&str] = &[T, RAYLEIGH, MIE];
+const DELTA_RAYLEIGH: Resource = Resource::table(&model::DELTA_RAYLEIGH);
+const DELTA_MIE: Resource = Resource::table(&model::DELTA_MIE);
+const RAYLEIGH: Resource = Resource::table(&model::RAYLEIGH);
+const MIE: Resource = Resource::table(&model::MIE);
+const GATHERED_RAYLEIGH: Resource = Resource::table(&model::GATHERED_RAYLEIGH);
+const GATHERED_MIE: Resource = Resource::table(&model::GATHERED_MIE);
+const CAMERA_RAYLEIGH: Resource = Resource::table(&camera_slice::CAMERA_RAYLEIGH);
+const CAMERA_MIE: Resource = Resource::table(&camera_slice::CAMERA_MIE);
 /// Every table pass runs one invocation per texel of the (equally sized) scattering tables.
-const VOLUME: Dispatch = Dispatch::Volume(RAYLEIGH);
+const VOLUME: Dispatch = Dispatch::Volume(Table(&model::RAYLEIGH));
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Elek,
     lowest_table_mu_s: None,
     common: &[SUN_DISK_FROM_TABLE, shader!("elek/common.wgsl")],
-    constants: |_| [0.0; 12],
+    constants: no_constants,
     passes: &[
         TRANSMITTANCE_PASS,
         PassSpec::table(
             "single-scattering",
-            shader!("elek/single_scattering.wgsl"),
-            &[T],
+            &[shader!("elek/single_scattering.wgsl")],
+            &[read(T)],
             &[DELTA_RAYLEIGH, DELTA_MIE, RAYLEIGH, MIE],
             VOLUME,
             Repeat::Once,
         ),
         PassSpec::table(
             "gather",
-            shader!("elek/gather.wgsl"),
-            &[DELTA_RAYLEIGH, DELTA_MIE],
+            &[shader!("elek/gather.wgsl")],
+            &[read(DELTA_RAYLEIGH), read(DELTA_MIE)],
             &[GATHERED_RAYLEIGH, GATHERED_MIE],
             VOLUME,
             Repeat::PerOrder,
         ),
         PassSpec::table(
             "multiple-scattering",
-            shader!("elek/multiple_scattering.wgsl"),
-            &[T, GATHERED_RAYLEIGH, GATHERED_MIE],
+            &[shader!("elek/multiple_scattering.wgsl")],
+            &[read(T), read(GATHERED_RAYLEIGH), read(GATHERED_MIE)],
             &[DELTA_RAYLEIGH, DELTA_MIE],
             VOLUME,
             Repeat::PerOrder,
         ),
         PassSpec::table(
             "accumulate",
-            shader!("elek/accumulate.wgsl"),
-            &[DELTA_RAYLEIGH, DELTA_MIE, RAYLEIGH, MIE],
+            &[shader!("elek/accumulate.wgsl")],
+            &[
+                read(DELTA_RAYLEIGH),
+                read(DELTA_MIE),
+                read(RAYLEIGH),
+                read(MIE),
+            ],
             &[RAYLEIGH, MIE],
             VOLUME,
             Repeat::PerOrder,
         ),
         PassSpec::table(
             "camera-slice",
-            shader!("elek/camera_slice.wgsl"),
-            &[RAYLEIGH, MIE],
+            &[shader!("elek/camera_slice.wgsl")],
+            &[read(RAYLEIGH), read(MIE)],
             &[CAMERA_RAYLEIGH, CAMERA_MIE],
-            Dispatch::Table(CAMERA_RAYLEIGH),
+            Dispatch::Table(Table(&camera_slice::CAMERA_RAYLEIGH)),
             Repeat::Once,
         ),
-        PassSpec {
-            reads_above_atmosphere: Some(WITHOUT_CAMERA_SLICES),
-            ..PassSpec::sky(
-                shader!("elek/sky.wgsl"),
-                &[T, RAYLEIGH, MIE, CAMERA_RAYLEIGH, CAMERA_MIE],
-            )
-        },
+        // Above the atmosphere rays start where they enter it: no camera slices there.
+        PassSpec::sky(
+            &[TONE, shader!("elek/sky.wgsl"), VIEW_RADIANCE, SKY_ENTRY_POINT],
+            &[
+                read(T),
+                read(RAYLEIGH),
+                read(MIE),
+                read(CAMERA_RAYLEIGH).inside_atmosphere(),
+                read(CAMERA_MIE).inside_atmosphere(),
+            ],
+        ),
     ],
 };
+
+pub const METHODS: &[GpuMethod] = &[METHOD];

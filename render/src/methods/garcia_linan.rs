@@ -2,10 +2,13 @@
 //! of every pass is `atmoscope_model::methods::garcia_linan::<pass>`.
 
 use super::{
-    Dispatch, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS, shader,
+    Dispatch, GpuMethod, PassSpec, Repeat, Resource, SKY_ENTRY_POINT, SUN_DISK_FROM_TABLE, TONE,
+    TRANSMITTANCE, TRANSMITTANCE_PASS, Table, VIEW_RADIANCE, first_row, read, shader,
 };
-use atmoscope_model::methods::garcia_linan::Constants;
+use atmoscope_model::methods::garcia_linan::{Constants, sky_texture};
 use atmoscope_model::scene::Method;
+
+const SKY_TEXTURE: Resource = Resource::table(&sky_texture::TABLE);
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::GarciaLinan,
@@ -15,22 +18,23 @@ pub const METHOD: GpuMethod = GpuMethod {
         shader!("common/march.wgsl"),
         shader!("garcia_linan/common.wgsl"),
     ],
-    constants: |p| super::first_row(Constants::chosen(p.fitted_constants).uniform()),
+    constants: |p| first_row(Constants::chosen(p.fitted_constants).uniform()),
     passes: &[
         TRANSMITTANCE_PASS,
         PassSpec::table(
             "sky-texture",
-            shader!("garcia_linan/sky_texture.wgsl"),
-            &["transmittance"],
-            &["sky-texture"],
-            Dispatch::Table("sky-texture"),
+            &[shader!("garcia_linan/sky_texture.wgsl")],
+            &[read(TRANSMITTANCE)],
+            &[SKY_TEXTURE],
+            Dispatch::Table(Table(&sky_texture::TABLE)),
             Repeat::Once,
         ),
-        PassSpec::sky_marching_from_space(
-            shader!("garcia_linan/sky.wgsl"),
-            &["transmittance", "sky-texture"],
-            // Above the atmosphere each pixel is marched with the model's integrand.
-            &["transmittance"],
+        // Above the atmosphere each pixel is marched with the model's integrand.
+        PassSpec::sky(
+            &[TONE, shader!("garcia_linan/sky.wgsl"), VIEW_RADIANCE, SKY_ENTRY_POINT],
+            &[read(TRANSMITTANCE), read(SKY_TEXTURE).inside_atmosphere()],
         ),
     ],
 };
+
+pub const METHODS: &[GpuMethod] = &[METHOD];

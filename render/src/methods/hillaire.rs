@@ -2,22 +2,17 @@
 //! pass is `atmoscope_model::methods::hillaire::<pass>`.
 
 use super::{
-    Dispatch, GpuMethod, PassSpec, Repeat, SUN_DISK_FROM_TABLE, TRANSMITTANCE_PASS, shader,
+    Dispatch, GpuMethod, HILLAIRE_MS, MULTIPLE_SCATTERING_PASS, PassSpec, Repeat, Resource,
+    SKY_ENTRY_POINT, SUN_DISK_FROM_TABLE, TONE, TRANSMITTANCE, TRANSMITTANCE_PASS, Table,
+    VIEW_RADIANCE, no_constants, read, shader,
 };
+use atmoscope_model::methods::hillaire::{aerial_perspective, ground_irradiance, sky_view};
 use atmoscope_model::scene::Method;
 
-const AP_INSCATTERING: &str = "aerial-perspective-inscattering";
-const AP_TRANSMITTANCE: &str = "aerial-perspective-transmittance";
-
-/// The Ψ_ms table's pass, which the single-scattering `-ms` rows share.
-pub const MULTIPLE_SCATTERING_PASS: PassSpec = PassSpec::table(
-    "multiple-scattering",
-    shader!("hillaire/multiple_scattering.wgsl"),
-    &["transmittance"],
-    &["multiple-scattering"],
-    Dispatch::TexelRuns("multiple-scattering"),
-    Repeat::Once,
-);
+const GROUND_IRRADIANCE: Resource = Resource::table(&ground_irradiance::TABLE);
+const SKY_VIEW: Resource = Resource::table(&sky_view::TABLE);
+const AP_INSCATTERING: Resource = Resource::table(&aerial_perspective::INSCATTERING);
+const AP_TRANSMITTANCE: Resource = Resource::table(&aerial_perspective::TRANSMITTANCE);
 
 pub const METHOD: GpuMethod = GpuMethod {
     method: Method::Hillaire,
@@ -27,48 +22,48 @@ pub const METHOD: GpuMethod = GpuMethod {
         shader!("common/march.wgsl"),
         shader!("hillaire/common.wgsl"),
     ],
-    constants: |_| [0.0; 12],
+    constants: no_constants,
     passes: &[
         TRANSMITTANCE_PASS,
         MULTIPLE_SCATTERING_PASS,
         PassSpec::table(
             "ground-irradiance",
-            shader!("hillaire/ground_irradiance.wgsl"),
-            &["transmittance", "multiple-scattering"],
-            &["ground-irradiance"],
-            Dispatch::TexelGroups("ground-irradiance"),
+            &[shader!("hillaire/ground_irradiance.wgsl")],
+            &[read(TRANSMITTANCE), read(HILLAIRE_MS)],
+            &[GROUND_IRRADIANCE],
+            Dispatch::TexelGroups(Table(&ground_irradiance::TABLE)),
             Repeat::Once,
         ),
         PassSpec::table(
             "sky-view",
-            shader!("hillaire/sky_view.wgsl"),
-            &["transmittance", "multiple-scattering"],
-            &["sky-view"],
-            Dispatch::Table("sky-view"),
+            &[shader!("hillaire/sky_view.wgsl")],
+            &[read(TRANSMITTANCE), read(HILLAIRE_MS)],
+            &[SKY_VIEW],
+            Dispatch::Table(Table(&sky_view::TABLE)),
             Repeat::Once,
         ),
         PassSpec::table(
             "aerial-perspective",
-            shader!("hillaire/aerial_perspective.wgsl"),
-            &["transmittance", "multiple-scattering"],
+            &[shader!("hillaire/aerial_perspective.wgsl")],
+            &[read(TRANSMITTANCE), read(HILLAIRE_MS)],
             &[AP_INSCATTERING, AP_TRANSMITTANCE],
-            Dispatch::TexelGroups(AP_INSCATTERING),
+            Dispatch::TexelGroups(Table(&aerial_perspective::INSCATTERING)),
             Repeat::Once,
         ),
-        PassSpec::sky_marching_from_space(
-            shader!("hillaire/sky.wgsl"),
+        // Above the atmosphere each pixel is marched: no sky view, no aerial perspective; the
+        // sky's pixels read the sky view, only the ground's the rest.
+        PassSpec::sky(
+            &[TONE, shader!("hillaire/sky.wgsl"), VIEW_RADIANCE, SKY_ENTRY_POINT],
             &[
-                "transmittance",
-                "multiple-scattering",
-                "ground-irradiance",
-                "sky-view",
-                AP_INSCATTERING,
-                AP_TRANSMITTANCE,
+                read(TRANSMITTANCE),
+                read(HILLAIRE_MS),
+                read(GROUND_IRRADIANCE).for_ground(),
+                read(SKY_VIEW).inside_atmosphere(),
+                read(AP_INSCATTERING).inside_atmosphere().for_ground(),
+                read(AP_TRANSMITTANCE).inside_atmosphere().for_ground(),
             ],
-            // Above the atmosphere each pixel is marched: no sky view, no aerial perspective.
-            &["transmittance", "multiple-scattering", "ground-irradiance"],
-        )
-        // The sky's pixels read the sky view; only the ground's read these.
-        .with_reads_for_ground(&["ground-irradiance", AP_INSCATTERING, AP_TRANSMITTANCE]),
+        ),
     ],
 };
+
+pub const METHODS: &[GpuMethod] = &[METHOD];

@@ -1,27 +1,16 @@
 //! Nishita (1993) on the GPU: its way to the sun tabulated, the moving sky built from it and
 //! the sky pass of the table-free single-scattering sky
-//! (`shaders/shared/single_scattering_sky.wgsl`) with the midpoint rule towards the sun. Its f64 twin is `atmoscope_model::methods::nishita`.
+//! (`shaders/shared/single_scattering_sky.wgsl`) with the midpoint rule towards the sun; its
+//! `-ms` row adds Hillaire's Ψ_ms table as the higher orders. Its f64 twin is
+//! `atmoscope_model::methods::nishita`.
 
-use super::{
-    GpuMethod, NESTED_MARCH_MS_PASSES, NESTED_MARCH_PASSES, SINGLE_SCATTERING_COMMON,
-    SINGLE_SCATTERING_MS_COMMON,
-};
+use super::{GpuMethod, single_scattering_rows};
 use atmoscope_model::methods::shared::single_scattering_sky::{self, Rule, Way};
 use atmoscope_model::scene::Method;
 
-pub const METHOD: GpuMethod = GpuMethod {
-    method: Method::Nishita,
-    lowest_table_mu_s: None,
-    common: &SINGLE_SCATTERING_COMMON,
-    constants: |p| single_scattering_sky::constants(p, Way::March(Rule::Midpoint)),
-    passes: &NESTED_MARCH_PASSES,
-};
-
-/// With Hillaire's Ψ_ms table as the higher orders (the `nishita-ms` row).
-pub const METHOD_MS: GpuMethod = GpuMethod {
-    method: Method::NishitaMs,
-    lowest_table_mu_s: None,
-    common: &SINGLE_SCATTERING_MS_COMMON,
-    constants: |p| single_scattering_sky::constants(p, Way::March(Rule::Midpoint)),
-    passes: &NESTED_MARCH_MS_PASSES,
-};
+pub const METHODS: &[GpuMethod] = &single_scattering_rows(
+    Method::Nishita,
+    Method::NishitaMs,
+    true,
+    |p| single_scattering_sky::constants(p, Way::March(Rule::Midpoint)),
+);

@@ -6,10 +6,10 @@ use super::{GpuMethod, SEGMENTS_COMMON, SEGMENTS_SKY_PASS};
 use atmoscope_model::methods::shared::segments_sky::{self, RAYMARCHED_SEGMENTS};
 use atmoscope_model::scene::Method;
 
-pub const METHOD: GpuMethod = GpuMethod {
+pub const METHODS: &[GpuMethod] = &[GpuMethod {
     method: Method::Raymarched,
     lowest_table_mu_s: None,
     common: &SEGMENTS_COMMON,
     constants: |p| segments_sky::constants(p, RAYMARCHED_SEGMENTS),
     passes: &[SEGMENTS_SKY_PASS],
-};
+}];
