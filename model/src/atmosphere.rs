@@ -485,6 +485,7 @@ impl Atmosphere {
 mod tests {
     use super::*;
     use crate::constants::DOBSON_UNIT_PER_M2;
+    use crate::lanes::Lanes;
     use crate::scene::{OzoneColumn, Scene};
 
     #[test]
@@ -514,7 +515,7 @@ mod tests {
         let tables = |a: &Atmosphere| {
             Params::new(a, WavelengthSet::Spectral4, Quality::Low).batches[0].solar_irradiance[1]
         };
-        let traced = |a: &Atmosphere| LaneOptics::new(a, [550.0; 4]).solar_irradiance[0];
+        let traced = |a: &Atmosphere| LaneOptics::new(a, Lanes::splat(550.0)).solar_irradiance[0];
         for r in [ratio(&tables), ratio(&traced)] {
             assert!((r - 1.069).abs() < 0.002, "{r}");
         }

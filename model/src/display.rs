@@ -46,7 +46,7 @@ pub fn sun_irradiance_rgb(p: &crate::methods::shared::Params, h: f64, mu_s: f64)
     let through: Vec<_> = (0..p.batches.len())
         .map(|layer| {
             let t = route.seen_from(p, layer, h, mu_s);
-            std::array::from_fn(|i| p.batches[layer].solar_irradiance[i] * t[i])
+            p.batches[layer].solar_irradiance * t
         })
         .collect();
     crate::wavelengths::to_linear_srgb(&colours, &through)

@@ -77,9 +77,12 @@ impl SpectralCells {
 
     /// The lanes of the cells holding `wavelengths_nm`, and their x̄, ȳ, z̄.
     pub fn lanes(&self, wavelengths_nm: Lanes) -> (LaneOptics, [[f64; 3]; LANES]) {
-        let cells = wavelengths_nm.map(|w| self.cell(w));
+        let cells = wavelengths_nm.0.map(|w| self.cell(w));
         (
-            LaneOptics::from_optics(cells.map(|c| c.optics), cells.map(|c| c.solar_irradiance)),
+            LaneOptics::from_optics(
+                cells.map(|c| c.optics),
+                Lanes(cells.map(|c| c.solar_irradiance)),
+            ),
             cells.map(|c| c.cmf),
         )
     }
@@ -132,7 +135,7 @@ impl WavelengthSampler {
             wavelengths[i] = VISIBLE_MIN_NM + k as f64 + frac.clamp(0.0, 1.0);
             pdf[i] = self.pdf[k];
         }
-        (wavelengths, pdf)
+        (Lanes(wavelengths), Lanes(pdf))
     }
 }
 
@@ -348,7 +351,7 @@ mod tests {
         let mut rng = Rng::new(3, 0, 0);
         for _ in 0..1000 {
             let w = VISIBLE_MIN_NM + rng.uniform() * (VISIBLE_MAX_NM - VISIBLE_MIN_NM);
-            let (lanes, cmf) = cells.lanes([w; LANES]);
+            let (lanes, cmf) = cells.lanes(Lanes::splat(w));
             let middle = lanes.wavelengths_nm[0];
             assert!(
                 (middle - w).abs() <= 0.5 * SPECTRAL_CELL_NM + 1e-9,

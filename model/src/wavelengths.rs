@@ -234,7 +234,7 @@ fn spectral_n(n: usize) -> Vec<WavelengthBatch> {
 }
 
 /// Linear sRGB from per-batch lane radiances (W·m⁻²·sr⁻¹·nm⁻¹).
-pub fn to_linear_srgb(batches: &[WavelengthBatch], radiance: &[[f64; LANES]]) -> [f64; 3] {
+pub fn to_linear_srgb(batches: &[WavelengthBatch], radiance: &[crate::lanes::Lanes]) -> [f64; 3] {
     let mut rgb = [0.0; 3];
     for (batch, l) in batches.iter().zip(radiance) {
         for row in 0..3 {
@@ -250,6 +250,7 @@ pub fn to_linear_srgb(batches: &[WavelengthBatch], radiance: &[[f64; LANES]]) ->
 mod tests {
     use super::*;
     use crate::colour::{linear_srgb_to_xyz, spectrum_to_xyz};
+    use crate::lanes::Lanes;
     use crate::spectrum::Spectrum;
 
     #[test]
@@ -290,7 +291,7 @@ mod tests {
             let spectrum = Spectrum::new(grid.clone(), values.collect()).unwrap();
             let exact = xyz_to_linear_srgb(spectrum_to_xyz(&spectrum));
             let lanes = w.map(|l| sun.irradiance(l, POINT_SET_SOLAR_BAND_NM) * tint(l));
-            let rgb = to_linear_srgb(&b, &[lanes]);
+            let rgb = to_linear_srgb(&b, &[Lanes(lanes)]);
             for c in 0..3 {
                 assert!(
                     (rgb[c] - exact[c]).abs() < 0.05 * exact[1],
@@ -339,9 +340,9 @@ mod tests {
         for n in [32, 64] {
             let b = batches(WavelengthSet::SpectralN(n));
             assert_eq!(b.len(), n as usize / 4);
-            let lanes: Vec<[f64; 4]> = b
+            let lanes: Vec<Lanes> = b
                 .iter()
-                .map(|b| b.wavelengths_nm.map(|l| spectrum.sample(l)))
+                .map(|b| Lanes(b.wavelengths_nm.map(|l| spectrum.sample(l))))
                 .collect();
             let rgb = to_linear_srgb(&b, &lanes);
             for c in 0..3 {
@@ -358,7 +359,7 @@ mod tests {
     #[test]
     fn rgb3_maps_a_flat_spectrum_to_the_spectral_luminance() {
         let b = batches(WavelengthSet::Rgb3);
-        let rgb = to_linear_srgb(&b, &[[1.0; 4]]);
+        let rgb = to_linear_srgb(&b, &[Lanes::ONE]);
         let y = linear_srgb_to_xyz(rgb).y;
         assert!((y - y_bar_integral_nm()).abs() < 1e-6 * y);
         assert!(

@@ -27,7 +27,7 @@ fn estimate(pt: &PathTracer, ray: &Ray, lanes: &LaneOptics, n: u64, seed: u64) -
     let mean = sum.map(|s| s / nf);
     let se =
         std::array::from_fn(|i| ((sum2[i] / nf - mean[i] * mean[i]).max(0.0) / (nf - 1.0)).sqrt());
-    (mean, se)
+    (Lanes(mean), Lanes(se))
 }
 
 fn at_altitude(atm: &Atmosphere, h: f64, elevation: f64, azimuth: f64) -> Ray {
@@ -67,7 +67,7 @@ fn single_order_agrees(s: &AtmosphereSettings) {
         ..PathTracerSettings::default()
     };
     let pt = PathTracer::new(&atm, sun, settings);
-    let lanes = LaneOptics::new(&atm, [440.0, 520.0, 610.0, 700.0]);
+    let lanes = LaneOptics::new(&atm, Lanes([440.0, 520.0, 610.0, 700.0]));
     let views = [
         at_altitude(&atm, 1.0, 30.0, 90.0),    // side sky
         at_altitude(&atm, 1.0, 20.0, 170.0),   // near the sun (aerosol forward peak)
@@ -130,7 +130,7 @@ fn order_one_agrees_within(atm: &Atmosphere, cases: &[(f64, Ray, f64)], paths: u
         sun_angular_radius_rad: 1e-6,
         ..PathTracerSettings::default()
     };
-    let lanes = LaneOptics::new(atm, [440.0, 520.0, 610.0, 700.0]);
+    let lanes = LaneOptics::new(atm, Lanes([440.0, 520.0, 610.0, 700.0]));
     for &(elevation, ray, bound) in cases {
         let sun = direction_from_angles(elevation, 0.0);
         let pt = PathTracer::new(atm, sun, settings);
@@ -185,7 +185,7 @@ fn default_agrees_with(
     paths: u64,
 ) {
     for &(atm, elevation, ray) in cases {
-        let lanes = LaneOptics::new(atm, [440.0, 520.0, 610.0, 700.0]);
+        let lanes = LaneOptics::new(atm, Lanes([440.0, 520.0, 610.0, 700.0]));
         let sun = direction_from_angles(elevation, 180.0);
         let default = PathTracer::new(atm, sun, PathTracerSettings::default());
         let (mean, se) = estimate(&default, &ray, &lanes, paths, 24);
@@ -232,7 +232,7 @@ fn conservative_atmosphere_over_a_white_ground_reflects_all_sunlight() {
     s.ozone.column = OzoneColumn::Du(0.0);
     s.ground_albedo = 1.0;
     let atm = Atmosphere::new(&s);
-    let lanes = LaneOptics::new(&atm, [400.0, 500.0, 600.0, 700.0]);
+    let lanes = LaneOptics::new(&atm, Lanes([400.0, 500.0, 600.0, 700.0]));
     let top = DVec3::new(0.0, 0.0, atm.top_radius_m + 1.0);
     for elevation in [90.0, 10.0] {
         let sun = direction_from_angles(elevation, 0.0);
@@ -278,7 +278,7 @@ fn the_seed_makes_results_reproducible() {
         direction_from_angles(10.0, 0.0),
         PathTracerSettings::default(),
     );
-    let lanes = LaneOptics::new(&atm, [450.0, 550.0, 650.0, 750.0]);
+    let lanes = LaneOptics::new(&atm, Lanes([450.0, 550.0, 650.0, 750.0]));
     let ray = at_altitude(&atm, 1.0, 15.0, 30.0);
     let a = estimate(&pt, &ray, &lanes, 200, 42);
     let b = estimate(&pt, &ray, &lanes, 200, 42);
@@ -290,7 +290,7 @@ fn the_seed_makes_results_reproducible() {
 #[test]
 fn twilight_space_and_boundary_views_are_finite_and_non_negative() {
     let atm = Atmosphere::new(&AtmosphereSettings::default());
-    let lanes = LaneOptics::new(&atm, [380.0, 500.0, 620.0, 800.0]);
+    let lanes = LaneOptics::new(&atm, Lanes([380.0, 500.0, 620.0, 800.0]));
     let cases = [
         (-6.0, at_altitude(&atm, 2.0, 10.0, 270.0)), // civil twilight
         (-12.0, at_altitude(&atm, 2.0, 60.0, 0.0)),  // nautical twilight

@@ -227,7 +227,8 @@ pub struct Batch {
     pub aerosol_phase_node: [f32; 4],
 }
 
-fn f4(v: [f64; 4]) -> [f32; 4] {
+fn f4(v: impl Into<[f64; 4]>) -> [f32; 4] {
+    let v: [f64; 4] = v.into();
     v.map(|x| x as f32)
 }
 

@@ -5,6 +5,7 @@
 
 use atmoscope_model::camera::{Camera, Projection};
 use atmoscope_model::geometry::{Ray, direction_from_angles};
+use atmoscope_model::lanes::Lanes;
 use atmoscope_model::methods::path_tracer::{LANES, LaneOptics, PathTracer, PathTracerSettings};
 use atmoscope_model::methods::rng::Rng;
 use atmoscope_model::methods::shared::{Params, sun_disk, viewpoint};
@@ -164,7 +165,7 @@ pub fn probe(scene: &Scene, args: &ProbeRequest) -> Probe {
             ));
             let ray = Ray::new(camera.position, dir);
             let batch = &batches[b];
-            let lanes_nm: [f64; LANES] = std::array::from_fn(|i| batch[i.min(batch.len() - 1)]);
+            let lanes_nm = Lanes::from_fn(|i| batch[i.min(batch.len() - 1)]);
             let (mean, se) = match args.method {
                 ProbeMethod::Model(_) => (
                     model.as_ref().map_or([f64::NAN; LANES], |m| {
@@ -172,12 +173,14 @@ pub fn probe(scene: &Scene, args: &ProbeRequest) -> Probe {
                         let sky = m.radiance(b, (camera.position, h), dir, sun);
                         let mu_s = sun.dot(camera.position.normalize());
                         let disk = m.sun(b, h, mu_s, sun_disk(dir, sun, &lanes_nm));
-                        std::array::from_fn(|i| sky[i] + disk[i])
+                        (sky + disk).0
                     }),
                     [0.0; LANES],
                 ),
                 ProbeMethod::SingleScattering => (
-                    lanes_nm.map(|w| single_scattering::radiance(&atm, &ray, sun, w)),
+                    lanes_nm
+                        .0
+                        .map(|w| single_scattering::radiance(&atm, &ray, sun, w)),
                     [0.0; LANES],
                 ),
                 ProbeMethod::PathTracer => {

@@ -12,6 +12,7 @@ use atmoscope_model::colour::{cie1931, linear_srgb_to_xyz};
 use atmoscope_model::constants::MAX_LUMINOUS_EFFICACY_LM_PER_W;
 use atmoscope_model::display::{display_balanced, to_u8};
 use atmoscope_model::geometry::{Ray, direction_from_angles};
+use atmoscope_model::lanes::Lanes;
 use atmoscope_model::methods::path_tracer::{LANES, LaneOptics, PathTracer, PathTracerSettings};
 use atmoscope_model::methods::rng::Rng;
 use atmoscope_model::methods::single_scattering::{self, Parts};
@@ -72,7 +73,7 @@ pub fn analyse(probe: Probe, progress: &Progress) -> Option<Analysis> {
         if progress.cancelled() {
             return None;
         }
-        let lanes_nm: [f64; LANES] = std::array::from_fn(|i| batch[i.min(batch.len() - 1)]);
+        let lanes_nm = Lanes::from_fn(|i| batch[i.min(batch.len() - 1)]);
         let lanes = LaneOptics::new(&atm, lanes_nm);
         let (mut sum, mut sum2) = ([0.0; LANES], [0.0; LANES]);
         for k in 0..INSPECT_PATHS {

@@ -8,6 +8,7 @@ use super::gpu_view::GpuView;
 use super::state::{LUT_EXPOSURE_EV, LutSettings};
 use atmoscope_model::Scene;
 use atmoscope_model::colour::srgb_encode;
+use atmoscope_model::lanes::Lanes;
 use atmoscope_model::methods::{self, shared::TableSpec};
 use atmoscope_model::wavelengths::{LANES, to_linear_srgb};
 use eframe::egui::{self, Sense, Vec2};
@@ -101,8 +102,8 @@ impl LutTab {
                     let slice = s.slice.min(depth - 1) as usize;
                     let colours: Vec<[f64; 3]> = (0..w * hh)
                         .map(|i| {
-                            let per_layer: Vec<[f64; LANES]> = (0..p.batches.len())
-                                .map(|l| data[l * plane + slice * w * hh + i].map(f64::from))
+                            let per_layer: Vec<Lanes> = (0..p.batches.len())
+                                .map(|l| Lanes(data[l * plane + slice * w * hh + i].map(f64::from)))
                                 .collect();
                             match s.lane {
                                 Some(k) => [per_layer[k / LANES][k % LANES]; 3],
@@ -114,7 +115,7 @@ impl LutTab {
                                         // Unitless: the colour of transmitted white light.
                                         let white = to_linear_srgb(
                                             &batches,
-                                            &vec![[1.0; LANES]; batches.len()],
+                                            &vec![Lanes::ONE; batches.len()],
                                         );
                                         std::array::from_fn(|c| rgb[c] / white[c])
                                     } else {

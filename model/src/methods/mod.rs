@@ -264,10 +264,10 @@ pub trait SkyModel: Send + Sync {
         let p = self.params();
         let lit = disk.iter().any(|&d| d > 0.0);
         let Some(t) = self.table("transmittance").filter(|_| lit) else {
-            return [0.0; 4];
+            return Lanes::ZERO;
         };
         let tr = shared::transmittance::sun_seen_from(p, t, layer, h, mu_s);
-        std::array::from_fn(|i| p.batches[layer].solar_irradiance[i] * tr[i] * disk[i])
+        p.batches[layer].solar_irradiance * tr * disk
     }
 }
 
@@ -816,12 +816,11 @@ pub fn render_with(
                         sun_in_view.and_then(|s| s.pixel(x as f64 + 0.5, y as f64 + 0.5));
                     let lanes: Vec<Lanes> = (0..p.batches.len())
                         .map(|layer| {
-                            let disk = disk_here
-                                .map_or([0.0; 4], |d| d.radiance(&colours[layer].wavelengths_nm));
-                            shared::add(
-                                model.radiance(layer, at, ray.direction, sun),
-                                model.sun(layer, at.1, mu_s, disk),
-                            )
+                            let disk = disk_here.map_or(Lanes::ZERO, |d| {
+                                d.radiance(&Lanes(colours[layer].wavelengths_nm))
+                            });
+                            model.radiance(layer, at, ray.direction, sun)
+                                + model.sun(layer, at.1, mu_s, disk)
                         })
                         .collect();
                     to_linear_srgb(&colours, &lanes).map(|c| c * sunlight)
@@ -847,20 +846,20 @@ mod tests {
         let model = build(&scene, &camera).expect("a real-time model");
         let e = model.params().batches[0].solar_irradiance;
         let sin = |deg: f64| deg.to_radians().sin();
-        let high = model.sun(0, 2.0, sin(30.0), [1.0; 4]);
+        let high = model.sun(0, 2.0, sin(30.0), Lanes::ONE);
         assert!(
             (0..3).all(|i| high[i] > 0.3 * e[i] && high[i] < e[i]),
             "{high:?} of {e:?}"
         );
-        assert_eq!(model.sun(0, 2.0, sin(-2.0), [1.0; 4]), [0.0; 4]);
-        assert_eq!(model.sun(0, 2.0, sin(30.0), [0.0; 4]), [0.0; 4]);
+        assert_eq!(model.sun(0, 2.0, sin(-2.0), Lanes::ONE), Lanes::ZERO);
+        assert_eq!(model.sun(0, 2.0, sin(30.0), Lanes::ZERO), Lanes::ZERO);
         // From 20 000 km: straight up through nothing, straight down behind the planet.
-        let space = model.sun(0, 2e7, 1.0, [1.0; 4]);
+        let space = model.sun(0, 2e7, 1.0, Lanes::ONE);
         assert!(
             (0..3).all(|i| (space[i] - e[i]).abs() < 1e-9 * e[i]),
             "{space:?}"
         );
-        assert_eq!(model.sun(0, 2e7, -1.0, [1.0; 4]), [0.0; 4]);
+        assert_eq!(model.sun(0, 2e7, -1.0, Lanes::ONE), Lanes::ZERO);
     }
 
     #[test]

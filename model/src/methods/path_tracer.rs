@@ -330,7 +330,7 @@ impl LaneOptics {
     pub fn new(atmosphere: &Atmosphere, wavelengths_nm: Lanes) -> LaneOptics {
         LaneOptics {
             wavelengths_nm,
-            optics: wavelengths_nm.map(|w| atmosphere.optics(w)),
+            optics: wavelengths_nm.0.map(|w| atmosphere.optics(w)),
             solar_irradiance: wavelengths_nm.map(|w| atmosphere.solar_irradiance(w, None)),
         }
     }
@@ -338,7 +338,7 @@ impl LaneOptics {
     /// Lanes of given optics and extraterrestrial solar irradiance (W·m⁻²·nm⁻¹).
     pub fn from_optics(optics: [Optics; LANES], solar_irradiance: Lanes) -> LaneOptics {
         LaneOptics {
-            wavelengths_nm: optics.map(|o| o.wavelength_nm),
+            wavelengths_nm: Lanes(optics.map(|o| o.wavelength_nm)),
             optics,
             solar_irradiance,
         }
@@ -452,7 +452,7 @@ impl<'a> PathTracer<'a> {
         const N: usize = SHELL_ALTITUDES_M.len();
         let mut medium = PathMedium {
             majorant: [0.0; N],
-            control: [[0.0; LANES]; N],
+            control: [Lanes::ZERO; N],
             residual_majorant: [0.0; N],
             in_scattering_rate: [0.0; N],
             rayleigh_scattering: [0.0; N],
@@ -464,11 +464,10 @@ impl<'a> PathTracer<'a> {
         let rayleigh_m2 = mean(&|o| o.rayleigh_cross_section_m2);
         let aerosol_scattering = mean(&|o| o.aerosol_optical_depth * o.aerosol_ssa);
         for (k, shell) in self.prepared.shells.iter().enumerate() {
-            let max: Lanes = std::array::from_fn(|i| shell.max.extinction(&lanes.optics[i]));
-            let min: Lanes =
-                std::array::from_fn(|i| shell.min.extinction(&lanes.optics[i]).min(max[i]));
+            let max: Lanes = Lanes::from_fn(|i| shell.max.extinction(&lanes.optics[i]));
+            let min: Lanes = Lanes::from_fn(|i| shell.min.extinction(&lanes.optics[i]).min(max[i]));
             medium.majorant[k] = max.iter().fold(0.0f64, |a, &b| a.max(b));
-            let middle: Lanes = std::array::from_fn(|i| 0.5 * (max[i] + min[i]));
+            let middle: Lanes = 0.5 * (max + min);
             medium.residual_majorant[k] =
                 (0..LANES).fold(0.0f64, |a, i| a.max(0.5 * (max[i] - min[i])));
             medium.control[k] = middle;
@@ -611,10 +610,10 @@ impl<'a> PathTracer<'a> {
         rng: &mut Rng,
     ) -> Lanes {
         let Some(seg) = self.segment(ray) else {
-            return [1.0; LANES];
+            return Lanes::ONE;
         };
         if seg.ground {
-            return [0.0; LANES];
+            return Lanes::ZERO;
         }
         let intervals = self.intervals(ray, seg.start, seg.end);
         self.ratio_track(ray, &intervals, seg.end, lanes, medium, rng)
@@ -641,8 +640,8 @@ impl<'a> PathTracer<'a> {
         medium: &PathMedium,
         rng: &mut Rng,
     ) -> Lanes {
-        let mut tau_control = [0.0; LANES];
-        let mut ratio = [1.0; LANES];
+        let mut tau_control = Lanes::ZERO;
+        let mut ratio = Lanes::ONE;
         // Residual majorant optical depth to the next tentative collision, carried from shell
         // to shell (the exponential is memoryless): one draw per collision, not one per shell.
         let mut tau_left = None;
@@ -678,7 +677,7 @@ impl<'a> PathTracer<'a> {
                 }
             }
         }
-        std::array::from_fn(|i| (ratio[i] * (-tau_control[i]).exp()).max(0.0))
+        Lanes::from_fn(|i| (ratio[i] * (-tau_control[i]).exp()).max(0.0))
     }
 
     /// A distance along a segment at which the path scatters next, with its density (m⁻¹):
@@ -793,8 +792,8 @@ impl<'a> PathTracer<'a> {
     pub fn radiance(&self, ray: &Ray, lanes: &LaneOptics, rng: &mut Rng) -> Lanes {
         let medium = self.medium(lanes);
         let majorants = &medium.majorant;
-        let mut radiance = [0.0; LANES];
-        let mut weight = [1.0; LANES];
+        let mut radiance = Lanes::ZERO;
+        let mut weight = Lanes::ONE;
         let mut ray = *ray;
         let max_order = self.settings.max_order.unwrap_or(u32::MAX);
         let albedo = self.atmosphere.ground_albedo;
@@ -1117,7 +1116,7 @@ mod tests {
     #[test]
     fn scattering_points_are_drawn_with_the_density_they_report() {
         let atmosphere = rural();
-        let lanes = LaneOptics::new(&atmosphere, [450.0, 520.0, 600.0, 700.0]);
+        let lanes = LaneOptics::new(&atmosphere, Lanes([450.0, 520.0, 600.0, 700.0]));
         let optics = &lanes.optics[1];
         let bottom = atmosphere.bottom_radius_m;
         let mut rng = Rng::new(13, 0, 0);
@@ -1187,14 +1186,14 @@ mod tests {
     fn ratio_tracking_about_the_shells_middle_is_unbiased_and_quieter() {
         let atmosphere = rural();
         let tracer = PathTracer::new(&atmosphere, DVec3::Z, PathTracerSettings::default());
-        let lanes = LaneOptics::new(&atmosphere, [450.0, 520.0, 600.0, 700.0]);
+        let lanes = LaneOptics::new(&atmosphere, Lanes([450.0, 520.0, 600.0, 700.0]));
         let medium = tracer.medium(&lanes);
         // The same medium with the control at each shell's least extinction.
         let mut lowest = tracer.medium(&lanes);
         for (k, shell) in tracer.prepared.shells.iter().enumerate() {
             let (min, max): (Lanes, Lanes) = (
-                std::array::from_fn(|i| shell.min.extinction(&lanes.optics[i])),
-                std::array::from_fn(|i| shell.max.extinction(&lanes.optics[i])),
+                Lanes::from_fn(|i| shell.min.extinction(&lanes.optics[i])),
+                Lanes::from_fn(|i| shell.max.extinction(&lanes.optics[i])),
             );
             lowest.control[k] = min;
             lowest.residual_majorant[k] = (0..LANES).fold(0.0f64, |a, i| a.max(max[i] - min[i]));

@@ -286,9 +286,9 @@ fn transmittance_cells((w, h): (u32, u32)) -> anyhow::Result<Vec<Cell>> {
                     }
                 }
                 reference.push(rgb(depth.map(|d| (-d).exp())));
-                flat.push(rgb(slabs
-                    .optical_depth_between(0, h0, mu0, t_a, t_b)
-                    .map(|d| (-d).exp())));
+                flat.push(rgb((-slabs.optical_depth_between(0, h0, mu0, t_a, t_b))
+                    .exp()
+                    .0));
                 let (h_a, r_a) = altitude_along(h0, mu0, t_a, big_r);
                 let mu_a = ((r0 * mu0 + t_a) / r_a).clamp(-1.0, 1.0);
                 looked_up.push(rgb(transmittance_between(
@@ -297,7 +297,8 @@ fn transmittance_cells((w, h): (u32, u32)) -> anyhow::Result<Vec<Cell>> {
                     0,
                     (h_a, mu_a),
                     t_b - t_a,
-                )));
+                )
+                .0));
             }
         }
         // Transmittance shown as it is: a linear curve with exposure 1/EXPOSURE_SCALE.

@@ -61,7 +61,7 @@ struct Row {
 /// quadrature (relative tolerance 1e-10): the reference.
 fn reference_depth(p: &Params, h: f64, mu: f64) -> Lanes {
     let d = distance_to_top(h, mu, p.bottom_radius_m, p.top_radius_m);
-    std::array::from_fn(|lane| {
+    Lanes::from_fn(|lane| {
         integrate_adaptive(
             |t| {
                 let (h_t, _) = altitude_along(h, mu, t, p.bottom_radius_m);

@@ -97,7 +97,7 @@ const P95_BOUND: f64 = 1.5;
 type Sample = ([f64; 4], [f64; 3]);
 type Matrix = [[f64; 4]; 3];
 /// Four lanes, as indices into the wavelengths rendered, longest first.
-type Lanes = [usize; 4];
+type LaneIndices = [usize; 4];
 
 /// One view's radiances at every wavelength rendered and its SpectralN colours, direction by
 /// direction, and how it is displayed.
@@ -111,7 +111,7 @@ struct ViewData {
 }
 
 impl ViewData {
-    fn samples(&self, lanes: Lanes) -> Vec<Sample> {
+    fn samples(&self, lanes: LaneIndices) -> Vec<Sample> {
         self.radiance
             .iter()
             .zip(&self.target)
@@ -123,12 +123,12 @@ impl ViewData {
 /// Wavelengths and matrix: what a fit produces.
 #[derive(Debug, Clone, Copy)]
 struct Fit {
-    lanes: Lanes,
+    lanes: LaneIndices,
     matrix: Matrix,
 }
 
 /// The matrix of `objective` over `views` at `lanes`.
-fn fit(views: &[&ViewData], lanes: Lanes, objective: Objective) -> Option<Matrix> {
+fn fit(views: &[&ViewData], lanes: LaneIndices, objective: Objective) -> Option<Matrix> {
     let per_view: Vec<Vec<Sample>> = views.iter().map(|v| v.samples(lanes)).collect();
     let m = fit_matrix(&per_view.concat())?;
     if objective == Objective::LeastSquares {
@@ -155,7 +155,7 @@ fn fit(views: &[&ViewData], lanes: Lanes, objective: Objective) -> Option<Matrix
 
 /// How near its bounds the worst of `views` is at `lanes` under their least-squares matrix:
 /// the largest over the views of max(mean / 0.5, p95 / 1.5); below 1 every view is within.
-fn worst_against_bounds(views: &[&ViewData], lanes: Lanes) -> Option<f64> {
+fn worst_against_bounds(views: &[&ViewData], lanes: LaneIndices) -> Option<f64> {
     let per_view: Vec<Vec<Sample>> = views.iter().map(|v| v.samples(lanes)).collect();
     let m = fit_matrix(&per_view.concat())?;
     Some(
@@ -172,7 +172,7 @@ fn worst_against_bounds(views: &[&ViewData], lanes: Lanes) -> Option<f64> {
 
 /// The candidate whose worst view is furthest within its bounds, by
 /// [`worst_against_bounds`] (the first of equals).
-fn choose(views: &[&ViewData], candidates: &[Lanes]) -> Option<Lanes> {
+fn choose(views: &[&ViewData], candidates: &[LaneIndices]) -> Option<LaneIndices> {
     candidates
         .par_iter()
         .enumerate()
@@ -182,7 +182,7 @@ fn choose(views: &[&ViewData], candidates: &[Lanes]) -> Option<Lanes> {
 }
 
 /// The whole fit on `views`: the lanes (chosen among `candidates`), then the matrix.
-fn fit_on(views: &[&ViewData], candidates: &[Lanes], objective: Objective) -> Option<Fit> {
+fn fit_on(views: &[&ViewData], candidates: &[LaneIndices], objective: Objective) -> Option<Fit> {
     let lanes = match candidates {
         [only] => *only,
         _ => choose(views, candidates)?,
@@ -234,7 +234,7 @@ fn render(
                 .flat_map(|b| hillaire::radiance(&pw, &tw, b, at, ray.direction, sun))
                 .take(wavelengths_nm.len())
                 .collect();
-            let ln: Vec<[f64; 4]> = (0..pn.batches.len())
+            let ln: Vec<atmoscope_model::lanes::Lanes> = (0..pn.batches.len())
                 .map(|b| hillaire::radiance(&pn, &tn, b, at, ray.direction, sun))
                 .collect();
             let c = to_linear_srgb(&colours, &ln);
@@ -422,7 +422,7 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     wavelengths_nm.extend(published_nm);
     wavelengths_nm.sort_by(f64::total_cmp);
     wavelengths_nm.dedup();
-    let index = |nm: [f64; 4]| -> Lanes {
+    let index = |nm: [f64; 4]| -> LaneIndices {
         nm.map(|w| {
             wavelengths_nm
                 .iter()
@@ -430,7 +430,7 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
                 .expect("every lane's wavelength is rendered")
         })
     };
-    let candidates: Vec<Lanes> = candidates_nm.into_iter().map(index).collect();
+    let candidates: Vec<LaneIndices> = candidates_nm.into_iter().map(index).collect();
     let published_lanes = index(published_nm);
 
     let chosen = views::suite()
@@ -476,8 +476,9 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
             worst(published_lanes)
         );
     }
-    let samples_at =
-        |lanes: Lanes| -> Vec<Sample> { per_view.iter().flat_map(|v| v.samples(lanes)).collect() };
+    let samples_at = |lanes: LaneIndices| -> Vec<Sample> {
+        per_view.iter().flat_map(|v| v.samples(lanes)).collect()
+    };
     let fitted_samples = samples_at(all.lanes);
     println!(
         "{} samples; mean relative colour error against {:?}: published matrix {:.4} (at {} nm), fitted {:.4} (at {} nm)",

@@ -54,7 +54,7 @@ pub fn compute_camera_slice(p: &Params, spec: &TableSpec, lut: &Lut, vp: Viewpoi
     let (j0, j1, tx) = split(mu_s_texel(p, vp.mu_s), SCATTERING_MU_S as usize);
     let (z0, z1, tz) = split(r_texel(p, vp.h), SCATTERING_SIZE[2] as usize);
     Lut::from_spec(spec, p.batches.len(), |layer, _, y, x| {
-        let mut v = [0.0; LANES];
+        let mut v = Lanes::ZERO;
         for (z, wz) in [(z0, 1.0 - tz), (z1, tz)] {
             for (j, wx) in [(j0, 1.0 - tx), (j1, tx)] {
                 let t = lut.texel(layer, x * SCATTERING_MU_S as usize + j, y, z);

@@ -25,5 +25,5 @@ pub fn direct_irradiance(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -
     let e = p.batches[layer].solar_irradiance;
     let tr = transmittance(p, t, layer, h, mu_s);
     let c = cosine_factor(mu_s);
-    std::array::from_fn(|i| e[i] * tr[i] * c)
+    e * tr * c
 }

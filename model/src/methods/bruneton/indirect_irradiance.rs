@@ -13,7 +13,7 @@ pub fn indirect_irradiance(p: &Params, delta: Deltas, layer: usize, h: f64, mu_s
     let step = FRAC_PI_2 / f64::from(n);
     let sun = DVec3::new((1.0 - mu_s * mu_s).max(0.0).sqrt(), 0.0, mu_s);
     let (x_mu_s, x_r) = (mu_s_texel(p, mu_s), r_texel(p, h));
-    let mut e = [0.0; LANES];
+    let mut e = Lanes::ZERO;
     for l in 0..n {
         let theta = (f64::from(l) + 0.5) * step;
         let (sin_t, cos_t) = theta.sin_cos();

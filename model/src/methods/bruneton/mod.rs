@@ -339,7 +339,7 @@ impl ScatteringTaps {
 
     /// The blended value of `lut` (a scattering table).
     pub fn read(&self, lut: &Lut) -> Lanes {
-        let mut v = [0.0; LANES];
+        let mut v = Lanes::ZERO;
         for (&i, &w) in self.index.iter().zip(&self.weight) {
             let t = lut.data[i];
             for l in 0..LANES {
@@ -365,7 +365,7 @@ pub fn previous_order(p: &Params, delta: Deltas, layer: usize, texel: [f64; 4], 
     let taps = ScatteringTaps::at(layer, texel);
     let r = taps.read(delta.0);
     let pr = rayleigh_phase(p, layer, nu);
-    let mut l: Lanes = std::array::from_fn(|i| r[i] * pr[i]);
+    let mut l: Lanes = r * pr;
     if let Some(mie) = delta.1 {
         let (m, pm) = (taps.read(mie), aerosol_phase(p, layer, nu));
         for i in 0..LANES {
@@ -400,7 +400,7 @@ pub fn irradiance(p: &Params, lut: &Lut, layer: usize, h: f64, mu_s: f64) -> Lan
 }
 
 fn zeros(spec: &TableSpec, layers: usize) -> Lut {
-    Lut::from_spec(spec, layers, |_, _, _, _| [0.0; LANES])
+    Lut::from_spec(spec, layers, |_, _, _, _| Lanes::ZERO)
 }
 
 /// Every table of the method for one atmosphere, in the state the GPU leaves them.
@@ -591,7 +591,7 @@ mod tests {
     fn a_look_up_at_a_texel_centre_returns_the_texel() {
         let p = params();
         let lut = Lut::from_spec(&SCATTERING, 1, |_, z, y, x| {
-            [x as f64, y as f64, z as f64, 1.0]
+            Lanes([x as f64, y as f64, z as f64, 1.0])
         });
         for (x, y, z) in [(3, 5, 2), (40, 33, 15), (127, 63, 0)] {
             let c = scattering_coords(&p, x, y, z);
@@ -628,7 +628,7 @@ mod tests {
                 ..PathTracerSettings::default()
             },
         );
-        let lanes = LaneOptics::new(&atm, wavelengths);
+        let lanes = LaneOptics::new(&atm, Lanes(wavelengths));
         let spp = 160_000;
         for (k, (elevation, azimuth)) in [
             (90.0, 0.0),

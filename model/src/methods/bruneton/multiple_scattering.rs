@@ -13,7 +13,7 @@ use crate::wavelengths::LANES;
 /// the texel's nu (W·m⁻²·nm⁻¹).
 pub fn multiple_scattering(p: &Params, t: &Lut, density: &Lut, layer: usize, c: Coords) -> Lanes {
     let n = p.steps.scattering;
-    let mut s = [0.0; LANES];
+    let mut s = Lanes::ZERO;
     for k in 0..2 * (n + 1) {
         let (d, w) = ray_sample(p, &c, k, n);
         let (h_d, mu_d, mu_s_d) = along(p, &c, d);
@@ -31,5 +31,5 @@ pub fn multiple_scattering(p: &Params, t: &Lut, density: &Lut, layer: usize, c: 
         }
     }
     let pr = rayleigh_phase(p, layer, c.nu);
-    std::array::from_fn(|l| s[l] / pr[l])
+    s / pr
 }

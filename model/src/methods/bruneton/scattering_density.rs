@@ -48,7 +48,7 @@ pub fn scattering_density(
     let albedo = p.batches[layer].ground_albedo;
     // mu_s and r are the same for every direction, mu for every azimuth: map them once.
     let (x_mu_s, x_r) = (mu_s_texel(p, c.mu_s), r_texel(p, c.h));
-    let mut j = [0.0; LANES];
+    let mut j = Lanes::ZERO;
     for l in 0..n {
         let theta = (f64::from(l) + 0.5) * step;
         let (sin_t, cos_t) = theta.sin_cos();
@@ -57,7 +57,7 @@ pub fn scattering_density(
             let d = distance_to_ground(c.h, cos_t, big_r);
             (d, transmittance_between(p, t, layer, (c.h, cos_t), d))
         } else {
-            (0.0, [0.0; LANES])
+            (0.0, Lanes::ZERO)
         };
         let x_mu = mu_texel(p, c.h, cos_t, ground);
         let d_omega = step * step * sin_t;

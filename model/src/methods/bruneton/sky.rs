@@ -20,7 +20,6 @@ use super::{
 };
 use crate::methods::shared::ray::{along, behind, camera_coords, ray_length};
 use crate::methods::shared::transmittance::{sun_transmittance, transmittance_between};
-use crate::wavelengths::LANES;
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -64,13 +63,13 @@ pub fn edge_fade(mu_s: f64) -> f64 {
 fn inscattered(tables: &Tables, layer: usize, c: Coords) -> Lanes {
     let p: &Params = &tables.params;
     let (at, factor) = if c.mu_s >= MU_S_MIN {
-        (c, [1.0; LANES])
+        (c, Lanes::ONE)
     } else if let Some(d) = lit_distance(p, &c) {
         let (h, mu, mu_s) = along(p, &c, d);
         let t = transmittance_between(p, &tables.transmittance, layer, (c.h, c.mu), d);
         (Coords { h, mu, mu_s, ..c }, t)
     } else {
-        (c, [edge_fade(c.mu_s); LANES])
+        (c, Lanes::splat(edge_fade(c.mu_s)))
     };
     let taps = ScatteringTaps::new(p, layer, at);
     let (s, s_mie) = (taps.read(&tables.scattering), taps.read(&tables.single_mie));
@@ -78,7 +77,7 @@ fn inscattered(tables: &Tables, layer: usize, c: Coords) -> Lanes {
         rayleigh_phase(p, layer, c.nu),
         aerosol_phase(p, layer, c.nu),
     );
-    std::array::from_fn(|i| factor[i] * (s[i] * pr[i] + s_mie[i] * pm[i]))
+    factor * (s * pr + s_mie * pm)
 }
 
 /// The radiance of one batch seen from `at` (position from the planet's centre and altitude,
@@ -87,13 +86,13 @@ fn inscattered(tables: &Tables, layer: usize, c: Coords) -> Lanes {
 pub fn radiance(tables: &Tables, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
     let p: &Params = &tables.params;
     let Some(c) = camera_coords(p, at, dir, sun) else {
-        return [0.0; 4];
+        return Lanes::ZERO;
     };
     let s = inscattered(tables, layer, c);
     let behind = behind(p, &tables.transmittance, layer, &c, |mu_s_g| {
         ground_radiance(tables, layer, mu_s_g)
     });
-    std::array::from_fn(|i| s[i] + behind[i])
+    s + behind
 }
 
 /// The Lambertian ground where the sun's zenith cosine is `mu_s_g`: albedo/π times the direct
@@ -104,7 +103,7 @@ pub fn ground_radiance(tables: &Tables, layer: usize, mu_s_g: f64) -> Lanes {
     let sun_t = sun_transmittance(p, &tables.transmittance, layer, 0.0, mu_s_g);
     let sky = irradiance(p, &tables.irradiance, layer, 0.0, mu_s_g);
     let fade = edge_fade(mu_s_g);
-    std::array::from_fn(|i| {
+    Lanes::from_fn(|i| {
         b.ground_albedo[i] / PI
             * (b.solar_irradiance[i] * sun_t[i] * mu_s_g.max(0.0) + fade * sky[i])
     })

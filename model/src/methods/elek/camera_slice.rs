@@ -38,7 +38,7 @@ pub fn compute_camera_slice(p: &Params, spec: &TableSpec, lut: &Lut, vp: Viewpoi
     let (y0, y1, ty) = split(fy, MU_S as usize);
     let (z0, z1, tz) = split(fz, H as usize);
     Lut::from_spec(spec, p.batches.len(), |layer, _, _, x| {
-        let mut v = [0.0; LANES];
+        let mut v = Lanes::ZERO;
         for (z, wz) in [(z0, 1.0 - tz), (z1, tz)] {
             for (y, wy) in [(y0, 1.0 - ty), (y1, ty)] {
                 let t = lut.texel(layer, x, y, z);

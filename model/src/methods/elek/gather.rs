@@ -49,5 +49,5 @@ pub fn gather(
             mie[i] += m[i] * w_m[i] * d_omega;
         }
     }
-    (rayleigh, mie)
+    (Lanes(rayleigh), Lanes(mie))
 }

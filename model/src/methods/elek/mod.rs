@@ -39,7 +39,6 @@ use super::shared::transmittance::{self, compute_transmittance_lut};
 use super::shared::{Lanes, Lut, Params, TableSpec, Viewpoint};
 use super::{Domain, Inputs, SkyModel};
 use crate::geometry::hits_ground;
-use crate::wavelengths::LANES;
 use glam::DVec3;
 
 /// View zenith cosine (mu) texels: x of the tables (the notes' 128).
@@ -203,7 +202,7 @@ impl Tables {
                 single_scattering::single_scattering(p, &t, layer, coords(p, x, y, z))
             });
         let (mut rayleigh, mut mie) = (delta_rayleigh.clone(), delta_mie.clone());
-        let zeros = Lut::from_spec(&GATHERED_RAYLEIGH, layers, |_, _, _, _| [0.0; LANES]);
+        let zeros = Lut::from_spec(&GATHERED_RAYLEIGH, layers, |_, _, _, _| Lanes::ZERO);
         let (mut gathered_rayleigh, mut gathered_mie) = (zeros.clone(), zeros);
         for _order in 2..=p.scattering_orders {
             (gathered_rayleigh, gathered_mie) =

@@ -35,5 +35,5 @@ pub fn multiple_scattering(
             mie[l] += w * tr[l] * m.aerosol_scattering[l] * g_m[l];
         }
     }
-    (rayleigh, mie)
+    (Lanes(rayleigh), Lanes(mie))
 }

@@ -16,11 +16,11 @@ pub fn radiance(tables: &Tables, layer: usize, at: (DVec3, f64), dir: DVec3, sun
     let p = &tables.params;
     let t = &tables.transmittance;
     let Some(c) = camera_coords(p, at, dir, sun) else {
-        return [0.0; 4];
+        return Lanes::ZERO;
     };
     let rayleigh = look_up(p, &tables.rayleigh, layer, c.h, c.mu, c.mu_s);
     let mie = look_up(p, &tables.mie, layer, c.h, c.mu, c.mu_s);
     let (pr, pm) = (modified_rayleigh_phase(c.nu), aerosol_phase(p, layer, c.nu));
     let behind = behind(p, t, layer, &c, |mu_s_g| sunlit_ground(p, t, layer, mu_s_g));
-    std::array::from_fn(|i| rayleigh[i] * pr + mie[i] * pm[i] + behind[i])
+    rayleigh * pr + mie * pm + behind
 }

@@ -46,7 +46,7 @@ impl SkyModel for Empty {
         let p = &self.params;
         let visible = visible_fraction(h, mu_s, p.bottom_radius_m);
         let e = p.batches[layer].solar_irradiance;
-        std::array::from_fn(|i| e[i] * visible * disk[i].max(0.0))
+        Lanes::from_fn(|i| e[i] * visible * disk[i].max(0.0))
     }
 }
 

@@ -20,13 +20,13 @@ pub fn radiance(
     let up = position.normalize();
     let (mu, mu_s, nu) = (dir.dot(up), sun.dot(up), dir.dot(sun));
     if !hits_ground(h, mu, big_r) {
-        return [0.0; 4];
+        return Lanes::ZERO;
     }
     let d = distance_to_ground(h, mu, big_r);
     let mu_s_g = (((big_r + h) * mu_s + d * nu) / big_r).clamp(-1.0, 1.0);
     let lit = visible_fraction(0.0, mu_s_g, big_r) * mu_s_g.max(0.0) / PI;
     let b = &p.batches[layer];
-    std::array::from_fn(|i| b.ground_albedo[i] * b.solar_irradiance[i] * lit)
+    b.ground_albedo * b.solar_irradiance * lit
 }
 
 #[cfg(test)]
@@ -50,7 +50,7 @@ mod tests {
                 direction_from_angles(20.0, 0.0),
                 sun
             ),
-            [0.0; 4]
+            Lanes::ZERO
         );
         let ground = radiance(&p, 0, (position, 10.0), -DVec3::Z, sun);
         let b = &p.batches[0];

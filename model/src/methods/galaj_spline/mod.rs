@@ -138,12 +138,12 @@ pub fn compute_mesh_lut(p: &Params) -> Lut {
         let jacobian = r / ((r - d) * (r + d)).sqrt();
         let e = |h: f64, big_h: f64| (-h / big_h).exp();
         let (air, aerosol) = (medium.air.scale_height_m, medium.aerosol.scale_height_m);
-        [
+        Lanes([
             e(h1, air),
             e(h2, air) * jacobian,
             e(h1, aerosol),
             e(h2, aerosol) * jacobian,
-        ]
+        ])
     })
 }
 
@@ -162,7 +162,7 @@ fn describe_mesh_texel(p: &Params, _: f64, [x, y, _]: [f64; 3]) -> String {
 fn tangent(v: impl Fn(usize) -> Lanes, k: usize, n: usize) -> Lanes {
     let (a, b) = (k.saturating_sub(1), (k + 1).min(n - 1));
     let (va, vb) = (v(a), v(b));
-    std::array::from_fn(|l| (vb[l] - va[l]) / (b - a) as f64)
+    Lanes::from_fn(|l| (vb[l] - va[l]) / (b - a) as f64)
 }
 
 /// The cubic Hermite spline through `v(0..n)` (unit spacing) at `x` ∈ [0, n − 1].
@@ -178,7 +178,7 @@ fn hermite(v: impl Fn(usize) -> Lanes + Copy, x: f64, n: usize) -> Lanes {
         -2.0 * s3 + 3.0 * s2,
         s3 - s2,
     );
-    std::array::from_fn(|l| h00 * p0[l] + h10 * m0[l] + h01 * p1[l] + h11 * m1[l])
+    h00 * p0 + h10 * m0 + h01 * p1 + h11 * m1
 }
 
 /// ∫ over [0, s] (s ∈ [0, 1]) of the Hermite segment with ends `p0`, `p1` and tangents `m0`,
@@ -197,16 +197,16 @@ fn segment_integral(p0: f64, m0: f64, p1: f64, m1: f64, s: f64) -> f64 {
 fn spline_integral(v: impl Fn(usize) -> Lanes, a: f64, b: f64, n: usize) -> Lanes {
     let mut total = [0.0; 4];
     if b <= a {
-        return total;
+        return Lanes(total);
     }
     let first = (a.floor().max(0.0) as usize).min(n - 2);
     let last = ((b.ceil() as usize).max(1) - 1).min(n - 2);
     let mut nodes = [[0.0; 4]; ALONG as usize];
     let (lo, hi) = (first.saturating_sub(1), (last + 2).min(n - 1));
     for (k, node) in nodes.iter_mut().enumerate().take(hi + 1).skip(lo) {
-        *node = v(k);
+        *node = v(k).0;
     }
-    let node = |k: usize| nodes[k];
+    let node = |k: usize| Lanes(nodes[k]);
     for k in first..=last {
         let (s0, s1) = (
             (a - k as f64).clamp(0.0, 1.0),
@@ -223,7 +223,7 @@ fn spline_integral(v: impl Fn(usize) -> Lanes, a: f64, b: f64, n: usize) -> Lane
                 - segment_integral(p0[l], m0[l], p1[l], m1[l], s0);
         }
     }
-    total
+    Lanes(total)
 }
 
 /// ∫ exp(−h'/H) along the ray from altitude `h` (m) with zenith cosine `mu` to the top of the
@@ -253,7 +253,7 @@ pub fn columns(p: &Params, mesh: &Lut, h: f64, mu: f64) -> (f64, f64) {
         let mut c = spline_integral(row, x_p, x_top, n);
         if mu < 0.0 {
             let back = spline_integral(row, 0.0, x_p, n);
-            c = std::array::from_fn(|l| c[l] + 2.0 * back[l]);
+            c = c + 2.0 * back;
         }
         (step * c[0].max(0.0), step * c[2].max(0.0))
     } else {
@@ -280,7 +280,7 @@ mod tests {
     fn the_spline_integral_of_a_quadratic_is_exact() {
         let v = |i: usize| {
             let x = i as f64;
-            [x * x, 2.0 * x + 1.0, 3.0, 0.0]
+            Lanes([x * x, 2.0 * x + 1.0, 3.0, 0.0])
         };
         // From 1.25 to 4.5 on nodes 0..8: away from the one-sided end tangents.
         let got = spline_integral(v, 1.25, 4.5, 8);
@@ -290,7 +290,7 @@ mod tests {
             assert!((got[l] - want).abs() < 1e-12, "lane {l}: {got:?}");
         }
         // The interpolant passes through the nodes.
-        assert_eq!(hermite(v, 3.0, 8), v(3));
+        assert_eq!(hermite(v, 3.0, 8), Lanes(v(3).0));
     }
 
     /// The spline's optical depth towards the sun follows the quadrature through the fitted

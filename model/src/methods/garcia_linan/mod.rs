@@ -22,7 +22,7 @@ pub mod sky_texture;
 
 use super::shared::march::march_inscattering;
 use super::shared::transmittance::{self, compute_transmittance_lut, sun_transmittance};
-use super::shared::{Lanes, Lut, Params, Spacing, TableSpec, Viewpoint, add};
+use super::shared::{Lanes, Lut, Params, Spacing, TableSpec, Viewpoint};
 use super::{Domain, SkyModel};
 use crate::csv_table::tables;
 use crate::geometry::rho_squared;
@@ -149,7 +149,7 @@ pub fn ground_bounce(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -> La
     let t_up_ground = transmittance::ground_to_top(t, layer);
     let t_up_here = transmittance::transmittance(p, t, layer, h, 1.0);
     let k = ground_solid_angle(h, p.bottom_radius_m) / (4.0 * PI) * mu_s.max(0.0) / PI;
-    std::array::from_fn(|i| {
+    Lanes::from_fn(|i| {
         let t_vertical = (t_up_ground[i] / t_up_here[i].max(1e-30)).min(1.0);
         k * albedo[i] * t_ground_sun[i] * t_vertical
     })
@@ -168,12 +168,9 @@ pub fn integrate(
     segment: (f64, f64),
     steps: u32,
 ) -> (Lanes, Lanes) {
-    let wavelengths_nm = &p.batches[layer].colour.wavelengths_nm;
+    let wavelengths_nm = &Lanes(p.batches[layer].colour.wavelengths_nm);
     let psi = |h_t, mu_s_t| {
-        add(
-            ground_bounce(p, t, layer, h_t, mu_s_t),
-            multiple_scattering_fit(c, wavelengths_nm, mu_s_t),
-        )
+        ground_bounce(p, t, layer, h_t, mu_s_t) + multiple_scattering_fit(c, wavelengths_nm, mu_s_t)
     };
     march_inscattering(p, t, layer, ray, segment, steps, Spacing::Uniform, psi)
 }
@@ -239,8 +236,8 @@ mod tests {
         assert_eq!(c.ms_b, 17.92);
         assert_eq!(c.reference_wavelength_nm, 430.0);
         // The tabulated tints are (430/λ)⁴ to within their rounding (0.594 for 0.5931).
-        let tints = multiple_scattering_fit(&c, &[630.0, 560.0, 490.0, 430.0], 1.0)
-            .map(|v| v / multiple_scattering_fit(&c, &[430.0; 4], 1.0)[0]);
+        let tints = multiple_scattering_fit(&c, &Lanes([630.0, 560.0, 490.0, 430.0]), 1.0)
+            .map(|v| v / multiple_scattering_fit(&c, &Lanes::splat(430.0), 1.0)[0]);
         for (t, published) in tints.iter().zip([0.217, 0.347, 0.594, 1.0]) {
             assert!((t - published).abs() < 1.5e-3, "{t} vs {published}");
         }
@@ -281,7 +278,7 @@ mod tests {
     #[test]
     fn the_logistic_fit_and_the_ground_solid_angle_match_hand_values() {
         let c = Constants::published();
-        let at = |mu_s: f64| multiple_scattering_fit(&c, &[430.0; 4], mu_s)[0];
+        let at = |mu_s: f64| multiple_scattering_fit(&c, &Lanes::splat(430.0), mu_s)[0];
         assert!((at(0.0) - 0.02 / 6.0).abs() < 1e-12);
         assert!((at(0.1) - 0.02 / (1.0 + 5.0 * (-1.792_f64).exp())).abs() < 1e-12);
         assert!(at(-0.1) < at(0.0) && at(0.0) < at(0.3) && at(1.0) < 0.02);

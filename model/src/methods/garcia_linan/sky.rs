@@ -7,7 +7,7 @@ use super::sky_texture::sky_texture;
 use super::{Constants, Lanes, Lut, Params, Tables, integrate};
 use crate::geometry::{distance_to_boundary, distance_to_ground, hits_ground};
 use crate::methods::shared::transmittance::{sunlit_ground, transmittance_between};
-use crate::methods::shared::{entry_into_atmosphere, mul, sun_relative_angles};
+use crate::methods::shared::{entry_into_atmosphere, sun_relative_angles};
 use glam::DVec3;
 use std::f64::consts::FRAC_PI_2;
 
@@ -53,7 +53,7 @@ pub fn radiance_marched(
             (0.0, t_max),
             p.steps.sky_view,
         );
-        mul(l, p.batches[layer].solar_irradiance)
+        l * p.batches[layer].solar_irradiance
     };
     radiance_with(p, t, c, layer, at, dir, sun, march)
 }
@@ -87,13 +87,13 @@ fn radiance_with(
             let mu_s_g = ((r * mu_s + d * nu) / big_r).clamp(-1.0, 1.0);
             let lg = sunlit_ground(p, t, layer, mu_s_g);
             let tr = transmittance_between(p, t, layer, (h, mu), d);
-            std::array::from_fn(|i| s[i] + tr[i] * lg[i])
+            s + tr * lg
         } else {
             s
         }
     } else {
         let Some((mu_e, mu_s_e)) = entry_into_atmosphere(p, h, mu, mu_s, nu) else {
-            return [0.0; 4];
+            return Lanes::ZERO;
         };
         let t_max = distance_to_boundary(thickness, mu_e, big_r, top);
         let (s, tr) = integrate(
@@ -109,9 +109,9 @@ fn radiance_with(
             let mu_s_g = ((top * mu_s_e + t_max * nu) / big_r).clamp(-1.0, 1.0);
             sunlit_ground(p, t, layer, mu_s_g)
         } else {
-            [0.0; 4]
+            Lanes::ZERO
         };
-        std::array::from_fn(|i| s[i] * e[i] + tr[i] * behind[i])
+        s * e + tr * behind
     }
 }
 

@@ -10,7 +10,7 @@
 use super::{Constants, Lanes, Lut, Params, TableSpec, Viewpoint, integrate};
 use crate::geometry::distance_to_boundary;
 use crate::methods::Inputs;
-use crate::methods::shared::{direction_from_phi_theta, local_sun, mul};
+use crate::methods::shared::{direction_from_phi_theta, local_sun};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Sky texture size (azimuth from the sun, elevation).
@@ -75,7 +75,7 @@ pub fn compute_sky_texture(p: &Params, t: &Lut, c: &Constants, vp: Viewpoint) ->
             (0.0, t_max),
             p.steps.sky_view,
         );
-        mul(l, p.batches[layer].solar_irradiance)
+        l * p.batches[layer].solar_irradiance
     })
 }
 

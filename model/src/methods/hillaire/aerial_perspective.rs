@@ -7,8 +7,7 @@
 use super::{Lanes, Lut, Params, Spacing, TableSpec, Viewpoint, integrate_inscattering};
 use crate::geometry::horizon_beta;
 use crate::methods::Inputs;
-use crate::methods::shared::{add, direction_from_phi_theta, lerp, local_sun, mul, scale};
-use crate::wavelengths::LANES;
+use crate::methods::shared::{direction_from_phi_theta, local_sun};
 use rayon::prelude::*;
 use std::f64::consts::PI;
 
@@ -106,8 +105,8 @@ pub fn compute_aerial_perspective(p: &Params, t: &Lut, ms: &Lut, vp: Viewpoint) 
             let omega = direction_from_phi_theta(phi, theta);
             let (mu, nu) = (omega.z, omega.dot(local_sun(vp.mu_s)));
             let e = p.batches[layer].solar_irradiance;
-            let mut inscattered = [0.0; LANES];
-            let mut throughput = [1.0; LANES];
+            let mut inscattered = Lanes::ZERO;
+            let mut throughput = Lanes::ONE;
             let mut start = 0.0;
             (0..d)
                 .map(|k| {
@@ -122,8 +121,8 @@ pub fn compute_aerial_perspective(p: &Params, t: &Lut, ms: &Lut, vp: Viewpoint) 
                         p.steps.aerial_perspective_per_slice,
                         Spacing::Uniform,
                     );
-                    inscattered = add(inscattered, mul(throughput, mul(l, e)));
-                    throughput = mul(throughput, tr);
+                    inscattered = inscattered + (throughput * (l * e));
+                    throughput = throughput * tr;
                     start = end;
                     (inscattered, throughput)
                 })
@@ -169,7 +168,7 @@ pub fn aerial_perspective(
         (s, tr)
     } else {
         let k = fz + 1.0;
-        (scale(s, k), lerp([1.0; LANES], tr, k))
+        (s * k, Lanes::ONE.lerp(tr, k))
     }
 }
 
@@ -181,6 +180,7 @@ mod tests {
     use crate::methods::hillaire::sky_view::*;
     use crate::methods::shared::optics::tests::params;
     use crate::methods::shared::transmittance::compute_transmittance_lut;
+    use crate::wavelengths::LANES;
 
     #[test]
     fn sky_view_and_aerial_perspective_mappings_round_trip() {
@@ -243,7 +243,7 @@ mod tests {
                 }
                 let (_, got) = aerial_perspective(&p, &ins, &tr, 0, h, phi, theta, d);
                 let n = 4000;
-                let mut exact = [0.0; LANES];
+                let mut exact = Lanes::ZERO;
                 for s in 0..n {
                     let x = (f64::from(s) + 0.5) * d / f64::from(n);
                     let e = p

@@ -7,8 +7,7 @@ use super::{
 };
 use crate::geometry::distance_to_top;
 use crate::methods::Inputs;
-use crate::methods::shared::{add, local_sun, scale};
-use crate::wavelengths::LANES;
+use crate::methods::shared::local_sun;
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -64,13 +63,13 @@ pub(crate) fn compute_ground_irradiance(
     mu_s: f64,
 ) -> Lanes {
     let [n_rings, n_azimuths] = GROUND_IRRADIANCE_DIRECTIONS;
-    let mut sum = [0.0; LANES];
+    let mut sum = Lanes::ZERO;
     for i in 0..n_rings {
         // Each direction stands for itself and its mirror image.
         for j in 0..n_azimuths / 2 {
             let a = 2.0 * PI * (j as f64 + 0.5) / n_azimuths as f64 - 0.5 * PI;
             let e = direction_irradiance(p, t, ms, layer, mu_s, i, a);
-            sum = add(sum, scale(e, 2.0));
+            sum = sum + (e * 2.0);
         }
     }
     sum
@@ -102,7 +101,7 @@ fn direction_irradiance(
     let dir = sun * gamma.cos() + (across * a.cos() + up * a.sin()) * gamma.sin();
     let mu = dir.z;
     if mu <= 0.0 {
-        return [0.0; LANES];
+        return Lanes::ZERO;
     }
     let t_max = distance_to_top(0.0, mu, p.bottom_radius_m, p.top_radius_m);
     let (l, _) = integrate_inscattering(
@@ -115,7 +114,7 @@ fn direction_irradiance(
         p.steps.ground_irradiance,
         Spacing::Quadratic,
     );
-    scale(l, mu * weight)
+    l * (mu * weight)
 }
 
 /// Looks up the sky irradiance on the ground per unit solar irradiance.
@@ -130,12 +129,13 @@ mod tests {
     use crate::methods::hillaire::multiple_scattering::compute_multiple_scattering_lut;
     use crate::methods::shared::transmittance::compute_transmittance_lut;
     use crate::scene::{Quality, Scene, WavelengthSet};
+    use crate::wavelengths::LANES;
 
     /// The integral over 64 × 128 cosine-weighted directions: the converged value.
     fn dense(p: &Params, t: &Lut, ms: &Lut, mu_s: f64) -> Lanes {
         let (n_theta, n_phi) = (64, 128);
         let sun = local_sun(mu_s);
-        let mut sum = [0.0; LANES];
+        let mut sum = Lanes::ZERO;
         for i in 0..n_theta {
             let mu = ((i as f64 + 0.5) / n_theta as f64).sqrt();
             let s = (1.0 - mu * mu).sqrt();
@@ -153,10 +153,10 @@ mod tests {
                     p.steps.ground_irradiance,
                     Spacing::Quadratic,
                 );
-                sum = add(sum, l);
+                sum = sum + l;
             }
         }
-        scale(sum, PI / f64::from(n_theta * n_phi))
+        sum * (PI / f64::from(n_theta * n_phi))
     }
 
     /// Spectral4 parameters of the default scene under `kind` aerosol at `aod` (550 nm), with
@@ -182,11 +182,11 @@ mod tests {
         let (p, t, ms) = hazy(AerosolType::Rural, 0.3, Quality::Low);
         let [n_rings, n_azimuths] = GROUND_IRRADIANCE_DIRECTIONS;
         for mu_s in [0.9, 0.2, 0.02, -0.1] {
-            let mut whole = [0.0; LANES];
+            let mut whole = Lanes::ZERO;
             for i in 0..n_rings {
                 for j in 0..n_azimuths {
                     let a = 2.0 * PI * (j as f64 + 0.5) / n_azimuths as f64;
-                    whole = add(whole, direction_irradiance(&p, &t, &ms, 0, mu_s, i, a));
+                    whole = whole + direction_irradiance(&p, &t, &ms, 0, mu_s, i, a);
                 }
             }
             let half = compute_ground_irradiance(&p, &t, &ms, 0, mu_s);

@@ -248,7 +248,7 @@ mod tests {
             DVec3::new(0.3, 0.0, 1.0).normalize(),
             sun,
         );
-        assert_eq!(l, [0.0; 4]);
+        assert_eq!(l, Lanes::ZERO);
         let earth = radiance(&p, &tables, 0, (cam.position, 1.0e6), -DVec3::Z, sun);
         assert!(earth.iter().all(|&v| v > 0.0 && v.is_finite()), "{earth:?}");
     }

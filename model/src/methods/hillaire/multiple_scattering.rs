@@ -7,7 +7,7 @@ use super::{
 };
 use crate::geometry::{altitude_along, distance_to_ground, distance_to_top, hits_ground};
 use crate::methods::Inputs;
-use crate::methods::shared::{add, local_sun, mul, segment_weight};
+use crate::methods::shared::{local_sun, segment_weight};
 use crate::wavelengths::LANES;
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -75,19 +75,19 @@ pub fn compute_multiple_scattering_lut(p: &Params, t: &Lut) -> Lut {
 fn compute_multiple_scattering(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -> Lanes {
     let n_dir = MULTIPLE_SCATTERING_DIRECTIONS_SQRT;
     let sun = local_sun(mu_s);
-    let mut l_2nd = [0.0; LANES];
-    let mut f_ms = [0.0; LANES];
+    let mut l_2nd = Lanes::ZERO;
+    let mut f_ms = Lanes::ZERO;
     // The directions on one side of the sun's vertical plane: each one's mirror image has the
     // same mu and nu, so the same integrand, and needs no march of its own.
     let half = n_dir / 2;
     for d in 0..n_dir * half {
         let omega = sphere_direction((d / half) * n_dir + d % half, n_dir);
         let (l, f) = direction_terms(p, t, layer, h, mu_s, omega.z, omega.dot(sun));
-        l_2nd = add(l_2nd, l);
-        f_ms = add(f_ms, f);
+        l_2nd = l_2nd + l;
+        f_ms = f_ms + f;
     }
     let count = (n_dir * half) as f64;
-    std::array::from_fn(|i| (l_2nd[i] / count) / (1.0 - f_ms[i] / count))
+    (l_2nd / count) / (1.0 - f_ms / count)
 }
 
 /// The second-order radiance (isotropic phase, sunlit ground) and the transfer f_ms that one
@@ -105,8 +105,8 @@ fn direction_terms(
     let r = big_r + h;
     let isotropic = 1.0 / (4.0 * PI);
     let albedo = p.batches[layer].ground_albedo;
-    let mut l_2nd = [0.0; LANES];
-    let mut f_ms = [0.0; LANES];
+    let mut l_2nd = Lanes::ZERO;
+    let mut f_ms = Lanes::ZERO;
     let ground = hits_ground(h, mu, big_r);
     let t_max = if ground {
         distance_to_ground(h, mu, big_r)
@@ -114,15 +114,15 @@ fn direction_terms(
         distance_to_top(h, mu, big_r, p.top_radius_m)
     };
     let n = p.steps.multiple_scattering;
-    let mut throughput = [1.0; LANES];
+    let mut throughput = Lanes::ONE;
     for s in 0..n {
         let (t0, t1) = Spacing::Quadratic.segment(0.0, t_max, s, n);
         let (ts, dt) = (0.5 * (t0 + t1), t1 - t0);
         let (h_t, r_t) = altitude_along(h, mu, ts, big_r);
         let mu_s_t = (r * mu_s + ts * nu) / r_t;
         let m = p.medium(layer, h_t);
-        let weight = mul(throughput, segment_weight(m.extinction, dt));
-        let sca = add(m.rayleigh_scattering, m.aerosol_scattering);
+        let weight = throughput * segment_weight(m.extinction, dt);
+        let sca = m.rayleigh_scattering + m.aerosol_scattering;
         let sun_t = sun_transmittance(p, t, layer, h_t, mu_s_t);
         for i in 0..LANES {
             l_2nd[i] += weight[i] * sca[i] * isotropic * sun_t[i];
@@ -187,14 +187,14 @@ mod tests {
         let n = MULTIPLE_SCATTERING_DIRECTIONS_SQRT;
         for (h, mu_s) in [(0.0, 0.8), (0.0, -0.1), (3000.0, 0.05), (30_000.0, -0.08)] {
             let sun = local_sun(mu_s);
-            let (mut l, mut f) = ([0.0; LANES], [0.0; LANES]);
+            let (mut l, mut f) = (Lanes::ZERO, Lanes::ZERO);
             for d in 0..n * n {
                 let omega = sphere_direction(d, n);
                 let (dl, df) = direction_terms(&p, &t, 0, h, mu_s, omega.z, omega.dot(sun));
-                (l, f) = (add(l, dl), add(f, df));
+                (l, f) = (l + dl, f + df);
             }
             let count = (n * n) as f64;
-            let whole: Lanes = std::array::from_fn(|i| (l[i] / count) / (1.0 - f[i] / count));
+            let whole: Lanes = (l / count) / (1.0 - f / count);
             let half = compute_multiple_scattering(&p, &t, 0, h, mu_s);
             for i in 0..LANES {
                 assert!(whole[i] > 0.0, "h {h}, mu_s {mu_s}, lane {i}");

@@ -8,7 +8,7 @@ use super::{
     ground_irradiance, integrate_inscattering, sky_view, sun_transmittance, transmittance,
 };
 use crate::geometry::{distance_to_ground, distance_to_top, hits_ground};
-use crate::methods::shared::{add, entry_into_atmosphere, mul, sun_relative_angles};
+use crate::methods::shared::{entry_into_atmosphere, sun_relative_angles};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -18,7 +18,7 @@ fn ground_radiance(p: &Params, tables: &Tables, layer: usize, mu_s_g: f64) -> La
     let b = &p.batches[layer];
     let sun_t = sun_transmittance(p, &tables.transmittance, layer, 0.0, mu_s_g);
     let sky = ground_irradiance(&tables.ground_irradiance, layer, mu_s_g);
-    std::array::from_fn(|i| {
+    Lanes::from_fn(|i| {
         b.ground_albedo[i] / PI * b.solar_irradiance[i] * (sun_t[i] * mu_s_g.max(0.0) + sky[i])
     })
 }
@@ -65,12 +65,12 @@ pub fn ground_path(
         if h < GROUND_TRANSMITTANCE_FROM_TABLE_ABOVE_M {
             (s, tr)
         } else {
-            (s, ratio())
+            (s, Lanes(ratio()))
         }
     } else {
         (
             sky_view(p, &tables.sky_view, layer, h, phi, theta, true),
-            ratio(),
+            Lanes(ratio()),
         )
     }
 }
@@ -100,14 +100,14 @@ pub fn radiance(
             let mu_s_g = ((r * mu_s + d * nu) / big_r).clamp(-1.0, 1.0);
             let lg = ground_radiance(p, tables, layer, mu_s_g);
             let (s, tr) = ground_path(p, tables, layer, (h, mu), (phi, theta), d);
-            add(s, mul(tr, lg))
+            s + (tr * lg)
         } else {
             sky_view(p, &tables.sky_view, layer, h, phi, theta, false)
         }
     } else {
         // Above the atmosphere: march from where the ray enters it.
         let Some((mu_e, mu_s_e)) = entry_into_atmosphere(p, h, mu, mu_s, nu) else {
-            return [0.0; 4];
+            return Lanes::ZERO;
         };
         let ground = hits_ground(thickness, mu_e, big_r);
         let t_max = if ground {
@@ -133,9 +133,9 @@ pub fn radiance(
             let mu_s_g = ((top * mu_s_e + t_max * nu) / big_r).clamp(-1.0, 1.0);
             ground_radiance(p, tables, layer, mu_s_g)
         } else {
-            [0.0; 4]
+            Lanes::ZERO
         };
-        std::array::from_fn(|i| s[i] * e[i] + tr[i] * behind[i])
+        s * e + tr * behind
     }
 }
 

@@ -5,7 +5,7 @@
 use super::{Lanes, Lut, Params, Spacing, TableSpec, Viewpoint, integrate_inscattering};
 use crate::geometry::{distance_to_boundary, horizon_beta};
 use crate::methods::Inputs;
-use crate::methods::shared::{direction_from_phi_theta, local_sun, mul};
+use crate::methods::shared::{direction_from_phi_theta, local_sun};
 use std::f64::consts::PI;
 
 /// Sky-view table size (azimuth, zenith): 192 × 108 as in the paper; the height is even so that
@@ -82,7 +82,7 @@ pub fn compute_sky_view_lut(p: &Params, t: &Lut, ms: &Lut, vp: Viewpoint) -> Lut
             p.steps.sky_view,
             Spacing::Quadratic,
         );
-        mul(l, p.batches[layer].solar_irradiance)
+        l * p.batches[layer].solar_irradiance
     })
 }
 

@@ -57,6 +57,7 @@ mod tests {
     use super::*;
     use crate::atmosphere::Atmosphere;
     use crate::geometry::{Ray, direction_from_angles};
+    use crate::lanes::Lanes;
     use crate::methods::shared::optics::tests::params;
     use crate::methods::shared::single_scattering_sky::{SunRoute, Way, sun_transmittance};
     use crate::methods::shared::transmittance::{compute_transmittance_lut, transmittance};
@@ -78,12 +79,12 @@ mod tests {
         // Behind the planet the sun is gone, and above the atmosphere nothing dims it.
         assert_eq!(
             sun_transmittance(&p, 0, 0.0, -0.2, 16, Rule::Midpoint),
-            [0.0; 4]
+            Lanes::ZERO
         );
         let route = SunRoute::new(&p, Way::March(Rule::Midpoint));
         assert_eq!(
             route.seen_from(&p, 0, p.thickness_m() + 1_000.0, 0.5),
-            [1.0; 4]
+            Lanes::ONE
         );
     }
 

@@ -498,6 +498,7 @@ impl PathTracer<'_> {
 mod tests {
     use super::*;
     use crate::aerosol::AerosolType;
+    use crate::lanes::Lanes;
     use crate::methods::path_tracer::PathTracerSettings;
     use crate::scene::AtmosphereSettings;
 
@@ -517,7 +518,7 @@ mod tests {
             settings.aerosol.aod550 = aod550;
             let atmosphere = Atmosphere::new(&settings);
             let big_r = atmosphere.bottom_radius_m;
-            let lanes = LaneOptics::new(&atmosphere, [400.0, 450.0, 550.0, 700.0]);
+            let lanes = LaneOptics::new(&atmosphere, Lanes([400.0, 450.0, 550.0, 700.0]));
             let grey = GreyOptics::new(&lanes);
             let mut rng = Rng::new(11, 0, 0);
             for elevation_deg in [12.0f64, 20.0, 30.0, 45.0, 60.0, 90.0] {
@@ -557,7 +558,7 @@ mod tests {
         h: f64,
         elevation_deg: f64,
     ) -> (f64, f64) {
-        let lanes = LaneOptics::new(atmosphere, [450.0, 550.0, 650.0, 750.0]);
+        let lanes = LaneOptics::new(atmosphere, Lanes([450.0, 550.0, 650.0, 750.0]));
         let grey = GreyOptics::new(&lanes);
         let optics = crate::Optics {
             rayleigh_cross_section_m2: grey.rayleigh_m2,

@@ -215,7 +215,7 @@ pub fn constants(p: &Params) -> [f64; 12] {
 /// haze terms over Kasten's air mass; 0 with the sun below the horizon.
 pub fn sun_transmittance(wavelengths_nm: [f64; 4], t: f64, mu_s: f64) -> Lanes {
     if mu_s <= 0.0 {
-        return [0.0; 4];
+        return Lanes::ZERO;
     }
     let c = Constants::published();
     let theta_deg = mu_s.min(1.0).acos().to_degrees();
@@ -224,10 +224,10 @@ pub fn sun_transmittance(wavelengths_nm: [f64; 4], t: f64, mu_s: f64) -> Lanes {
     let [alpha, beta_slope, beta_intercept] = c.haze;
     let beta = beta_slope * t + beta_intercept;
     let [rc, re] = c.sun_rayleigh;
-    wavelengths_nm.map(|l| {
+    Lanes(wavelengths_nm.map(|l| {
         let um = l * 1e-3;
         (-(rc * um.powf(-re) + beta * um.powf(-alpha)) * m).exp()
-    })
+    }))
 }
 
 /// Preetham's sky for one atmosphere.
@@ -257,7 +257,7 @@ impl SkyModel for Preetham {
         let b = &p.batches[layer];
         let visible = visible_fraction(h, mu_s, p.bottom_radius_m);
         let t = sun_transmittance(b.colour.wavelengths_nm, self.turbidity, mu_s);
-        std::array::from_fn(|i| b.solar_irradiance[i] * t[i] * visible * disk[i].max(0.0))
+        Lanes::from_fn(|i| b.solar_irradiance[i] * t[i] * visible * disk[i].max(0.0))
     }
 }
 

@@ -61,7 +61,7 @@ pub fn spread(p: &Params, layer: usize, xyz: [f64; 3]) -> Lanes {
     let k = spectral_basis();
     let c: [f64; 3] = std::array::from_fn(|r| (0..3).map(|j| k[r][j] * xyz[j]).sum());
     let b = &p.batches[layer];
-    std::array::from_fn(|i| {
+    Lanes::from_fn(|i| {
         let u = (b.colour.wavelengths_nm[i] - BASIS_CENTRE_NM) / BASIS_SCALE_NM;
         b.solar_irradiance[i] * (c[0] + c[1] * u + c[2] * u * u)
     })
@@ -88,7 +88,7 @@ pub fn radiance(
     let b = &p.batches[layer];
     let beam = sun_transmittance(b.colour.wavelengths_nm, t, mu_s_g);
     let lit = visible_fraction(0.0, mu_s_g, big_r) * mu_s_g.max(0.0) / PI;
-    std::array::from_fn(|i| b.ground_albedo[i] * b.solar_irradiance[i] * beam[i] * lit)
+    b.ground_albedo * b.solar_irradiance * beam * lit
 }
 
 #[cfg(test)]

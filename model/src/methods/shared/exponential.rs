@@ -149,7 +149,7 @@ impl ExponentialMedium {
         let air = self.air.at_ground * air_column;
         let aerosol = self.aerosol.at_ground * aerosol_column;
         let ozone = self.ozone_path(p.bottom_radius_m, h, mu);
-        std::array::from_fn(|i| {
+        Lanes::from_fn(|i| {
             b.rayleigh_scattering[i] * air
                 + b.ozone_absorption[i] * ozone
                 + (b.aerosol_scattering[i] + b.aerosol_absorption[i]) * aerosol

@@ -2,7 +2,7 @@
 //! size, what its axes mean and which scene inputs invalidate it. The GPU stores the same
 //! texels in the same order (`shaders/common/lut.wgsl`).
 
-use super::{Lanes, Params, add, lerp};
+use super::{Lanes, Params};
 use crate::methods::Inputs;
 use rayon::prelude::*;
 
@@ -117,7 +117,7 @@ impl Lut {
                 .data
                 .iter()
                 .zip(&other.data)
-                .map(|(a, b)| add(*a, *b))
+                .map(|(a, b)| *a + *b)
                 .collect(),
             ..self.clone()
         }
@@ -132,27 +132,20 @@ impl Lut {
     pub fn bilinear(&self, layer: usize, fx: f64, fy: f64, z: usize) -> Lanes {
         let (x0, x1, tx) = split(fx, self.width);
         let (y0, y1, ty) = split(fy, self.height);
-        let a = lerp(
-            self.texel(layer, x0, y0, z),
-            self.texel(layer, x1, y0, z),
-            tx,
-        );
-        let b = lerp(
-            self.texel(layer, x0, y1, z),
-            self.texel(layer, x1, y1, z),
-            tx,
-        );
-        lerp(a, b, ty)
+        let a = self
+            .texel(layer, x0, y0, z)
+            .lerp(self.texel(layer, x1, y0, z), tx);
+        let b = self
+            .texel(layer, x0, y1, z)
+            .lerp(self.texel(layer, x1, y1, z), tx);
+        a.lerp(b, ty)
     }
 
     /// Trilinear interpolation at fractional texel coordinates (clamped to the table).
     pub fn trilinear(&self, layer: usize, fx: f64, fy: f64, fz: f64) -> Lanes {
         let (z0, z1, tz) = split(fz, self.depth);
-        lerp(
-            self.bilinear(layer, fx, fy, z0),
-            self.bilinear(layer, fx, fy, z1),
-            tz,
-        )
+        self.bilinear(layer, fx, fy, z0)
+            .lerp(self.bilinear(layer, fx, fy, z1), tz)
     }
 }
 
@@ -174,7 +167,7 @@ pub(crate) mod tests {
     pub(crate) fn rough_table(spec: &TableSpec, layers: usize) -> Lut {
         Lut::from_spec(spec, layers, |layer, z, y, x| {
             let v = ((layer * 7919 + z * 104_729 + y * 31 + x) % 997) as f64;
-            [v, v.sqrt(), 1.0 + v * v, (v * 0.37).sin()]
+            Lanes([v, v.sqrt(), 1.0 + v * v, (v * 0.37).sin()])
         })
     }
 }

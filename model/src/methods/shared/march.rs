@@ -3,7 +3,7 @@
 //! `shaders/common/march.wgsl`.
 
 use super::transmittance::sun_transmittance;
-use super::{Lanes, Lut, Params, mul};
+use super::{Lanes, Lut, Params};
 use crate::geometry::altitude_along;
 use crate::phase;
 use crate::wavelengths::LANES;
@@ -71,8 +71,8 @@ pub fn march_inscattering(
         .rayleigh_depolarisation
         .map(|rho| phase::rayleigh(nu, rho));
     let aerosol_phase = p.aerosol_phase(layer, nu);
-    let mut inscattered = [0.0; LANES];
-    let mut throughput = [1.0; LANES];
+    let mut inscattered = Lanes::ZERO;
+    let mut throughput = Lanes::ONE;
     for s in 0..steps {
         let (t0, t1) = spacing.segment(t_start, t_end, s, steps);
         let dt = t1 - t0;
@@ -85,7 +85,7 @@ pub fn march_inscattering(
         let m = p.medium(layer, h_t);
         let sun_t = sun_transmittance(p, t, layer, h_t, mu_s_t);
         let psi = psi(h_t, mu_s_t);
-        let weight = mul(throughput, segment_weight(m.extinction, dt));
+        let weight = throughput * segment_weight(m.extinction, dt);
         for i in 0..LANES {
             let source = m.rayleigh_scattering[i] * (rayleigh_phase[i] * sun_t[i] + psi[i])
                 + m.aerosol_scattering[i] * (aerosol_phase[i] * sun_t[i] + psi[i]);

@@ -21,27 +21,8 @@ pub use march::{SMALL_OPTICAL_THICKNESS, Spacing, segment_weight};
 pub use optics::{BatchOptics, Medium, PROFILE_SAMPLES, Params, Steps, Viewpoint, viewpoint};
 pub use sun_disk::sun_disk;
 
-use crate::wavelengths::LANES;
+pub use crate::lanes::Lanes;
 use glam::DVec3;
-
-/// Four lanes (wavelengths) of one batch.
-pub type Lanes = [f64; LANES];
-
-pub(crate) fn lerp(a: Lanes, b: Lanes, t: f64) -> Lanes {
-    std::array::from_fn(|i| a[i] + (b[i] - a[i]) * t)
-}
-
-pub(crate) fn add(a: Lanes, b: Lanes) -> Lanes {
-    std::array::from_fn(|i| a[i] + b[i])
-}
-
-pub(crate) fn mul(a: Lanes, b: Lanes) -> Lanes {
-    std::array::from_fn(|i| a[i] * b[i])
-}
-
-pub(crate) fn scale(a: Lanes, k: f64) -> Lanes {
-    a.map(|v| v * k)
-}
 
 /// The Rayleigh phase function per lane of batch `layer` at view–sun cosine `nu`, sr⁻¹.
 pub fn rayleigh_phase(p: &Params, layer: usize, nu: f64) -> Lanes {

@@ -155,7 +155,7 @@ impl Params {
             .into_iter()
             .map(|colour| {
                 let optics = colour.wavelengths_nm.map(|w| atm.optics(w));
-                let lanes = |f: &dyn Fn(usize) -> f64| -> Lanes { std::array::from_fn(f) };
+                let lanes = |f: &dyn Fn(usize) -> f64| -> Lanes { Lanes::from_fn(f) };
                 let solar_irradiance =
                     lanes(&|i| atm.solar_irradiance(colour.wavelengths_nm[i], colour.bandwidth_nm));
                 BatchOptics {
@@ -170,7 +170,7 @@ impl Params {
                     }),
                     aerosol_g: lanes(&|i| optics[i].aerosol_g),
                     solar_irradiance,
-                    ground_albedo: [atm.ground_albedo; LANES],
+                    ground_albedo: Lanes::splat(atm.ground_albedo),
                     colour,
                 }
             })
@@ -242,7 +242,7 @@ impl Params {
     /// batch `layer`.
     pub fn aerosol_phase(&self, layer: usize, nu: f64) -> Lanes {
         let b = &self.batches[layer];
-        std::array::from_fn(|i| {
+        Lanes::from_fn(|i| {
             self.aerosol_phase.value(
                 self.mie_phase,
                 b.colour.wavelengths_nm[i],

@@ -59,13 +59,13 @@ pub fn behind(
 ) -> Lanes {
     let big_r = p.bottom_radius_m;
     if !c.ground {
-        return [0.0; 4];
+        return Lanes::ZERO;
     }
     let d = distance_to_ground(c.h, c.mu, big_r);
     let mu_s_g = (((big_r + c.h) * c.mu_s + d * c.nu) / big_r).clamp(-1.0, 1.0);
     let tr = transmittance_between(p, t, layer, (c.h, c.mu), d);
     let g = ground(mu_s_g);
-    std::array::from_fn(|i| tr[i] * g[i])
+    tr * g
 }
 
 /// Length of the view ray of `c` to where it leaves the atmosphere (its ground flag decides).
@@ -122,7 +122,7 @@ pub fn along(p: &Params, c: &Coords, d: f64) -> (f64, f64, f64) {
 /// sample and from it to the start of the ray, times the local scattering coefficient.
 pub fn single_scattering(p: &Params, t: &Lut, layer: usize, c: Coords) -> (Lanes, Lanes) {
     let n = p.steps.scattering;
-    let (mut rayleigh, mut mie) = ([0.0; LANES], [0.0; LANES]);
+    let (mut rayleigh, mut mie) = (Lanes::ZERO, Lanes::ZERO);
     for k in 0..2 * (n + 1) {
         let (d, w) = ray_sample(p, &c, k, n);
         let (h_d, _, mu_s_d) = along(p, &c, d);
@@ -136,8 +136,5 @@ pub fn single_scattering(p: &Params, t: &Lut, layer: usize, c: Coords) -> (Lanes
         }
     }
     let e = p.batches[layer].solar_irradiance;
-    (
-        std::array::from_fn(|l| rayleigh[l] * e[l]),
-        std::array::from_fn(|l| mie[l] * e[l]),
-    )
+    (rayleigh * e, mie * e)
 }

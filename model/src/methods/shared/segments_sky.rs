@@ -109,7 +109,7 @@ impl Segments {
     /// The optical depth per lane of batch `layer` of columns `c`.
     fn depth(&self, layer: usize, c: Columns) -> Lanes {
         let b = &self.params.batches[layer];
-        std::array::from_fn(|i| {
+        Lanes::from_fn(|i| {
             b.rayleigh_scattering[i] * c.air
                 + b.ozone_absorption[i] * c.ozone
                 + (b.aerosol_scattering[i] + b.aerosol_absorption[i]) * c.aerosol
@@ -163,7 +163,7 @@ impl Segments {
         let p = &self.params;
         let big_r = p.bottom_radius_m;
         let Some(c) = camera_coords(p, at, dir, sun) else {
-            return [0.0; 4];
+            return Lanes::ZERO;
         };
         let b = &p.batches[layer];
         let (phase_r, phase_a) = (
@@ -209,7 +209,7 @@ impl Segments {
                 l[i] += (-depth[i]).exp() * ground;
             }
         }
-        l
+        Lanes(l)
     }
 }
 

@@ -56,7 +56,7 @@ pub fn radiance(
 ) -> Lanes {
     let big_r = p.bottom_radius_m;
     let Some(c) = camera_coords(p, (position, h), dir, sun) else {
-        return [0.0; 4];
+        return Lanes::ZERO;
     };
     let (h0, mu0, mu_s0, nu) = (c.h, c.mu, c.mu_s, c.nu);
     let b = &p.batches[layer];
@@ -68,8 +68,8 @@ pub fn radiance(
         distance_to_top(h0, mu0, big_r, p.top_radius_m)
     };
     let dt = t_max / f64::from(view_steps);
-    let mut inscattered = [0.0; 4];
-    let mut throughput = [1.0; 4];
+    let mut inscattered = Lanes::ZERO;
+    let mut throughput = Lanes::ONE;
     for s in 0..view_steps {
         let t = (f64::from(s) + 0.5) * dt;
         let (h_t, r_t) = altitude_along(h0, mu0, t, big_r);
@@ -85,7 +85,7 @@ pub fn radiance(
             throughput[i] *= (-m.extinction[i] * dt).exp();
         }
     }
-    let mut l: Lanes = std::array::from_fn(|i| inscattered[i] * b.solar_irradiance[i]);
+    let mut l: Lanes = inscattered * b.solar_irradiance;
     if c.ground {
         let mu_s_g = ((r0 * mu_s0 + t_max * nu) / big_r).clamp(-1.0, 1.0);
         let sun_g = sun_transmittance(0.0, mu_s_g);
@@ -136,7 +136,7 @@ pub fn optical_depth(
             *d += w * e * dt;
         }
     }
-    depth
+    Lanes(depth)
 }
 
 /// Transmittance per lane from altitude `h` (m) towards the sun at zenith cosine `mu_s`
@@ -160,7 +160,7 @@ pub fn sun_transmittance(
 fn towards_sun(p: &Params, h: f64, mu_s: f64, depth: impl FnOnce() -> Lanes) -> Lanes {
     let visible = visible_fraction(h, mu_s, p.bottom_radius_m);
     if visible <= 0.0 {
-        return [0.0; 4];
+        return Lanes::ZERO;
     }
     depth().map(|d| (-d).exp() * visible)
 }
@@ -265,7 +265,7 @@ impl SunRoute {
         }
         let visible = visible_fraction(h, mu_s, p.bottom_radius_m);
         if visible <= 0.0 {
-            return [0.0; 4];
+            return Lanes::ZERO;
         }
         let (fx, fy) = transmittance_texel_from_h_mu(p, h, mu_s);
         let depth = self.table(p).bilinear(layer, fx, fy, 0);
@@ -320,7 +320,7 @@ impl SunRoute {
         }
         match entry_into_atmosphere(p, h, mu_s, mu_s, 1.0) {
             Some((mu_entry, _)) => self.transmittance(p, layer, p.thickness_m(), mu_entry),
-            None => [1.0; 4],
+            None => Lanes::ONE,
         }
     }
 
@@ -329,10 +329,10 @@ impl SunRoute {
     /// the table-free models.
     pub fn sun_disk(&self, p: &Params, layer: usize, h: f64, mu_s: f64, disk: Lanes) -> Lanes {
         if disk.iter().all(|&d| d <= 0.0) {
-            return [0.0; 4];
+            return Lanes::ZERO;
         }
         let tr = self.seen_from(p, layer, h, mu_s);
-        std::array::from_fn(|i| p.batches[layer].solar_irradiance[i] * tr[i] * disk[i])
+        p.batches[layer].solar_irradiance * tr * disk
     }
 }
 
@@ -439,7 +439,7 @@ impl SingleScattering {
         let p = &self.params;
         match &self.higher_orders {
             None => radiance(p, layer, at, dir, sun, self.view_steps, sun_t, |_, _| {
-                [0.0; 4]
+                Lanes::ZERO
             }),
             Some(t) => radiance(p, layer, at, dir, sun, self.view_steps, sun_t, |h, mu_s| {
                 crate::methods::hillaire::multiple_scattering::multiple_scattering(

@@ -15,7 +15,7 @@ pub fn sun_disk(dir: DVec3, sun: DVec3, wavelengths_nm: &Lanes) -> Lanes {
     match disk_offset(dir, sun) {
         Some(gamma) => wavelengths_nm
             .map(|w| limb(gamma / SUN_ANGULAR_RADIUS_RAD, limb_exponent(w)) / sun_solid_angle()),
-        None => [0.0; 4],
+        None => Lanes::ZERO,
     }
 }
 
@@ -75,7 +75,7 @@ impl SunInView {
     /// [`DiskInPixel::radiance`].
     pub fn disk_in_pixel(&self, x: f64, y: f64, wavelengths_nm: &Lanes) -> Lanes {
         self.pixel(x, y)
-            .map_or([0.0; 4], |d| d.radiance(wavelengths_nm))
+            .map_or(Lanes::ZERO, |d| d.radiance(wavelengths_nm))
     }
 
     /// How the sun's disk covers the pixel centred at (x, y), None where it does not reach it.
@@ -252,7 +252,7 @@ mod tests {
     use super::*;
 
     /// Blue, green, red and near-infrared: both ranges of the limb-darkening fit.
-    const WAVELENGTHS: Lanes = [380.0, 450.0, 550.0, 700.0];
+    const WAVELENGTHS: Lanes = Lanes([380.0, 450.0, 550.0, 700.0]);
 
     /// No pixel outside `pixel_box` gets any of the disk, over pixel sizes from a twentieth of
     /// the sun's radius to a hundred radii, suns inside, at the edges and outside of the
@@ -311,7 +311,7 @@ mod tests {
             }
         }
         assert!(sum.iter().all(|s| (s - 1.0).abs() < 2e-3), "{sum:?}");
-        assert_eq!(sun_disk(DVec3::X, sun, &WAVELENGTHS), [0.0; 4]);
+        assert_eq!(sun_disk(DVec3::X, sun, &WAVELENGTHS), Lanes::ZERO);
         assert!(in_sun_disk(sun, sun) && !in_sun_disk(DVec3::X, sun));
     }
 

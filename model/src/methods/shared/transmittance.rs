@@ -2,12 +2,11 @@
 //! the top of the atmosphere, in Bruneton's (2017) mapping (§4.1 of his notes) at Hillaire's
 //! (2020) 256 × 64. The pass is `shaders/shared/transmittance.wgsl`.
 
-use super::{Lanes, Lut, Params, Spacing, TableSpec, add, mul, scale};
+use super::{Lanes, Lut, Params, Spacing, TableSpec};
 use crate::geometry::{
     altitude_along, distance_to_top, rho_squared, transmittance_h_mu, transmittance_x_mu_x_r,
 };
 use crate::methods::Inputs;
-use crate::wavelengths::LANES;
 
 /// Transmittance table size (mu, h): Hillaire's 256 × 64.
 pub const TRANSMITTANCE_SIZE: [u32; 2] = [256, 64];
@@ -60,12 +59,12 @@ fn compute_transmittance(p: &Params, layer: usize, h: f64, mu: f64) -> Lanes {
     let big_r = p.bottom_radius_m;
     let t_max = distance_to_top(h, mu, big_r, p.top_radius_m);
     let n = p.steps.transmittance;
-    let mut depth = [0.0; LANES];
+    let mut depth = Lanes::ZERO;
     for i in 0..n {
         let (t0, t1) = Spacing::Quadratic.segment(0.0, t_max, i, n);
         let (h_t, _) = altitude_along(h, mu, 0.5 * (t0 + t1), big_r);
         let m = p.medium(layer, h_t);
-        depth = add(depth, scale(m.extinction, t1 - t0));
+        depth = depth + (m.extinction * (t1 - t0));
     }
     depth.map(|d| (-d).exp())
 }
@@ -86,7 +85,7 @@ pub fn ground_to_top(t: &Lut, layer: usize) -> Lanes {
 /// the horizon (Earth's shadow with its penumbra, as in Bruneton 2017).
 pub fn sun_transmittance(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -> Lanes {
     let visible = super::sun_disk::visible_fraction(h, mu_s, p.bottom_radius_m);
-    scale(transmittance(p, t, layer, h, mu_s), visible)
+    transmittance(p, t, layer, h, mu_s) * visible
 }
 
 /// Transmittance to the sun seen from altitude `h` (m, anywhere up to space) with the sun at
@@ -98,7 +97,7 @@ pub fn sun_seen_from(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -> La
     }
     match super::entry_into_atmosphere(p, h, mu_s, mu_s, 1.0) {
         Some((mu_entry, _)) => sun_transmittance(p, t, layer, p.thickness_m(), mu_entry),
-        None => [1.0; LANES],
+        None => Lanes::ONE,
     }
 }
 
@@ -107,7 +106,7 @@ pub fn sun_seen_from(p: &Params, t: &Lut, layer: usize, h: f64, mu_s: f64) -> La
 pub fn sunlit_ground(p: &Params, t: &Lut, layer: usize, mu_s_g: f64) -> Lanes {
     let b = &p.batches[layer];
     let sun_t = sun_transmittance(p, t, layer, 0.0, mu_s_g);
-    std::array::from_fn(|i| {
+    Lanes::from_fn(|i| {
         b.ground_albedo[i] / std::f64::consts::PI
             * b.solar_irradiance[i]
             * sun_t[i]
@@ -132,12 +131,12 @@ pub fn transmittance_between(
     let (h_d, r_d) = altitude_along(h, mu, d, big_r);
     let mu_d = ((r * mu + d) / r_d).clamp(-1.0, 1.0);
     let table = |h, mu| transmittance(p, t, layer, h, mu);
-    let ratio = |a: Lanes, b: Lanes| -> Lanes { std::array::from_fn(|i| a[i] / b[i].max(1e-30)) };
+    let ratio = |a: Lanes, b: Lanes| -> Lanes { Lanes::from_fn(|i| a[i] / b[i].max(1e-30)) };
     let v = if mu_d < 0.0 {
         ratio(table(h_d, -mu_d), table(h, -mu))
     } else if mu < 0.0 {
         let low = table(lowest_altitude(h, mu, big_r), 0.0);
-        ratio(ratio(mul(low, low), table(h, -mu)), table(h_d, mu_d))
+        ratio(ratio(low * low, table(h, -mu)), table(h_d, mu_d))
     } else {
         ratio(table(h, mu), table(h_d, mu_d))
     };
