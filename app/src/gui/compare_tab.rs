@@ -76,7 +76,6 @@ fn mean(v: &[f64]) -> f64 {
 }
 
 impl CompareTab {
-    #[cfg(test)]
     pub fn set_rebuild_slices(&mut self, slice: Option<std::time::Duration>) {
         for v in &mut self.views {
             v.set_rebuild_slices(slice);

@@ -115,7 +115,6 @@ impl<T: Send + 'static> Job<T> {
 }
 
 /// Waits for `job` (tests and shutdown).
-#[cfg(test)]
 pub fn wait<T: Send + 'static>(job: &Job<T>) {
     while job.is_running() {
         std::thread::sleep(std::time::Duration::from_millis(10));

@@ -3,21 +3,21 @@
 //! engine skips passes whose inputs did not change, and the window repaints only on input or
 //! while background work (path tracing, inspection, exports) is in progress.
 
-mod bench_tab;
-mod compare_tab;
-mod exposure;
-mod files;
-mod gpu_view;
-mod inspector;
-mod jobs;
-mod lut_tab;
-mod performance_panel;
-mod reference_tab;
-mod scene_panel;
-mod sky_tab;
-mod state;
-mod summary_panel;
-mod thumbnails;
+pub mod bench_tab;
+pub mod compare_tab;
+pub mod exposure;
+pub mod files;
+pub mod gpu_view;
+pub mod inspector;
+pub mod jobs;
+pub mod lut_tab;
+pub mod performance_panel;
+pub mod reference_tab;
+pub mod scene_panel;
+pub mod sky_tab;
+pub mod state;
+pub mod summary_panel;
+pub mod thumbnails;
 
 use crate::lessons::{self, Lesson, LessonError};
 use crate::presets::load_shipped;
@@ -39,22 +39,21 @@ use std::time::Instant;
 use summary_panel::SummaryPanel;
 
 /// Storage keys of the last scene and layout.
-const SCENE_KEY: &str = "scene";
-const LAYOUT_KEY: &str = "layout";
+pub const SCENE_KEY: &str = "scene";
+pub const LAYOUT_KEY: &str = "layout";
 
 /// GPU state, present when eframe runs on wgpu.
-struct Views {
-    gpu: Gpu,
-    main: GpuView,
+pub struct Views {
+    pub gpu: Gpu,
+    pub main: GpuView,
     /// Created when their tab is first shown: each holds engines of its own.
-    compare: Option<CompareTab>,
-    reference: Option<ReferenceTab>,
+    pub compare: Option<CompareTab>,
+    pub reference: Option<ReferenceTab>,
 }
 
 impl Views {
-    #[cfg(test)]
     /// Sets how every view, and those created later, build a new atmosphere.
-    fn set_rebuild_slices(&mut self, slice: Option<std::time::Duration>) {
+    pub fn set_rebuild_slices(&mut self, slice: Option<std::time::Duration>) {
         self.gpu.rebuild_slice = slice;
         self.main.set_rebuild_slices(slice);
         if let Some(c) = &mut self.compare {
@@ -73,37 +72,40 @@ impl Views {
     }
 }
 
+/// The explorer: its state, public so that the GUI tests (`app/tests/gui.rs`) read what a user
+/// would see and set what a test needs, and the runtime that draws it. Every change a panel
+/// asks for goes through [`ExplorerApp::apply`].
 pub struct ExplorerApp {
-    scene: Scene,
-    layout: Layout,
-    views: Option<Views>,
-    luts: LutTab,
-    bench: bench_tab::BenchTab,
-    inspector: Inspector,
+    pub scene: Scene,
+    pub layout: Layout,
+    pub views: Option<Views>,
+    pub luts: LutTab,
+    pub bench: bench_tab::BenchTab,
+    pub inspector: Inspector,
     /// The per-wavelength summary shown under the Inspector.
-    summary: SummaryPanel,
+    pub summary: SummaryPanel,
     /// A message for the user (why a preset did not load), dismissible.
-    message: Option<String>,
+    pub message: Option<String>,
     /// What the last finished export or save did.
-    notice: Option<String>,
-    exports: Vec<Job<anyhow::Result<Option<String>>>>,
-    last_frame: Option<Instant>,
-    ui_frame_ms: f64,
+    pub notice: Option<String>,
+    pub exports: Vec<Job<anyhow::Result<Option<String>>>>,
+    pub last_frame: Option<Instant>,
+    pub ui_frame_ms: f64,
     /// The automatic exposure's last reading of the main view.
-    meter: Option<exposure::Reading>,
+    pub meter: Option<exposure::Reading>,
     /// Print each frame's passes and times to stderr (ATMOSCOPE_FRAME_LOG=1).
-    frame_log: bool,
+    pub frame_log: bool,
     /// The Learn menu's lessons, parsed once (a broken one is listed with its error).
-    lessons: Vec<(&'static str, Result<Lesson, LessonError>)>,
+    pub lessons: Vec<(&'static str, Result<Lesson, LessonError>)>,
     /// The lesson on screen.
-    lesson: Option<ActiveLesson>,
+    pub lesson: Option<ActiveLesson>,
     /// The preset menu's pictures, and where they are cached.
-    thumbnails: thumbnails::Thumbnails,
-    thumbnail_dir: PathBuf,
+    pub thumbnails: thumbnails::Thumbnails,
+    pub thumbnail_dir: PathBuf,
 }
 
 /// A lesson the user started: its window stays until closed and its numbers follow the scene.
-struct ActiveLesson {
+pub struct ActiveLesson {
     lesson: Lesson,
     /// The view point to inspect once the lesson's tab has drawn its view (fractions, 0–1).
     pending_inspect: Option<[f64; 2]>,
@@ -148,7 +150,6 @@ impl ExplorerApp {
         }
     }
 
-    #[cfg(test)]
     /// Sets how the views build a new atmosphere: in slices across frames (the default in a
     /// window), or at once (`None`: tests that step frames without waiting for the GPU).
     pub fn set_rebuild_slices(&mut self, slice: Option<std::time::Duration>) {
@@ -168,7 +169,9 @@ impl ExplorerApp {
         }
     }
 
-    fn apply(&mut self, ctx: &egui::Context, command: Command) {
+    /// Applies what a panel asked for: the one place the explorer's state changes on a user's
+    /// behalf.
+    pub fn apply(&mut self, ctx: &egui::Context, command: Command) {
         match command {
             Command::SetScene(scene) => match scene.validate() {
                 Ok(()) => self.scene = *scene,
@@ -792,7 +795,7 @@ pub fn run(args: SceneArgs) -> anyhow::Result<ExitCode> {
 /// The scene and layout to open with: `from_args` if given, else the last session's (a stored
 /// scene that no longer validates is dropped, a stored layout is brought into range), else the
 /// defaults.
-fn restore(storage: Option<&dyn eframe::Storage>, from_args: Option<Scene>) -> (Scene, Layout) {
+pub fn restore(storage: Option<&dyn eframe::Storage>, from_args: Option<Scene>) -> (Scene, Layout) {
     let stored = storage
         .and_then(|s| eframe::get_value::<Scene>(s, SCENE_KEY))
         .filter(|s| s.validate().is_ok());
@@ -812,7 +815,7 @@ fn wgpu_options() -> eframe::egui_wgpu::WgpuConfiguration {
 /// Asks the window's device for the engine's limits (`gpu::required_limits`) and for timestamp
 /// queries where the adapter has them, so the Performance panel shows GPU time per pass (it
 /// falls back to fenced wall time otherwise).
-pub(crate) fn ask_for_what_the_engine_uses(setup: &mut eframe::egui_wgpu::WgpuSetup) {
+pub fn ask_for_what_the_engine_uses(setup: &mut eframe::egui_wgpu::WgpuSetup) {
     use eframe::egui_wgpu::{WgpuSetup, wgpu};
     if let WgpuSetup::CreateNew(create) = setup {
         let base = create.device_descriptor.clone();
@@ -825,5 +828,3 @@ pub(crate) fn ask_for_what_the_engine_uses(setup: &mut eframe::egui_wgpu::WgpuSe
     }
 }
 
-#[cfg(test)]
-mod tests;

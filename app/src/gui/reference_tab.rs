@@ -71,7 +71,6 @@ impl ReferenceTab {
     }
 
     /// Paths per pixel the worker has reached (whether or not shown yet).
-    #[cfg(test)]
     pub fn latest_spp(&self) -> Option<u64> {
         let run = self.run.as_ref()?;
         run.latest.lock().ok()?.as_ref().map(|s| s.spp)

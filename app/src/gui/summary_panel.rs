@@ -24,7 +24,6 @@ impl SummaryPanel {
     }
 
     /// The summary last drawn.
-    #[cfg(test)]
     pub fn shown(&self) -> Option<&Info> {
         self.cached.as_ref().map(|(_, info)| info)
     }

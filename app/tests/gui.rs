@@ -2,8 +2,8 @@
 //! renderer (lavapipe on machines without a GPU): every change must reach both the scene and
 //! the rendered view.
 
-use super::files::ExportKind;
-use super::{Command, ExplorerApp, Layout, Tab};
+use atmoscope::gui::files::ExportKind;
+use atmoscope::gui::{Command, ExplorerApp, Layout, Tab};
 use atmoscope_model::Scene;
 use atmoscope_model::aerosol::AerosolType;
 use eframe::egui;
@@ -21,7 +21,7 @@ fn harness_with(layout: Layout, size: egui::Vec2) -> Harness<'static, ExplorerAp
         .with_max_steps(24)
         .wgpu_setup({
             let mut setup = egui_kittest::wgpu::default_wgpu_setup();
-            super::ask_for_what_the_engine_uses(&mut setup);
+            atmoscope::gui::ask_for_what_the_engine_uses(&mut setup);
             setup
         })
         .build_eframe(move |cc| {
@@ -40,7 +40,7 @@ fn harness_with(layout: Layout, size: egui::Vec2) -> Harness<'static, ExplorerAp
             app.thumbnail_dir = std::env::temp_dir()
                 .join(format!("atmoscope-test-thumbnails-{}", std::process::id()));
             // And benchmark results, none at first.
-            app.bench = super::bench_tab::BenchTab::new(
+            app.bench = atmoscope::gui::bench_tab::BenchTab::new(
                 std::env::temp_dir().join(format!("atmoscope-test-bench-{}", std::process::id())),
             );
             app
@@ -53,7 +53,7 @@ fn harness() -> Harness<'static, ExplorerApp> {
     harness_with(Layout::default(), egui::vec2(1280.0, 1000.0))
 }
 
-fn views<'a>(h: &'a Harness<'static, ExplorerApp>) -> &'a super::Views {
+fn views<'a>(h: &'a Harness<'static, ExplorerApp>) -> &'a atmoscope::gui::Views {
     h.state().views.as_ref().expect("GPU views")
 }
 
@@ -197,7 +197,7 @@ fn the_preset_menu_shows_every_preset_with_a_thumbnail_drawn_once_then_cached() 
     let dir = tempfile::tempdir().expect("temp dir");
     let mut h = harness();
     open_the_preset_menu_with_thumbnails_in(&mut h, dir.path());
-    let shipped = crate::presets::SHIPPED;
+    let shipped = atmoscope::presets::SHIPPED;
     for (name, _) in shipped {
         assert!(
             h.state().thumbnails.get(name).is_some(),
@@ -240,7 +240,7 @@ fn the_preset_menu_shows_every_preset_with_a_thumbnail_drawn_once_then_cached() 
     let (first, _) = shipped[0];
     again.get_by_label(first.trim_end_matches(".ron")).click();
     again.run();
-    let expected = crate::presets::load_shipped(first)
+    let expected = atmoscope::presets::load_shipped(first)
         .expect("listed")
         .expect("valid");
     assert_eq!(again.state().scene.name, expected.name);
@@ -304,7 +304,7 @@ fn a_bad_preset_dropped_on_the_window_names_file_and_field_and_changes_nothing()
 
 fn wait_for_exports(h: &mut Harness<'static, ExplorerApp>) {
     for job in &h.state().exports {
-        super::jobs::wait(job);
+        atmoscope::gui::jobs::wait(job);
     }
     h.run_steps(2);
     assert!(h.state().exports.is_empty());
@@ -341,7 +341,7 @@ fn exports_png_and_exr_that_read_back_as_drawn() {
         "the PNG is the view as displayed"
     );
 
-    let (rgb, w, hh) = crate::images::read_exr(&exr).expect("EXR reads back");
+    let (rgb, w, hh) = atmoscope::images::read_exr(&exr).expect("EXR reads back");
     assert_eq!((w, hh), (view.width, view.height));
     let worst = rgb
         .iter()
@@ -402,7 +402,7 @@ fn the_compare_tab_shows_a_delta_e_figure() {
     ));
 }
 
-fn inspect(h: &mut Harness<'static, ExplorerApp>, x: u32, y: u32) -> super::inspector::Analysis {
+fn inspect(h: &mut Harness<'static, ExplorerApp>, x: u32, y: u32) -> atmoscope::gui::inspector::Analysis {
     let ctx = h.ctx.clone();
     h.state_mut().apply(
         &ctx,
@@ -413,7 +413,7 @@ fn inspect(h: &mut Harness<'static, ExplorerApp>, x: u32, y: u32) -> super::insp
         },
     );
     if let Some(job) = h.state().inspector.job() {
-        super::jobs::wait(job);
+        atmoscope::gui::jobs::wait(job);
     }
     h.run_steps(2);
     h.state().inspector.result.clone().expect("an analysis")
@@ -499,7 +499,7 @@ fn the_lut_tab_reads_every_table() {
 fn reference_harness(target_spp: u64) -> Harness<'static, ExplorerApp> {
     let layout = Layout {
         tab: Tab::Reference,
-        reference: super::state::ReferenceSettings {
+        reference: atmoscope::gui::state::ReferenceSettings {
             size: 0,
             target_spp,
         },
@@ -665,17 +665,17 @@ fn the_last_scene_and_layout_are_restored_and_options_win() {
     let mut storage = MemoryStorage::default();
     eframe::App::save(h.state_mut(), &mut storage);
 
-    let (scene, layout) = super::restore(Some(&storage), None);
+    let (scene, layout) = atmoscope::gui::restore(Some(&storage), None);
     assert_eq!(scene.atmosphere.ground_albedo, 0.55);
     assert_eq!(layout.tab, Tab::Fisheye);
     assert_eq!(layout, h.state().layout);
 
     let mut asked = Scene::default();
     asked.camera.altitude_m = 42.0;
-    let (scene, _) = super::restore(Some(&storage), Some(asked.clone()));
+    let (scene, _) = atmoscope::gui::restore(Some(&storage), Some(asked.clone()));
     assert_eq!(scene, asked, "a scene from the command line wins");
     assert_eq!(
-        super::restore(None, None),
+        atmoscope::gui::restore(None, None),
         (Scene::default(), Layout::default())
     );
 }
@@ -683,7 +683,7 @@ fn the_last_scene_and_layout_are_restored_and_options_win() {
 #[test]
 fn every_lesson_of_the_learn_menu_sets_its_scene_tab_and_pixel_and_shows_computed_numbers() {
     let mut h = harness();
-    let lessons: Vec<_> = crate::lessons::shipped()
+    let lessons: Vec<_> = atmoscope::lessons::shipped()
         .into_iter()
         .map(|(file, l)| (file, l.unwrap_or_else(|e| panic!("{e}"))))
         .collect();
@@ -715,7 +715,7 @@ fn every_lesson_of_the_learn_menu_sets_its_scene_tab_and_pixel_and_shows_compute
         h.get_by_label_contains(&format!("Try ({}):", lesson.section.title()));
         if lesson.inspect.is_some() {
             if let Some(job) = h.state().inspector.job() {
-                super::jobs::wait(job);
+                atmoscope::gui::jobs::wait(job);
             }
             h.run_steps(2);
             let a = h
@@ -794,8 +794,8 @@ fn a_panorama_exports_in_the_background_and_can_be_cancelled() {
     );
     wait_for_exports(&mut h);
     assert!(h.state().message.is_none(), "{:?}", h.state().message);
-    let (rgb, w, hh) = crate::images::read_exr(&panorama).expect("reads back");
-    assert_eq!((w, hh), super::files::PANORAMA_SIZE);
+    let (rgb, w, hh) = atmoscope::images::read_exr(&panorama).expect("reads back");
+    assert_eq!((w, hh), atmoscope::gui::files::PANORAMA_SIZE);
     assert!(rgb.iter().flatten().all(|v| v.is_finite() && *v >= 0.0));
     // Sky above the horizon row and lit ground below it.
     let rgb = &rgb;
@@ -837,7 +837,7 @@ fn a_timelapse_exports_in_the_background_and_can_be_cancelled() {
         .animation_control()
         .expect("an APNG")
         .num_frames;
-    assert_eq!(frames, super::files::TIMELAPSE_FRAMES);
+    assert_eq!(frames, atmoscope::gui::files::TIMELAPSE_FRAMES);
     let written = std::fs::read_dir(dir.path().join("sunset_frames"))
         .expect("frames")
         .count();
@@ -876,7 +876,7 @@ fn the_luminance_tab_reads_out_the_pixel_under_the_pointer() {
 /// Compare or an unreadable value must neither panic a panel nor hang one.
 #[test]
 fn a_corrupt_stored_layout_is_brought_into_range_and_every_tab_draws() {
-    use super::state::{
+    use atmoscope::gui::state::{
         CompareSettings, LUMINANCE_LOG10_LIMITS, LutSettings, REFERENCE_SIZES, ReferenceSettings,
     };
     let bad = Layout {
@@ -903,8 +903,8 @@ fn a_corrupt_stored_layout_is_brought_into_range_and_every_tab_draws() {
         ..Layout::default()
     };
     let mut storage = MemoryStorage::default();
-    eframe::set_value(&mut storage, super::LAYOUT_KEY, &bad);
-    let (_, layout) = super::restore(Some(&storage), None);
+    eframe::set_value(&mut storage, atmoscope::gui::LAYOUT_KEY, &bad);
+    let (_, layout) = atmoscope::gui::restore(Some(&storage), None);
     let d = Layout::default();
     assert_eq!(layout.render_scale, d.render_scale);
     assert_eq!(layout.drag_scale, d.drag_scale);
@@ -920,10 +920,10 @@ fn a_corrupt_stored_layout_is_brought_into_range_and_every_tab_draws() {
 
     eframe::Storage::set_string(
         &mut storage,
-        super::LAYOUT_KEY,
+        atmoscope::gui::LAYOUT_KEY,
         "(tab: Sky, render_scale: ".into(),
     );
-    assert_eq!(super::restore(Some(&storage), None).1, Layout::default());
+    assert_eq!(atmoscope::gui::restore(Some(&storage), None).1, Layout::default());
 
     // Every tab draws with what survives (the LUT lane and slice are clamped where drawn).
     let mut h = harness_with(
@@ -946,18 +946,18 @@ fn a_corrupt_stored_layout_is_brought_into_range_and_every_tab_draws() {
 /// A stored layout and scene as the last session saved them, for the mutations below.
 fn saved_settings() -> (String, String) {
     let mut storage = MemoryStorage::default();
-    eframe::set_value(&mut storage, super::SCENE_KEY, &Scene::default());
-    eframe::set_value(&mut storage, super::LAYOUT_KEY, &Layout::default());
+    eframe::set_value(&mut storage, atmoscope::gui::SCENE_KEY, &Scene::default());
+    eframe::set_value(&mut storage, atmoscope::gui::LAYOUT_KEY, &Layout::default());
     let get = |key| eframe::Storage::get_string(&storage, key).expect("stored");
-    (get(super::SCENE_KEY), get(super::LAYOUT_KEY))
+    (get(atmoscope::gui::SCENE_KEY), get(atmoscope::gui::LAYOUT_KEY))
 }
 
 /// What `restore` makes of stored text: it never panics, and what it returns is valid.
 fn restores_valid_settings(scene: String, layout: String) -> Result<(), String> {
     let mut storage = MemoryStorage::default();
-    eframe::Storage::set_string(&mut storage, super::SCENE_KEY, scene);
-    eframe::Storage::set_string(&mut storage, super::LAYOUT_KEY, layout);
-    let (scene, layout) = super::restore(Some(&storage), None);
+    eframe::Storage::set_string(&mut storage, atmoscope::gui::SCENE_KEY, scene);
+    eframe::Storage::set_string(&mut storage, atmoscope::gui::LAYOUT_KEY, layout);
+    let (scene, layout) = atmoscope::gui::restore(Some(&storage), None);
     scene.validate().map_err(|e| format!("{e:?}"))?;
     if layout.clone().validated() != layout {
         return Err(format!("{layout:?} is out of range"));
@@ -1003,7 +1003,7 @@ proptest::proptest! {
 fn a_new_atmosphere_is_built_across_frames_while_the_last_one_shows() {
     let mut h = harness();
     h.state_mut()
-        .set_rebuild_slices(Some(crate::engine_setup::REBUILD_SLICE));
+        .set_rebuild_slices(Some(atmoscope::engine_setup::REBUILD_SLICE));
     let generation = |h: &Harness<'static, ExplorerApp>| views(h).main.generation();
     let (before, drawn) = (radiance(&mut h), generation(&h));
     h.state_mut().scene.render.wavelengths = atmoscope_model::scene::WavelengthSet::SpectralN(32);
@@ -1066,9 +1066,9 @@ fn automatic_exposure_meters_the_view_and_adapts() {
     h.get_by_label_contains("EV100");
 }
 
-fn bench_rows() -> Vec<crate::bench_results::Row> {
+fn bench_rows() -> Vec<atmoscope::bench_results::Row> {
     let row =
-        |method: &str, set: &str, view: &str, frame_ms: f64, de: f64| crate::bench_results::Row {
+        |method: &str, set: &str, view: &str, frame_ms: f64, de: f64| atmoscope::bench_results::Row {
             method: method.into(),
             wavelengths: set.into(),
             quality: "medium".into(),
@@ -1116,23 +1116,23 @@ fn the_bench_tab_shows_the_last_results_and_renders_the_model_of_a_row() {
     let dir = bench_dir("bench-results");
     std::fs::write(
         dir.join("results.csv"),
-        crate::bench_results::to_csv(&bench_rows()),
+        atmoscope::bench_results::to_csv(&bench_rows()),
     )
     .expect("results");
-    h.state_mut().bench = super::bench_tab::BenchTab::new(dir.clone());
+    h.state_mut().bench = atmoscope::gui::bench_tab::BenchTab::new(dir.clone());
     h.get_by_label("Bench").click();
     h.run();
     assert_eq!(h.state().layout.tab, Tab::Bench);
     // The explorer's own tab, with no results of its own, shows the repository's last quick run.
     h.state_mut().bench =
-        super::bench_tab::BenchTab::new(bench_dir("bench-none")).with_shipped_results();
+        atmoscope::gui::bench_tab::BenchTab::new(bench_dir("bench-none")).with_shipped_results();
     h.run();
     assert!(
         h.query_by_label_contains("docs/bench/results.csv")
             .is_some()
     );
     assert!(h.query_by_label("nishita-ms/spectral4/medium").is_some());
-    h.state_mut().bench = super::bench_tab::BenchTab::new(dir.clone());
+    h.state_mut().bench = atmoscope::gui::bench_tab::BenchTab::new(dir.clone());
     h.run();
     // Hillaire is faster and closer: alone on the front.
     assert!(h.query_by_label("hillaire/rgb3/medium").is_some());
@@ -1150,10 +1150,10 @@ fn the_bench_tab_shows_the_last_results_and_renders_the_model_of_a_row() {
     // A damaged file is named with its line, and nothing is shown from it.
     std::fs::write(
         dir.join("results.csv"),
-        crate::bench_results::to_csv(&bench_rows()).replace("30.0000", "NaN"),
+        atmoscope::bench_results::to_csv(&bench_rows()).replace("30.0000", "NaN"),
     )
     .expect("results");
-    h.state_mut().bench = super::bench_tab::BenchTab::new(dir);
+    h.state_mut().bench = atmoscope::gui::bench_tab::BenchTab::new(dir);
     h.run();
     assert!(h.query_by_label_contains("line 2: frame_ms").is_some());
     assert!(h.query_by_label("elek/spectral4/medium").is_none());
@@ -1164,13 +1164,13 @@ fn a_quick_benchmark_runs_in_the_background_loads_its_results_and_can_be_cancell
     let mut h = harness();
     h.state_mut().layout.tab = Tab::Bench;
     let dir = bench_dir("bench-run");
-    let csv = crate::bench_results::to_csv(&bench_rows());
+    let csv = atmoscope::bench_results::to_csv(&bench_rows());
     // A stand-in for `atmoscope bench methods --quick`: the same progress lines and output,
     // written where `--out DIR` says ($2).
     let script = format!(
         "echo 'progress 1/2 hillaire/rgb3/medium ground-noon' >&2; printf '%s' '{csv}' > \"$2/results.csv\"; echo 'progress 2/2 elek' >&2"
     );
-    let mut tab = super::bench_tab::BenchTab::new(dir.clone());
+    let mut tab = atmoscope::gui::bench_tab::BenchTab::new(dir.clone());
     tab.program = ("sh".into(), vec!["-c".into(), script, "sh".into()]);
     h.state_mut().bench = tab;
     h.run();
@@ -1185,7 +1185,7 @@ fn a_quick_benchmark_runs_in_the_background_loads_its_results_and_can_be_cancell
     assert!(!h.state().bench.running());
 
     // A run that leaves cases out writes its results and fails: both are shown.
-    let mut tab = super::bench_tab::BenchTab::new(bench_dir("bench-partial"));
+    let mut tab = atmoscope::gui::bench_tab::BenchTab::new(bench_dir("bench-partial"));
     let partial = format!(
         "printf '%s' '{csv}' > \"$2/results.csv\"; echo 'elek/rgb3/medium twilight-6: GPU lost; left out' >&2; exit 1"
     );
@@ -1205,7 +1205,7 @@ fn a_quick_benchmark_runs_in_the_background_loads_its_results_and_can_be_cancell
     );
 
     // A run that hangs is cancelled, and says so.
-    let mut tab = super::bench_tab::BenchTab::new(bench_dir("bench-cancel"));
+    let mut tab = atmoscope::gui::bench_tab::BenchTab::new(bench_dir("bench-cancel"));
     tab.program = (
         "sh".into(),
         vec![
