@@ -13,6 +13,7 @@ pub mod cli;
 pub mod engine_setup;
 pub mod files;
 pub mod gui;
+pub mod gui_bench;
 pub mod images;
 pub mod lessons;
 pub mod presets;
@@ -29,6 +30,10 @@ use std::process::ExitCode;
 pub fn run(args: cli::Cli) -> ExitCode {
     let result = match args.command {
         None => gui::run(args.scene),
+        // The one subcommand that opens the window: a scripted session of the explorer.
+        Some(cli::Command::Bench {
+            bench: cli::bench::Bench::Gui(bench),
+        }) => gui::scripted::run(bench),
         Some(command) => cli::run(command),
     };
     match result {

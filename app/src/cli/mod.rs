@@ -2,7 +2,7 @@
 //! reports bad input as an error naming the file, field and allowed range.
 
 mod aerosols;
-mod bench;
+pub mod bench;
 pub mod common;
 mod compare;
 mod fit;

@@ -14,6 +14,7 @@ pub mod lut_tab;
 pub mod performance_panel;
 pub mod reference_tab;
 pub mod scene_panel;
+pub mod scripted;
 pub mod sky_tab;
 pub mod state;
 pub mod summary_panel;
@@ -62,7 +63,7 @@ impl Views {
     }
 
     /// Whether any view needs more frames of the same scene (`GpuView::settling`).
-    fn settling(&self) -> bool {
+    pub fn settling(&self) -> bool {
         self.main.settling()
             || self.compare.as_ref().is_some_and(CompareTab::settling)
             || self
@@ -102,6 +103,8 @@ pub struct ExplorerApp {
     /// The preset menu's pictures, and where they are cached.
     pub thumbnails: thumbnails::Thumbnails,
     pub thumbnail_dir: PathBuf,
+    /// A scripted session playing in the window (`atmoscope bench gui`); it saves nothing.
+    pub session: Option<scripted::Session>,
 }
 
 /// A lesson the user started: its window stays until closed and its numbers follow the scene.
@@ -147,6 +150,7 @@ impl ExplorerApp {
             lesson: None,
             thumbnails: thumbnails::Thumbnails::default(),
             thumbnail_dir: crate::cache::dir("thumbnails"),
+            session: None,
         }
     }
 
@@ -650,6 +654,10 @@ impl eframe::App for ExplorerApp {
             self.ui_frame_ms = (now - last).as_secs_f64() * 1e3;
         }
         self.last_frame = Some(now);
+        if let Some(mut session) = self.session.take() {
+            session.frame(self, &ctx);
+            self.session = Some(session);
+        }
         self.poll_jobs();
         self.thumbnails.poll(&ctx);
         if let Some(v) = &mut self.views {
@@ -758,6 +766,10 @@ impl eframe::App for ExplorerApp {
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        if self.session.is_some() {
+            // A scripted session's scene is not the user's.
+            return;
+        }
         eframe::set_value(storage, SCENE_KEY, &self.scene);
         eframe::set_value(storage, LAYOUT_KEY, &self.layout);
     }
@@ -827,4 +839,3 @@ pub fn ask_for_what_the_engine_uses(setup: &mut eframe::egui_wgpu::WgpuSetup) {
         });
     }
 }
-

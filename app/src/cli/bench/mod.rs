@@ -33,6 +33,10 @@ pub enum Bench {
     /// A–D), every model he compares and ours; leenman.csv and leenman.md with his value
     /// beside ours.
     Leenman(leenman::LeenmanBench),
+    /// A scripted session of the explorer in its window: a fresh start with each model, every
+    /// tab, the preset list and a preset loaded; the longest and 99th-percentile UI frame
+    /// interval per step (gui.csv, gui.md). Needs a display (Xvfb where there is none).
+    Gui(crate::gui_bench::GuiBenchArgs),
 }
 
 pub fn run(bench: &Bench) -> anyhow::Result<ExitCode> {
@@ -44,5 +48,8 @@ pub fn run(bench: &Bench) -> anyhow::Result<ExitCode> {
         Bench::Methods(args) => methods::run(args),
         Bench::Leenman(args) => leenman::run(args),
         Bench::Transmittance(args) => transmittance::run(args),
+        Bench::Gui(_) => {
+            anyhow::bail!("`bench gui` opens the explorer: run it through atmoscope::run")
+        }
     }
 }
