@@ -53,3 +53,36 @@ impl EngineSetup {
         engine
     }
 }
+
+/// Time left to a window between two slices of work done beside it (thumbnails, exports) on
+/// the window's GPU queue: about a frame.
+pub const BESIDE_A_WINDOW_PAUSE: Duration = Duration::from_millis(16);
+
+/// An engine for work beside a window on the window's device: it builds its tables in slices
+/// of [`REBUILD_SLICE`], so that the window's frames, queued behind its work, wait a slice at
+/// most ([`render_still_beside_a_window`]).
+pub fn engine_beside_a_window(device: &wgpu::Device, queue: &wgpu::Queue) -> Engine {
+    let mut engine = Engine::new(device, queue);
+    engine.set_rebuild_slices(Some(REBUILD_SLICE));
+    engine
+}
+
+/// [`Engine::render_still`] with an engine beside a window: a new atmosphere is built a slice
+/// at a time with [`BESIDE_A_WINDOW_PAUSE`] between slices, then the still is drawn. Returns
+/// None when `cancelled` says so between slices.
+pub fn render_still_beside_a_window(
+    engine: &mut Engine,
+    scene: &atmoscope_model::Scene,
+    view: &atmoscope_render::View,
+    cancelled: &dyn Fn() -> bool,
+) -> Result<Option<(atmoscope_model::Scene, Option<f64>)>, atmoscope_render::EngineError> {
+    engine.try_render(scene, view)?;
+    while engine.rebuilding() {
+        if cancelled() {
+            return Ok(None);
+        }
+        std::thread::sleep(BESIDE_A_WINDOW_PAUSE);
+        engine.try_render(scene, view)?;
+    }
+    engine.render_still(scene, view).map(Some)
+}

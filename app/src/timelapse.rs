@@ -8,7 +8,6 @@ use crate::files::write_atomic;
 use anyhow::Context;
 use atmoscope_model::Scene;
 use atmoscope_model::scene::SunSettings;
-use atmoscope_render::wgpu;
 use atmoscope_render::{Engine, View};
 use std::path::{Path, PathBuf};
 
@@ -96,14 +95,15 @@ pub struct Written {
     pub animation: PathBuf,
 }
 
-/// Renders `frames` frames of `sweep` over `base` and writes `<dir>/frame_NNNN.png` and the
-/// animation `animation` (APNG at `fps` frames a second, looping). `progress` gets the
-/// fraction done after each frame and returns false to stop: then None, and the animation is
-/// not written.
+/// Renders `frames` frames of `sweep` over `base` with `engine` and writes
+/// `<dir>/frame_NNNN.png` and the animation `animation` (APNG at `fps` frames a second,
+/// looping). `progress` gets the fraction done after each frame and returns false to stop:
+/// then None, and the animation is not written. An engine that builds in slices works beside
+/// a window (`engine_setup::engine_beside_a_window`): it builds a slice at a time and leaves
+/// the window a frame's time between its frames.
 #[allow(clippy::too_many_arguments)]
 pub fn render(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
+    engine: &mut Engine,
     base: &Scene,
     sweep: Sweep,
     frames: u32,
@@ -134,11 +134,15 @@ pub fn render(
         }
     }
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let mut engine = Engine::new(device, queue);
+    let beside_a_window = engine.rebuild_slices().is_some();
     let mut images = Vec::new();
     let mut written = Vec::new();
     for i in 0..frames {
-        engine.render_still(&sweep.scene(base, i, frames)?, &view)?;
+        let scene = sweep.scene(base, i, frames)?;
+        crate::engine_setup::render_still_beside_a_window(engine, &scene, &view, &|| false)?;
+        if beside_a_window {
+            std::thread::sleep(crate::engine_setup::BESIDE_A_WINDOW_PAUSE);
+        }
         let rgba = engine.read_display()?;
         let path = dir.join(format!("frame_{i:04}.png"));
         write_atomic(&path, &encode_png(&[&rgba], view.width, view.height, fps)?)?;

@@ -402,7 +402,11 @@ fn the_compare_tab_shows_a_delta_e_figure() {
     ));
 }
 
-fn inspect(h: &mut Harness<'static, ExplorerApp>, x: u32, y: u32) -> atmoscope::gui::inspector::Analysis {
+fn inspect(
+    h: &mut Harness<'static, ExplorerApp>,
+    x: u32,
+    y: u32,
+) -> atmoscope::gui::inspector::Analysis {
     let ctx = h.ctx.clone();
     h.state_mut().apply(
         &ctx,
@@ -923,7 +927,10 @@ fn a_corrupt_stored_layout_is_brought_into_range_and_every_tab_draws() {
         atmoscope::gui::LAYOUT_KEY,
         "(tab: Sky, render_scale: ".into(),
     );
-    assert_eq!(atmoscope::gui::restore(Some(&storage), None).1, Layout::default());
+    assert_eq!(
+        atmoscope::gui::restore(Some(&storage), None).1,
+        Layout::default()
+    );
 
     // Every tab draws with what survives (the LUT lane and slice are clamped where drawn).
     let mut h = harness_with(
@@ -949,7 +956,10 @@ fn saved_settings() -> (String, String) {
     eframe::set_value(&mut storage, atmoscope::gui::SCENE_KEY, &Scene::default());
     eframe::set_value(&mut storage, atmoscope::gui::LAYOUT_KEY, &Layout::default());
     let get = |key| eframe::Storage::get_string(&storage, key).expect("stored");
-    (get(atmoscope::gui::SCENE_KEY), get(atmoscope::gui::LAYOUT_KEY))
+    (
+        get(atmoscope::gui::SCENE_KEY),
+        get(atmoscope::gui::LAYOUT_KEY),
+    )
 }
 
 /// What `restore` makes of stored text: it never panics, and what it returns is valid.
@@ -1067,8 +1077,8 @@ fn automatic_exposure_meters_the_view_and_adapts() {
 }
 
 fn bench_rows() -> Vec<atmoscope::bench_results::Row> {
-    let row =
-        |method: &str, set: &str, view: &str, frame_ms: f64, de: f64| atmoscope::bench_results::Row {
+    let row = |method: &str, set: &str, view: &str, frame_ms: f64, de: f64| {
+        atmoscope::bench_results::Row {
             method: method.into(),
             wavelengths: set.into(),
             quality: "medium".into(),
@@ -1080,7 +1090,8 @@ fn bench_rows() -> Vec<atmoscope::bench_results::Row> {
             de2000_p95: 2.0 * de,
             flip: 0.2,
             rel_rmse: 0.3,
-        };
+        }
+    };
     vec![
         row("hillaire", "rgb3", "ground-noon", 30.0, 5.0),
         row("hillaire", "rgb3", "twilight-6", 32.0, 7.0),
@@ -1227,4 +1238,117 @@ fn a_quick_benchmark_runs_in_the_background_loads_its_results_and_can_be_cancell
         "cancelled within seconds, not after the minute"
     );
     assert!(h.query_by_label("cancelled").is_some());
+}
+
+/// Every engine of the window and its rebuild's progress (units done), if one is under way.
+fn engines(h: &Harness<'static, ExplorerApp>) -> Vec<(&'static str, atmoscope_render::FrameStats)> {
+    let views = views(h);
+    let mut all = vec![("main", views.main.stats().clone())];
+    if let Some(c) = &views.compare {
+        for (name, v) in ["compare A", "compare B", "compare reference"]
+            .iter()
+            .zip(c.views())
+        {
+            all.push((name, v.stats().clone()));
+        }
+    }
+    if let Some(r) = &views.reference {
+        all.push(("reference", r.realtime().stats().clone()));
+    }
+    all
+}
+
+/// Steps frames until no view is settling, checking each frame: no engine runs a table pass
+/// whole (a new atmosphere is built a slice per frame) and at most one engine advances its
+/// rebuild (the window's engines share one budget). Returns the frames the main view was
+/// building in and those that said "Building …".
+fn step_until_settled(h: &mut Harness<'static, ExplorerApp>, what: &str) -> (usize, usize) {
+    let (mut main_building, mut said_building) = (0, 0);
+    for frame in 0..20_000 {
+        let before = engines(h);
+        h.step();
+        let after = engines(h);
+        let mut advanced = Vec::new();
+        for (name, stats) in &after {
+            assert!(
+                stats.tables_run.is_empty(),
+                "{what}, frame {frame}: {name} ran {:?} whole",
+                stats.tables_run
+            );
+            // A slice submitted: more of the rebuild done than the frame before (a held
+            // rebuild stays where it is).
+            let was = before
+                .iter()
+                .find(|(n, _)| n == name)
+                .and_then(|(_, s)| s.rebuild.map(|p| p.done))
+                .unwrap_or(0);
+            let moved = stats.rebuild.is_some_and(|p| p.done > was);
+            if moved {
+                advanced.push(*name);
+            }
+        }
+        assert!(
+            advanced.len() <= 1,
+            "{what}, frame {frame}: {advanced:?} built in one frame"
+        );
+        if h.query_all_by_label_contains("Building").next().is_some() {
+            said_building += 1;
+        }
+        if views(h).main.stats().rebuild.is_some() {
+            main_building += 1;
+        }
+        if !views(h).settling() && !h.state().thumbnails.loading() {
+            return (main_building, said_building);
+        }
+    }
+    panic!("{what}: still settling after 20 000 frames");
+}
+
+/// With the window's slicing on, switching to a model and to a tab never stops the frames: each
+/// one's tables are built a slice per frame, one engine at a time, with "Building …" shown
+/// until the first image, which then appears. The fast tier covers every model on the Sky tab
+/// and every tab with Bruneton's (the longest build); the research tier every pair.
+fn frames_keep_coming(models: &[atmoscope_model::scene::Method], tabs: &[Tab]) {
+    let mut h = harness_with(Layout::default(), egui::vec2(800.0, 500.0));
+    h.state_mut()
+        .set_rebuild_slices(Some(atmoscope::engine_setup::REBUILD_SLICE));
+    h.state_mut().scene.render.quality = atmoscope_model::scene::Quality::Low;
+    for &method in models {
+        for &tab in tabs {
+            let what = format!("{method:?} on {tab:?}");
+            h.state_mut().scene.render.method = method;
+            h.state_mut().layout.tab = tab;
+            h.state_mut().layout.compare.a_method = method;
+            let (building, said_building) = step_until_settled(&mut h, &what);
+            // A build of more than a few frames says so (a floating label shows from its
+            // second frame).
+            if building > 2 && tab == Tab::Sky {
+                assert!(
+                    said_building > 0,
+                    "{what}: {building} frames, never \"Building\""
+                );
+            }
+            if matches!(tab, Tab::Sky | Tab::Fisheye | Tab::Luminance) {
+                assert!(views(&h).main.texture().is_some(), "{what}: no image");
+            }
+        }
+    }
+}
+
+#[test]
+fn frames_keep_coming_for_every_model_and_every_tab() {
+    let models: Vec<_> = atmoscope_model::methods::realtime()
+        .map(|m| m.method)
+        .collect();
+    frames_keep_coming(&models, &[Tab::Sky]);
+    frames_keep_coming(&[atmoscope_model::scene::Method::Bruneton], &Tab::ALL);
+}
+
+#[test]
+#[ignore = "research tier: every model on every tab, built in slices"]
+fn frames_keep_coming_for_every_model_on_every_tab() {
+    let models: Vec<_> = atmoscope_model::methods::realtime()
+        .map(|m| m.method)
+        .collect();
+    frames_keep_coming(&models, &Tab::ALL);
 }

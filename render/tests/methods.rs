@@ -370,11 +370,13 @@ fn a_moving_sky_built_in_slices_is_the_one_built_whole() {
                 .all(|(x, y)| (x - y).abs() <= 1e-6 * max)
     };
 
+    // The first atmosphere built whole (a first build in slices would build its moving sky
+    // too), then slicing on.
     let mut engine = Engine::new(&gpu.device, &gpu.queue);
     engine.set_sky_tile(4);
-    engine.set_rebuild_slices(Some(Duration::ZERO));
     let mut frame = scene.clone();
     let first = engine.render(&frame, &view).clone();
+    engine.set_rebuild_slices(Some(Duration::ZERO));
     assert!(
         first.ran(MOVING_SKY_PASS),
         "none is complete yet: the first frame in motion builds it whole"
@@ -1838,6 +1840,59 @@ fn a_rebuild_in_slices_gives_the_same_tables_as_a_whole_one() {
             "{}: displayed {steps:?} steps apart",
             model.id
         );
+    }
+}
+
+/// An engine that slices its work from the start builds its first atmosphere in slices too,
+/// drawing nothing meanwhile, and ends with the tables and view of a whole build; a held
+/// rebuild (`Engine::hold_rebuild`: another engine of the window has the frame's slice) makes
+/// no progress and draws nothing either.
+#[test]
+fn the_first_build_in_slices_gives_the_tables_of_a_whole_one() {
+    let Some(gpu) = context() else { return };
+    let view = View::new(Projection::Perspective, 24, 16);
+    for model in methods::realtime() {
+        let mut scene = with(model, &Scene::default());
+        scene.render.wavelengths = WavelengthSet::Rgb3;
+        let mut sliced = Engine::new(&gpu.device, &gpu.queue);
+        sliced.set_rebuild_slices(Some(std::time::Duration::ZERO));
+        sliced.hold_rebuild(true);
+        let held = sliced.render(&scene, &view).clone();
+        let start = held.rebuild.expect("a first build under way");
+        assert_eq!((start.done, held.run.len()), (0, 0), "{}: held", model.id);
+        sliced.hold_rebuild(false);
+        let mut frames = 0;
+        loop {
+            let stats = sliced.render(&scene, &view).clone();
+            sliced.wait();
+            if stats.rebuild_done {
+                break;
+            }
+            let progress = stats.rebuild.expect("progress while building");
+            assert!(progress.done <= progress.total, "{}", model.id);
+            assert!(
+                stats.run.is_empty() && sliced.read_radiance().is_err(),
+                "{}: nothing is drawn before the first build is done",
+                model.id
+            );
+            frames += 1;
+            assert!(frames < 1_000_000, "{}: the build ends", model.id);
+        }
+        assert!(frames > 1, "{}: {frames} slices", model.id);
+        let mut whole = Engine::new(&gpu.device, &gpu.queue);
+        whole.render(&scene, &view);
+        for table in model.tables {
+            let a = sliced.read_table(table.id).expect("sliced");
+            let b = whole.read_table(table.id).expect("whole");
+            assert!(a == b, "{}: {} differs", model.id, table.id);
+        }
+        let worst = radiance_image(&sliced)
+            .iter()
+            .flatten()
+            .zip(radiance_image(&whole).iter().flatten())
+            .map(|(a, b)| (a - b).abs() / b.abs().max(1e-30))
+            .fold(0.0, f64::max);
+        assert!(worst <= 1e-6, "{}: {worst}", model.id);
     }
 }
 

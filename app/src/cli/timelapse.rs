@@ -80,8 +80,7 @@ pub fn run(args: &TimelapseArgs) -> anyhow::Result<ExitCode> {
     );
     let animation = args.out.join("timelapse.png");
     let written = timelapse::render(
-        &gpu.device,
-        &gpu.queue,
+        &mut atmoscope_render::Engine::new(&gpu.device, &gpu.queue),
         &scene,
         sweep,
         args.frames,

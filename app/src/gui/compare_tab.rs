@@ -135,11 +135,13 @@ impl CompareTab {
             (c.b_method, c.b),
             (c.reference_method, c.reference),
         ];
+        // Three engines, one budget: they build their tables one at a time.
+        let mut slice_taken = false;
         for (v, (method, set)) in self.views.iter_mut().zip(pairs) {
             let mut s = scene.clone();
             s.render.method = method;
             s.render.wavelengths = set;
-            v.render(&s, &view);
+            v.render_sharing(&s, &view, &mut slice_taken);
         }
         self.update_figures(ui.ctx(), scene);
 
@@ -164,6 +166,13 @@ impl CompareTab {
                 s.render.method = method;
                 if let (None, Some(why)) = (texture, notice(&s)) {
                     ui.label(why);
+                }
+            }
+            for (view, (method, _)) in self.views.iter().zip(pairs) {
+                let mut s = scene.clone();
+                s.render.method = method;
+                if let Some(building) = view.building(&s) {
+                    ui.label(building);
                 }
             }
             return;

@@ -8,7 +8,7 @@ use crate::images::{save_rgb8, write_exr};
 use crate::timelapse;
 use atmoscope_model::Scene;
 use atmoscope_model::camera::Projection;
-use atmoscope_render::{Engine, View};
+use atmoscope_render::View;
 use std::path::{Path, PathBuf};
 
 /// Pixels of an exported panorama (2:1, equirectangular).
@@ -131,8 +131,7 @@ pub fn export_timelapse(
     let dir = path.with_file_name(format!("{stem}_frames"));
     let sweep = timelapse::Sweep::sunset_or_day(scene);
     let written = timelapse::render(
-        &gpu.device,
-        &gpu.queue,
+        &mut crate::engine_setup::engine_beside_a_window(&gpu.device, &gpu.queue),
         scene,
         sweep,
         TIMELAPSE_FRAMES,
@@ -163,12 +162,16 @@ pub fn export_panorama(
     progress: &Progress,
 ) -> anyhow::Result<Option<String>> {
     let (w, h) = PANORAMA_SIZE;
-    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    // Beside the window: its build a slice at a time.
+    let mut engine = crate::engine_setup::engine_beside_a_window(&gpu.device, &gpu.queue);
     progress.set(0.1);
-    if progress.cancelled() {
+    let view = View::new(Projection::Panorama, w, h);
+    let cancelled = || progress.cancelled();
+    if crate::engine_setup::render_still_beside_a_window(&mut engine, scene, &view, &cancelled)?
+        .is_none()
+    {
         return Ok(None);
     }
-    engine.try_render(scene, &View::new(Projection::Panorama, w, h))?;
     engine.wait();
     progress.set(0.6);
     if progress.cancelled() {

@@ -149,6 +149,26 @@ impl GpuView {
         }
     }
 
+    /// Renders like `render` as one of several views drawn in one frame, which share one
+    /// budget of GPU time for their rebuilds: the view lets its rebuild in slices go on only
+    /// while no view before it in the frame took its slice (`slice_taken`), and takes it when
+    /// it builds. One view builds at a time; the others keep what they show.
+    pub fn render_sharing(
+        &mut self,
+        scene: &Scene,
+        view: &View,
+        slice_taken: &mut bool,
+    ) -> &FrameStats {
+        self.engine.hold_rebuild(*slice_taken);
+        self.render(scene, view);
+        self.engine.hold_rebuild(false);
+        let stats = self.engine.stats();
+        if stats.rebuild.is_some() || stats.rebuild_done {
+            *slice_taken = true;
+        }
+        stats
+    }
+
     /// Renders like `render`, but finishes a rebuild under way in this frame and draws every
     /// pixel (for exports, which must show the scene as it is now, exactly).
     pub fn render_complete(&mut self, scene: &Scene, view: &View) -> &FrameStats {
@@ -173,6 +193,20 @@ impl GpuView {
     /// (`Engine::settling`).
     pub fn settling(&self) -> bool {
         self.engine.settling()
+    }
+
+    /// While a new atmosphere is built in slices: what is being built for `scene` and how far
+    /// it has come, for the view to say so (over the last image, or in its place before the
+    /// first).
+    pub fn building(&self, scene: &Scene) -> Option<String> {
+        let p = self.engine.stats().rebuild?;
+        let share = p.done as f64 / p.total.max(1) as f64;
+        let model = atmoscope_model::methods::info(scene.render.method);
+        Some(format!(
+            "Building {}'s tables… {:.0} %",
+            model.label,
+            100.0 * share.clamp(0.0, 1.0)
+        ))
     }
 
     /// The last GPU fault not yet shown, if any.
@@ -303,6 +337,24 @@ pub fn mark(ui: &egui::Ui, rect: egui::Rect, scene: &Scene) {
         egui::Color32::from_black_alpha(180),
     );
     painter.galley(at, galley, egui::Color32::WHITE);
+}
+
+/// Says over the top left of the view in `rect` that its tables are being built
+/// ([`GpuView::building`]): a label floating above the image, below a [`mark`] if any.
+pub fn building_over(ui: &egui::Ui, rect: egui::Rect, text: String) {
+    egui::Area::new(ui.scope_id().with("building"))
+        .fixed_pos(rect.left_top() + egui::vec2(8.0, 36.0))
+        .order(egui::Order::Foreground)
+        .interactable(false)
+        .show(ui.ctx(), |ui| {
+            egui::Frame::new()
+                .fill(egui::Color32::from_black_alpha(180))
+                .corner_radius(4.0)
+                .inner_margin(4.0)
+                .show(ui, |ui| {
+                    ui.colored_label(egui::Color32::WHITE, text);
+                });
+        });
 }
 
 /// Pixel size of a view filling `points` of screen at `scale` (1 = one texel per pixel).

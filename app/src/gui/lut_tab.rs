@@ -32,7 +32,10 @@ pub struct LutTab {
 impl LutTab {
     pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene, gpu: &GpuView, s: &mut LutSettings) {
         let Some(p) = gpu.engine().params() else {
-            ui.label("The tables appear once a view has been drawn.");
+            ui.label(
+                gpu.building(scene)
+                    .unwrap_or("The tables appear once a view has been drawn.".into()),
+            );
             return;
         };
         let model = methods::info(gpu.stats().method);

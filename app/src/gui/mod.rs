@@ -103,6 +103,9 @@ pub struct ExplorerApp {
     /// The preset menu's pictures, and where they are cached.
     pub thumbnails: thumbnails::Thumbnails,
     pub thumbnail_dir: PathBuf,
+    /// An export of the main view asked for while its tables were being built: it waits for
+    /// them rather than building them whole in one frame.
+    pub pending_export: Option<(ExportKind, PathBuf)>,
     /// A scripted session playing in the window (`atmoscope bench gui`); it saves nothing.
     pub session: Option<scripted::Session>,
 }
@@ -150,6 +153,7 @@ impl ExplorerApp {
             lesson: None,
             thumbnails: thumbnails::Thumbnails::default(),
             thumbnail_dir: crate::cache::dir("thumbnails"),
+            pending_export: None,
             session: None,
         }
     }
@@ -312,6 +316,19 @@ impl ExplorerApp {
             .main
             .view()
             .unwrap_or_else(|| sky_tab::view_for(Tab::Sky, &self.layout, [1280, 720]));
+        if matches!(kind, ExportKind::Png | ExportKind::Exr) {
+            // A new atmosphere of the view is built a slice per frame: the export waits for it
+            // (`export_when_built`) instead of building it whole now.
+            views.main.render(&self.scene, &view);
+            if views.main.engine().rebuilding() {
+                self.notice = Some(format!(
+                    "{} waits for the tables to be built",
+                    path.display()
+                ));
+                self.pending_export = Some((kind, path));
+                return;
+            }
+        }
         views.main.render_complete(&self.scene, &view);
         let (w, h) = (view.width, view.height);
         let label = format!("exporting {}", path.display());
@@ -383,6 +400,33 @@ impl ExplorerApp {
     }
 
     /// Collects finished background work.
+    /// Takes an export that waited for the main view's tables, once they are built; until
+    /// then the view goes on building them, a slice per frame, whichever tab is open.
+    fn export_when_built(&mut self, ctx: &egui::Context) {
+        let Some(views) = &mut self.views else { return };
+        let Some((kind, path)) = self.pending_export.take() else {
+            return;
+        };
+        let view = views
+            .main
+            .view()
+            .unwrap_or_else(|| sky_tab::view_for(Tab::Sky, &self.layout, [1280, 720]));
+        if views.main.engine().rebuilding() {
+            // The tabs that draw the main view build it themselves.
+            let drawn = matches!(
+                self.layout.tab,
+                Tab::Sky | Tab::Fisheye | Tab::Luminance | Tab::Luts
+            );
+            if !drawn {
+                views.main.render(&self.scene, &view);
+            }
+            self.pending_export = Some((kind, path));
+            ctx.request_repaint();
+        } else {
+            self.export(ctx, kind, path);
+        }
+    }
+
     fn poll_jobs(&mut self) {
         let mut i = 0;
         while i < self.exports.len() {
@@ -749,6 +793,7 @@ impl eframe::App for ExplorerApp {
             self.apply(&ctx, c);
         }
         self.inspect_lesson_pixel(&ctx);
+        self.export_when_built(&ctx);
         self.expose(&ctx);
         if let Some(fault) = self.views.as_mut().and_then(|v| v.main.take_fault()) {
             self.message = Some(fault);

@@ -52,10 +52,9 @@ pub struct ReferenceTab {
 
 impl ReferenceTab {
     pub fn new(gpu: &Gpu) -> ReferenceTab {
-        // The real-time render is compared with the path tracer's as soon as it is drawn: it
-        // must be of the scene as it is, never the previous atmosphere.
-        let mut realtime = GpuView::new(gpu);
-        realtime.set_rebuild_slices(None);
+        // Its tables are built in slices like every view's; it is compared with the path
+        // tracer's only once they are the scene's (`update`).
+        let realtime = GpuView::new(gpu);
         ReferenceTab {
             run: None,
             realtime,
@@ -202,7 +201,11 @@ impl ReferenceTab {
                 100.0 * s.noise,
                 de
             )),
-            _ => ui.label("Waiting for the first pass…"),
+            _ => ui.label(
+                self.realtime
+                    .building(scene)
+                    .unwrap_or("Waiting for the first pass…".into()),
+            ),
         };
         let avail = ui.available_size();
         let each = Vec2::new(
@@ -249,6 +252,11 @@ impl ReferenceTab {
                 })
                 .collect(),
         );
+        // While the real-time view's tables are built in slices it shows the previous
+        // atmosphere, or nothing: no comparison until it is the scene's.
+        if self.realtime.engine().rebuilding() {
+            return;
+        }
         let Ok(realtime) = self.realtime.radiance() else {
             return;
         };

@@ -2,7 +2,7 @@
 //! around, the wheel changes altitude, Shift-drag (any drag on the fisheye) puts the sun under the
 //! pointer, a click inspects the pixel. The luminance map adds a legend and a hover read-out.
 
-use super::gpu_view::{GpuView, mark, notice, pixels};
+use super::gpu_view::{GpuView, building_over, mark, notice, pixels};
 use super::state::{Command, LUMINANCE_LOG10_LIMITS, Layout, Tab, angles_of, projection};
 use atmoscope_model::Scene;
 use atmoscope_model::camera::{Camera, Projection};
@@ -86,7 +86,8 @@ pub fn show(
             response
         }
         None => {
-            ui.label(notice(scene).unwrap_or("The view has not been drawn yet.".into()));
+            let why = notice(scene).or_else(|| gpu.building(scene));
+            ui.label(why.unwrap_or("The view has not been drawn yet.".into()));
             return commands;
         }
     };
@@ -97,6 +98,9 @@ pub fn show(
     let rect = response.rect;
     if !gpu.refused() {
         mark(ui, rect, scene);
+    }
+    if let Some(building) = gpu.building(scene) {
+        building_over(ui, rect, building);
     }
     let pixel_at = |pos: Pos2| -> Option<(u32, u32)> {
         let f = (pos - rect.min) / rect.size();

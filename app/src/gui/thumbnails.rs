@@ -59,8 +59,17 @@ pub fn load_or_render(
         let Some(Ok(scene)) = load_shipped(name) else {
             continue;
         };
-        let engine = engine.get_or_insert_with(|| Engine::new(&gpu.device, &gpu.queue));
-        engine.render_still(&scene, &view)?;
+        // In slices, a pause between them: the window's frames share the GPU's queue and
+        // would otherwise wait behind a whole build of each preset's tables.
+        let engine = engine.get_or_insert_with(|| {
+            crate::engine_setup::engine_beside_a_window(&gpu.device, &gpu.queue)
+        });
+        let cancelled = || progress.cancelled();
+        if crate::engine_setup::render_still_beside_a_window(engine, &scene, &view, &cancelled)?
+            .is_none()
+        {
+            return Ok(None);
+        }
         let rgba = engine.read_display()?;
         let rgb: Vec<u8> = rgba
             .chunks_exact(4)

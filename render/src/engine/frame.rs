@@ -49,14 +49,18 @@ impl Engine {
                 upload_batches(&self.queue, &state.tables, &state.params);
                 state.key = key;
             }
-        } else if let (Some(slice), Some(_), Some(_)) =
-            (self.slicing, &self.atmosphere, &self.target)
-        {
-            // Build the new tables and view a slice per frame; the old ones stay on screen.
+        } else if let Some(slice) = self.slicing {
+            // Build the new tables and view a slice per frame; the old ones, if any, stay on
+            // screen. A held rebuild waits where it is.
             if self.rebuild.as_ref().is_none_or(|r| r.state.key != key) {
                 self.rebuild = Some(self.start_rebuild(scene, view, gpu, key, size));
             }
-            match self.advance_rebuild(slice) {
+            let advanced = if self.rebuild_held {
+                self.rebuild.as_ref().map(|r| r.progress())
+            } else {
+                self.advance_rebuild(slice)
+            };
+            match advanced {
                 Some(p) => progress = Some(p),
                 None => {
                     if let Some(r) = self.rebuild.take() {
@@ -77,13 +81,19 @@ impl Engine {
             self.atmosphere = Some(self.build_state(scene, key));
             rebuilt = true;
         }
-        // The model on screen: the scene's, or the previous one while a rebuild is under way.
+        // The model on screen: the scene's, or the previous one while a rebuild is under way;
+        // none while the first is built in slices, which the frame only reports.
         let Some(gpu) = self
             .atmosphere
             .as_ref()
             .and_then(|a| gpu_method(a.key.method))
         else {
-            unreachable!("the atmosphere was just built, by a real-time model");
+            self.stats = FrameStats {
+                method,
+                rebuild: progress,
+                ..FrameStats::default()
+            };
+            return Ok(());
         };
         self.select(gpu);
         let Some(state) = self.atmosphere.as_ref() else {

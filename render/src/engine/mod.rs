@@ -120,6 +120,8 @@ pub struct Engine {
     /// The still frame after frames in tiles, being drawn in slices.
     refine: Option<Slices>,
     slicing: Option<Slicing>,
+    /// Whether a rebuild in slices waits this frame (`Engine::hold_rebuild`).
+    rebuild_held: bool,
     /// Whether slices are timed alone ([`Slicing::alone`]): on a CPU adapter.
     slices_alone: bool,
     metering: bool,
@@ -167,6 +169,7 @@ impl Engine {
             rebuild: None,
             refine: None,
             slicing: None,
+            rebuild_held: false,
             slices_alone: device.adapter_info().device_type == wgpu::DeviceType::Cpu,
             metering: false,
             slice_units: Vec::new(),
@@ -262,10 +265,11 @@ impl Engine {
         self.forced = self.forced.union(inputs);
     }
 
-    /// How a new atmosphere is built once one is on screen: `None` (the default) builds
-    /// everything in the frame that asks for it; `Some(t)` builds it in slices of about `t`
-    /// each, one slice in flight at a time, across as many frames as it takes, while the
-    /// previous atmosphere stays on screen and the view keeps responding (for a window).
+    /// How a new atmosphere is built: `None` (the default) builds everything in the frame that
+    /// asks for it; `Some(t)` builds it in slices of about `t` each, one slice in flight at a
+    /// time, across as many frames as it takes, while the previous atmosphere stays on screen
+    /// (or, for the first, nothing is drawn and `FrameStats::rebuild` says how far it has
+    /// come) and the view keeps responding (for a window).
     /// `Duration::ZERO` makes every slice after a pass's first half a row of its workgroups
     /// (and of the tables' zeroing 16 MiB).
     pub fn set_rebuild_slices(&mut self, target: Option<Duration>) {
@@ -276,6 +280,19 @@ impl Engine {
             self.refine = None;
             self.drop_moving_sky_job();
         }
+    }
+
+    /// The time budget of a slice of a rebuild, None where rebuilds are built whole
+    /// (`set_rebuild_slices`).
+    pub fn rebuild_slices(&self) -> Option<Duration> {
+        self.slicing.map(|s| s.target)
+    }
+
+    /// Holds a rebuild in slices where it is (`true`) or lets it go on (`false`, the default):
+    /// a window whose engines share one budget of GPU time per frame lets one of them build at
+    /// a time. A held engine keeps drawing what is on screen.
+    pub fn hold_rebuild(&mut self, hold: bool) {
+        self.rebuild_held = hold;
     }
 
     /// Turns the luminance histogram of the view on or off (`METER_PASS`; off by default, as
@@ -419,6 +436,11 @@ impl Engine {
         let auto = scene.display.auto_exposure;
         self.set_metering(auto);
         self.try_render(scene, view)?;
+        // A still shows the scene as it is: a rebuild in slices is finished first.
+        while self.rebuilding() && !self.rebuild_held {
+            self.wait();
+            self.try_render(scene, view)?;
+        }
         let mut shown = scene.clone();
         let metered = if auto {
             self.histogram()?.log_average_cd_m2()
