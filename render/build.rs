@@ -1,7 +1,8 @@
 //! Lists the models' GPU passes: every file `src/methods/<model>.rs` (but `mod.rs`) is a
 //! module that exports `METHODS`, its registry rows' passes. Adding a model's file is all it
 //! takes for the engine to find them; `methods::tests` checks that every real-time row of the
-//! registry has its passes.
+//! registry has its passes. `cargo fmt` does not reach modules declared here: format them
+//! with `rustfmt --edition 2024 render/src/methods/*.rs`.
 
 use std::fmt::Write;
 
@@ -14,7 +15,13 @@ fn main() {
         .map(|e| e.path())
         .filter(|p| p.extension().is_some_and(|x| x == "rs"))
         .filter_map(|p| Some(p.file_stem()?.to_str()?.to_string()))
-        .filter(|s| s != "mod")
+        // A module name, not an editor's lock file or backup.
+        .filter(|s| {
+            s != "mod"
+                && s.starts_with(|c: char| c.is_ascii_lowercase() || c == '_')
+                && s.chars()
+                    .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+        })
         .collect();
     stems.sort();
     let manifest = std::env::var("CARGO_MANIFEST_DIR").expect("CARGO_MANIFEST_DIR");

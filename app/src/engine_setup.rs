@@ -67,22 +67,35 @@ pub fn engine_beside_a_window(device: &wgpu::Device, queue: &wgpu::Queue) -> Eng
     engine
 }
 
-/// [`Engine::render_still`] with an engine beside a window: a new atmosphere is built a slice
-/// at a time with [`BESIDE_A_WINDOW_PAUSE`] between slices, then the still is drawn. Returns
-/// None when `cancelled` says so between slices.
+/// Draws `scene` with an engine beside a window: a new atmosphere is built a slice at a time
+/// with [`BESIDE_A_WINDOW_PAUSE`] between slices. Returns false when `cancelled` says so
+/// between slices.
+pub fn render_beside_a_window(
+    engine: &mut Engine,
+    scene: &atmoscope_model::Scene,
+    view: &atmoscope_render::View,
+    cancelled: &dyn Fn() -> bool,
+) -> Result<bool, atmoscope_render::EngineError> {
+    engine.try_render(scene, view)?;
+    while engine.rebuilding() {
+        if cancelled() {
+            return Ok(false);
+        }
+        std::thread::sleep(BESIDE_A_WINDOW_PAUSE);
+        engine.try_render(scene, view)?;
+    }
+    Ok(true)
+}
+
+/// [`Engine::render_still`] after [`render_beside_a_window`]; None when cancelled.
 pub fn render_still_beside_a_window(
     engine: &mut Engine,
     scene: &atmoscope_model::Scene,
     view: &atmoscope_render::View,
     cancelled: &dyn Fn() -> bool,
 ) -> Result<Option<(atmoscope_model::Scene, Option<f64>)>, atmoscope_render::EngineError> {
-    engine.try_render(scene, view)?;
-    while engine.rebuilding() {
-        if cancelled() {
-            return Ok(None);
-        }
-        std::thread::sleep(BESIDE_A_WINDOW_PAUSE);
-        engine.try_render(scene, view)?;
+    if !render_beside_a_window(engine, scene, view, cancelled)? {
+        return Ok(None);
     }
     engine.render_still(scene, view).map(Some)
 }

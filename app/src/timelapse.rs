@@ -139,7 +139,14 @@ pub fn render(
     let mut written = Vec::new();
     for i in 0..frames {
         let scene = sweep.scene(base, i, frames)?;
-        crate::engine_setup::render_still_beside_a_window(engine, &scene, &view, &|| false)?;
+        let done = i as f32 / frames as f32;
+        let drawn =
+            crate::engine_setup::render_still_beside_a_window(engine, &scene, &view, &|| {
+                !progress(done)
+            })?;
+        if drawn.is_none() {
+            return Ok(None);
+        }
         if beside_a_window {
             std::thread::sleep(crate::engine_setup::BESIDE_A_WINDOW_PAUSE);
         }

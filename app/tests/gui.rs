@@ -1336,7 +1336,7 @@ fn frames_keep_coming(models: &[atmoscope_model::scene::Method], tabs: &[Tab]) {
 }
 
 #[test]
-fn frames_keep_coming_for_every_model_and_every_tab() {
+fn frames_keep_coming_for_every_model_on_the_sky_and_bruneton_on_every_tab() {
     let models: Vec<_> = atmoscope_model::methods::realtime()
         .map(|m| m.method)
         .collect();

@@ -145,19 +145,26 @@ impl Pipelines {
             .iter()
             .chain(&crate::spec::VIEW_PASSES)
             .map(|&spec| {
+                // The model and the pass with its own file, for validation messages.
+                let label = format!(
+                    "{} {} ({})",
+                    method.info().id,
+                    spec.name,
+                    spec.own_file().map_or("", |f| f.path)
+                );
                 let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                    label: Some(spec.name),
+                    label: Some(&label),
                     entries: &pass_layout(&spec),
                 });
                 let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some(spec.name),
+                    label: Some(&label),
                     source: wgpu::ShaderSource::Wgsl(
                         shader_source(method, &spec, texel_group_size).into(),
                     ),
                 });
                 let pipeline_layout =
                     device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                        label: Some(spec.name),
+                        label: Some(&label),
                         bind_group_layouts: &[Some(&group0), Some(&layout)],
                         immediate_size: 0,
                     });

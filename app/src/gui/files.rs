@@ -167,9 +167,7 @@ pub fn export_panorama(
     progress.set(0.1);
     let view = View::new(Projection::Panorama, w, h);
     let cancelled = || progress.cancelled();
-    if crate::engine_setup::render_still_beside_a_window(&mut engine, scene, &view, &cancelled)?
-        .is_none()
-    {
+    if !crate::engine_setup::render_beside_a_window(&mut engine, scene, &view, &cancelled)? {
         return Ok(None);
     }
     engine.wait();

@@ -344,7 +344,8 @@ pub fn mark(ui: &egui::Ui, rect: egui::Rect, scene: &Scene) {
 pub fn building_over(ui: &egui::Ui, rect: egui::Rect, text: String) {
     egui::Area::new(ui.scope_id().with("building"))
         .fixed_pos(rect.left_top() + egui::vec2(8.0, 36.0))
-        .order(egui::Order::Foreground)
+        // Above the panels, below menus and pop-ups.
+        .order(egui::Order::Middle)
         .interactable(false)
         .show(ui.ctx(), |ui| {
             egui::Frame::new()

@@ -60,6 +60,9 @@ impl Views {
         if let Some(c) = &mut self.compare {
             c.set_rebuild_slices(slice);
         }
+        if let Some(r) = &mut self.reference {
+            r.set_rebuild_slices(slice);
+        }
     }
 
     /// Whether any view needs more frames of the same scene (`GpuView::settling`).
@@ -73,9 +76,10 @@ impl Views {
     }
 }
 
-/// The explorer: its state, public so that the GUI tests (`app/tests/gui.rs`) read what a user
-/// would see and set what a test needs, and the runtime that draws it. Every change a panel
-/// asks for goes through [`ExplorerApp::apply`].
+/// The explorer: its state and the runtime that draws it. Panels change the state only through
+/// the commands [`ExplorerApp::apply`] applies; the fields are public for the GUI tests
+/// (`app/tests/gui.rs`) and the scripted session (`scripted`), which set up what a test or a
+/// benchmark step needs.
 pub struct ExplorerApp {
     pub scene: Scene,
     pub layout: Layout,
@@ -103,9 +107,9 @@ pub struct ExplorerApp {
     /// The preset menu's pictures, and where they are cached.
     pub thumbnails: thumbnails::Thumbnails,
     pub thumbnail_dir: PathBuf,
-    /// An export of the main view asked for while its tables were being built: it waits for
-    /// them rather than building them whole in one frame.
-    pub pending_export: Option<(ExportKind, PathBuf)>,
+    /// Exports of the main view asked for while its tables were being built, in order: they
+    /// wait for them rather than building them whole in one frame.
+    pub pending_exports: Vec<(ExportKind, PathBuf)>,
     /// A scripted session playing in the window (`atmoscope bench gui`); it saves nothing.
     pub session: Option<scripted::Session>,
 }
@@ -153,7 +157,7 @@ impl ExplorerApp {
             lesson: None,
             thumbnails: thumbnails::Thumbnails::default(),
             thumbnail_dir: crate::cache::dir("thumbnails"),
-            pending_export: None,
+            pending_exports: Vec::new(),
             session: None,
         }
     }
@@ -325,7 +329,7 @@ impl ExplorerApp {
                     "{} waits for the tables to be built",
                     path.display()
                 ));
-                self.pending_export = Some((kind, path));
+                self.pending_exports.push((kind, path));
                 return;
             }
         }
@@ -399,18 +403,19 @@ impl ExplorerApp {
         self.layout.show_inspector = true;
     }
 
-    /// Collects finished background work.
-    /// Takes an export that waited for the main view's tables, once they are built; until
-    /// then the view goes on building them, a slice per frame, whichever tab is open.
+    /// Takes the exports that waited for the main view's tables, once they are built; until
+    /// then the view goes on building them, a slice per frame, whichever tab is open. A scene
+    /// the view cannot draw drops them, saying why.
     fn export_when_built(&mut self, ctx: &egui::Context) {
         let Some(views) = &mut self.views else { return };
-        let Some((kind, path)) = self.pending_export.take() else {
+        if self.pending_exports.is_empty() {
             return;
-        };
-        let view = views
-            .main
-            .view()
-            .unwrap_or_else(|| sky_tab::view_for(Tab::Sky, &self.layout, [1280, 720]));
+        }
+        if let Some(why) = gpu_view::notice(&self.scene).filter(|_| views.main.refused()) {
+            self.message = Some(format!("exports not written: {why}"));
+            self.pending_exports.clear();
+            return;
+        }
         if views.main.engine().rebuilding() {
             // The tabs that draw the main view build it themselves.
             let drawn = matches!(
@@ -418,15 +423,21 @@ impl ExplorerApp {
                 Tab::Sky | Tab::Fisheye | Tab::Luminance | Tab::Luts
             );
             if !drawn {
+                let view = views
+                    .main
+                    .view()
+                    .unwrap_or_else(|| sky_tab::view_for(Tab::Sky, &self.layout, [1280, 720]));
                 views.main.render(&self.scene, &view);
             }
-            self.pending_export = Some((kind, path));
             ctx.request_repaint();
         } else {
-            self.export(ctx, kind, path);
+            for (kind, path) in std::mem::take(&mut self.pending_exports) {
+                self.export(ctx, kind, path);
+            }
         }
     }
 
+    /// Collects finished background work.
     fn poll_jobs(&mut self) {
         let mut i = 0;
         while i < self.exports.len() {

@@ -45,7 +45,10 @@ pub struct ReferenceTab {
     realtime: GpuView,
     /// spp of the snapshot shown, and its images.
     shown: Option<u64>,
-    textures: Option<[egui::TextureHandle; 2]>,
+    /// The path-traced image shown and the paths per pixel it had.
+    reference: Option<(u64, egui::TextureHandle)>,
+    /// The ΔE2000 map of the real-time view against it.
+    heat: Option<egui::TextureHandle>,
     pub delta_e_mean: Option<f64>,
     pub snapshot: Option<Snapshot>,
 }
@@ -59,7 +62,8 @@ impl ReferenceTab {
             run: None,
             realtime,
             shown: None,
-            textures: None,
+            reference: None,
+            heat: None,
             delta_e_mean: None,
             snapshot: None,
         }
@@ -84,6 +88,11 @@ impl ReferenceTab {
 
     pub fn realtime(&self) -> &GpuView {
         &self.realtime
+    }
+
+    /// Sets how the real-time view builds a new atmosphere (`GpuView::set_rebuild_slices`).
+    pub fn set_rebuild_slices(&mut self, slice: Option<std::time::Duration>) {
+        self.realtime.set_rebuild_slices(slice);
     }
 
     fn start(&mut self, ctx: &egui::Context, scene: &Scene, settings: ReferenceSettings) {
@@ -140,6 +149,8 @@ impl ReferenceTab {
         self.shown = None;
         self.snapshot = None;
         self.delta_e_mean = None;
+        // A map of the last scene's images would say nothing of this one's.
+        self.heat = None;
     }
 
     pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene, settings: &mut ReferenceSettings) {
@@ -186,7 +197,7 @@ impl ReferenceTab {
             .as_ref()
             .and_then(|r| r.latest.lock().ok().and_then(|l| l.clone()));
         if let Some(snapshot) = latest
-            && (self.shown != Some(snapshot.spp) || self.textures.is_none())
+            && (self.shown != Some(snapshot.spp) || self.heat.is_none())
         {
             self.update(ui.ctx(), scene, &snapshot, (w, h));
             self.snapshot = Some(snapshot);
@@ -216,9 +227,9 @@ impl ReferenceTab {
         ui.horizontal(|ui| {
             let captions = ["path traced", "real time", "ΔE2000 (0–10)"];
             let ids = [
-                self.textures.as_ref().map(|t| t[0].id()),
+                self.reference.as_ref().map(|(_, t)| t.id()),
                 self.realtime.texture(),
-                self.textures.as_ref().map(|t| t[1].id()),
+                self.heat.as_ref().map(egui::TextureHandle::id),
             ];
             for (caption, id) in captions.iter().zip(ids) {
                 ui.vertical(|ui| {
@@ -242,16 +253,25 @@ impl ReferenceTab {
         let balance = atmoscope_model::white_balance::matrix(scene);
         let image =
             |pixels: Vec<egui::Color32>| egui::ColorImage::new([w as usize, h as usize], pixels);
-        let reference = image(
-            snapshot
-                .rgb
-                .iter()
-                .map(|&c| {
-                    let e = display_balanced(c, &balance, d.exposure_ev, d.tone_map).map(to_u8);
-                    egui::Color32::from_rgb(e[0], e[1], e[2])
-                })
-                .collect(),
-        );
+        let options = egui::TextureOptions::NEAREST;
+        if self
+            .reference
+            .as_ref()
+            .is_none_or(|(spp, _)| *spp != snapshot.spp)
+        {
+            let reference = image(
+                snapshot
+                    .rgb
+                    .iter()
+                    .map(|&c| {
+                        let e = display_balanced(c, &balance, d.exposure_ev, d.tone_map).map(to_u8);
+                        egui::Color32::from_rgb(e[0], e[1], e[2])
+                    })
+                    .collect(),
+            );
+            let texture = ctx.load_texture("reference", reference, options);
+            self.reference = Some((snapshot.spp, texture));
+        }
         // While the real-time view's tables are built in slices it shows the previous
         // atmosphere, or nothing: no comparison until it is the scene's.
         if self.realtime.engine().rebuilding() {
@@ -281,11 +301,7 @@ impl ReferenceTab {
                 })
                 .collect(),
         );
-        let options = egui::TextureOptions::NEAREST;
-        self.textures = Some([
-            ctx.load_texture("reference", reference, options),
-            ctx.load_texture("reference ΔE", heat, options),
-        ]);
+        self.heat = Some(ctx.load_texture("reference ΔE", heat, options));
         self.shown = Some(snapshot.spp);
     }
 }

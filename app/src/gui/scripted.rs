@@ -110,6 +110,8 @@ impl Session {
         if written.is_ok() {
             eprintln!("bench gui: wrote {}", self.out.display());
         }
+        // The thumbnails were rendered into a folder of the session's own.
+        let _ = std::fs::remove_dir_all(&app.thumbnail_dir);
         if let Ok(mut slot) = self.outcome.lock() {
             *slot = Some(written);
         }

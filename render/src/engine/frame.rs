@@ -10,12 +10,20 @@ impl Engine {
             return Err(EngineError::ViewTooLarge(view.width, view.height, max));
         }
         let method = scene.render.method;
-        if let Some(why) = methods::info(method).cannot_draw(scene) {
-            return Err(why.into());
-        }
-        let gpu = gpu_method(method).ok_or_else(|| {
-            CannotDraw::NotRealtime(methods::info(method).id, methods::realtime_ids())
-        })?;
+        let drawable = match methods::info(method).cannot_draw(scene) {
+            Some(why) => Err(EngineError::from(why)),
+            None => gpu_method(method).ok_or_else(|| {
+                CannotDraw::NotRealtime(methods::info(method).id, methods::realtime_ids()).into()
+            }),
+        };
+        let gpu = match drawable {
+            Ok(gpu) => gpu,
+            Err(e) => {
+                // A rebuild under way is for a scene that is no longer asked for.
+                self.rebuild = None;
+                return Err(e);
+            }
+        };
         let key = AtmosphereKey {
             settings: scene.atmosphere.clone(),
             method,
@@ -51,13 +59,18 @@ impl Engine {
             }
         } else if let Some(slice) = self.slicing {
             // Build the new tables and view a slice per frame; the old ones, if any, stay on
-            // screen. A held rebuild waits where it is.
-            if self.rebuild.as_ref().is_none_or(|r| r.state.key != key) {
-                self.rebuild = Some(self.start_rebuild(scene, view, gpu, key, size));
-            }
+            // screen. A held rebuild waits where it is, one not yet started before its buffers
+            // and pipelines are made.
+            let started = self.rebuild.as_ref().is_some_and(|r| r.state.key == key);
             let advanced = if self.rebuild_held {
-                self.rebuild.as_ref().map(|r| r.progress())
+                Some(match &self.rebuild {
+                    Some(r) if started => r.progress(),
+                    _ => RebuildProgress { done: 0, total: 1 },
+                })
             } else {
+                if !started {
+                    self.rebuild = Some(self.start_rebuild(scene, view, gpu, key, size));
+                }
                 self.advance_rebuild(slice)
             };
             match advanced {

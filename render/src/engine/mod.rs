@@ -435,12 +435,15 @@ impl Engine {
     ) -> Result<(Scene, Option<f64>), EngineError> {
         let auto = scene.display.auto_exposure;
         self.set_metering(auto);
-        self.try_render(scene, view)?;
-        // A still shows the scene as it is: a rebuild in slices is finished first.
-        while self.rebuilding() && !self.rebuild_held {
+        // A still shows the scene as it is: a rebuild in slices is finished first, held or not.
+        let held = std::mem::replace(&mut self.rebuild_held, false);
+        let mut drawn = self.try_render(scene, view).map(|_| ());
+        while drawn.is_ok() && self.rebuilding() {
             self.wait();
-            self.try_render(scene, view)?;
+            drawn = self.try_render(scene, view).map(|_| ());
         }
+        self.rebuild_held = held;
+        drawn?;
         let mut shown = scene.clone();
         let metered = if auto {
             self.histogram()?.log_average_cd_m2()

@@ -46,8 +46,8 @@ pub struct FrameStats {
     /// the start of its first pass to the end of its last.
     pub spans_ms: Option<Spans>,
     pub timing_source: Option<TimingSource>,
-    /// How far a rebuild in slices has come (`Engine::set_rebuild_slices`); the frame drew
-    /// the previous atmosphere.
+    /// How far a rebuild in slices has come (`Engine::set_rebuild_slices`; 0 of 1 while held
+    /// before it starts); the frame drew the previous atmosphere, or nothing before the first.
     pub rebuild: Option<RebuildProgress>,
     /// The frame put on screen a rebuild finished in slices (new images, whatever it ran).
     pub rebuild_done: bool,

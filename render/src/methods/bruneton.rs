@@ -103,14 +103,23 @@ pub const METHOD: GpuMethod = GpuMethod {
             // Above the atmosphere rays start where they enter it, and with the sun below the
             // tables at the camera they read past the tables' edge: no camera slices in either.
             ..PassSpec::sky(
-                &[TONE, shader!("bruneton/sky.wgsl"), VIEW_RADIANCE, SKY_ENTRY_POINT],
+                &[
+                    TONE,
+                    shader!("bruneton/sky.wgsl"),
+                    VIEW_RADIANCE,
+                    SKY_ENTRY_POINT,
+                ],
                 &[
                     read(T),
                     read(SCATTERING),
                     read(SINGLE_MIE),
                     read(IRRADIANCE),
-                    read(CAMERA_SCATTERING).inside_atmosphere().with_sun_in_tables(),
-                    read(CAMERA_SINGLE_MIE).inside_atmosphere().with_sun_in_tables(),
+                    read(CAMERA_SCATTERING)
+                        .inside_atmosphere()
+                        .with_sun_in_tables(),
+                    read(CAMERA_SINGLE_MIE)
+                        .inside_atmosphere()
+                        .with_sun_in_tables(),
                 ],
             )
         },

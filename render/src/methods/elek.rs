@@ -76,7 +76,12 @@ pub const METHOD: GpuMethod = GpuMethod {
         ),
         // Above the atmosphere rays start where they enter it: no camera slices there.
         PassSpec::sky(
-            &[TONE, shader!("elek/sky.wgsl"), VIEW_RADIANCE, SKY_ENTRY_POINT],
+            &[
+                TONE,
+                shader!("elek/sky.wgsl"),
+                VIEW_RADIANCE,
+                SKY_ENTRY_POINT,
+            ],
             &[
                 read(T),
                 read(RAYLEIGH),

@@ -10,7 +10,12 @@ pub const METHODS: &[GpuMethod] = &[GpuMethod {
     common: &[],
     constants: no_constants,
     passes: &[PassSpec::sky(
-        &[TONE, shader!("empty/sky.wgsl"), VIEW_RADIANCE, SKY_ENTRY_POINT],
+        &[
+            TONE,
+            shader!("empty/sky.wgsl"),
+            VIEW_RADIANCE,
+            SKY_ENTRY_POINT,
+        ],
         &[],
     )],
 }];

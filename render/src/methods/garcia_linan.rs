@@ -31,7 +31,12 @@ pub const METHOD: GpuMethod = GpuMethod {
         ),
         // Above the atmosphere each pixel is marched with the model's integrand.
         PassSpec::sky(
-            &[TONE, shader!("garcia_linan/sky.wgsl"), VIEW_RADIANCE, SKY_ENTRY_POINT],
+            &[
+                TONE,
+                shader!("garcia_linan/sky.wgsl"),
+                VIEW_RADIANCE,
+                SKY_ENTRY_POINT,
+            ],
             &[read(TRANSMITTANCE), read(SKY_TEXTURE).inside_atmosphere()],
         ),
     ],

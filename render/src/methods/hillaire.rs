@@ -53,7 +53,12 @@ pub const METHOD: GpuMethod = GpuMethod {
         // Above the atmosphere each pixel is marched: no sky view, no aerial perspective; the
         // sky's pixels read the sky view, only the ground's the rest.
         PassSpec::sky(
-            &[TONE, shader!("hillaire/sky.wgsl"), VIEW_RADIANCE, SKY_ENTRY_POINT],
+            &[
+                TONE,
+                shader!("hillaire/sky.wgsl"),
+                VIEW_RADIANCE,
+                SKY_ENTRY_POINT,
+            ],
             &[
                 read(TRANSMITTANCE),
                 read(HILLAIRE_MS),

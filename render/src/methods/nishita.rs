@@ -8,9 +8,7 @@ use super::{GpuMethod, single_scattering_rows};
 use atmoscope_model::methods::shared::single_scattering_sky::{self, Rule, Way};
 use atmoscope_model::scene::Method;
 
-pub const METHODS: &[GpuMethod] = &single_scattering_rows(
-    Method::Nishita,
-    Method::NishitaMs,
-    true,
-    |p| single_scattering_sky::constants(p, Way::March(Rule::Midpoint)),
-);
+pub const METHODS: &[GpuMethod] =
+    &single_scattering_rows(Method::Nishita, Method::NishitaMs, true, |p| {
+        single_scattering_sky::constants(p, Way::March(Rule::Midpoint))
+    });

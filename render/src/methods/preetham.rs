@@ -11,7 +11,12 @@ pub const METHODS: &[GpuMethod] = &[GpuMethod {
     common: &[],
     constants: preetham::constants,
     passes: &[PassSpec::sky(
-        &[TONE, shader!("preetham/sky.wgsl"), VIEW_RADIANCE, SKY_ENTRY_POINT],
+        &[
+            TONE,
+            shader!("preetham/sky.wgsl"),
+            VIEW_RADIANCE,
+            SKY_ENTRY_POINT,
+        ],
         &[],
     )],
 }];

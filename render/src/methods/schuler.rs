@@ -7,9 +7,7 @@ use super::{GpuMethod, single_scattering_rows};
 use atmoscope_model::methods::shared::single_scattering_sky::{self, Way};
 use atmoscope_model::scene::Method;
 
-pub const METHODS: &[GpuMethod] = &single_scattering_rows(
-    Method::Schuler,
-    Method::SchulerMs,
-    false,
-    |p| single_scattering_sky::constants(p, Way::SchulerChapman),
-);
+pub const METHODS: &[GpuMethod] =
+    &single_scattering_rows(Method::Schuler, Method::SchulerMs, false, |p| {
+        single_scattering_sky::constants(p, Way::SchulerChapman)
+    });

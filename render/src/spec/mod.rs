@@ -116,8 +116,8 @@ pub struct Situation {
 }
 
 impl Situation {
-    /// A situation in which every conditional read is needed but those from inside or with the
-    /// sun in the tables: every read of the pass that its other situations leave out.
+    /// A frame that needs every read a pass declares: from inside the atmosphere, the sun in
+    /// the tables, the ground in view, in motion.
     pub const EVERYTHING_INSIDE: Situation = Situation {
         above_atmosphere: false,
         sun_below_tables: false,

@@ -48,8 +48,7 @@ pub fn run(bench: &Bench) -> anyhow::Result<ExitCode> {
         Bench::Methods(args) => methods::run(args),
         Bench::Leenman(args) => leenman::run(args),
         Bench::Transmittance(args) => transmittance::run(args),
-        Bench::Gui(_) => {
-            anyhow::bail!("`bench gui` opens the explorer: run it through atmoscope::run")
-        }
+        // The session plays in the explorer's window, which `atmoscope::run` opens for it.
+        Bench::Gui(_) => anyhow::bail!("`bench gui` runs from the atmoscope command"),
     }
 }

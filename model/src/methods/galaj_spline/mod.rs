@@ -290,7 +290,7 @@ mod tests {
             assert!((got[l] - want).abs() < 1e-12, "lane {l}: {got:?}");
         }
         // The interpolant passes through the nodes.
-        assert_eq!(hermite(v, 3.0, 8), Lanes(v(3).0));
+        assert_eq!(hermite(v, 3.0, 8), v(3));
     }
 
     /// The spline's optical depth towards the sun follows the quadrature through the fitted

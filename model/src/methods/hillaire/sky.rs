@@ -49,7 +49,7 @@ pub fn ground_path(
         let mu_g = (((big_r + h) * mu + d) / big_r).clamp(-1.0, 1.0);
         let t_g = transmittance(p, &tables.transmittance, layer, 0.0, -mu_g);
         let t_c = transmittance(p, &tables.transmittance, layer, h, -mu);
-        std::array::from_fn(|i| (t_g[i] / t_c[i].max(1e-30)).min(1.0))
+        t_g.zip_map(t_c, |g, c| (g / c.max(1e-30)).min(1.0))
     };
     if d < AERIAL_PERSPECTIVE_MAX_DISTANCE_M {
         let (s, tr) = aerial_perspective(
@@ -65,12 +65,12 @@ pub fn ground_path(
         if h < GROUND_TRANSMITTANCE_FROM_TABLE_ABOVE_M {
             (s, tr)
         } else {
-            (s, Lanes(ratio()))
+            (s, ratio())
         }
     } else {
         (
             sky_view(p, &tables.sky_view, layer, h, phi, theta, true),
-            Lanes(ratio()),
+            ratio(),
         )
     }
 }
