@@ -46,6 +46,34 @@ fn validates_every_shipped_preset() {
     assert!(out.contains(" 0 invalid"), "{out}");
 }
 
+/// A preset path that is a device, a folder or a file far longer than a preset is refused with
+/// what it is, at once, rather than read until the memory runs out.
+#[test]
+fn validate_refuses_devices_folders_and_huge_files() {
+    let huge = temp_file("huge.ron", &" ".repeat(2 << 20));
+    let folder = std::env::temp_dir();
+    let mut args = vec![
+        "presets",
+        "validate",
+        huge.to_str().unwrap(),
+        folder.to_str().unwrap(),
+    ];
+    if cfg!(unix) {
+        args.push("/dev/zero");
+    }
+    let o = atmoscope(&args);
+    assert!(!o.status.success());
+    let out = format!("{}{}", stdout(&o), stderr(&o));
+    assert!(
+        out.contains("huge.ron") && out.contains("past the 1048576 bytes"),
+        "{out}"
+    );
+    assert!(out.contains("not a regular file"), "{out}");
+    if cfg!(unix) {
+        assert!(out.contains("/dev/zero"), "{out}");
+    }
+}
+
 #[test]
 fn validate_reports_file_field_and_range_and_fails() {
     let good = temp_file("good.ron", "(camera: (altitude_m: 1000.0))");

@@ -608,6 +608,10 @@ impl fmt::Display for FieldError {
     }
 }
 
+/// Largest preset file read, bytes: a preset is a few kilobytes of RON; a longer file is not
+/// one, and a pipe or a device is never read.
+pub const MAX_PRESET_BYTES: u64 = 1 << 20;
+
 /// Why a scene could not be loaded, parsed or accepted.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
@@ -1156,11 +1160,13 @@ impl Scene {
         Ok(scene)
     }
 
-    /// Reads and validates a preset file.
+    /// Reads and validates a preset file: a regular file of at most [`MAX_PRESET_BYTES`].
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|error| SceneError::Io {
-            file: path.into(),
-            error,
+        let text = crate::files::read_text_limited(path, MAX_PRESET_BYTES).map_err(|error| {
+            SceneError::Io {
+                file: path.into(),
+                error,
+            }
         })?;
         Scene::from_ron(&text, path)
     }

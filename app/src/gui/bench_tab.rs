@@ -21,6 +21,10 @@ pub fn default_dir() -> PathBuf {
     crate::cache::dir("bench")
 }
 
+/// Largest `results.csv` read, bytes: the whole registry at every set and quality is well
+/// under a megabyte.
+pub const MAX_RESULTS_BYTES: u64 = 64 << 20;
+
 pub struct BenchTab {
     /// The folder whose `results.csv` the tab shows and its runs write.
     pub dir: PathBuf,
@@ -75,10 +79,11 @@ impl BenchTab {
         self.run.as_ref().is_some_and(Job::is_running)
     }
 
-    /// Reads `results.csv` from `path`; a bad file is reported and shows nothing.
+    /// Reads `results.csv` from `path` (a regular file of at most [`MAX_RESULTS_BYTES`]); a
+    /// bad file is reported and shows nothing.
     pub fn load(&mut self, path: &Path) {
         self.results = Some(
-            std::fs::read_to_string(path)
+            atmoscope_model::files::read_text_limited(path, MAX_RESULTS_BYTES)
                 .map_err(|e| format!("{}: {e}", path.display()))
                 .and_then(|text| parse_csv(&text).map_err(|e| format!("{}: {e}", path.display())))
                 .map(|rows| (rows, path.to_path_buf())),
