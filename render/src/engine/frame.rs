@@ -181,16 +181,10 @@ impl Engine {
         // Whether the view shows the ground matters only to a frame with stale passes.
         let stale = !changed.is_empty() || self.deferred.iter().any(|&d| d);
         let ground = stale && frame.shows_ground(view);
-        let situation = Situation {
-            above_atmosphere: frame.above,
-            sun_below_tables: frame.sun_below_tables,
-            ground_in_view: ground,
-            in_motion: frame.sky_tile > 1,
-        };
         let mut run = plan(
             &pipelines.method,
             changed,
-            &situation,
+            &frame.situation(ground, frame.sky_tile > 1),
             self.unwanted(),
             &mut self.deferred,
         );

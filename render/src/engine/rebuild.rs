@@ -50,17 +50,11 @@ impl Engine {
         let pipelines = &self.pipelines[p];
         let target = Target::new(&self.device, pipelines, &state.tables, size, self.sky_tile);
         let mut deferred = vec![false; pipelines.len()];
-        let ground = frame.shows_ground(view);
-        let situation = Situation {
-            above_atmosphere: frame.above,
-            sun_below_tables: frame.sun_below_tables,
-            ground_in_view: ground,
-            // A rebuild draws its view at full resolution, and builds the moving sky of a
-            // march per pixel where frames in motion are drawn in tiles: otherwise the first
-            // of them would build it whole, in one frame, at a small share of the cost of the
-            // still frame the rebuild draws anyway.
-            in_motion: self.sky_tile > 1,
-        };
+        // A rebuild draws its view at full resolution, and builds the moving sky of a march
+        // per pixel where frames in motion are drawn in tiles (as if in motion): otherwise the
+        // first of them would build it whole, in one frame, at a small share of the cost of
+        // the still frame the rebuild draws anyway.
+        let situation = frame.situation(frame.shows_ground(view), self.sky_tile > 1);
         let run = plan(
             &pipelines.method,
             Inputs::ALL,

@@ -94,6 +94,18 @@ impl FrameSetup {
         }
     }
 
+    /// What this frame is like for the passes' reads (`spec::Read`), with or without the
+    /// ground in view and in motion (drawn in tiles) or not.
+    pub(super) fn situation(&self, ground_in_view: bool, in_motion: bool) -> Situation {
+        Situation {
+            above_atmosphere: self.above,
+            sun_below_tables: self.sun_below_tables,
+            ground_in_view,
+            in_motion,
+        }
+    }
+
+    /// Whether some pixel of `view` sees the ground.
     pub(super) fn shows_ground(&self, view: &View) -> bool {
         self.camera
             .shows_ground(self.bottom_radius_m, view.width, view.height)
