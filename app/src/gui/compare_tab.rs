@@ -135,13 +135,12 @@ impl CompareTab {
             (c.b_method, c.b),
             (c.reference_method, c.reference),
         ];
-        // Three engines, one budget: they build their tables one at a time.
-        let mut slice_taken = false;
+        // Three engines, one budget (`FrameBudget`): they build their tables one at a time.
         for (v, (method, set)) in self.views.iter_mut().zip(pairs) {
             let mut s = scene.clone();
             s.render.method = method;
             s.render.wavelengths = set;
-            v.render_sharing(&s, &view, &mut slice_taken);
+            v.render(&s, &view);
         }
         self.update_figures(ui.ctx(), scene);
 

@@ -24,6 +24,30 @@ pub struct Gpu {
     /// slices across frames in the window, at once where frames are stepped without waiting
     /// for the GPU (the UI tests).
     pub rebuild_slice: Option<Duration>,
+    /// The window's one slice of a rebuild per frame, which its views share.
+    pub budget: FrameBudget,
+}
+
+/// The window's budget of rebuild slices for one frame: the first view that builds in a frame
+/// takes it, and the views drawn after it hold their builds where they are
+/// (`Engine::hold_rebuild`), so that two engines building at once do not double the frame.
+/// The window frees it at the start of each frame ([`FrameBudget::new_frame`]).
+#[derive(Clone, Default)]
+pub struct FrameBudget(Arc<std::sync::atomic::AtomicBool>);
+
+impl FrameBudget {
+    /// A new frame: no view has built in it yet.
+    pub fn new_frame(&self) {
+        self.0.store(false, std::sync::atomic::Ordering::Relaxed);
+    }
+
+    fn taken(&self) -> bool {
+        self.0.load(std::sync::atomic::Ordering::Relaxed)
+    }
+
+    fn take(&self) {
+        self.0.store(true, std::sync::atomic::Ordering::Relaxed);
+    }
 }
 
 impl Gpu {
@@ -36,6 +60,7 @@ impl Gpu {
             adapter: format!("{} ({:?}, {:?})", info.name, info.backend, info.device_type),
             software: info.device_type == wgpu::DeviceType::Cpu,
             rebuild_slice: Some(crate::engine_setup::REBUILD_SLICE),
+            budget: FrameBudget::default(),
         }
     }
 }
@@ -103,13 +128,21 @@ impl GpuView {
         }
     }
 
-    /// Renders `view` of `scene` if anything changed; returns what the frame ran.
+    /// Renders `view` of `scene` if anything changed; returns what the frame ran. A rebuild in
+    /// slices goes on only while no view before it in the window's frame took the frame's
+    /// slice ([`FrameBudget`]); one that goes on takes it.
     pub fn render(&mut self, scene: &Scene, view: &View) -> &FrameStats {
         let start = Instant::now();
-        let result = self.engine.try_render(scene, view);
+        let held = self.gpu.budget.taken();
+        self.engine.hold_rebuild(held);
+        let result = self
+            .engine
+            .try_render(scene, view)
+            .map(|stats| !stats.run.is_empty() || stats.rebuild_done);
+        self.engine.hold_rebuild(false);
         self.refused = matches!(result, Err(EngineError::CannotDraw(_)));
         let drew = match result {
-            Ok(stats) => !stats.run.is_empty() || stats.rebuild_done,
+            Ok(drew) => drew,
             // A path-tracer scene or a refused view draws nothing here (`notice` says why); a
             // GPU fault is shown to the user.
             Err(EngineError::CannotDraw(_)) => false,
@@ -118,6 +151,10 @@ impl GpuView {
                 false
             }
         };
+        let stats = self.engine.stats();
+        if !held && (stats.rebuild.is_some() || stats.rebuild_done) {
+            self.gpu.budget.take();
+        }
         if drew {
             self.last_frame_ms = start.elapsed().as_secs_f64() * 1e3;
             self.generation += 1;
@@ -147,26 +184,6 @@ impl GpuView {
                 ))
             }
         }
-    }
-
-    /// Renders like `render` as one of several views drawn in one frame, which share one
-    /// budget of GPU time for their rebuilds: the view lets its rebuild in slices go on only
-    /// while no view before it in the frame took its slice (`slice_taken`), and takes it when
-    /// it builds. One view builds at a time; the others keep what they show.
-    pub fn render_sharing(
-        &mut self,
-        scene: &Scene,
-        view: &View,
-        slice_taken: &mut bool,
-    ) -> &FrameStats {
-        self.engine.hold_rebuild(*slice_taken);
-        self.render(scene, view);
-        self.engine.hold_rebuild(false);
-        let stats = self.engine.stats();
-        if stats.rebuild.is_some() || stats.rebuild_done {
-            *slice_taken = true;
-        }
-        stats
     }
 
     /// Renders like `render`, but finishes a rebuild under way in this frame and draws every

@@ -709,6 +709,9 @@ impl eframe::App for ExplorerApp {
             self.ui_frame_ms = (now - last).as_secs_f64() * 1e3;
         }
         self.last_frame = Some(now);
+        if let Some(v) = &self.views {
+            v.gpu.budget.new_frame();
+        }
         if let Some(mut session) = self.session.take() {
             session.frame(self, &ctx);
             self.session = Some(session);
