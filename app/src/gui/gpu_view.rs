@@ -140,6 +140,12 @@ impl GpuView {
             .try_render(scene, view)
             .map(|stats| !stats.run.is_empty() || stats.rebuild_done);
         self.engine.hold_rebuild(false);
+        // A frame that failed left the last frame's stats: it built nothing.
+        let built = result.is_ok()
+            && (self.engine.stats().rebuild.is_some() || self.engine.stats().rebuild_done);
+        if built && !held {
+            self.gpu.budget.take();
+        }
         self.refused = matches!(result, Err(EngineError::CannotDraw(_)));
         let drew = match result {
             Ok(drew) => drew,
@@ -151,10 +157,6 @@ impl GpuView {
                 false
             }
         };
-        let stats = self.engine.stats();
-        if !held && (stats.rebuild.is_some() || stats.rebuild_done) {
-            self.gpu.budget.take();
-        }
         if drew {
             self.last_frame_ms = start.elapsed().as_secs_f64() * 1e3;
             self.generation += 1;
