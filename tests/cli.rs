@@ -74,6 +74,49 @@ fn validate_refuses_devices_folders_and_huge_files() {
     }
 }
 
+/// The benchmarks find the shipped references from any working directory (they lie above the
+/// program in a clone), and say how to point at others where a folder has none.
+#[test]
+fn bench_accuracy_finds_the_shipped_references_from_any_directory() {
+    let elsewhere = std::env::temp_dir();
+    let o = Command::new(env!("CARGO_BIN_EXE_atmoscope"))
+        .args([
+            "bench",
+            "accuracy",
+            "--methods",
+            "preetham",
+            "--sets",
+            "rgb3",
+        ])
+        .args(["--views", "ground-noon", "--json"])
+        .current_dir(&elsewhere)
+        .output()
+        .expect("run atmoscope");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rows: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
+    assert_eq!(rows[0]["view"], "ground-noon", "{rows}");
+    let dir = std::env::temp_dir().join(format!("atmoscope-no-references-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let o = atmoscope(&[
+        "bench",
+        "methods",
+        "--methods",
+        "preetham",
+        "--views",
+        "ground-noon",
+        "--refs",
+        dir.to_str().expect("utf-8"),
+        "--out",
+        dir.join("out").to_str().expect("utf-8"),
+    ]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("atmoscope reference --suite --ci-size --out-dir"),
+        "{}",
+        stderr(&o)
+    );
+}
+
 #[test]
 fn validate_reports_file_field_and_range_and_fails() {
     let good = temp_file("good.ron", "(camera: (altitude_m: 1000.0))");

@@ -18,6 +18,7 @@ pub mod images;
 pub mod lessons;
 pub mod presets;
 pub mod scene_args;
+pub mod shipped;
 pub mod source_key;
 pub mod summary;
 pub mod tab;

@@ -51,7 +51,7 @@ impl BenchTab {
     pub fn new(dir: PathBuf) -> BenchTab {
         let exe = std::env::current_exe().unwrap_or_else(|_| PathBuf::from("atmoscope"));
         let mut args: Vec<String> = ["bench", "methods", "--quick"].map(String::from).into();
-        if let Some(refs) = near(&exe, Path::new("tests/data/references")).filter(|p| p.is_dir()) {
+        if let Ok(refs) = crate::shipped::references(None) {
             args.extend(["--refs".into(), refs.to_string_lossy().into_owned()]);
         }
         BenchTab {
@@ -70,8 +70,8 @@ impl BenchTab {
     /// The tab of the explorer: until it has results of its own it shows the repository's
     /// last committed quick run (`docs/bench/results.csv`), found beside the program.
     pub fn with_shipped_results(mut self) -> BenchTab {
-        let exe = std::env::current_exe().unwrap_or_default();
-        self.fallback = near(&exe, Path::new("docs/bench/results.csv")).filter(|p| p.is_file());
+        self.fallback = crate::shipped::near_program(Path::new(crate::shipped::BENCH_RESULTS))
+            .filter(|p| p.is_file());
         self
     }
 
@@ -307,14 +307,6 @@ fn parse_progress(line: &str) -> Option<(u64, u64)> {
         .next()?
         .split_once('/')?;
     Some((done.parse().ok()?, total.parse().ok()?))
-}
-
-/// `rel` under the working directory or a folder above the program (a program run from the
-/// repository or its `target/` folder), where it exists.
-fn near(exe: &Path, rel: &Path) -> Option<PathBuf> {
-    std::iter::once(rel.to_path_buf())
-        .chain(exe.ancestors().skip(1).map(|d| d.join(rel)))
-        .find(|p| p.exists())
 }
 
 /// The scene with the configuration's model, wavelength set and quality; None when the row

@@ -20,9 +20,10 @@ use std::process::ExitCode;
 #[derive(Args, Debug)]
 pub struct AccuracyBench {
     /// Directory of path-traced references named `<view>.exr`
-    /// (from `atmoscope reference --suite --out-dir DIR`).
+    /// (from `atmoscope reference --suite --out-dir DIR`); default: the repository's
+    /// tests/data/references, under the working directory or above the program.
     #[arg(long, value_name = "DIR")]
-    pub refs: PathBuf,
+    pub refs: Option<PathBuf>,
     /// Views of the suite, comma-separated (default: every view with a reference in --refs).
     #[arg(long, value_delimiter = ',')]
     pub views: Vec<String>,
@@ -52,6 +53,7 @@ struct AccuracyRow {
 }
 
 pub fn run(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
+    let refs = crate::shipped::references(args.refs.as_deref())?;
     let context = gpu()?;
     let sets = if args.sets.is_empty() {
         vec![args.spectral, WavelengthSet::Spectral4, WavelengthSet::Rgb3]
@@ -77,7 +79,7 @@ pub fn run(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
         if !args.views.is_empty() && !args.views.iter().any(|n| n == v.name.as_str()) {
             continue;
         }
-        let Some((reference, w, h)) = suite_reference(&args.refs, &v.name, !args.views.is_empty())?
+        let Some((reference, w, h)) = suite_reference(&refs, &v.name, !args.views.is_empty())?
         else {
             continue;
         };
@@ -150,7 +152,7 @@ pub fn run(args: &AccuracyBench) -> anyhow::Result<ExitCode> {
         eprintln!("{} done", v.name);
     }
     if rows.is_empty() {
-        anyhow::bail!("no references found in {}", args.refs.display());
+        anyhow::bail!("no references found in {}", refs.display());
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&rows)?);

@@ -62,9 +62,11 @@ pub struct MethodsBench {
     #[arg(long, value_delimiter = ',')]
     pub views: Vec<String>,
     /// Directory of path-traced references `<view>.exr`
-    /// (`atmoscope reference --suite --ci-size --out-dir DIR`, which caches what it renders).
-    #[arg(long, value_name = "DIR", default_value = "tests/data/references")]
-    pub refs: PathBuf,
+    /// (`atmoscope reference --suite --ci-size --out-dir DIR`, which caches what it renders);
+    /// default: the repository's tests/data/references, under the working directory or above
+    /// the program.
+    #[arg(long, value_name = "DIR")]
+    pub refs: Option<PathBuf>,
     /// Size WxH of the frames that are timed (errors are measured at the references' size);
     /// default 480x270, or 320x180 with --full.
     #[arg(long, value_name = "WxH", value_parser = crate::args::parse_size)]
@@ -84,6 +86,8 @@ pub struct MethodsBench {
 
 /// What one run measures, from the flags.
 struct Plan {
+    /// Where the references are (`--refs`, or the shipped ones).
+    refs: PathBuf,
     methods: Vec<atmoscope_model::scene::Method>,
     sets: Vec<WavelengthSet>,
     qualities: Vec<Quality>,
@@ -120,7 +124,8 @@ fn plan(args: &MethodsBench) -> anyhow::Result<Plan> {
         (true, false) => vec![Quality::Medium],
         (true, true) => vec![Quality::Low, Quality::Medium, Quality::High],
     };
-    let has_ref = |v: &views::View| args.refs.join(format!("{}.exr", v.name)).is_file();
+    let refs = crate::shipped::references(args.refs.as_deref())?;
+    let has_ref = |v: &views::View| refs.join(format!("{}.exr", v.name)).is_file();
     let views: Vec<&'static views::View> = if !args.views.is_empty() {
         args.views
             .iter()
@@ -134,13 +139,13 @@ fn plan(args: &MethodsBench) -> anyhow::Result<Plan> {
     if let Some(v) = views.iter().find(|v| !has_ref(v)) {
         bail!(
             "{}: no reference for view {} (render them with `atmoscope reference --suite --ci-size --out-dir {}`; results are cached)",
-            args.refs.join(format!("{}.exr", v.name)).display(),
+            refs.join(format!("{}.exr", v.name)).display(),
             v.name,
-            args.refs.display()
+            refs.display()
         );
     }
     if views.is_empty() {
-        bail!("no references in {}", args.refs.display());
+        bail!("no references in {}", refs.display());
     }
     let repeats = args
         .repeats
@@ -159,6 +164,7 @@ fn plan(args: &MethodsBench) -> anyhow::Result<Plan> {
         .frame_size
         .unwrap_or(if full { (320, 180) } else { (480, 270) });
     Ok(Plan {
+        refs,
         methods,
         sets,
         qualities,
@@ -177,7 +183,7 @@ pub fn run(args: &MethodsBench) -> anyhow::Result<ExitCode> {
         .views
         .iter()
         .map(|v| {
-            let path = args.refs.join(format!("{}.exr", v.name));
+            let path = plan.refs.join(format!("{}.exr", v.name));
             read_exr(&path).with_context(|| format!("reference {}", path.display()))
         })
         .collect::<anyhow::Result<_>>()?;
@@ -698,7 +704,7 @@ mod tests {
             sets: Vec::new(),
             qualities: Vec::new(),
             views: views.iter().map(|v| v.to_string()).collect(),
-            refs: PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../tests/data/references"),
+            refs: Some(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../tests/data/references")),
             frame_size: None,
             repeats: None,
             cpu_timing: false,

@@ -34,9 +34,10 @@ use std::process::ExitCode;
 #[derive(Args, Debug)]
 pub struct FitGarciaLinanArgs {
     /// Directory of path-traced references named `<view>.exr`
-    /// (from `atmoscope reference --suite --out-dir DIR`).
+    /// (from `atmoscope reference --suite --out-dir DIR`); default: the repository's
+    /// tests/data/references, under the working directory or above the program.
     #[arg(long, value_name = "DIR")]
-    pub refs: PathBuf,
+    pub refs: Option<PathBuf>,
     /// Views of the suite, comma-separated (default: every view in the model's domain with a
     /// reference in --refs).
     #[arg(long, value_delimiter = ',')]
@@ -110,7 +111,7 @@ fn rms_and_mean(v: &[f64]) -> (f64, f64) {
     )
 }
 
-fn load(args: &FitGarciaLinanArgs) -> anyhow::Result<Vec<ViewSamples>> {
+fn load(args: &FitGarciaLinanArgs, refs: &std::path::Path) -> anyhow::Result<Vec<ViewSamples>> {
     let mut out = Vec::new();
     for v in views::suite() {
         let named = args.views.iter().any(|n| n == v.name.as_str());
@@ -125,7 +126,7 @@ fn load(args: &FitGarciaLinanArgs) -> anyhow::Result<Vec<ViewSamples>> {
             }
             continue;
         }
-        let Some((reference, w, h)) = suite_reference(&args.refs, &v.name, named)? else {
+        let Some((reference, w, h)) = suite_reference(refs, &v.name, named)? else {
             continue;
         };
         let atm = Atmosphere::for_scene(&scene);
@@ -161,7 +162,7 @@ fn load(args: &FitGarciaLinanArgs) -> anyhow::Result<Vec<ViewSamples>> {
         bail!(
             "no reference of a view in the model's domain ({}) in {}",
             DOMAIN.note,
-            args.refs.display()
+            refs.display()
         );
     }
     Ok(out)
@@ -183,7 +184,8 @@ pub fn run(args: &FitGarciaLinanArgs) -> anyhow::Result<ExitCode> {
     if let Some(out) = &args.out {
         crate::files::check_writable(out)?;
     }
-    let views = load(args)?;
+    let refs = crate::shipped::references(args.refs.as_deref())?;
+    let views = load(args, &refs)?;
     let published = Constants::published();
     let objective = |c: &Constants| -> f64 {
         let all: Vec<f64> = views.iter().flat_map(|v| v.log_ratios(c)).collect();
@@ -249,7 +251,7 @@ pub fn run(args: &FitGarciaLinanArgs) -> anyhow::Result<ExitCode> {
         writeln!(
             csv,
             "# García Liñán (2023) L_ms constants refitted by `atmoscope fit-garcia-linan` against path-traced references ({}) of {} suite views ({}×{} pixels each, {:?}); RMS log luminance error {:.3} -> {:.3}.\nname,value\nms_scale,{}\nms_a,{}\nms_b,{}\nreference_wavelength_nm,{}",
-            args.refs.display(),
+            refs.display(),
             views.len(),
             args.grid,
             args.grid,
