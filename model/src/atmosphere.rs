@@ -171,6 +171,20 @@ impl OpticalDepth {
     pub fn total(&self) -> f64 {
         self.rayleigh + self.ozone + self.aerosol
     }
+
+    /// The turbidity the analytic daylight fits take (Preetham, Hosek–Wilkie): the ratio of
+    /// the optical depth of air with aerosol to that of clean air, (τ_R + τ_a) / τ_R, held to
+    /// a fit's `range` (lowest, highest; 1 or more). Ozone, which absorbs and does not
+    /// scatter, is left out, as in Preetham et al. (1999). The highest value with no air.
+    pub fn turbidity(&self, range: [f64; 2]) -> f64 {
+        let [lo, hi] = range;
+        let t = if self.rayleigh > 0.0 {
+            1.0 + self.aerosol / self.rayleigh
+        } else {
+            hi
+        };
+        t.clamp(lo, hi)
+    }
 }
 
 /// The physical atmosphere built from a scene's settings.

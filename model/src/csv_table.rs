@@ -163,6 +163,16 @@ pub mod tables {
     embedded_table!(spectral4_fitted, "spectral4_fitted.csv");
     embedded_table!(preetham_constants, "preetham1999_constants.csv");
     embedded_table!(hillaire_earth, "hillaire2020_earth_defaults.csv");
+    embedded_table!(
+        hosek_wilkie_sky_spectral,
+        "hosek_wilkie2012_sky_spectral.csv"
+    );
+    embedded_table!(hosek_wilkie_sky_rgb, "hosek_wilkie2012_sky_rgb.csv");
+    embedded_table!(hosek_wilkie_sun, "hosek_wilkie2013_sun.csv");
+    embedded_table!(
+        hosek_wilkie_limb_darkening,
+        "hosek_wilkie2013_limb_darkening.csv"
+    );
 }
 
 #[cfg(test)]
@@ -194,6 +204,10 @@ mod tests {
             tables::spectral4_fitted(),
             tables::preetham_constants(),
             tables::hillaire_earth(),
+            tables::hosek_wilkie_sky_spectral(),
+            tables::hosek_wilkie_sky_rgb(),
+            tables::hosek_wilkie_sun(),
+            tables::hosek_wilkie_limb_darkening(),
         ];
         assert_eq!(tables::garcia_linan_refit().len(), 4);
         for t in all {

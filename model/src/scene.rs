@@ -332,6 +332,7 @@ pub enum Method {
     Flat,
     Raymarched,
     Preetham,
+    HosekWilkie,
     Empty,
     PathTracer,
 }

@@ -226,6 +226,11 @@ pub fn wgsl_prelude() -> String {
     );
     c("SUN_ANGULAR_RADIUS_RAD", "f32", f(SUN_ANGULAR_RADIUS_RAD));
     c(
+        "BATCH_MODEL_ROWS",
+        "u32",
+        format!("{}u", shared::BATCH_MODEL_ROWS),
+    );
+    c(
         "GROUND_TRANSMITTANCE_FROM_TABLE_ABOVE_M",
         "f32",
         f(h::sky::GROUND_TRANSMITTANCE_FROM_TABLE_ABOVE_M),

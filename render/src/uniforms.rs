@@ -6,7 +6,9 @@ use atmoscope_model::aerosol::{MIE_PHASE_ANGLES, MIE_PHASE_WAVELENGTHS_NM, MiePh
 use atmoscope_model::camera::{Camera, Projection, Sees};
 use atmoscope_model::display::{EXPOSURE_SCALE, LUMINANCE_LOG10_RANGE};
 use atmoscope_model::geometry::horizon_beta;
-use atmoscope_model::methods::shared::{BatchOptics, Params, Spacing, Viewpoint};
+use atmoscope_model::methods::shared::{
+    BATCH_MODEL_ROWS, BatchOptics, BatchRows, Params, Spacing, Viewpoint,
+};
 use atmoscope_model::scene::{AerosolPhase, Scene, ToneMap};
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
@@ -225,6 +227,9 @@ pub struct Batch {
     pub wavelengths_nm: [f32; 4],
     /// Each lane's fractional row of the tabulated Mie phase function (`MiePhase::node_at`).
     pub aerosol_phase_node: [f32; 4],
+    /// Rows a model computes for the batch on the CPU (`GpuMethod::batch_rows`), zeros for
+    /// the others.
+    pub model: [[f32; 4]; BATCH_MODEL_ROWS],
 }
 
 fn f4(v: impl Into<[f64; 4]>) -> [f32; 4] {
@@ -248,8 +253,29 @@ impl From<&BatchOptics> for Batch {
             to_srgb_b: f4(b.colour.to_srgb[2]),
             wavelengths_nm: f4(b.colour.wavelengths_nm),
             aerosol_phase_node: f4(b.colour.wavelengths_nm.map(MiePhase::node_at)),
+            model: [[0.0; 4]; BATCH_MODEL_ROWS],
         }
     }
+}
+
+/// Every batch of `p`, with the model's rows for the sun at zenith cosine `mu_s` where it has
+/// them (`GpuMethod::batch_rows`).
+pub fn batches(
+    p: &Params,
+    rows: Option<fn(&Params, usize, f64) -> BatchRows>,
+    mu_s: f64,
+) -> Vec<Batch> {
+    p.batches
+        .iter()
+        .enumerate()
+        .map(|(layer, b)| {
+            let mut batch = Batch::from(b);
+            if let Some(rows) = rows {
+                batch.model = rows(p, layer, mu_s).map(f4);
+            }
+            batch
+        })
+        .collect()
 }
 
 /// The tabulated Mie phase function's rows (ln p), four to a vec4 of the shader's uniform: the

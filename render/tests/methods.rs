@@ -586,8 +586,20 @@ fn assert_render_matches_the_twin(
     h: u32,
 ) -> Vec<[f64; 3]> {
     let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    assert_engine_matches_the_twin(&mut engine, name, scene, projection, w, h)
+}
+
+/// [`assert_render_matches_the_twin`] with an engine that may have drawn other scenes before.
+fn assert_engine_matches_the_twin(
+    engine: &mut Engine,
+    name: &str,
+    scene: &Scene,
+    projection: Projection,
+    w: u32,
+    h: u32,
+) -> Vec<[f64; 3]> {
     engine.render(scene, &View::new(projection, w, h));
-    let gpu_image = radiance_image(&engine);
+    let gpu_image = radiance_image(engine);
     let cpu_image = methods::render(scene, projection, w, h).expect("a real-time model");
     let (c, _) = compare(&gpu_image, &cpu_image, w, h, DisplaySetup::default());
     let off = gpu_image
@@ -640,6 +652,33 @@ fn bruneton_past_its_tables_edge_matches_the_cpu_twin() {
         dark > 0 && lit > 0,
         "the night side dark ({dark} pixels), the limb lit ({lit})"
     );
+}
+
+/// Hosek–Wilkie's coefficients are blended on the CPU for the sun at the camera: one engine
+/// follows the sun as it moves (the rows are uploaded again), and both the sRGB fit (RGB3) and
+/// the spectral bands (SpectralN, some lanes past 720 nm) match the twin.
+#[test]
+fn hosek_wilkie_follows_the_sun_in_every_wavelength_set() {
+    let Some(gpu) = context() else { return };
+    let model = methods::info(Method::HosekWilkie);
+    let mut engine = Engine::new(&gpu.device, &gpu.queue);
+    for (set, elevation_deg) in [
+        (WavelengthSet::Rgb3, 30.0),
+        (WavelengthSet::Rgb3, 70.0),
+        (WavelengthSet::SpectralN(16), 8.0),
+    ] {
+        let mut scene = with(model, &Scene::default());
+        scene.render.wavelengths = set;
+        scene.camera.pitch_deg = 0.0;
+        scene.sun = SunSettings::Angles {
+            elevation_deg,
+            azimuth_deg: 180.0,
+        };
+        let name = format!("hosek-wilkie {set:?}, sun {elevation_deg}°");
+        let image =
+            assert_engine_matches_the_twin(&mut engine, &name, &scene, Projection::Fisheye, 32, 32);
+        assert!(image.iter().any(|p| luminance(*p) > 0.0), "{name}: a sky");
+    }
 }
 
 #[test]

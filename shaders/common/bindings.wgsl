@@ -62,6 +62,8 @@ struct Batch {
     wavelengths_nm: vec4<f32>,
     // each lane's fractional row of the tabulated Mie phase function (model::aerosol::MiePhase)
     aerosol_phase_node: vec4<f32>,
+    // rows a model computes for the batch on the CPU (render::methods::GpuMethod::batch_rows)
+    model: array<vec4<f32>, BATCH_MODEL_ROWS>,
 }
 
 @group(0) @binding(0) var<uniform> globals: Globals;

@@ -16,6 +16,7 @@ pub mod galaj_spline;
 pub mod galaj_taylor;
 pub mod garcia_linan;
 pub mod hillaire;
+pub mod hosek_wilkie;
 pub mod nishita;
 pub mod path_tracer;
 pub mod preetham;
@@ -251,6 +252,12 @@ pub trait SkyModel: Send + Sync {
     /// cannot, and the caller builds it again.
     fn move_to(&mut self, _vp: Viewpoint) -> bool {
         false
+    }
+
+    /// The turbidity a fit takes from the scene (`OpticalDepth::turbidity`), for the models
+    /// that take one (Preetham, Hosek–Wilkie); `probe` reports it.
+    fn turbidity(&self) -> Option<f64> {
+        None
     }
 
     /// Radiance of the sun's disk for batch `layer` seen from altitude `h` (m) with the sun at
@@ -682,6 +689,25 @@ pub const MODELS: &[ModelInfo] = &[
             stress_cases: 8,
         },
         build: Some(preetham::build),
+    },
+    ModelInfo {
+        method: Method::HosekWilkie,
+        id: "hosek-wilkie",
+        label: "Hosek–Wilkie 2012",
+        citation: "L. Hosek, A. Wilkie (2012), An Analytic Model for Full Spectral Sky-Dome Radiance, ACM Transactions on Graphics 31(4); the sun from L. Hosek, A. Wilkie (2013), Adding a Solar Radiance Function to the Hosek Skylight Model, IEEE Computer Graphics and Applications 33(3)",
+        summary: "The analytic sky of production renderers: a nine-parameter distribution per band (11 bands, 320–720 nm, or its own sRGB fit), each parameter a Bézier curve in the sun's elevation blended over turbidity and ground albedo; the sun from the 2013 solar radiance function. One closed form per pixel, coefficients computed on the CPU per sun. Ground views in daylight only.",
+        domain: hosek_wilkie::DOMAIN,
+        tables: &hosek_wilkie::TABLES,
+        gathers_orders: false,
+        refittable: false,
+        baseline: false,
+        stated: Stated {
+            daylight_delta_e2000: Some(31.0),
+            twilight_delta_e2000: None,
+            probe_relative_error: Some(1.7),
+            stress_cases: 8,
+        },
+        build: Some(hosek_wilkie::build),
     },
     ModelInfo {
         method: Method::Empty,

@@ -54,7 +54,7 @@ impl Engine {
             self.drop_moving_sky_job();
             if let Some(state) = self.atmosphere.as_mut() {
                 state.params = state_params(scene, &key);
-                upload_batches(&self.queue, &state.tables, &state.params);
+                upload_batches(&self.queue, &state.tables, &state.params, key.method, scene);
                 state.key = key;
             }
         } else if let Some(slice) = self.slicing {
@@ -173,6 +173,10 @@ impl Engine {
         if !changed.is_empty() {
             self.queue
                 .write_buffer(&state.tables.globals, 0, bytemuck::bytes_of(&frame.globals));
+            // A model's rows for the sun at the camera (Hosek–Wilkie's coefficients).
+            if gpu.batch_rows.is_some() {
+                upload_batches(&self.queue, &state.tables, &state.params, gpu.method, scene);
+            }
         }
         let pipelines = &self.pipelines[0];
         if rebuilt || self.deferred.len() != pipelines.len() {

@@ -12,7 +12,7 @@ impl Engine {
         let params = state_params(scene, &key);
         let i = self.pipelines_of(gpu);
         let tables = TableBuffers::new(&self.device, &self.pipelines[i], gpu.info(), &params);
-        upload_batches(&self.queue, &tables, &params);
+        upload_batches(&self.queue, &tables, &params, key.method, scene);
         self.queue.write_buffer(
             &tables.profile,
             0,
@@ -187,8 +187,25 @@ pub(super) fn state_params(scene: &Scene, key: &AtmosphereKey) -> Params {
     .with_render(&scene.render)
 }
 
-/// Uploads the optics of every batch of four wavelengths (`batches` in the shaders).
-pub(super) fn upload_batches(queue: &wgpu::Queue, tables: &TableBuffers, params: &Params) {
-    let batches: Vec<uniforms::Batch> = params.batches.iter().map(Into::into).collect();
+/// Uploads the optics of every batch of four wavelengths (`batches` in the shaders), with the
+/// rows `method` computes for the sun at `scene`'s camera where it has them
+/// (`GpuMethod::batch_rows`).
+pub(super) fn upload_batches(
+    queue: &wgpu::Queue,
+    tables: &TableBuffers,
+    params: &Params,
+    method: Method,
+    scene: &Scene,
+) {
+    let rows = gpu_method(method).and_then(|g| g.batch_rows);
+    let mu_s = rows.map_or(0.0, |_| {
+        let camera = Camera::new(
+            &scene.camera,
+            params.bottom_radius_m,
+            Projection::Perspective,
+        );
+        viewpoint(scene, &camera).mu_s
+    });
+    let batches = uniforms::batches(params, rows, mu_s);
     queue.write_buffer(&tables.batches, 0, bytemuck::cast_slice(&batches));
 }

@@ -37,6 +37,7 @@ pub const METHOD: GpuMethod = GpuMethod {
     lowest_table_mu_s: Some(model::MU_S_MIN),
     common: &[SUN_DISK_FROM_TABLE, shader!("bruneton/common.wgsl")],
     constants: no_constants,
+    batch_rows: None,
     passes: &[
         TRANSMITTANCE_PASS,
         PassSpec::table(

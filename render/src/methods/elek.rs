@@ -27,6 +27,7 @@ pub const METHOD: GpuMethod = GpuMethod {
     lowest_table_mu_s: None,
     common: &[SUN_DISK_FROM_TABLE, shader!("elek/common.wgsl")],
     constants: no_constants,
+    batch_rows: None,
     passes: &[
         TRANSMITTANCE_PASS,
         PassSpec::table(

@@ -9,6 +9,7 @@ pub const METHODS: &[GpuMethod] = &[GpuMethod {
     lowest_table_mu_s: None,
     common: &[],
     constants: no_constants,
+    batch_rows: None,
     passes: &[PassSpec::sky(
         &[
             TONE,

@@ -36,6 +36,7 @@ pub const METHODS: &[GpuMethod] = &[
         lowest_table_mu_s: None,
         common: &[NO_HIGHER_ORDERS, EXPONENTIAL, COLUMNS],
         constants: |p| single_scattering_sky::constants(p, Way::GalajSpline),
+        batch_rows: None,
         passes: &[
             MESH_PASS,
             sun_route_pass(&[read(MESH_TABLE)]),
@@ -51,6 +52,7 @@ pub const METHODS: &[GpuMethod] = &[
         lowest_table_mu_s: None,
         common: &[HILLAIRE_HIGHER_ORDERS, EXPONENTIAL, COLUMNS],
         constants: |p| single_scattering_sky::constants(p, Way::GalajSpline),
+        batch_rows: None,
         passes: &[
             MESH_PASS,
             TRANSMITTANCE_PASS,

@@ -19,6 +19,7 @@ pub const METHOD: GpuMethod = GpuMethod {
         shader!("garcia_linan/common.wgsl"),
     ],
     constants: |p| first_row(Constants::chosen(p.fitted_constants).uniform()),
+    batch_rows: None,
     passes: &[
         TRANSMITTANCE_PASS,
         PassSpec::table(

@@ -23,6 +23,7 @@ pub const METHOD: GpuMethod = GpuMethod {
         shader!("hillaire/common.wgsl"),
     ],
     constants: no_constants,
+    batch_rows: None,
     passes: &[
         TRANSMITTANCE_PASS,
         MULTIPLE_SCATTERING_PASS,

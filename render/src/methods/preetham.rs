@@ -10,6 +10,7 @@ pub const METHODS: &[GpuMethod] = &[GpuMethod {
     lowest_table_mu_s: None,
     common: &[],
     constants: preetham::constants,
+    batch_rows: None,
     passes: &[PassSpec::sky(
         &[
             TONE,

@@ -11,5 +11,6 @@ pub const METHODS: &[GpuMethod] = &[GpuMethod {
     lowest_table_mu_s: None,
     common: &SEGMENTS_COMMON,
     constants: |p| segments_sky::constants(p, RAYMARCHED_SEGMENTS),
+    batch_rows: None,
     passes: &[SEGMENTS_SKY_PASS],
 }];

@@ -14,7 +14,7 @@ pub mod shared;
 
 pub use shared::*;
 
-use atmoscope_model::methods::shared::{Params, TableSpec};
+use atmoscope_model::methods::shared::{BatchRows, Params, TableSpec};
 use atmoscope_model::methods::{self, Inputs, ModelInfo};
 use atmoscope_model::scene::Method;
 
@@ -503,6 +503,10 @@ pub struct GpuMethod {
     /// The model's constants the passes read from `globals.model`, for the optics and model
     /// settings of `Params`.
     pub constants: fn(&Params) -> ModelConstants,
+    /// Rows the model computes on the CPU for each batch and the sun at the camera (zenith
+    /// cosine), which its passes read as `batches[layer].model` (a fit's coefficients, too
+    /// many for `globals.model`); None for a model without.
+    pub batch_rows: Option<fn(&Params, usize, f64) -> BatchRows>,
 }
 
 /// The values of `globals.model`: three rows of four.

@@ -302,6 +302,7 @@ pub const fn single_scattering_rows(
             lowest_table_mu_s: None,
             common: &SINGLE_SCATTERING_COMMON,
             constants,
+            batch_rows: None,
             passes,
         },
         GpuMethod {
@@ -309,6 +310,7 @@ pub const fn single_scattering_rows(
             lowest_table_mu_s: None,
             common: &SINGLE_SCATTERING_MS_COMMON,
             constants,
+            batch_rows: None,
             passes: ms_passes,
         },
     ]

@@ -160,16 +160,11 @@ impl Constants {
     }
 }
 
-/// The scene's turbidity: (τ_R + τ_a) / τ_R at 550 nm over the vertical, held to the fit's range.
+/// The scene's turbidity: (τ_R + τ_a) / τ_R at 550 nm over the vertical
+/// (`OpticalDepth::turbidity`, as Hosek–Wilkie's), held to the fit's range.
 pub fn turbidity(p: &Params) -> f64 {
-    let tau = p.optical_depth_550;
-    let [lo, hi] = Constants::published().turbidity_range;
-    let t = if tau.rayleigh > 0.0 {
-        1.0 + tau.aerosol / tau.rayleigh
-    } else {
-        hi
-    };
-    t.clamp(lo, hi)
+    p.optical_depth_550
+        .turbidity(Constants::published().turbidity_range)
 }
 
 /// The matrix that turns a colour (XYZ, in the renderer's unit) into the coefficients c of the
@@ -245,6 +240,10 @@ impl SkyModel for Preetham {
 
     fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
         sky::radiance(&self.params, self.turbidity, layer, at, dir, sun)
+    }
+
+    fn turbidity(&self) -> Option<f64> {
+        Some(self.turbidity)
     }
 
     fn table(&self, _: &str) -> Option<&Lut> {

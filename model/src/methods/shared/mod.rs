@@ -18,7 +18,10 @@ pub mod transmittance;
 
 pub use lut::{Lut, TableSpec};
 pub use march::{SMALL_OPTICAL_THICKNESS, Spacing, segment_weight};
-pub use optics::{BatchOptics, Medium, PROFILE_SAMPLES, Params, Steps, Viewpoint, viewpoint};
+pub use optics::{
+    BATCH_MODEL_ROWS, BatchOptics, BatchRows, Medium, PROFILE_SAMPLES, Params, Steps, Viewpoint,
+    viewpoint,
+};
 pub use sun_disk::sun_disk;
 
 pub use crate::lanes::Lanes;

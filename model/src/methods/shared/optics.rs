@@ -77,6 +77,14 @@ pub struct BatchOptics {
     pub ground_albedo: Lanes,
 }
 
+/// Rows of four lanes that a model may compute for each batch on the CPU and its passes read
+/// as `batches[layer].model` (Hosek–Wilkie's coefficients for the sun of the frame): a fit's
+/// per-wavelength numbers, too many for `globals.model`.
+pub const BATCH_MODEL_ROWS: usize = 22;
+
+/// A batch's [`BATCH_MODEL_ROWS`] rows.
+pub type BatchRows = [Lanes; BATCH_MODEL_ROWS];
+
 /// Everything the passes read that depends only on the atmosphere and the wavelength set: the
 /// f64 original of the GPU's uniforms and storage buffers.
 #[derive(Debug, Clone, PartialEq)]
@@ -95,7 +103,7 @@ pub struct Params {
     /// The fitted constants the models that have them use (García Liñán).
     pub fitted_constants: FittedConstants,
     /// Vertical optical depth of the whole atmosphere at 550 nm, by constituent: what the
-    /// analytic models that take a turbidity read (Preetham).
+    /// analytic models that take a turbidity read (Preetham, Hosek–Wilkie).
     pub optical_depth_550: OpticalDepth,
 }
 
