@@ -322,6 +322,31 @@ fn probe_json_has_the_documented_shape() {
     ]);
     let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
     assert_eq!(v["samples"][0]["std_error"].as_f64(), Some(0.0));
+    assert!(v.get("turbidity").is_none(), "only the fits report one: {v}");
+
+    // A fit reports the turbidity it took from the scene: (τ_R + τ_a) / τ_R at 550 nm, about
+    // 1 + 0.3 / 0.097 with AOD 0.3; more aerosol, more turbidity.
+    let turbidity = |aod: &str| {
+        let o = atmoscope(&[
+            "probe",
+            "--view-zenith-deg",
+            "60",
+            "--view-azimuth-deg",
+            "90",
+            "--method",
+            "hosek-wilkie",
+            "--aod550",
+            aod,
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
+        assert!(v["samples"][0]["radiance"].as_f64().unwrap() > 0.0, "{v}");
+        v["turbidity"].as_f64().expect("turbidity")
+    };
+    let t = turbidity("0.3");
+    assert!((3.8..4.4).contains(&t), "{t}");
+    assert!(turbidity("0.1") < t);
 }
 
 /// Zenith and 60° radiance at 450 and 650 nm of `--method` over the default scene, JSON.

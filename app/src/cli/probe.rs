@@ -55,6 +55,9 @@ pub fn run(probe_args: &ProbeArgs) -> anyhow::Result<ExitCode> {
             String::new()
         }
     );
+    if let Some(t) = p.turbidity {
+        println!("turbidity: {t:.3}");
+    }
     println!(" zenith°  azimuth°   λ (nm)   radiance (W/m²/sr/nm)   L/E (1/sr)    std. error");
     for s in &p.samples {
         println!(

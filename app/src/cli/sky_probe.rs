@@ -121,6 +121,10 @@ pub struct Probe {
     pub direct_transmittance: Vec<Transmittance>,
     pub method: String,
     pub spp: u64,
+    /// The turbidity a fit took from the scene (Preetham, Hosek–Wilkie), 1–10; absent for
+    /// the other methods.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub turbidity: Option<f64>,
 }
 
 /// Runs the probe.
@@ -231,6 +235,7 @@ pub fn probe(scene: &Scene, args: &ProbeRequest) -> Probe {
         samples: results.into_iter().flatten().collect(),
         direct_transmittance,
         method: args.method.id().into(),
+        turbidity: model.as_ref().and_then(|m| m.turbidity()),
         spp: if args.method == ProbeMethod::PathTracer {
             args.spp
         } else {

@@ -702,9 +702,9 @@ pub const MODELS: &[ModelInfo] = &[
         refittable: false,
         baseline: false,
         stated: Stated {
-            daylight_delta_e2000: Some(31.0),
+            daylight_delta_e2000: Some(22.0),
             twilight_delta_e2000: None,
-            probe_relative_error: Some(1.7),
+            probe_relative_error: Some(0.4),
             stress_cases: 8,
         },
         build: Some(hosek_wilkie::build),
