@@ -322,7 +322,10 @@ fn probe_json_has_the_documented_shape() {
     ]);
     let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
     assert_eq!(v["samples"][0]["std_error"].as_f64(), Some(0.0));
-    assert!(v.get("turbidity").is_none(), "only the fits report one: {v}");
+    assert!(
+        v.get("turbidity").is_none(),
+        "only the fits report one: {v}"
+    );
 
     // A fit reports the turbidity it took from the scene: (τ_R + τ_a) / τ_R at 550 nm, about
     // 1 + 0.3 / 0.097 with AOD 0.3; more aerosol, more turbidity.

@@ -471,6 +471,28 @@ fn the_sky_tab_says_why_a_model_refuses_the_view() {
     );
 }
 
+/// The CIE standard general sky's type is chosen in the Scene panel while that model is on
+/// screen, and the panel says it has no spectrum; other models show neither.
+#[test]
+fn the_scene_panel_chooses_the_cie_sky_type() {
+    let mut h = harness();
+    h.run();
+    assert!(h.query_by_label_contains("CIE sky type").is_none());
+    h.get_by_label("Rendering and display").click();
+    h.run();
+    assert!(h.query_by_label_contains("it has no spectrum").is_none());
+    h.state_mut().scene.render.method = atmoscope_model::scene::Method::CieStandardSky;
+    h.run();
+    h.get_by_label_contains("it has no spectrum");
+    h.get_by_role_and_label(Role::ComboBox, "CIE sky type")
+        .click();
+    h.run();
+    h.get_by_label_contains("1: CIE standard overcast sky")
+        .click_accesskit();
+    h.run();
+    assert_eq!(h.state().scene.render.cie_sky_type, 1);
+}
+
 #[test]
 fn the_lut_tab_reads_every_table() {
     let mut h = harness();

@@ -163,6 +163,7 @@ pub mod tables {
     embedded_table!(spectral4_fitted, "spectral4_fitted.csv");
     embedded_table!(preetham_constants, "preetham1999_constants.csv");
     embedded_table!(hillaire_earth, "hillaire2020_earth_defaults.csv");
+    embedded_table!(cie_standard_general_sky, "cie2003_standard_general_sky.csv");
     embedded_table!(
         hosek_wilkie_sky_spectral,
         "hosek_wilkie2012_sky_spectral.csv"
@@ -204,6 +205,7 @@ mod tests {
             tables::spectral4_fitted(),
             tables::preetham_constants(),
             tables::hillaire_earth(),
+            tables::cie_standard_general_sky(),
             tables::hosek_wilkie_sky_spectral(),
             tables::hosek_wilkie_sky_rgb(),
             tables::hosek_wilkie_sun(),

@@ -333,6 +333,7 @@ pub enum Method {
     Raymarched,
     Preetham,
     HosekWilkie,
+    CieStandardSky,
     Empty,
     PathTracer,
 }
@@ -453,7 +454,13 @@ pub struct RenderSettings {
     pub scattering_orders: u32,
     /// Which fitted constants the models that have them use (García Liñán's L_ms).
     pub fitted_constants: FittedConstants,
+    /// Which of the CIE standard general sky's 15 types (CIE S 011 / ISO 15469) the
+    /// `cie-standard-sky` model draws, 1–15: 1 the overcast sky, 12 the standard clear sky.
+    pub cie_sky_type: u8,
 }
+
+/// The CIE sky type by default: 12, the CIE standard clear sky.
+pub const DEFAULT_CIE_SKY_TYPE: u8 = 12;
 
 /// The source of a model's fitted constants.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
@@ -480,6 +487,7 @@ impl Default for RenderSettings {
             quality: Quality::default(),
             scattering_orders: DEFAULT_SCATTERING_ORDERS,
             fitted_constants: FittedConstants::default(),
+            cie_sky_type: DEFAULT_CIE_SKY_TYPE,
         }
     }
 }
@@ -859,6 +867,12 @@ pub mod limits {
         max: 10.0,
         unit: "",
     };
+    /// `render.cie_sky_type`.
+    pub const CIE_SKY_TYPE: Limit = Limit {
+        min: 1.0,
+        max: 15.0,
+        unit: "",
+    };
 }
 
 struct Checker {
@@ -1064,6 +1078,11 @@ impl Scene {
             "render.scattering_orders",
             f64::from(self.render.scattering_orders),
             limits::SCATTERING_ORDERS,
+        );
+        c.limit(
+            "render.cie_sky_type",
+            f64::from(self.render.cie_sky_type),
+            limits::CIE_SKY_TYPE,
         );
         c.limit(
             "display.exposure_ev",

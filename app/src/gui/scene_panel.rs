@@ -8,13 +8,13 @@ use crate::lessons::Section;
 use crate::presets::SHIPPED;
 use atmoscope_model::Scene;
 use atmoscope_model::aerosol::AerosolType;
-use atmoscope_model::methods;
+use atmoscope_model::methods::{self, cie_standard_sky};
 use atmoscope_model::ozone::OzoneCrossSection;
 use atmoscope_model::profiles::{AirProfile, OzoneProfile};
 use atmoscope_model::scene::limits;
 use atmoscope_model::scene::{
-    AerosolPhase, FittedConstants, OzoneColumn, Quality, SunSettings, ToneMap, WavelengthSet,
-    WhiteBalance,
+    AerosolPhase, FittedConstants, Method, OzoneColumn, Quality, SunSettings, ToneMap,
+    WavelengthSet, WhiteBalance,
 };
 use atmoscope_model::solar_spectrum::SolarSpectrum;
 use atmoscope_model::sun_position::DateTime;
@@ -507,6 +507,47 @@ fn model_tooltip(m: &methods::ModelInfo) -> String {
     )
 }
 
+/// The CIE standard general sky's type, and what the model is not: it has no spectrum.
+fn cie_sky_type(ui: &mut egui::Ui, r: &mut atmoscope_model::scene::RenderSettings) {
+    let current = cie_standard_sky::sky_type(r.cie_sky_type);
+    ComboBox::from_label("CIE sky type")
+        .selected_text(format!("{}: {}", current.number, current.description))
+        .width(220.0)
+        .show_ui(ui, |ui| {
+            for t in cie_standard_sky::types() {
+                ui.selectable_value(
+                    &mut r.cie_sky_type,
+                    t.number,
+                    format!("{}: {}", t.number, t.description),
+                )
+                .on_hover_text(format!(
+                    "Gradation group {} (a = {}, b = {}), indicatrix group {} (c = {}, d = {}, e = {}){}",
+                    t.gradation_group,
+                    t.a,
+                    t.b,
+                    t.indicatrix_group,
+                    t.c,
+                    t.d,
+                    t.e,
+                    if t.sun { "; the sun shows" } else { "; the sun is hidden" }
+                ));
+            }
+        })
+        .response
+        .on_hover_text(
+            "The 15 relative luminance distributions of CIE S 011 / ISO 15469, from the overcast sky (1) to the \
+             turbid clear sky (15); 12 is the CIE standard clear sky.",
+        );
+    ui.label(
+        egui::RichText::new(
+            "A luminance model: it has no spectrum. Its colour is the sun's white, the same in every \
+             direction; its zenith luminance is Preetham's formula at the scene's turbidity.",
+        )
+        .small()
+        .weak(),
+    );
+}
+
 fn render(ui: &mut egui::Ui, s: &mut Scene, meter: Option<&exposure::Reading>) {
     let r = &mut s.render;
     let current = methods::info(r.method);
@@ -553,6 +594,9 @@ fn render(ui: &mut egui::Ui, s: &mut Scene, meter: Option<&exposure::Reading>) {
                  them (fitted at 10 km), or this project's refit against the path tracer over the suite's daylight \
                  views (`atmoscope fit-garcia-linan`).",
             );
+    }
+    if r.method == Method::CieStandardSky {
+        cie_sky_type(ui, r);
     }
     ComboBox::from_label("Wavelengths")
         .selected_text(r.wavelengths.label())

@@ -9,6 +9,7 @@
 //! it) but no real-time passes.
 
 pub mod bruneton;
+pub mod cie_standard_sky;
 pub mod elek;
 pub mod empty;
 pub mod flat;
@@ -708,6 +709,25 @@ pub const MODELS: &[ModelInfo] = &[
             stress_cases: 8,
         },
         build: Some(hosek_wilkie::build),
+    },
+    ModelInfo {
+        method: Method::CieStandardSky,
+        id: "cie-standard-sky",
+        label: "CIE standard general sky",
+        citation: "CIE S 011/E:2003 (ISO 15469:2004), Spatial distribution of daylight — CIE standard general sky; zenith luminance of A. J. Preetham, P. Shirley, B. Smits (1999)",
+        summary: "The daylighting standard's 15 relative luminance distributions (overcast to turbid clear, `render.cie_sky_type`), a gradation in the zenith angle times an indicatrix in the angle from the sun; the zenith luminance from Preetham's formula at the scene's turbidity. A luminance model: no spectrum, the colour of the sun. Ground views in daylight only.",
+        domain: cie_standard_sky::DOMAIN,
+        tables: &cie_standard_sky::TABLES,
+        gathers_orders: false,
+        refittable: false,
+        baseline: false,
+        stated: Stated {
+            daylight_delta_e2000: Some(31.5),
+            twilight_delta_e2000: None,
+            probe_relative_error: Some(2.1),
+            stress_cases: 8,
+        },
+        build: Some(cie_standard_sky::build),
     },
     ModelInfo {
         method: Method::Empty,

@@ -11,6 +11,9 @@ pub(super) struct AtmosphereKey {
     pub(super) quality: Quality,
     pub(super) scattering_orders: u32,
     pub(super) fitted_constants: FittedConstants,
+    /// The CIE sky type where the model draws one (`render.cie_sky_type`), so that another
+    /// model's tables do not rebuild when it changes.
+    pub(super) cie_sky_type: Option<u8>,
 }
 
 impl AtmosphereKey {

@@ -31,6 +31,7 @@ impl Engine {
             quality: scene.render.quality,
             scattering_orders: scene.render.scattering_orders,
             fitted_constants: scene.render.fitted_constants,
+            cie_sky_type: (method == Method::CieStandardSky).then_some(scene.render.cie_sky_type),
         };
         let size = [view.width.max(1), view.height.max(1)];
         let current = self.atmosphere.as_ref().is_some_and(|a| a.key == key);

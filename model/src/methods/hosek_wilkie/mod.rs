@@ -30,6 +30,7 @@
 pub mod sky;
 
 use super::shared::sun_disk::visible_fraction;
+use super::shared::sun_rows::SunRows;
 use super::shared::{BatchRows, Lanes, Lut, Params, TableSpec, Viewpoint};
 use super::{Domain, GROUND_VIEW_MAX_ALTITUDE_M, SkyModel};
 use crate::csv_table::{Table, tables};
@@ -37,7 +38,7 @@ use crate::solar_spectrum::SolarSpectrum;
 use crate::wavelengths::{LANES, POINT_SET_SOLAR_BAND_NM};
 use glam::DVec3;
 use std::f64::consts::{FRAC_PI_2, PI};
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::OnceLock;
 
 /// The method has no tables.
 pub const TABLES: [TableSpec; 0] = [];
@@ -386,32 +387,12 @@ pub fn turbidity(p: &Params) -> f64 {
     p.optical_depth_550.turbidity(TURBIDITY_RANGE)
 }
 
-/// Hosek and Wilkie's sky for one atmosphere: the rows of every batch for the last sun asked
-/// for, kept for the next call.
+/// Hosek and Wilkie's sky for one atmosphere.
 #[derive(Debug)]
 pub struct HosekWilkie {
     pub params: Params,
     pub turbidity: f64,
-    rows: Mutex<Option<(f64, Arc<Vec<BatchRows>>)>>,
-}
-
-impl HosekWilkie {
-    /// The rows of every batch with the sun at zenith cosine `mu_s`.
-    pub fn rows(&self, mu_s: f64) -> Arc<Vec<BatchRows>> {
-        let mut cached = self.rows.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some((at, rows)) = cached.as_ref()
-            && *at == mu_s
-        {
-            return rows.clone();
-        }
-        let rows: Arc<Vec<BatchRows>> = Arc::new(
-            (0..self.params.batches.len())
-                .map(|layer| batch_rows(&self.params, layer, mu_s))
-                .collect(),
-        );
-        *cached = Some((mu_s, rows.clone()));
-        rows
-    }
+    rows: SunRows,
 }
 
 impl SkyModel for HosekWilkie {
@@ -421,7 +402,8 @@ impl SkyModel for HosekWilkie {
 
     fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
         let mu_s = sun.dot(at.0.normalize());
-        sky::radiance(&self.params, &self.rows(mu_s)[layer], at, dir, sun)
+        let rows = self.rows.get(&self.params, batch_rows, mu_s);
+        sky::radiance(&self.params, &rows[layer], at, dir, sun)
     }
 
     fn table(&self, _: &str) -> Option<&Lut> {
@@ -431,7 +413,7 @@ impl SkyModel for HosekWilkie {
     /// The sun's disk through the fit's solar radiance function.
     fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: Lanes) -> Lanes {
         let p = &self.params;
-        let rows = self.rows(mu_s);
+        let rows = self.rows.get(p, batch_rows, mu_s);
         let visible = visible_fraction(h, mu_s, p.bottom_radius_m);
         p.batches[layer].solar_irradiance
             * rows[layer][ROW_SUN]
@@ -449,7 +431,7 @@ pub fn build(params: &Params, _: Viewpoint) -> Box<dyn SkyModel> {
     Box::new(HosekWilkie {
         turbidity: turbidity(params),
         params: params.clone(),
-        rows: Mutex::new(None),
+        rows: SunRows::default(),
     })
 }
 

@@ -14,6 +14,7 @@ pub mod ray;
 pub mod segments_sky;
 pub mod single_scattering_sky;
 pub mod sun_disk;
+pub mod sun_rows;
 pub mod transmittance;
 
 pub use lut::{Lut, TableSpec};

@@ -102,6 +102,8 @@ pub struct Params {
     pub scattering_orders: u32,
     /// The fitted constants the models that have them use (García Liñán).
     pub fitted_constants: FittedConstants,
+    /// The CIE standard general sky's type the `cie-standard-sky` row draws, 1–15.
+    pub cie_sky_type: u8,
     /// Vertical optical depth of the whole atmosphere at 550 nm, by constituent: what the
     /// analytic models that take a turbidity read (Preetham, Hosek–Wilkie).
     pub optical_depth_550: OpticalDepth,
@@ -193,6 +195,7 @@ impl Params {
             steps: Steps::for_quality(quality),
             scattering_orders: crate::scene::DEFAULT_SCATTERING_ORDERS,
             fitted_constants: FittedConstants::default(),
+            cie_sky_type: crate::scene::DEFAULT_CIE_SKY_TYPE,
             optical_depth_550: atm.vertical_optical_depth(&atm.optics(550.0), 0.0),
         }
     }
@@ -202,6 +205,7 @@ impl Params {
     pub fn with_render(self, render: &RenderSettings) -> Params {
         Params {
             fitted_constants: render.fitted_constants,
+            cie_sky_type: render.cie_sky_type,
             ..self.with_scattering_orders(render.scattering_orders)
         }
     }
