@@ -331,6 +331,7 @@ pub enum Method {
     GalajSplineMs,
     Flat,
     Raymarched,
+    ONeil,
     Preetham,
     HosekWilkie,
     CieStandardSky,

@@ -19,6 +19,7 @@ pub mod garcia_linan;
 pub mod hillaire;
 pub mod hosek_wilkie;
 pub mod nishita;
+pub mod oneil;
 pub mod path_tracer;
 pub mod preetham;
 pub mod raymarched;
@@ -671,6 +672,25 @@ pub const MODELS: &[ModelInfo] = &[
             stress_cases: 8,
         },
         build: Some(raymarched::build),
+    },
+    ModelInfo {
+        method: Method::ONeil,
+        id: "oneil",
+        label: "O'Neil 2005",
+        citation: "S. O'Neil (2005), Accurate Atmospheric Scattering, in GPU Gems 2, ch. 16, Addison-Wesley, 253–268",
+        summary: "The games-era sky: Nishita's single scattering in five samples per view ray, every optical depth from one fitted function of the angle times the density (refitted to the scene's planet and air), air and aerosol sharing one scale height, no ozone; no tables, no higher orders, no Earth shadow.",
+        domain: oneil::DOMAIN,
+        tables: &oneil::TABLES,
+        gathers_orders: false,
+        refittable: false,
+        baseline: false,
+        stated: Stated {
+            daylight_delta_e2000: Some(21.0),
+            twilight_delta_e2000: None,
+            probe_relative_error: Some(0.75),
+            stress_cases: 8,
+        },
+        build: Some(oneil::build),
     },
     ModelInfo {
         method: Method::Preetham,
