@@ -74,6 +74,69 @@ fn validate_refuses_devices_folders_and_huge_files() {
     }
 }
 
+/// `bench clear-sky` replays Bruneton's evaluation over the suite's sky domes: its CSV files
+/// hold every model and the path tracer at every sun, the charts are written, a refusing model
+/// is marked so, and the figures are physical (a clear zenith of a few kcd/m² at sun 30°,
+/// Hillaire within 20 % of the path tracer over the daylight domes).
+#[test]
+fn bench_clear_sky_writes_the_figure_set_and_a_summary() {
+    let dir = std::env::temp_dir().join(format!("atmoscope-clear-sky-{}", std::process::id()));
+    let o = atmoscope(&[
+        "bench",
+        "clear-sky",
+        "--methods",
+        "hillaire,preetham",
+        "--spp",
+        "256",
+        "--out",
+        dir.to_str().expect("utf-8"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for f in [
+        "clear_sky.csv",
+        "zenith_spectra.csv",
+        "error_maps.csv",
+        "summary.md",
+        "zenith_luminance.svg",
+        "zenith_luminance.png",
+        "illuminance.svg",
+        "zenith_spectra.png",
+        "error_maps.png",
+    ] {
+        let len = std::fs::metadata(dir.join(f)).map(|m| m.len()).unwrap_or(0);
+        assert!(len > 100, "{f}: {len} bytes");
+    }
+    let csv = std::fs::read_to_string(dir.join("clear_sky.csv")).expect("csv");
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    // Nine domes (sun 90° to −12°) × the path tracer and two models.
+    assert_eq!(rows.len(), 27, "{csv}");
+    let value = |model: &str, sun: &str, col: usize| -> Option<f64> {
+        rows.iter()
+            .find(|r| r[0] == model && r[1] == sun)
+            .and_then(|r| r[col].parse().ok())
+    };
+    let zenith = value("path-tracer", "30", 2).expect("the path tracer at 30°");
+    assert!((1_000.0..10_000.0).contains(&zenith), "{zenith} cd/m²");
+    assert!(
+        value("preetham", "-6", 2).is_none(),
+        "Preetham refuses twilight"
+    );
+    for sun in ["90", "30", "10"] {
+        let e = value("hillaire", sun, 6).expect("hillaire's dome error");
+        assert!(e < 0.2, "sun {sun}°: {e}");
+    }
+    let summary = std::fs::read_to_string(dir.join("summary.md")).expect("summary");
+    assert!(
+        summary.contains("## Closest to the path tracer")
+            && summary.contains("## What to use where")
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// The benchmarks find the shipped references from any working directory (they lie above the
 /// program in a clone), and say how to point at others where a folder has none.
 #[test]

@@ -217,6 +217,44 @@ pub fn legend_strip(width: u32, log10_min: f64, log10_max: f64) -> (Vec<u8>, u32
     (img, rows as u32)
 }
 
+/// Marker and line colours of the benchmarks' charts, dark enough to read on white.
+pub const PALETTE: [plotters::style::RGBColor; 10] = [
+    plotters::style::RGBColor(214, 39, 40),
+    plotters::style::RGBColor(31, 119, 180),
+    plotters::style::RGBColor(44, 160, 44),
+    plotters::style::RGBColor(148, 103, 189),
+    plotters::style::RGBColor(255, 127, 14),
+    plotters::style::RGBColor(140, 86, 75),
+    plotters::style::RGBColor(227, 119, 194),
+    plotters::style::RGBColor(23, 190, 207),
+    plotters::style::RGBColor(127, 127, 127),
+    plotters::style::RGBColor(188, 189, 34),
+];
+
+/// Writes a chart as `<stem>.svg` and `<stem>.png` in folder `$out`, `$draw` drawing it on
+/// each backend (a plotters `DrawingBackend`) at `$size`; evaluates to `anyhow::Result<()>`.
+macro_rules! chart_files {
+    ($out:expr, $stem:expr, $size:expr, |$backend:ident| $draw:expr) => {{
+        use plotters::prelude::{BitMapBackend, SVGBackend};
+        let size: (u32, u32) = $size;
+        (|| -> anyhow::Result<()> {
+            let mut svg = String::new();
+            {
+                let $backend = SVGBackend::with_string(&mut svg, size);
+                $draw?;
+            }
+            crate::files::write_atomic(&$out.join(format!("{}.svg", $stem)), svg.as_bytes())?;
+            let mut rgb = vec![0u8; (size.0 * size.1 * 3) as usize];
+            {
+                let $backend = BitMapBackend::with_buffer(&mut rgb, size);
+                $draw?;
+            }
+            crate::images::save_rgb8(&$out.join(format!("{}.png", $stem)), rgb, size.0, size.1)
+        })()
+    }};
+}
+pub(crate) use chart_files;
+
 /// Registers the font egui ships as plotters' "sans-serif" (charts, captions), once, so that
 /// text looks the same on every machine.
 pub fn register_font() {

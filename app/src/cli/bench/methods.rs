@@ -519,26 +519,13 @@ fn summary_markdown(configs: &[Config], h: &Header) -> String {
 
 /// The Pareto chart as `pareto.svg` and `pareto.png`.
 fn write_charts(out: &Path, configs: &[Config], header: &Header) -> anyhow::Result<()> {
-    use plotters::prelude::*;
     crate::images::register_font();
     // A configuration without a timed frame has no place on the time axis.
     let timed: Vec<Config> = configs.iter().filter(|c| c.timed()).cloned().collect();
     let configs = &timed[..];
-    let size = (960u32, 640u32);
-    let mut svg = String::new();
-    draw_chart(SVGBackend::with_string(&mut svg, size), configs, header)?;
-    crate::files::write_atomic(&out.join("pareto.svg"), svg.as_bytes())?;
-    let mut rgb = vec![0u8; (size.0 * size.1 * 3) as usize];
-    draw_chart(BitMapBackend::with_buffer(&mut rgb, size), configs, header)?;
-    let mut png = Vec::new();
-    image::ImageEncoder::write_image(
-        image::codecs::png::PngEncoder::new(&mut png),
-        &rgb,
-        size.0,
-        size.1,
-        image::ExtendedColorType::Rgb8,
-    )?;
-    crate::files::write_atomic(&out.join("pareto.png"), &png)
+    crate::images::chart_files!(out, "pareto", (960u32, 640u32), |backend| draw_chart(
+        backend, configs, header
+    ))
 }
 
 /// Axis ticks at 1, 2 and 5 times the powers of ten inside `range` (a log axis of less than a
@@ -553,20 +540,6 @@ fn ticks(range: std::ops::Range<f64>) -> Vec<f64> {
         .filter(|v| range.contains(v))
         .collect()
 }
-
-/// Marker colours, dark enough to read on white.
-const PALETTE: [plotters::style::RGBColor; 10] = [
-    plotters::style::RGBColor(214, 39, 40),
-    plotters::style::RGBColor(31, 119, 180),
-    plotters::style::RGBColor(44, 160, 44),
-    plotters::style::RGBColor(148, 103, 189),
-    plotters::style::RGBColor(255, 127, 14),
-    plotters::style::RGBColor(140, 86, 75),
-    plotters::style::RGBColor(227, 119, 194),
-    plotters::style::RGBColor(23, 190, 207),
-    plotters::style::RGBColor(127, 127, 127),
-    plotters::style::RGBColor(188, 189, 34),
-];
 
 fn draw_chart<B: plotters::prelude::DrawingBackend>(
     backend: B,
@@ -647,7 +620,7 @@ fn draw_chart<B: plotters::prelude::DrawingBackend>(
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(2)));
     let models = crate::bench_results::models_in_order(configs);
     for (i, model) in models.iter().enumerate() {
-        let colour = PALETTE[i % PALETTE.len()];
+        let colour = crate::images::PALETTE[i % crate::images::PALETTE.len()];
         let points = configs
             .iter()
             .filter(|c| c.method == *model)

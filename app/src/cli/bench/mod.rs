@@ -2,6 +2,8 @@
 
 mod accuracy;
 mod aod;
+mod clear_sky;
+mod clear_sky_charts;
 mod gpu;
 mod leenman;
 mod methods;
@@ -22,6 +24,11 @@ pub enum Bench {
     /// Each model's sky radiance against the path tracer as the aerosol optical depth grows:
     /// the measurement behind each model's stated AOD range.
     Aod(aod::AodBench),
+    /// Bruneton's (2016) evaluation of clear-sky models replayed on the path tracer: over the
+    /// suite's sky domes (sun 90° to −12°), each model's zenith luminance, horizontal sky
+    /// illuminance, zenith spectrum and dome error map; CSV, charts and a summary of which
+    /// model is closest where.
+    ClearSky(clear_sky::ClearSkyBench),
     /// Every model × wavelength set × quality over views of the suite: precompute and frame
     /// time, table memory and error against path-traced references; results.csv, a summary
     /// and the Pareto chart of time against error.
@@ -46,6 +53,7 @@ pub fn run(bench: &Bench) -> anyhow::Result<ExitCode> {
         Bench::Accuracy(args) => accuracy::run(args),
         Bench::Aod(args) => aod::run(args),
         Bench::Methods(args) => methods::run(args),
+        Bench::ClearSky(args) => clear_sky::run(args),
         Bench::Leenman(args) => leenman::run(args),
         Bench::Transmittance(args) => transmittance::run(args),
         // The session plays in the explorer's window, which `atmoscope::run` opens for it.
