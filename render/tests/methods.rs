@@ -1556,7 +1556,7 @@ fn from_above_the_atmosphere_the_view_tables_wait_until_a_view_needs_them() {
             ],
             // No view tables to leave stale: the same passes everywhere.
             "nishita" | "trapezoid" | "schuler" | "galaj-taylor" | "galaj-spline" | "flat"
-            | "raymarched" | "empty" => {
+            | "raymarched" | "oneil" | "empty" => {
                 continue;
             }
             // The same passes from space: the sky pass marches every pixel anyway.

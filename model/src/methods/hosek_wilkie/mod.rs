@@ -20,7 +20,9 @@
 //! irradiance. The sun is the 2013 solar radiance function: the radiance at the disk's centre
 //! through the fit's atmosphere and its limb darkening, whose mean over the disk sets the
 //! disk's irradiance (the disk is drawn with the renderer's limb profile at that mean). The
-//! ground, which the fit does not cover, is Lambertian under the fit's sun and sky.
+//! ground, which the fit does not cover, is Lambertian under the fit's sun and sky. All of it
+//! scales with the scene's solar irradiance over the default spectrum's at 1 AU (its sun's
+//! spectrum and distance).
 //!
 //! Everything the GPU needs is computed on the CPU for the frame's sun: [`batch_rows`] gives
 //! each batch the blended coefficients of the two bands around each lane, the sun's
@@ -325,8 +327,10 @@ fn rgb3_weights(b: &crate::wavelengths::WavelengthBatch) -> Option<[f64; 3]> {
 /// ([`ROW_LOWER`], [`ROW_UPPER`], [`ROW_SUN`], [`ROW_GROUND`]), per lane: the configurations of
 /// the two bands around the lane (each L_M times the band's weight; RGB3's lanes 0–2 the sRGB
 /// fit's channel, in lane units), the sun's transmittance (the fit's disk irradiance over the
-/// lane's extraterrestrial irradiance) and the radiance of the Lambertian ground under the
-/// fit's sun and sky.
+/// reference extraterrestrial irradiance) and the radiance of the Lambertian ground under the
+/// fit's sun and sky. All of it scales with the lane's solar irradiance over the default
+/// spectrum's at 1 AU, so the fit follows the scene's sun (its spectrum and distance) as every
+/// model does.
 pub fn batch_rows(p: &Params, layer: usize, mu_s: f64) -> BatchRows {
     let d = Data::published();
     let t = turbidity(p);
@@ -355,6 +359,17 @@ pub fn batch_rows(p: &Params, layer: usize, mu_s: f64) -> BatchRows {
             low[9] *= w_lower;
             high[9] *= w_upper;
         }
+        // The fit's light is its own sun's at 1 AU: under the scene's sun (another spectrum,
+        // another distance) it scales with the lane's irradiance over the reference spectrum's.
+        let extraterrestrial = b.solar_irradiance[lane];
+        let reference = SolarSpectrum::default().irradiance(wavelength, band_width_nm);
+        let sun_scale = if reference > 0.0 {
+            extraterrestrial / reference
+        } else {
+            0.0
+        };
+        low[9] *= sun_scale;
+        high[9] *= sun_scale;
         for k in 0..10 {
             rows[ROW_LOWER + k][lane] = low[k];
             rows[ROW_UPPER + k][lane] = high[k];
@@ -368,9 +383,8 @@ pub fn batch_rows(p: &Params, layer: usize, mu_s: f64) -> BatchRows {
         };
         let sun_irradiance =
             (1.0 - w.clamp(0.0, 1.0)) * disk(lower) + w.clamp(0.0, 1.0) * disk(lower + 1);
-        let extraterrestrial = b.solar_irradiance[lane];
-        let transmittance = if extraterrestrial > 0.0 {
-            sun_irradiance / extraterrestrial
+        let transmittance = if reference > 0.0 {
+            sun_irradiance / reference
         } else {
             0.0
         };
