@@ -7,7 +7,7 @@ use atmoscope_model::camera::{Camera, Projection, Sees};
 use atmoscope_model::display::{EXPOSURE_SCALE, LUMINANCE_LOG10_RANGE};
 use atmoscope_model::geometry::horizon_beta;
 use atmoscope_model::methods::shared::{
-    BATCH_MODEL_ROWS, BatchOptics, BatchRows, Params, Spacing, Viewpoint,
+    BATCH_MODEL_ROWS, BatchOptics, Params, Spacing, Viewpoint, sun_rows::RowsFn,
 };
 use atmoscope_model::scene::{AerosolPhase, Scene, ToneMap};
 use bytemuck::{Pod, Zeroable};
@@ -260,11 +260,7 @@ impl From<&BatchOptics> for Batch {
 
 /// Every batch of `p`, with the model's rows for the sun at zenith cosine `mu_s` where it has
 /// them (`GpuMethod::batch_rows`).
-pub fn batches(
-    p: &Params,
-    rows: Option<fn(&Params, usize, f64) -> BatchRows>,
-    mu_s: f64,
-) -> Vec<Batch> {
+pub fn batches(p: &Params, rows: Option<RowsFn>, mu_s: f64) -> Vec<Batch> {
     p.batches
         .iter()
         .enumerate()

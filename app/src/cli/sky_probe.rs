@@ -121,8 +121,8 @@ pub struct Probe {
     pub direct_transmittance: Vec<Transmittance>,
     pub method: String,
     pub spp: u64,
-    /// The turbidity a fit took from the scene (Preetham, Hosek–Wilkie), 1–10; absent for
-    /// the other methods.
+    /// The turbidity a fit took from the scene (Preetham, Hosek–Wilkie, the CIE sky's zenith
+    /// luminance), 1–10; absent for the other methods.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub turbidity: Option<f64>,
 }

@@ -257,7 +257,8 @@ pub trait SkyModel: Send + Sync {
     }
 
     /// The turbidity a fit takes from the scene (`OpticalDepth::turbidity`), for the models
-    /// that take one (Preetham, Hosek–Wilkie); `probe` reports it.
+    /// that take one (Preetham, Hosek–Wilkie, the CIE sky's zenith luminance); `probe`
+    /// reports it.
     fn turbidity(&self) -> Option<f64> {
         None
     }

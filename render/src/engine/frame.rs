@@ -55,6 +55,7 @@ impl Engine {
             self.drop_moving_sky_job();
             if let Some(state) = self.atmosphere.as_mut() {
                 state.params = state_params(scene, &key);
+                state.model_constants = (gpu.constants)(&state.params);
                 upload_batches(&self.queue, &state.tables, &state.params, key.method, scene);
                 state.key = key;
             }
@@ -174,8 +175,12 @@ impl Engine {
         if !changed.is_empty() {
             self.queue
                 .write_buffer(&state.tables.globals, 0, bytemuck::bytes_of(&frame.globals));
-            // A model's rows for the sun at the camera (Hosek–Wilkie's coefficients).
-            if gpu.batch_rows.is_some() {
+            // A model's rows for the sun at the camera (Hosek–Wilkie's coefficients), when
+            // what they depend on changed.
+            let rows_inputs = Inputs::VIEWPOINT
+                .union(Inputs::ATMOSPHERE)
+                .union(Inputs::GROUND_ALBEDO);
+            if gpu.batch_rows.is_some() && changed.intersects(rows_inputs) {
                 upload_batches(&self.queue, &state.tables, &state.params, gpu.method, scene);
             }
         }

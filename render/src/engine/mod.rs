@@ -76,6 +76,9 @@ struct AtmosphereState {
     tables: TableBuffers,
     /// The white of the noon sun through this atmosphere, once a white balance asks for it.
     noon_white: std::sync::OnceLock<Xyz>,
+    /// The model's constants for these optics (`GpuMethod::constants`, `globals.model`),
+    /// computed once: some fit the medium (O'Neil's scale function, the exponential fits).
+    model_constants: crate::methods::ModelConstants,
     moving_sky: MovingSky,
 }
 

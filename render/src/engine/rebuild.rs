@@ -10,6 +10,7 @@ impl Engine {
             unreachable!("the caller checked the model is a real-time one");
         };
         let params = state_params(scene, &key);
+        let model_constants = (gpu.constants)(&params);
         let i = self.pipelines_of(gpu);
         let tables = TableBuffers::new(&self.device, &self.pipelines[i], gpu.info(), &params);
         upload_batches(&self.queue, &tables, &params, key.method, scene);
@@ -28,6 +29,7 @@ impl Engine {
             params,
             tables,
             noon_white: std::sync::OnceLock::new(),
+            model_constants,
             moving_sky: MovingSky::default(),
         }
     }

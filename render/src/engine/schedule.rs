@@ -64,7 +64,7 @@ impl FrameSetup {
             viewpoint,
             size,
             mode: view.mode,
-            model: (gpu.constants)(params),
+            model: state.model_constants,
             // Only a display that shows glare pays for its source.
             glare: (scene.display.glare && view.mode == DisplayMode::Colour).then(|| {
                 atmoscope_model::display::sun_irradiance_rgb(params, viewpoint.h, viewpoint.mu_s)

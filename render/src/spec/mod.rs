@@ -14,7 +14,8 @@ pub mod shared;
 
 pub use shared::*;
 
-use atmoscope_model::methods::shared::{BatchRows, Params, TableSpec};
+use atmoscope_model::methods::shared::sun_rows::RowsFn;
+use atmoscope_model::methods::shared::{Params, TableSpec};
 use atmoscope_model::methods::{self, Inputs, ModelInfo};
 use atmoscope_model::scene::Method;
 
@@ -506,7 +507,7 @@ pub struct GpuMethod {
     /// Rows the model computes on the CPU for each batch and the sun at the camera (zenith
     /// cosine), which its passes read as `batches[layer].model` (a fit's coefficients, too
     /// many for `globals.model`); None for a model without.
-    pub batch_rows: Option<fn(&Params, usize, f64) -> BatchRows>,
+    pub batch_rows: Option<RowsFn>,
 }
 
 /// The values of `globals.model`: three rows of four.

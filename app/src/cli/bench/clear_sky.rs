@@ -240,6 +240,13 @@ pub fn run(args: &ClearSkyBench) -> anyhow::Result<ExitCode> {
             .total_cmp(&a.sun.angles().elevation_deg)
     });
     let models = &args.methods.0;
+    if let Some(m) = models.iter().find(|m| !methods::info(**m).is_realtime()) {
+        anyhow::bail!(
+            "--methods: {} is not a real-time model; the path tracer is the reference here ({})",
+            method_id(*m),
+            methods::realtime_ids()
+        );
+    }
     let mut engines: Vec<Engine> = models
         .iter()
         .map(|_| Engine::new(&context.device, &context.queue))
@@ -252,11 +259,23 @@ pub fn run(args: &ClearSkyBench) -> anyhow::Result<ExitCode> {
         })
         .collect();
     let mut rows = Vec::new();
+    let mut size: Option<(u32, u32)> = None;
     for v in &domes {
         let Some((reference, w, h)) = suite_reference(&refs, &v.name, false)? else {
             eprintln!("{}: no reference in {}, left out", v.name, refs.display());
             continue;
         };
+        // The maps and the mosaic lay every dome on one grid.
+        match size {
+            None => size = Some((w, h)),
+            Some(s) if s != (w, h) => anyhow::bail!(
+                "{}: the reference is {w}×{h}, the others {}×{}: render every dome at one size",
+                v.name,
+                s.0,
+                s.1
+            ),
+            Some(_) => {}
+        }
         let scene: Scene = v.apply(&Scene::default());
         let elevation = scene.sun.angles().elevation_deg;
         let dome = Dome::new(&scene, w, h);
@@ -325,7 +344,7 @@ pub fn run(args: &ClearSkyBench) -> anyhow::Result<ExitCode> {
     if rows.is_empty() {
         anyhow::bail!("no sky-dome references found in {}", refs.display());
     }
-    let (w, h) = domes.first().map_or((0, 0), |v| v.ci_size);
+    let (w, h) = size.unwrap_or((0, 0));
     std::fs::create_dir_all(&args.out)?;
     write_csv(&args.out, &rows, &domes, w, h)?;
     clear_sky_charts::write(&args.out, &rows, w, h)?;

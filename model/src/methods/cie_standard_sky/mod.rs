@@ -23,16 +23,14 @@
 pub mod sky;
 
 use super::preetham;
-use super::shared::sun_disk::visible_fraction;
-use super::shared::sun_rows::SunRows;
-use super::shared::{BatchRows, Lanes, Lut, Params, TableSpec, Viewpoint};
+use super::shared::sun_rows::{RowSky, hemisphere_irradiance};
+use super::shared::{BatchRows, Lanes, Params, TableSpec, Viewpoint};
 use super::{Domain, GROUND_VIEW_MAX_ALTITUDE_M, SkyModel};
 use crate::colour::cie1931;
 use crate::constants::{VISIBLE_MAX_NM, VISIBLE_MIN_NM};
 use crate::csv_table::tables;
 use crate::solar_spectrum::SolarSpectrum;
 use crate::wavelengths::LANES;
-use glam::DVec3;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::sync::OnceLock;
 
@@ -176,25 +174,12 @@ pub fn zenith_luminance(p: &Params, mu_s: f64) -> f64 {
 }
 
 /// ∫ (L / L_z)·cos Z dω over the upper hemisphere for type `t` with the sun at zenith cosine
-/// `mu_s`, by the midpoint rule ([`GROUND_SKY_STEPS`]): the horizontal sky illuminance over
-/// the zenith luminance, sr.
+/// `mu_s` ([`GROUND_SKY_STEPS`]): the horizontal sky illuminance over the zenith luminance, sr.
 pub fn illuminance_over_zenith(t: &SkyType, mu_s: f64) -> f64 {
-    let [n_mu, n_phi] = GROUND_SKY_STEPS;
     let sun_zenith = mu_s.clamp(-1.0, 1.0).acos();
-    let sin_s = (1.0 - mu_s * mu_s).max(0.0).sqrt();
-    let mut sum = 0.0;
-    for i in 0..n_mu {
-        let mu = (i as f64 + 0.5) / n_mu as f64;
-        let sin_v = (1.0 - mu * mu).sqrt();
-        for j in 0..n_phi {
-            let phi = (j as f64 + 0.5) / n_phi as f64 * PI;
-            let chi = (mu * mu_s + sin_v * sin_s * phi.cos())
-                .clamp(-1.0, 1.0)
-                .acos();
-            sum += t.relative_luminance(mu, chi, sun_zenith) * mu;
-        }
-    }
-    sum / n_mu as f64 * (2.0 * PI / n_phi as f64)
+    hemisphere_irradiance(mu_s, GROUND_SKY_STEPS, |mu, chi| {
+        t.relative_luminance(mu, chi, sun_zenith)
+    })
 }
 
 /// What the sky pass reads for batch `layer` of `p` with the sun at zenith cosine `mu_s`
@@ -223,50 +208,15 @@ pub fn batch_rows(p: &Params, layer: usize, mu_s: f64) -> BatchRows {
     rows
 }
 
-/// The CIE standard general sky for one atmosphere (its turbidity) and type.
-#[derive(Debug)]
-pub struct CieStandardSky {
-    pub params: Params,
-    rows: SunRows,
-}
-
-impl SkyModel for CieStandardSky {
-    fn params(&self) -> &Params {
-        &self.params
-    }
-
-    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
-        let mu_s = sun.dot(at.0.normalize());
-        let rows = self.rows.get(&self.params, batch_rows, mu_s);
-        sky::radiance(&self.params, &rows[layer], at, dir, sun)
-    }
-
-    fn table(&self, _: &str) -> Option<&Lut> {
-        None
-    }
-
-    /// The sun's disk through Preetham's direct beam, for the types that show it.
-    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: Lanes) -> Lanes {
-        let p = &self.params;
-        let rows = self.rows.get(p, batch_rows, mu_s);
-        let visible = visible_fraction(h, mu_s, p.bottom_radius_m);
-        p.batches[layer].solar_irradiance
-            * rows[layer][ROW_SUN]
-            * visible
-            * disk.map(|d| d.max(0.0))
-    }
-
-    fn turbidity(&self) -> Option<f64> {
-        Some(preetham::turbidity(&self.params))
-    }
-}
-
-/// The registry's constructor.
+/// The registry's constructor: the twin of the sky pass over [`batch_rows`].
 pub fn build(params: &Params, _: Viewpoint) -> Box<dyn SkyModel> {
-    Box::new(CieStandardSky {
-        params: params.clone(),
-        rows: SunRows::default(),
-    })
+    Box::new(RowSky::new(
+        params,
+        batch_rows,
+        sky::radiance,
+        ROW_SUN,
+        preetham::turbidity(params),
+    ))
 }
 
 #[cfg(test)]

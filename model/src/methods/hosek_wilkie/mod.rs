@@ -31,14 +31,12 @@
 
 pub mod sky;
 
-use super::shared::sun_disk::visible_fraction;
-use super::shared::sun_rows::SunRows;
-use super::shared::{BatchRows, Lanes, Lut, Params, TableSpec, Viewpoint};
+use super::shared::sun_rows::{RowSky, hemisphere_irradiance};
+use super::shared::{BatchRows, Lanes, Params, TableSpec, Viewpoint};
 use super::{Domain, GROUND_VIEW_MAX_ALTITUDE_M, SkyModel};
 use crate::csv_table::{Table, tables};
 use crate::solar_spectrum::SolarSpectrum;
 use crate::wavelengths::{LANES, POINT_SET_SOLAR_BAND_NM};
-use glam::DVec3;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::sync::OnceLock;
 
@@ -298,22 +296,11 @@ fn band_blend(wavelength_nm: f64, band_width_nm: f64) -> (usize, f64, f64) {
 
 /// The sky's irradiance on a horizontal plane from a channel's configuration `c` with the sun
 /// at zenith cosine `mu_s`, in the unit of L_M: ∫ F·cos θ dω over the upper hemisphere times
-/// L_M, by the midpoint rule in cos θ and azimuth ([`GROUND_SKY_STEPS`]).
+/// L_M ([`GROUND_SKY_STEPS`]).
 pub fn sky_irradiance(c: &Configuration, mu_s: f64) -> f64 {
-    let [n_mu, n_phi] = GROUND_SKY_STEPS;
-    let sin_s = (1.0 - mu_s * mu_s).max(0.0).sqrt();
-    let mut sum = 0.0;
-    for i in 0..n_mu {
-        let mu = (i as f64 + 0.5) / n_mu as f64;
-        let sin_v = (1.0 - mu * mu).sqrt();
-        for j in 0..n_phi {
-            // The sky is symmetric about the sun's vertical: azimuths 0–π, twice.
-            let phi = (j as f64 + 0.5) / n_phi as f64 * PI;
-            let cos_gamma = (mu * mu_s + sin_v * sin_s * phi.cos()).clamp(-1.0, 1.0);
-            sum += distribution(c, mu, cos_gamma.acos()) * mu;
-        }
-    }
-    sum * (1.0 / n_mu as f64) * (2.0 * PI / n_phi as f64) * c[9]
+    hemisphere_irradiance(mu_s, GROUND_SKY_STEPS, |mu, gamma| {
+        distribution(c, mu, gamma)
+    }) * c[9]
 }
 
 /// Whether `b` is RGB3's batch, whose lanes 0–2 are R, G, B read with weights ∫ȳ dλ.
@@ -327,7 +314,7 @@ fn rgb3_weights(b: &crate::wavelengths::WavelengthBatch) -> Option<[f64; 3]> {
 /// ([`ROW_LOWER`], [`ROW_UPPER`], [`ROW_SUN`], [`ROW_GROUND`]), per lane: the configurations of
 /// the two bands around the lane (each L_M times the band's weight; RGB3's lanes 0–2 the sRGB
 /// fit's channel, in lane units), the sun's transmittance (the fit's disk irradiance over the
-/// reference extraterrestrial irradiance) and the radiance of the Lambertian ground under the
+/// reference extraterrestrial irradiance, per band) and the radiance of the Lambertian ground under the
 /// fit's sun and sky. All of it scales with the lane's solar irradiance over the default
 /// spectrum's at 1 AU, so the fit follows the scene's sun (its spectrum and distance) as every
 /// model does.
@@ -374,20 +361,20 @@ pub fn batch_rows(p: &Params, layer: usize, mu_s: f64) -> BatchRows {
             rows[ROW_LOWER + k][lane] = low[k];
             rows[ROW_UPPER + k][lane] = high[k];
         }
-        // The sun between the bands around the lane (the end band's outside 320–720 nm: the
-        // transmittance is flat there).
-        let f = ((wavelength - BAND_CENTRES_NM[0]) / BAND_STEP_NM).clamp(0.0, 10.0);
-        let w = f - lower as f64;
-        let disk = |band: usize| {
-            sun_centre_radiance(band, t, elevation) * mean_limb_darkening(band) * sun_solid_angle
+        // The sun's transmittance, each band's disk irradiance over the reference spectrum
+        // averaged over the band, interpolated between the bands around the lane (the end
+        // band's outside 320–720 nm, where the transmittance is nearly flat).
+        let band_transmittance = |band: usize| {
+            let disk = sun_centre_radiance(band, t, elevation)
+                * mean_limb_darkening(band)
+                * sun_solid_angle;
+            let e = SolarSpectrum::default().irradiance(BAND_CENTRES_NM[band], BAND_STEP_NM);
+            if e > 0.0 { disk / e } else { 0.0 }
         };
-        let sun_irradiance =
-            (1.0 - w.clamp(0.0, 1.0)) * disk(lower) + w.clamp(0.0, 1.0) * disk(lower + 1);
-        let transmittance = if reference > 0.0 {
-            sun_irradiance / reference
-        } else {
-            0.0
-        };
+        let f = (wavelength - BAND_CENTRES_NM[0]) / BAND_STEP_NM;
+        let w = (f - lower as f64).clamp(0.0, 1.0);
+        let transmittance =
+            (1.0 - w) * band_transmittance(lower) + w * band_transmittance(lower + 1);
         rows[ROW_SUN][lane] = transmittance;
         let direct = extraterrestrial * transmittance * mu_s.max(0.0);
         let sky = sky_irradiance(&low, mu_s) + sky_irradiance(&high, mu_s);
@@ -401,52 +388,15 @@ pub fn turbidity(p: &Params) -> f64 {
     p.optical_depth_550.turbidity(TURBIDITY_RANGE)
 }
 
-/// Hosek and Wilkie's sky for one atmosphere.
-#[derive(Debug)]
-pub struct HosekWilkie {
-    pub params: Params,
-    pub turbidity: f64,
-    rows: SunRows,
-}
-
-impl SkyModel for HosekWilkie {
-    fn params(&self) -> &Params {
-        &self.params
-    }
-
-    fn radiance(&self, layer: usize, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
-        let mu_s = sun.dot(at.0.normalize());
-        let rows = self.rows.get(&self.params, batch_rows, mu_s);
-        sky::radiance(&self.params, &rows[layer], at, dir, sun)
-    }
-
-    fn table(&self, _: &str) -> Option<&Lut> {
-        None
-    }
-
-    /// The sun's disk through the fit's solar radiance function.
-    fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: Lanes) -> Lanes {
-        let p = &self.params;
-        let rows = self.rows.get(p, batch_rows, mu_s);
-        let visible = visible_fraction(h, mu_s, p.bottom_radius_m);
-        p.batches[layer].solar_irradiance
-            * rows[layer][ROW_SUN]
-            * visible
-            * disk.map(|d| d.max(0.0))
-    }
-
-    fn turbidity(&self) -> Option<f64> {
-        Some(self.turbidity)
-    }
-}
-
-/// The registry's constructor.
+/// The registry's constructor: the twin of the sky pass over [`batch_rows`].
 pub fn build(params: &Params, _: Viewpoint) -> Box<dyn SkyModel> {
-    Box::new(HosekWilkie {
-        turbidity: turbidity(params),
-        params: params.clone(),
-        rows: SunRows::default(),
-    })
+    Box::new(RowSky::new(
+        params,
+        batch_rows,
+        sky::radiance,
+        ROW_SUN,
+        turbidity(params),
+    ))
 }
 
 #[cfg(test)]
@@ -628,6 +578,37 @@ mod tests {
                     assert!(text.contains("Hosek") && text.contains(words), "{text}")
                 }
                 (want, got) => panic!("{altitude_m} m, {elevation_deg}°: {want:?} vs {got:?}"),
+            }
+        }
+    }
+
+    /// The sun's transmittance lies in (0, 1] at every lane of a fine spectral set, inside the
+    /// fit's bands and past them (SpectralN reaches 830 nm), with the sun high and low, and it
+    /// grows towards the red.
+    #[test]
+    fn the_suns_transmittance_is_a_transmittance_at_every_wavelength() {
+        let s = Scene::default();
+        let atm = crate::atmosphere::Atmosphere::for_scene(&s);
+        let p = Params::new(
+            &atm,
+            WavelengthSet::SpectralN(96),
+            crate::scene::Quality::Low,
+        );
+        for elevation_deg in [90.0, 30.0, 5.0] {
+            let mu_s = f64::sin(f64::to_radians(elevation_deg));
+            let mut last = 0.0;
+            for layer in 0..p.batches.len() {
+                let rows = batch_rows(&p, layer, mu_s);
+                for lane in 0..LANES {
+                    let t = rows[ROW_SUN][lane];
+                    let nm = p.batches[layer].colour.wavelengths_nm[lane];
+                    assert!(t > 0.0 && t <= 1.0, "sun {elevation_deg}°, {nm} nm: {t}");
+                    assert!(
+                        t >= 0.98 * last,
+                        "sun {elevation_deg}°, {nm} nm: {t} after {last}"
+                    );
+                    last = t;
+                }
             }
         }
     }

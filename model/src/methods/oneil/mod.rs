@@ -13,7 +13,8 @@
 //! it) and, it says, must be redone for another; here it is refitted ([`ScaleFit::new`]) to
 //! the scene's planet, top of the atmosphere and the scale height of its air (the exponential
 //! fit of `shared::exponential`): p₀ the zenith's value, p₁–p₄ by least squares on
-//! ln(column / H) over μ from 0 to 1 (good to 5 % down to μ = 0.2, 18 % at the horizon). Each
+//! ln(column / H) over μ from 0 to 1 (how closely it follows the column is the test
+//! `the_scale_function_follows_the_integrated_column`). Each
 //! constituent keeps its vertical optical depth (its column over H at the ground). Rays that
 //! meet the ground take the chapter's ground formulation: the angles at the ground point, the
 //! depth towards the camera as the difference of two looks up from below; the ground is
