@@ -1070,6 +1070,49 @@ mod tests {
         }
     }
 
+    /// Every model that refuses views outside its domain (the fits: Preetham, Hosek–Wilkie,
+    /// the CIE sky) draws ground views in daylight, and refuses a plane, space and a sun below
+    /// the horizon with a message that names the model and the limit, both when asked and when
+    /// its twin is built.
+    #[test]
+    fn every_refusing_model_names_itself_and_the_limit() {
+        let fits: Vec<&ModelInfo> = realtime().filter(|m| m.domain.refuses).collect();
+        assert!(fits.len() >= 3, "{}", fits.len());
+        for model in fits {
+            for (altitude_m, elevation_deg, refused) in [
+                (1.0, 30.0, None),
+                (1500.0, 0.5, None),
+                (10_000.0, 30.0, Some("above this model's domain")),
+                (400_000.0, 30.0, Some("above this model's domain")),
+                (1.0, -4.0, Some("below this model's domain")),
+            ] {
+                let mut s = Scene::default();
+                s.render.method = model.method;
+                s.camera.altitude_m = altitude_m;
+                s.sun = crate::scene::SunSettings::Angles {
+                    elevation_deg,
+                    azimuth_deg: 180.0,
+                };
+                let camera = Camera::new(&s.camera, 6_360_000.0, Projection::Perspective);
+                let asked = model.cannot_draw(&s).map(|e| e.to_string());
+                let built = build(&s, &camera).err().map(|e| e.to_string());
+                assert_eq!(asked, built, "{} at {altitude_m} m", model.id);
+                match (refused, asked) {
+                    (None, None) => {}
+                    (Some(words), Some(text)) => assert!(
+                        text.contains(model.label) && text.contains(words),
+                        "{}: {text}",
+                        model.id
+                    ),
+                    (want, got) => panic!(
+                        "{} at {altitude_m} m, sun {elevation_deg}°: {want:?} vs {got:?}",
+                        model.id
+                    ),
+                }
+            }
+        }
+    }
+
     #[test]
     fn domains_explain_what_they_exclude() {
         let d = Domain {

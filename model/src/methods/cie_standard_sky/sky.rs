@@ -3,7 +3,7 @@
 //! `shaders/cie_standard_sky/sky.wgsl`, reading the rows of [`super::batch_rows`].
 
 use super::{ROW_ABCD, ROW_E, ROW_GROUND, ROW_SCALE};
-use crate::geometry::hits_ground;
+use crate::methods::shared::sun_rows::ground_or_sky;
 use crate::methods::shared::{BatchRows, Lanes, Params};
 use glam::DVec3;
 use std::f64::consts::FRAC_PI_2;
@@ -23,18 +23,8 @@ pub fn sky(rows: &BatchRows, mu: f64, nu: f64) -> Lanes {
     rows[ROW_SCALE] * (gradation * indicatrix).max(0.0)
 }
 
-/// The radiance of one batch seen from `position` (m from the planet's centre, altitude `h`)
+/// The radiance of one batch seen from `at` (position m from the planet's centre, altitude m)
 /// along the unit direction `dir`, with the sun in direction `sun`, from the batch's rows.
-pub fn radiance(
-    p: &Params,
-    rows: &BatchRows,
-    (position, h): (DVec3, f64),
-    dir: DVec3,
-    sun: DVec3,
-) -> Lanes {
-    let mu = dir.dot(position.normalize());
-    if hits_ground(h, mu, p.bottom_radius_m) {
-        return rows[ROW_GROUND];
-    }
-    sky(rows, mu, dir.dot(sun))
+pub fn radiance(p: &Params, rows: &BatchRows, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
+    ground_or_sky(p, rows, at, (dir, sun), ROW_GROUND, sky)
 }

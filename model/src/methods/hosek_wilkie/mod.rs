@@ -402,7 +402,7 @@ pub fn build(params: &Params, _: Viewpoint) -> Box<dyn SkyModel> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{Method, Scene, SunSettings, WavelengthSet};
+    use crate::scene::{Method, Scene, WavelengthSet};
 
     fn band(nm: f64) -> usize {
         BAND_CENTRES_NM
@@ -550,36 +550,6 @@ mod tests {
         let atm = crate::atmosphere::Atmosphere::for_scene(&s);
         let p = Params::new(&atm, WavelengthSet::Spectral4, crate::scene::Quality::Low);
         assert_eq!(turbidity(&p), 10.0);
-    }
-
-    /// Ground views in daylight draw; a plane, space or a sun below the horizon get a message
-    /// that names the model and the limit.
-    #[test]
-    fn hosek_wilkie_refuses_views_off_the_ground_and_at_night() {
-        for (altitude_m, elevation_deg, refused) in [
-            (1.0, 30.0, None),
-            (1500.0, 0.5, None),
-            (10_000.0, 30.0, Some("above this model's domain")),
-            (1.0, -2.0, Some("below this model's domain")),
-        ] {
-            let mut s = Scene::default();
-            s.render.method = Method::HosekWilkie;
-            s.camera.altitude_m = altitude_m;
-            s.sun = SunSettings::Angles {
-                elevation_deg,
-                azimuth_deg: 180.0,
-            };
-            let why = crate::methods::info(Method::HosekWilkie)
-                .cannot_draw(&s)
-                .map(|e| e.to_string());
-            match (refused, why) {
-                (None, None) => {}
-                (Some(words), Some(text)) => {
-                    assert!(text.contains("Hosek") && text.contains(words), "{text}")
-                }
-                (want, got) => panic!("{altitude_m} m, {elevation_deg}°: {want:?} vs {got:?}"),
-            }
-        }
     }
 
     /// The sun's transmittance lies in (0, 1] at every lane of a fine spectral set, inside the

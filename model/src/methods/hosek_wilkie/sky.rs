@@ -3,7 +3,7 @@
 //! `shaders/hosek_wilkie/sky.wgsl`, reading the rows of [`super::batch_rows`].
 
 use super::{Configuration, ROW_GROUND, ROW_LOWER, ROW_UPPER, distribution};
-use crate::geometry::hits_ground;
+use crate::methods::shared::sun_rows::ground_or_sky;
 use crate::methods::shared::{BatchRows, Lanes, Params};
 use glam::DVec3;
 
@@ -27,19 +27,8 @@ pub fn sky(rows: &BatchRows, mu: f64, nu: f64) -> Lanes {
     })
 }
 
-/// The radiance of one batch seen from `position` (m from the planet's centre, altitude `h`)
+/// The radiance of one batch seen from `at` (position m from the planet's centre, altitude m)
 /// along the unit direction `dir`, with the sun in direction `sun`, from the batch's rows.
-pub fn radiance(
-    p: &Params,
-    rows: &BatchRows,
-    (position, h): (DVec3, f64),
-    dir: DVec3,
-    sun: DVec3,
-) -> Lanes {
-    let up = position.normalize();
-    let mu = dir.dot(up);
-    if hits_ground(h, mu, p.bottom_radius_m) {
-        return rows[ROW_GROUND];
-    }
-    sky(rows, mu, dir.dot(sun))
+pub fn radiance(p: &Params, rows: &BatchRows, at: (DVec3, f64), dir: DVec3, sun: DVec3) -> Lanes {
+    ground_or_sky(p, rows, at, (dir, sun), ROW_GROUND, sky)
 }

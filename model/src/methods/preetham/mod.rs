@@ -271,46 +271,7 @@ pub fn build(params: &Params, _: Viewpoint) -> Box<dyn SkyModel> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::camera::{Camera, Projection};
-    use crate::methods::{CannotDraw, build as build_for_scene};
-    use crate::scene::{Method, Scene, SunSettings};
-
-    fn scene(altitude_m: f64, elevation_deg: f64) -> Scene {
-        let mut s = Scene::default();
-        s.render.method = Method::Preetham;
-        s.camera.altitude_m = altitude_m;
-        s.sun = SunSettings::Angles {
-            elevation_deg,
-            azimuth_deg: 180.0,
-        };
-        s
-    }
-
-    fn outcome(s: &Scene) -> Result<(), CannotDraw> {
-        let camera = Camera::new(&s.camera, 6_360_000.0, Projection::Perspective);
-        build_for_scene(s, &camera).map(|_| ())
-    }
-
-    /// Ground views in daylight draw; a plane, space or a sun below the horizon get a message
-    /// that names the model and the limit.
-    #[test]
-    fn preetham_refuses_views_off_the_ground_and_at_night_with_a_message() {
-        assert!(outcome(&scene(1.0, 30.0)).is_ok());
-        assert!(outcome(&scene(1500.0, 0.5)).is_ok());
-        for (s, words) in [
-            (scene(10_000.0, 30.0), "above this model's domain"),
-            (scene(400_000.0, 30.0), "above this model's domain"),
-            (scene(1.0, -4.0), "below this model's domain"),
-        ] {
-            match outcome(&s) {
-                Err(e @ CannotDraw::Refused(..)) => {
-                    let text = e.to_string();
-                    assert!(text.contains("Preetham") && text.contains(words), "{text}");
-                }
-                other => panic!("expected a refusal, got {:?}", other.map(|_| "a model")),
-            }
-        }
-    }
+    use crate::scene::Scene;
 
     /// The turbidity follows the aerosol: T = 1 + τ_a/τ_R at 550 nm, inside the fit's 2–10.
     #[test]

@@ -98,6 +98,25 @@ impl SkyModel for RowSky {
     }
 }
 
+/// A row-drawn fit's radiance seen from `position` (m from the planet's centre, altitude `h`)
+/// along the unit direction `dir` with the sun in direction `sun`: row `ground_row` where the
+/// ray meets the ground, else `sky(rows, μ, ν)` of the view's zenith cosine μ and its cosine ν
+/// with the sun.
+pub fn ground_or_sky(
+    p: &Params,
+    rows: &BatchRows,
+    (position, h): (DVec3, f64),
+    (dir, sun): (DVec3, DVec3),
+    ground_row: usize,
+    sky: impl Fn(&BatchRows, f64, f64) -> Lanes,
+) -> Lanes {
+    let mu = dir.dot(position.normalize());
+    if crate::geometry::hits_ground(h, mu, p.bottom_radius_m) {
+        return rows[ground_row];
+    }
+    sky(rows, mu, dir.dot(sun))
+}
+
 /// ∫ L(μ, γ)·μ dω over the upper hemisphere, the sun at zenith cosine `mu_s`, for a sky
 /// `radiance(μ, γ)` of the view's zenith cosine μ and its angle γ (rad) from the sun: the
 /// midpoint rule over `steps` = [zenith cosines, azimuths], the azimuths over 0–π counted twice
