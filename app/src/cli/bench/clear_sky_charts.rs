@@ -159,19 +159,48 @@ fn lines<B: DrawingBackend>(
             PALETTE[i % PALETTE.len()]
         };
         let style = colour.stroke_width(if truth { 3 } else { 1 });
-        let dashed = !truth && (i / PALETTE.len()) % 2 == 1;
-        let series = if dashed {
-            chart.draw_series(DashedLineSeries::new(pts.clone(), 6, 4, style))
-        } else {
-            chart.draw_series(LineSeries::new(pts.clone(), style))
-        };
-        series
-            .map_err(err)?
-            .label(r.model.clone())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], style));
-        chart
-            .draw_series(pts.iter().map(|p| Circle::new(*p, 3, colour.filled())))
-            .map_err(err)?;
+        // Ten colours; past them the line's dashes and the marker tell the models apart (the
+        // legend shows the marker).
+        let group = if truth { 0 } else { (i / PALETTE.len()) % 3 };
+        let series = match group {
+            0 => chart.draw_series(LineSeries::new(pts.clone(), style)),
+            1 => chart.draw_series(DashedLineSeries::new(pts.clone(), 6, 4, style)),
+            _ => chart.draw_series(DashedLineSeries::new(pts.clone(), 2, 3, style)),
+        }
+        .map_err(err)?;
+        let label = r.model.clone();
+        match group {
+            0 => {
+                series
+                    .label(label)
+                    .legend(move |(x, y)| Circle::new((x + 9, y), 4, colour.filled()));
+                chart
+                    .draw_series(pts.iter().map(|p| Circle::new(*p, 3, colour.filled())))
+                    .map_err(err)?;
+            }
+            1 => {
+                series
+                    .label(label)
+                    .legend(move |(x, y)| TriangleMarker::new((x + 9, y), 5, colour.filled()));
+                chart
+                    .draw_series(
+                        pts.iter()
+                            .map(|p| TriangleMarker::new(*p, 4, colour.filled())),
+                    )
+                    .map_err(err)?;
+            }
+            _ => {
+                series
+                    .label(label)
+                    .legend(move |(x, y)| Cross::new((x + 9, y), 4, colour.stroke_width(2)));
+                chart
+                    .draw_series(
+                        pts.iter()
+                            .map(|p| Cross::new(*p, 3, colour.stroke_width(2))),
+                    )
+                    .map_err(err)?;
+            }
+        }
     }
     chart
         .configure_series_labels()
