@@ -25,7 +25,7 @@ pub mod sky;
 use super::preetham;
 use super::shared::sun_rows::{RowSky, hemisphere_irradiance};
 use super::shared::{BatchRows, Lanes, Params, TableSpec, Viewpoint};
-use super::{Domain, GROUND_VIEW_MAX_ALTITUDE_M, SkyModel};
+use super::{Domain, SkyModel};
 use crate::colour::cie1931;
 use crate::constants::{VISIBLE_MAX_NM, VISIBLE_MIN_NM};
 use crate::csv_table::tables;
@@ -38,13 +38,11 @@ use std::sync::OnceLock;
 pub const TABLES: [TableSpec; 0] = [];
 
 /// The standard's domain, refused outside: the sky seen from the ground with the sun up.
+/// It is Preetham's, with its own note: luminance distributions of measured skies, not of the
+/// scene's atmosphere, so no AOD range either.
 pub const DOMAIN: Domain = Domain {
-    max_altitude_m: GROUND_VIEW_MAX_ALTITUDE_M,
-    min_sun_elevation_deg: 0.0,
     note: "the CIE standard general sky describes the daytime sky's luminance seen from the ground",
-    // Luminance distributions of measured skies, not of the scene's atmosphere.
-    max_aod550: 0.0,
-    refuses: true,
+    ..super::preetham::DOMAIN
 };
 
 /// Rows of [`batch_rows`]: the lane's radiance per unit of f(χ)·φ(Z); a, b, c, d; e; the

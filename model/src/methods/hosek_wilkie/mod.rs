@@ -33,7 +33,7 @@ pub mod sky;
 
 use super::shared::sun_rows::{RowSky, hemisphere_irradiance};
 use super::shared::{BatchRows, Lanes, Params, TableSpec, Viewpoint};
-use super::{Domain, GROUND_VIEW_MAX_ALTITUDE_M, SkyModel};
+use super::{Domain, SkyModel};
 use crate::csv_table::{Table, tables};
 use crate::solar_spectrum::SolarSpectrum;
 use crate::wavelengths::{LANES, POINT_SET_SOLAR_BAND_NM};
@@ -44,13 +44,11 @@ use std::sync::OnceLock;
 pub const TABLES: [TableSpec; 0] = [];
 
 /// The fit's domain, refused outside: a viewer on the ground under a sun above the horizon.
+/// It is Preetham's, with its own note: a fit to its own atmosphere (no ozone, one aerosol), reached
+/// through the turbidity alone, so no AOD range either.
 pub const DOMAIN: Domain = Domain {
-    max_altitude_m: GROUND_VIEW_MAX_ALTITUDE_M,
-    min_sun_elevation_deg: 0.0,
     note: "Hosek and Wilkie's fit describes the daytime sky seen from the ground (turbidity 1–10, albedo 0–1, 320–720 nm)",
-    // A fit to its own atmosphere (no ozone, one aerosol), reached through the turbidity alone.
-    max_aod550: 0.0,
-    refuses: true,
+    ..super::preetham::DOMAIN
 };
 
 /// The spectral fit's band centres, nm.
