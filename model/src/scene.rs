@@ -332,6 +332,8 @@ pub enum Method {
     Flat,
     Raymarched,
     ONeil,
+    Nishita96,
+    Haber,
     Preetham,
     HosekWilkie,
     CieStandardSky,

@@ -184,6 +184,27 @@ pub fn wgsl_prelude() -> String {
         "u32",
         format!("{}u", shared::PROFILE_SAMPLES),
     );
+    {
+        use atmoscope_model::methods::shared::intensity_volume as iv;
+        let [vw, vh] = iv::SIZE;
+        c(
+            "INTENSITY_VOLUME_SIZE",
+            "vec2<u32>",
+            format!("vec2<u32>({vw}u, {vh}u)"),
+        );
+        c("INTENSITY_MU_NODES", "u32", format!("{}u", iv::MU_NODES));
+        c(
+            "INTENSITY_AZIMUTH_NODES",
+            "u32",
+            format!("{}u", iv::AZIMUTH_NODES),
+        );
+        c(
+            "INTENSITY_DIRECTIONS",
+            "u32",
+            format!("{}u", iv::DIRECTIONS),
+        );
+        c("INTENSITY_SOLID_ANGLE", "f32", f(iv::SOLID_ANGLE_SR));
+    }
     c(
         "MULTIPLE_SCATTERING_DIRECTIONS_SQRT",
         "u32",

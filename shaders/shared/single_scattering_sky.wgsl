@@ -5,9 +5,12 @@
 // or shared/moving_sky.wgsl for the moving sky).
 // globals.model[0] holds (view samples, sun intervals, way: 0 midpoint or 1 trapezoid rule
 // along the sun's ray, 2 Schuler's or 3 Gałaj's closed form on the exponential medium of
-// shared/exponential.wgsl, 0), from the model's registry constants; the model's common file
-// defines psi(layer, h, mu_s), its isotropic higher orders (zero in shared/no_higher_orders.wgsl,
-// Hillaire's Ψ_ms table in hillaire/common.wgsl for the -ms rows). Twin of
+// shared/exponential.wgsl, 0), from the model's registry constants; the model's common files
+// define higher_orders(layer, h, mu_s, mu, nu), the source of its higher orders per unit
+// scattering coefficient of air and aerosol, and ground_skylight(layer, mu_s_g), their light on
+// the ground (zero in shared/no_higher_orders.wgsl; Hillaire's Ψ_ms in
+// shared/isotropic_higher_orders.wgsl for the -ms rows; the intensity volume in
+// shared/intensity_volume.wgsl for nishita-96 and haber). Twin of
 // model::methods::shared::single_scattering_sky; the way to the sun is in shared/sun_route.wgsl.
 
 fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
@@ -36,12 +39,13 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     for (var s = 0u; s < n; s++) {
         let t = (f32(s) + 0.5) * dt;
         let at = altitude_along(h0, mu0, t);
+        let mu_t = clamp((r0 * mu0 + t) / at.y, -1.0, 1.0);
         let mu_s_t = clamp((r0 * mu_s0 + t * nu) / at.y, -1.0, 1.0);
         let m = medium(b, at.x);
         let sun_t = sun_transmittance_by_way(layer, at.x, mu_s_t);
-        let higher = psi(layer, at.x, mu_s_t);
-        let source = m.rayleigh_scattering * (phase_r * sun_t + higher)
-            + m.aerosol_scattering * (phase_a * sun_t + higher);
+        let higher = higher_orders(layer, at.x, mu_s_t, mu_t, nu);
+        let source = m.rayleigh_scattering * (phase_r * sun_t + higher[0])
+            + m.aerosol_scattering * (phase_a * sun_t + higher[1]);
         inscattered += throughput * segment_weight(m.extinction, dt) * source;
         throughput *= exp(-m.extinction * dt);
     }
@@ -49,7 +53,8 @@ fn radiance(layer: u32, dir: vec3<f32>) -> vec4<f32> {
     if ground {
         let mu_s_g = clamp((r0 * mu_s0 + t_max * nu) / big_r, -1.0, 1.0);
         let sun_g = sun_transmittance_by_way(layer, 0.0, mu_s_g);
-        l += throughput * b.ground_albedo / PI * b.solar_irradiance * sun_g * max(mu_s_g, 0.0);
+        let lit = sun_g * max(mu_s_g, 0.0) + ground_skylight(layer, mu_s_g);
+        l += throughput * b.ground_albedo / PI * b.solar_irradiance * lit;
     }
     return l;
 }

@@ -16,9 +16,11 @@ pub mod flat;
 pub mod galaj_spline;
 pub mod galaj_taylor;
 pub mod garcia_linan;
+pub mod haber;
 pub mod hillaire;
 pub mod hosek_wilkie;
 pub mod nishita;
+pub mod nishita_96;
 pub mod oneil;
 pub mod path_tracer;
 pub mod preetham;
@@ -692,6 +694,44 @@ pub const MODELS: &[ModelInfo] = &[
             stress_cases: 8,
         },
         build: Some(oneil::build),
+    },
+    ModelInfo {
+        method: Method::Nishita96,
+        id: "nishita-96",
+        label: "Nishita 1996",
+        citation: "T. Nishita, Y. Dobashi, K. Kaneda, H. Yamashita (1996), Display Method of the Sky Color Taking into Account Multiple Scattering, Pacific Graphics",
+        summary: "The nishita row's single scattering plus the second order, gathered at every view sample from an intensity volume: the once-scattered light stored per altitude and sun angle for 64 directions, computed once per atmosphere.",
+        domain: nishita_96::DOMAIN,
+        tables: &nishita_96::TABLES,
+        gathers_orders: false,
+        refittable: false,
+        baseline: false,
+        stated: Stated {
+            daylight_delta_e2000: Some(14.5),
+            twilight_delta_e2000: None,
+            probe_relative_error: Some(0.65),
+            stress_cases: 4,
+        },
+        build: Some(nishita_96::build),
+    },
+    ModelInfo {
+        method: Method::Haber,
+        id: "haber",
+        label: "Haber 2005",
+        citation: "J. Haber, M. Magnor, H.-P. Seidel (2005), Physically based simulation of twilight phenomena, ACM Transactions on Graphics 24(4), 1353–1373",
+        summary: "Multiple scattering for twilight: the intensity volume of nishita-96 iterated order by order to the scene's count (each order gathered from the one before, Earth's shadow included), the view marching single scattering and gathering one order more; no refraction.",
+        domain: haber::DOMAIN,
+        tables: &haber::TABLES,
+        gathers_orders: true,
+        refittable: false,
+        baseline: false,
+        stated: Stated {
+            daylight_delta_e2000: Some(14.5),
+            twilight_delta_e2000: Some(20.0),
+            probe_relative_error: Some(0.65),
+            stress_cases: 4,
+        },
+        build: Some(haber::build),
     },
     ModelInfo {
         method: Method::Preetham,

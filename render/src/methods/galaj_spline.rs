@@ -50,7 +50,12 @@ pub const METHODS: &[GpuMethod] = &[
     GpuMethod {
         method: Method::GalajSplineMs,
         lowest_table_mu_s: None,
-        common: &[HILLAIRE_HIGHER_ORDERS, EXPONENTIAL, COLUMNS],
+        common: &[
+            HILLAIRE_HIGHER_ORDERS[0],
+            HILLAIRE_HIGHER_ORDERS[1],
+            EXPONENTIAL,
+            COLUMNS,
+        ],
         constants: |p| single_scattering_sky::constants(p, Way::GalajSpline),
         batch_rows: None,
         passes: &[

@@ -211,8 +211,12 @@ pub const NESTED_MARCH_PASSES: [PassSpec; 3] = [
 /// Single scattering alone: the `psi` of the table-free sky pass is zero.
 pub const NO_HIGHER_ORDERS: Shader = shader!("shared/no_higher_orders.wgsl");
 
-/// Hillaire's Ψ_ms table as a single-scattering model's higher orders (the `-ms` rows).
-pub const HILLAIRE_HIGHER_ORDERS: Shader = shader!("hillaire/common.wgsl");
+/// Hillaire's Ψ_ms table as a single-scattering model's higher orders (the `-ms` rows): the
+/// table's look-up, and the sky pass's higher orders from it.
+pub const HILLAIRE_HIGHER_ORDERS: [Shader; 2] = [
+    shader!("hillaire/common.wgsl"),
+    shader!("shared/isotropic_higher_orders.wgsl"),
+];
 
 /// The exponential medium and its closed forms of the optical depth along a ray (the analytic
 /// ways to the sun, and Leenman's depths along the view too).
@@ -226,8 +230,12 @@ pub const CLOSED_FORM_COLUMNS: Shader = shader!("shared/closed_form_columns.wgsl
 /// Hillaire's Ψ_ms (the `-ms` rows); the exponential medium and its columns either way.
 pub const SINGLE_SCATTERING_COMMON: [Shader; 3] =
     [NO_HIGHER_ORDERS, EXPONENTIAL, CLOSED_FORM_COLUMNS];
-pub const SINGLE_SCATTERING_MS_COMMON: [Shader; 3] =
-    [HILLAIRE_HIGHER_ORDERS, EXPONENTIAL, CLOSED_FORM_COLUMNS];
+pub const SINGLE_SCATTERING_MS_COMMON: [Shader; 4] = [
+    HILLAIRE_HIGHER_ORDERS[0],
+    HILLAIRE_HIGHER_ORDERS[1],
+    EXPONENTIAL,
+    CLOSED_FORM_COLUMNS,
+];
 
 /// The Ψ_ms table's pass (Hillaire's), which the single-scattering `-ms` rows share.
 pub const MULTIPLE_SCATTERING_PASS: PassSpec = PassSpec::table(

@@ -6,6 +6,7 @@
 //! in [`crate::geometry`]. WGSL twins are in `shaders/common/`.
 
 pub mod exponential;
+pub mod intensity_volume;
 pub mod lut;
 pub mod march;
 pub mod moving_sky;

@@ -98,7 +98,7 @@ pub struct Params {
     pub profile: Vec<[f64; 4]>,
     pub batches: Vec<BatchOptics>,
     pub steps: Steps,
-    /// Scattering orders the models that gather them one by one compute (Bruneton, Elek).
+    /// Scattering orders the models that gather them one by one compute (Bruneton, Elek, Haber).
     pub scattering_orders: u32,
     /// The fitted constants the models that have them use (García Liñán).
     pub fitted_constants: FittedConstants,

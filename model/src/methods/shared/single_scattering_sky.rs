@@ -41,8 +41,8 @@ pub fn constants(p: &Params, way: Way) -> [f64; 12] {
 /// along the unit direction `dir`, with the sun in direction `sun` (the sun's disk not
 /// included: `SkyModel::sun`): `view_steps` midpoint samples, each lit through
 /// `sun_transmittance(h, mu_s)` (per lane, the disk's visible fraction included), plus the
-/// isotropic higher orders `psi(h, mu_s)` (sr⁻¹ per unit solar irradiance; zero for single
-/// scattering alone) times the local scattering coefficient.
+/// model's `higher` orders ([`HigherOrders`]; none for single scattering alone); the ground
+/// behind is lit by the sun and by the higher orders' skylight.
 #[allow(clippy::too_many_arguments)]
 pub fn radiance(
     p: &Params,
@@ -52,7 +52,7 @@ pub fn radiance(
     sun: DVec3,
     view_steps: u32,
     sun_transmittance: impl Fn(f64, f64) -> Lanes,
-    psi: impl Fn(f64, f64) -> Lanes,
+    higher: &dyn HigherOrders,
 ) -> Lanes {
     let big_r = p.bottom_radius_m;
     let Some(c) = camera_coords(p, (position, h), dir, sun) else {
@@ -73,14 +73,15 @@ pub fn radiance(
     for s in 0..view_steps {
         let t = (f64::from(s) + 0.5) * dt;
         let (h_t, r_t) = altitude_along(h0, mu0, t, big_r);
+        let mu_t = ((r0 * mu0 + t) / r_t).clamp(-1.0, 1.0);
         let mu_s_t = ((r0 * mu_s0 + t * nu) / r_t).clamp(-1.0, 1.0);
         let m = p.medium(layer, h_t);
         let sun_t = sun_transmittance(h_t, mu_s_t);
-        let higher = psi(h_t, mu_s_t);
+        let (air, aerosol) = higher.source(p, layer, (h_t, mu_s_t), mu_t, nu);
         let weight = segment_weight(m.extinction, dt);
         for i in 0..4 {
-            let source = m.rayleigh_scattering[i] * (phase_r[i] * sun_t[i] + higher[i])
-                + m.aerosol_scattering[i] * (phase_a[i] * sun_t[i] + higher[i]);
+            let source = m.rayleigh_scattering[i] * (phase_r[i] * sun_t[i] + air[i])
+                + m.aerosol_scattering[i] * (phase_a[i] * sun_t[i] + aerosol[i]);
             inscattered[i] += throughput[i] * weight[i] * source;
             throughput[i] *= (-m.extinction[i] * dt).exp();
         }
@@ -89,9 +90,11 @@ pub fn radiance(
     if c.ground {
         let mu_s_g = ((r0 * mu_s0 + t_max * nu) / big_r).clamp(-1.0, 1.0);
         let sun_g = sun_transmittance(0.0, mu_s_g);
+        let sky_g = higher.ground_irradiance(p, layer, mu_s_g);
         for i in 0..4 {
-            let ground =
-                b.ground_albedo[i] / PI * b.solar_irradiance[i] * sun_g[i] * mu_s_g.max(0.0);
+            let ground = b.ground_albedo[i] / PI
+                * b.solar_irradiance[i]
+                * (sun_g[i] * mu_s_g.max(0.0) + sky_g[i]);
             l[i] += throughput[i] * ground;
         }
     }
@@ -336,24 +339,79 @@ impl SunRoute {
     }
 }
 
+/// What a single-scattering model adds to the sunlight at every sample of its view march: the
+/// light of the higher orders, and the skylight on the ground behind.
+pub trait HigherOrders: Send + Sync {
+    /// The higher orders' scattering source at (h, mu_s) towards the view (zenith cosine `mu`,
+    /// view–sun cosine `nu`), per unit scattering coefficient of (air, aerosol), sr⁻¹ per unit
+    /// solar irradiance.
+    fn source(&self, p: &Params, layer: usize, at: (f64, f64), mu: f64, nu: f64) -> (Lanes, Lanes);
+    /// The skylight on the ground where the sun's zenith cosine is `mu_s_g`, per unit solar
+    /// irradiance (zero where the model lights the ground by the sun alone).
+    fn ground_irradiance(&self, _p: &Params, _layer: usize, _mu_s_g: f64) -> Lanes {
+        Lanes::ZERO
+    }
+    /// The model's table `id` that holds them, if any.
+    fn table(&self, id: &str) -> Option<&Lut>;
+}
+
+/// Single scattering alone.
+pub struct NoHigherOrders;
+
+impl HigherOrders for NoHigherOrders {
+    fn source(&self, _: &Params, _: usize, _: (f64, f64), _: f64, _: f64) -> (Lanes, Lanes) {
+        (Lanes::ZERO, Lanes::ZERO)
+    }
+    fn table(&self, _: &str) -> Option<&Lut> {
+        None
+    }
+}
+
 /// Hillaire's (2020) transmittance and multiple-scattering tables, added to a single-scattering
-/// model as its isotropic higher orders Ψ_ms.
-pub struct HigherOrders {
+/// model as its isotropic higher orders Ψ_ms (the same for both constituents and every view).
+pub struct HillaireHigherOrders {
     pub transmittance: Lut,
     pub multiple_scattering: Lut,
 }
 
-impl HigherOrders {
-    pub fn compute(p: &Params) -> HigherOrders {
+impl HillaireHigherOrders {
+    pub fn compute(p: &Params) -> HillaireHigherOrders {
         let transmittance = super::transmittance::compute_transmittance_lut(p);
         let multiple_scattering =
             crate::methods::hillaire::multiple_scattering::compute_multiple_scattering_lut(
                 p,
                 &transmittance,
             );
-        HigherOrders {
+        HillaireHigherOrders {
             transmittance,
             multiple_scattering,
+        }
+    }
+}
+
+impl HigherOrders for HillaireHigherOrders {
+    fn source(
+        &self,
+        p: &Params,
+        layer: usize,
+        (h, mu_s): (f64, f64),
+        _: f64,
+        _: f64,
+    ) -> (Lanes, Lanes) {
+        let psi = crate::methods::hillaire::multiple_scattering::multiple_scattering(
+            p,
+            &self.multiple_scattering,
+            layer,
+            h,
+            mu_s,
+        );
+        (psi, psi)
+    }
+    fn table(&self, id: &str) -> Option<&Lut> {
+        match id {
+            "transmittance" => Some(&self.transmittance),
+            "multiple-scattering" => Some(&self.multiple_scattering),
+            _ => None,
         }
     }
 }
@@ -379,12 +437,12 @@ pub const TABLES_WITH_HIGHER_ORDERS_NESTED: [TableSpec; 4] = [
 ];
 
 /// A single-scattering model: the optics, the view march's sample count, the model's way to
-/// the sun, and optionally Hillaire's higher orders.
+/// the sun, and the higher orders it adds ([`NoHigherOrders`] for single scattering alone).
 pub struct SingleScattering {
     pub params: Params,
     pub view_steps: u32,
     pub sun_path: SunRoute,
-    pub higher_orders: Option<HigherOrders>,
+    pub higher_orders: Box<dyn HigherOrders>,
 }
 
 impl crate::methods::SkyModel for SingleScattering {
@@ -413,12 +471,7 @@ impl crate::methods::SkyModel for SingleScattering {
         if id == SUN_ROUTE_TABLE.id && self.sun_path.way.tabulated_in_motion() {
             return Some(self.sun_path.table(&self.params));
         }
-        let t = self.higher_orders.as_ref()?;
-        match id {
-            "transmittance" => Some(&t.transmittance),
-            "multiple-scattering" => Some(&t.multiple_scattering),
-            _ => None,
-        }
+        self.higher_orders.table(id)
     }
 
     fn sun(&self, layer: usize, h: f64, mu_s: f64, disk: Lanes) -> Lanes {
@@ -437,20 +490,16 @@ impl SingleScattering {
         sun_t: impl Fn(f64, f64) -> Lanes,
     ) -> Lanes {
         let p = &self.params;
-        match &self.higher_orders {
-            None => radiance(p, layer, at, dir, sun, self.view_steps, sun_t, |_, _| {
-                Lanes::ZERO
-            }),
-            Some(t) => radiance(p, layer, at, dir, sun, self.view_steps, sun_t, |h, mu_s| {
-                crate::methods::hillaire::multiple_scattering::multiple_scattering(
-                    p,
-                    &t.multiple_scattering,
-                    layer,
-                    h,
-                    mu_s,
-                )
-            }),
-        }
+        radiance(
+            p,
+            layer,
+            at,
+            dir,
+            sun,
+            self.view_steps,
+            sun_t,
+            self.higher_orders.as_ref(),
+        )
     }
 }
 
@@ -462,6 +511,10 @@ pub fn build(p: &Params, way: Way, with_higher_orders: bool) -> Box<dyn crate::m
         params: p.clone(),
         view_steps: steps(p).0,
         sun_path: SunRoute::new(p, way),
-        higher_orders: with_higher_orders.then(|| HigherOrders::compute(p)),
+        higher_orders: if with_higher_orders {
+            Box::new(HillaireHigherOrders::compute(p))
+        } else {
+            Box::new(NoHigherOrders)
+        },
     })
 }
