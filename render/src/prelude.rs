@@ -192,18 +192,23 @@ pub fn wgsl_prelude() -> String {
             "vec2<u32>",
             format!("vec2<u32>({vw}u, {vh}u)"),
         );
-        c("INTENSITY_MU_NODES", "u32", format!("{}u", iv::MU_NODES));
         c(
-            "INTENSITY_AZIMUTH_NODES",
+            "INTENSITY_AZIMUTH_BANDS",
             "u32",
-            format!("{}u", iv::AZIMUTH_NODES),
+            format!("{}u", iv::AZIMUTH_BANDS),
         );
         c(
             "INTENSITY_DIRECTIONS",
             "u32",
             format!("{}u", iv::DIRECTIONS),
         );
-        c("INTENSITY_SOLID_ANGLE", "f32", f(iv::SOLID_ANGLE_SR));
+        c("INTENSITY_SUBCELLS", "u32", format!("{}u", iv::SUBCELLS));
+        let edges = iv::band_edge_cosines();
+        c(
+            "INTENSITY_BAND_EDGE_COS",
+            &format!("array<f32, {}>", edges.len()),
+            format!("array<f32, {}>({})", edges.len(), edges.map(f).join(", ")),
+        );
     }
     c(
         "MULTIPLE_SCATTERING_DIRECTIONS_SQRT",

@@ -9,23 +9,29 @@ fn previous_texel(t: Taps) -> vec4<f32> {
 }
 
 fn order_source(layer: u32, h: f32, mu_s: f32, mu: f32, nu: f32) -> array<vec4<f32>, 2> {
-    let azimuth = view_azimuth(mu, mu_s, nu);
+    let view = view_in_sun_frame(mu, mu_s, nu);
     var s = array<vec4<f32>, 2>(vec4<f32>(0.0), vec4<f32>(0.0));
+    var ws = s;
     for (var k = 0u; k < INTENSITY_DIRECTIONS; k++) {
         let l = previous_texel(intensity_taps(layer, h, mu_s, k));
-        let w = gather_weights(layer, mu, azimuth, k);
+        let w = gather_weights(layer, view, k);
         s[0] += w[0] * l;
         s[1] += w[1] * l;
+        ws[0] += w[0];
+        ws[1] += w[1];
     }
-    return s;
+    return normalised_gather(s, ws);
 }
 
 fn order_ground(layer: u32, mu_s_g: f32) -> vec4<f32> {
     var e = vec4<f32>(0.0);
-    for (var k = 0u; k < INTENSITY_DIRECTIONS / 2u; k++) {
-        e += previous_texel(intensity_taps(layer, 0.0, mu_s_g, k)) * intensity_direction(k).x;
+    for (var k = 0u; k < INTENSITY_DIRECTIONS; k++) {
+        let weight = projected_solid_angle(k, mu_s_g);
+        if weight > 0.0 {
+            e += previous_texel(intensity_taps(layer, 0.0, mu_s_g, k)) * (2.0 * weight);
+        }
     }
-    return e * (2.0 * INTENSITY_SOLID_ANGLE);
+    return e;
 }
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)

@@ -1,9 +1,10 @@
 // Nishita et al.'s (1996) intensity volumes (model::methods::shared::intensity_volume): the
-// scattered radiance per unit solar irradiance at each (μ_s, h) for INTENSITY_DIRECTIONS
-// directions fixed in the local frame (zenith, the sun's azimuth), each with its mirror image
-// across the sun's vertical plane; and, as the higher orders of the table-free sky pass
-// (shared/single_scattering_sky.wgsl), the light of intensity_volume_lut gathered towards the
-// view and the skylight it sends onto the ground. Twin of the module's look-ups and gather.
+// scattered radiance per unit solar irradiance at each (μ_s, h) for INTENSITY_DIRECTIONS cells
+// centred on the sun (bands of angle from it, INTENSITY_BAND_EDGE_COS, times bands of azimuth
+// about it), each with its mirror image across the sun's vertical plane; and, as the higher
+// orders of the table-free sky pass (shared/single_scattering_sky.wgsl), the light of
+// intensity_volume_lut gathered towards the view and the skylight it sends onto the ground.
+// Twin of the module's look-ups and gather.
 
 // The texel (x: μ_s, y: h, z: direction, w: batch) of a Volume dispatch's invocation, and its
 // index in a volume's buffer.
@@ -15,14 +16,46 @@ fn intensity_index(v: vec4<u32>) -> u32 {
     return ((v.w * INTENSITY_DIRECTIONS + v.z) * INTENSITY_VOLUME_SIZE.y + v.y) * INTENSITY_VOLUME_SIZE.x + v.x;
 }
 
-// Zenith cosine μ and azimuth from the sun φ of table direction k (midpoints of equal bands).
-fn intensity_direction(k: u32) -> vec2<f32> {
-    let i = k / INTENSITY_AZIMUTH_NODES;
-    let a = k % INTENSITY_AZIMUTH_NODES;
-    return vec2<f32>(
-        1.0 - 2.0 * (f32(i) + 0.5) / f32(INTENSITY_MU_NODES),
-        PI * (f32(a) + 0.5) / f32(INTENSITY_AZIMUTH_NODES),
-    );
+// Cell k relative to the sun: the cosine of its centre's angle from the sun, its azimuth about
+// the sun (0 towards the zenith) and the solid angle of one of its two mirror cells; twin of
+// intensity_volume::cell.
+fn intensity_cell(k: u32) -> vec3<f32> {
+    let band = k / INTENSITY_AZIMUTH_BANDS;
+    let c0 = INTENSITY_BAND_EDGE_COS[band];
+    let c1 = INTENSITY_BAND_EDGE_COS[band + 1u];
+    let width = PI / f32(INTENSITY_AZIMUTH_BANDS);
+    return vec3<f32>(0.5 * (c0 + c1), width * (f32(k % INTENSITY_AZIMUTH_BANDS) + 0.5), (c0 - c1) * width);
+}
+
+fn sine_of(cosine: f32) -> f32 {
+    return sqrt(max(1.0 - cosine * cosine, 0.0));
+}
+
+// The zenith cosine and the view–sun cosine of cell k where the sun's zenith cosine is mu_s.
+fn intensity_direction(k: u32, mu_s: f32) -> vec2<f32> {
+    let cell = intensity_cell(k);
+    let mu = cell.x * mu_s + sine_of(cell.x) * cos(cell.y) * sine_of(mu_s);
+    return vec2<f32>(clamp(mu, -1.0, 1.0), cell.x);
+}
+
+// ∫ max(μ, 0) dΩ over one of cell k's mirror cells, by the midpoint rule on an
+// INTENSITY_SUBCELLS² grid of its cos α and β; twin of intensity_volume::projected_solid_angle.
+fn projected_solid_angle(k: u32, mu_s: f32) -> f32 {
+    let band = k / INTENSITY_AZIMUTH_BANDS;
+    let c0 = INTENSITY_BAND_EDGE_COS[band];
+    let c1 = INTENSITY_BAND_EDGE_COS[band + 1u];
+    let width = PI / f32(INTENSITY_AZIMUTH_BANDS);
+    let n = f32(INTENSITY_SUBCELLS);
+    let s_s = sine_of(mu_s);
+    var sum = 0.0;
+    for (var i = 0u; i < INTENSITY_SUBCELLS; i++) {
+        let cos_alpha = c0 + (c1 - c0) * (f32(i) + 0.5) / n;
+        for (var j = 0u; j < INTENSITY_SUBCELLS; j++) {
+            let beta = width * (f32(k % INTENSITY_AZIMUTH_BANDS) + (f32(j) + 0.5) / n);
+            sum += max(cos_alpha * mu_s + sine_of(cos_alpha) * cos(beta) * s_s, 0.0);
+        }
+    }
+    return sum * (c0 - c1) * width / (n * n);
 }
 
 fn intensity_texel_from_h_mu_s(h: f32, mu_s: f32) -> vec2<f32> {
@@ -37,34 +70,43 @@ fn intensity_h_mu_s_from_texel(f: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(v * v * thickness(), sign(s) * s * s);
 }
 
-// The view's azimuth from the sun as (cos φ, sin φ ≥ 0) where the view has zenith cosine mu,
-// the sun mu_s and the two the cosine nu; any azimuth where either is vertical.
-fn view_azimuth(mu: f32, mu_s: f32, nu: f32) -> vec2<f32> {
-    let s = sqrt(max(1.0 - mu * mu, 0.0)) * sqrt(max(1.0 - mu_s * mu_s, 0.0));
-    var c = 1.0;
-    if s > 1e-6 {
-        c = clamp((nu - mu * mu_s) / s, -1.0, 1.0);
+// The view (zenith cosine mu, view–sun cosine nu) in the sun's frame where the sun's zenith
+// cosine is mu_s: (along the sun, towards the zenith along the great circle through both, across
+// it); twin of the frame in intensity_volume::gathered.
+fn view_in_sun_frame(mu: f32, mu_s: f32, nu: f32) -> vec3<f32> {
+    let s = sine_of(mu);
+    let s_s = sine_of(mu_s);
+    var cos_phi = 1.0;
+    if s * s_s > 1e-6 {
+        cos_phi = clamp((nu - mu * mu_s) / (s * s_s), -1.0, 1.0);
     }
-    return vec2<f32>(c, sqrt(max(1.0 - c * c, 0.0)));
+    return vec3<f32>(nu, mu * s_s - s * cos_phi * mu_s, s * sine_of(cos_phi));
 }
 
-// The phase functions (air, aerosol) between the view (zenith cosine mu, azimuth `azimuth` from
-// view_azimuth) and table direction k with its mirror image, times their solid angle.
-fn gather_weights(layer: u32, mu: f32, azimuth: vec2<f32>, k: u32) -> array<vec4<f32>, 2> {
-    let d = intensity_direction(k);
-    let a = mu * d.x;
-    let b = sqrt(max(1.0 - mu * mu, 0.0)) * sqrt(max(1.0 - d.x * d.x, 0.0));
+// The phase functions (air, aerosol) between the view (`view` from view_in_sun_frame) and cell
+// k with its mirror image, times the cell's solid angle.
+fn gather_weights(layer: u32, view: vec3<f32>, k: u32) -> array<vec4<f32>, 2> {
+    let cell = intensity_cell(k);
+    let sin_alpha = sine_of(cell.x);
+    let along = cell.x * view.x + sin_alpha * cos(cell.y) * view.y;
     let rho = batches[layer].rayleigh_depolarisation;
     var w = array<vec4<f32>, 2>(vec4<f32>(0.0), vec4<f32>(0.0));
     for (var side = 0; side < 2; side++) {
-        let cross_term = select(-1.0, 1.0, side == 0) * azimuth.y * sin(d.y);
-        let cos_theta = clamp(a + b * (azimuth.x * cos(d.y) + cross_term), -1.0, 1.0);
-        w[0] += rayleigh_phase(cos_theta, rho);
-        w[1] += aerosol_phase(cos_theta, layer);
+        let across = select(-1.0, 1.0, side == 0) * sin_alpha * sin(cell.y) * view.z;
+        let cos_theta = clamp(along + across, -1.0, 1.0);
+        w[0] += rayleigh_phase(cos_theta, rho) * cell.z;
+        w[1] += aerosol_phase(cos_theta, layer) * cell.z;
     }
-    w[0] *= INTENSITY_SOLID_ANGLE;
-    w[1] *= INTENSITY_SOLID_ANGLE;
     return w;
+}
+
+// A gather's sums `s` over the sums of its weights `w`: each phase's quadrature normalised to
+// its integral, 1 (intensity_volume::normalised); zero where every weight is.
+fn normalised_gather(s: array<vec4<f32>, 2>, w: array<vec4<f32>, 2>) -> array<vec4<f32>, 2> {
+    return array<vec4<f32>, 2>(
+        select(vec4<f32>(0.0), s[0] / w[0], w[0] > vec4<f32>(0.0)),
+        select(vec4<f32>(0.0), s[1] / w[1], w[1] > vec4<f32>(0.0)),
+    );
 }
 
 fn intensity_taps(layer: u32, h: f32, mu_s: f32, k: u32) -> Taps {
@@ -74,28 +116,33 @@ fn intensity_taps(layer: u32, h: f32, mu_s: f32, k: u32) -> Taps {
 // The higher orders of the sky pass: the volume's light gathered at (h, mu_s) towards the view
 // (zenith cosine mu, view–sun cosine nu), per unit scattering coefficient of (air, aerosol).
 fn higher_orders(layer: u32, h: f32, mu_s: f32, mu: f32, nu: f32) -> array<vec4<f32>, 2> {
-    let azimuth = view_azimuth(mu, mu_s, nu);
+    let view = view_in_sun_frame(mu, mu_s, nu);
     var s = array<vec4<f32>, 2>(vec4<f32>(0.0), vec4<f32>(0.0));
+    var ws = s;
     for (var k = 0u; k < INTENSITY_DIRECTIONS; k++) {
         let t = intensity_taps(layer, h, mu_s, k);
         let l = blend(intensity_volume_lut[t.i.x], intensity_volume_lut[t.i.y],
             intensity_volume_lut[t.i.z], intensity_volume_lut[t.i.w], t.w);
-        let w = gather_weights(layer, mu, azimuth, k);
+        let w = gather_weights(layer, view, k);
         s[0] += w[0] * l;
         s[1] += w[1] * l;
+        ws[0] += w[0];
+        ws[1] += w[1];
     }
-    return s;
+    return normalised_gather(s, ws);
 }
 
 // The volume's skylight on the ground where the sun's zenith cosine is mu_s_g, per unit solar
-// irradiance: the directions above the horizon (the first half), weighted by their cosine.
+// irradiance: each cell's light weighted by its part of the cosine-weighted hemisphere.
 fn ground_skylight(layer: u32, mu_s_g: f32) -> vec4<f32> {
     var e = vec4<f32>(0.0);
-    for (var k = 0u; k < INTENSITY_DIRECTIONS / 2u; k++) {
-        let t = intensity_taps(layer, 0.0, mu_s_g, k);
-        let l = blend(intensity_volume_lut[t.i.x], intensity_volume_lut[t.i.y],
-            intensity_volume_lut[t.i.z], intensity_volume_lut[t.i.w], t.w);
-        e += l * intensity_direction(k).x;
+    for (var k = 0u; k < INTENSITY_DIRECTIONS; k++) {
+        let weight = projected_solid_angle(k, mu_s_g);
+        if weight > 0.0 {
+            let t = intensity_taps(layer, 0.0, mu_s_g, k);
+            e += blend(intensity_volume_lut[t.i.x], intensity_volume_lut[t.i.y],
+                intensity_volume_lut[t.i.z], intensity_volume_lut[t.i.w], t.w) * (2.0 * weight);
+        }
     }
-    return e * (2.0 * INTENSITY_SOLID_ANGLE);
+    return e;
 }

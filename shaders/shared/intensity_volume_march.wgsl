@@ -1,5 +1,5 @@
 // The ray of an intensity-volume texel (model::methods::shared::intensity_volume::march): from
-// (h, mu_s) along table direction k, the source the pass defines (order_source: the light
+// (h, mu_s) along cell k's direction, the source the pass defines (order_source: the light
 // scattered towards the ray per unit scattering coefficient of air and aerosol) marched in the
 // multiple-scattering count of segments, quadratic towards the start, and the ground's
 // order_ground(mu_s_g) behind it through the Lambertian albedo.
@@ -9,9 +9,9 @@ fn intensity_march(v: vec4<u32>) -> vec4<f32> {
     let at = intensity_h_mu_s_from_texel(vec2<f32>(f32(v.x), f32(v.y)));
     let h = at.x;
     let mu_s = at.y;
-    let d = intensity_direction(v.z);
+    let d = intensity_direction(v.z, mu_s);
     let mu = d.x;
-    let nu = clamp(mu * mu_s + sqrt(max(1.0 - mu * mu, 0.0)) * sqrt(max(1.0 - mu_s * mu_s, 0.0)) * cos(d.y), -1.0, 1.0);
+    let nu = d.y;
     let r = bottom_radius() + h;
     let hit = hits_ground(h, mu);
     var t_max = distance_to_top(h, mu);

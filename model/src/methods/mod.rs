@@ -700,7 +700,7 @@ pub const MODELS: &[ModelInfo] = &[
         id: "nishita-96",
         label: "Nishita 1996",
         citation: "T. Nishita, Y. Dobashi, K. Kaneda, H. Yamashita (1996), Display Method of the Sky Color Taking into Account Multiple Scattering, Pacific Graphics",
-        summary: "The nishita row's single scattering plus the second order, gathered at every view sample from an intensity volume: the once-scattered light stored per altitude and sun angle for 64 directions, computed once per atmosphere.",
+        summary: "The nishita row's single scattering plus the second order, gathered at every view sample from an intensity volume: the once-scattered light stored per altitude and sun angle for 64 cells of directions centred on the sun, computed once per atmosphere.",
         domain: nishita_96::DOMAIN,
         tables: &nishita_96::TABLES,
         gathers_orders: false,

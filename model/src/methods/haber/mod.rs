@@ -78,8 +78,8 @@ mod tests {
     use crate::methods::shared::optics::tests::params;
     use glam::DVec3;
 
-    /// With the sun below the horizon the sky of many orders is brighter than that of two,
-    /// more so as the sun sinks; each order adds light and the volume is the orders' sum.
+    /// In daylight and with the sun below the horizon the sky of many orders is brighter than
+    /// that of two; the orders fade, and the volume holds their sum.
     #[test]
     fn twilight_brightens_with_the_orders() {
         let p = params().with_scattering_orders(4);
@@ -108,9 +108,13 @@ mod tests {
             ["intensity-volume", "delta-intensity", "previous-intensity"]
                 .map(|id| many.table(id).expect("haber's tables"));
         let first = two.table("intensity-volume").expect("order 1");
-        for i in (0..volume.data.len()).step_by(97) {
+        // The last order is fainter than the one before on the whole (not along every ray:
+        // near the horizon a ray's optical depth passes 1).
+        let total =
+            |lut: &crate::methods::shared::Lut| -> f64 { lut.data.iter().map(|t| t[0]).sum() };
+        assert!(total(delta) < total(previous) && total(delta) > 0.0);
+        for i in 0..volume.data.len() {
             for l in 0..4 {
-                assert!(delta.data[i][l] <= previous.data[i][l] + 1e-12);
                 assert!(volume.data[i][l] >= first.data[i][l] + delta.data[i][l] - 1e-12);
             }
         }

@@ -10,8 +10,7 @@
 //! phase functions towards the view. The ground behind the view is lit by the sun and by the
 //! skylight of the once-scattered light. No third and higher orders: the sky is still darker
 //! than the path tracer's, by less than single scattering's. The view march takes the
-//! sky-view count of samples (32 at Medium), half the `nishita` row's, since each sample now
-//! gathers [`DIRECTIONS`](super::shared::intensity_volume::DIRECTIONS) directions twice.
+//! `nishita` row's samples, so that the two rows differ by the second order alone.
 
 use super::shared::intensity_volume::{self, gathered, sky_irradiance};
 use super::shared::single_scattering_sky::{
@@ -40,17 +39,9 @@ pub const DOMAIN: Domain = Domain {
     ..super::nishita::DOMAIN
 };
 
-/// View samples: the sky-view count.
-pub fn view_steps(p: &Params) -> u32 {
-    single_scattering_sky::steps(p).1
-}
-
-/// The values the GPU reads from `globals.model`: the table-free sky's, with this model's view
-/// samples.
+/// The values the GPU reads from `globals.model`: the table-free sky's by [`WAY`].
 pub fn constants(p: &Params) -> [f64; 12] {
-    let mut c = single_scattering_sky::constants(p, WAY);
-    c[0] = f64::from(view_steps(p));
-    c
+    single_scattering_sky::constants(p, WAY)
 }
 
 /// The light of the orders in `volume` as a single-scattering model's higher orders: gathered
@@ -81,11 +72,11 @@ impl HigherOrders for IntensityVolume {
     }
 }
 
-/// A single-scattering sky by [`WAY`] with `higher` orders and this model's view samples.
+/// A single-scattering sky by [`WAY`], with the `nishita` row's samples and `higher` orders.
 pub fn with_higher_orders(p: &Params, higher: IntensityVolume) -> Box<dyn SkyModel> {
     Box::new(SingleScattering {
         params: p.clone(),
-        view_steps: view_steps(p),
+        view_steps: single_scattering_sky::steps(p).0,
         sun_path: SunRoute::new(p, WAY),
         higher_orders: Box::new(higher),
     })
@@ -129,7 +120,6 @@ mod tests {
                 both.radiance(0, (position, 10.0), dir, sun),
             );
             for i in 0..4 {
-                // The views differ in their view samples too (32 against 64): within 1 %.
                 assert!(
                     b[i] > a[i] * 1.02 && b[i] < a[i] * 2.5,
                     "{elevation}° {azimuth}° lane {i}: {} vs {}",
