@@ -1,21 +1,7 @@
 // Hillaire (2020): the functions every pass of the method shares. Twins of
 // model::methods::hillaire (same mappings, same step placement, same arithmetic in f32).
 
-// ---- the sun-zenith axis of the Ψ_ms and ground-irradiance tables: piecewise linear ----
-
-fn mu_s_axis_map(knots: vec4<f32>, onto: vec4<f32>, x_in: f32) -> f32 {
-    let x = clamp(x_in, knots.x, knots.w);
-    let k = select(select(2u, 1u, x < knots.z), 0u, x < knots.y);
-    return onto[k] + (x - knots[k]) / (knots[k + 1u] - knots[k]) * (onto[k + 1u] - onto[k]);
-}
-
-fn mu_s_axis_coordinate(mu_s: f32) -> f32 {
-    return mu_s_axis_map(MU_S_AXIS_MU_S, MU_S_AXIS_U, mu_s);
-}
-
-fn mu_s_axis_mu_s(u: f32) -> f32 {
-    return mu_s_axis_map(MU_S_AXIS_U, MU_S_AXIS_MU_S, u);
-}
+// The sun-zenith axis of the Ψ_ms and ground-irradiance tables is in shared/mu_s_axis.wgsl.
 
 // ---- multiple scattering ----
 

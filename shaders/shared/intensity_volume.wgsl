@@ -59,15 +59,13 @@ fn projected_solid_angle(k: u32, mu_s: f32) -> f32 {
 }
 
 fn intensity_texel_from_h_mu_s(h: f32, mu_s: f32) -> vec2<f32> {
-    let u = 0.5 * (1.0 + sign(mu_s) * sqrt(abs(mu_s)));
     let v = sqrt(clamp(h / thickness(), 0.0, 1.0));
-    return vec2<f32>(u, v) * (vec2<f32>(INTENSITY_VOLUME_SIZE) - 1.0);
+    return vec2<f32>(mu_s_axis_coordinate(mu_s), v) * (vec2<f32>(INTENSITY_VOLUME_SIZE) - 1.0);
 }
 
 fn intensity_h_mu_s_from_texel(f: vec2<f32>) -> vec2<f32> {
-    let s = 2.0 * f.x / f32(INTENSITY_VOLUME_SIZE.x - 1u) - 1.0;
-    let v = f.y / f32(INTENSITY_VOLUME_SIZE.y - 1u);
-    return vec2<f32>(v * v * thickness(), sign(s) * s * s);
+    let x = f / (vec2<f32>(INTENSITY_VOLUME_SIZE) - 1.0);
+    return vec2<f32>(x.y * x.y * thickness(), mu_s_axis_mu_s(x.x));
 }
 
 // The view (zenith cosine mu, view–sun cosine nu) in the sun's frame where the sun's zenith

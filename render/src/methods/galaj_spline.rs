@@ -53,6 +53,7 @@ pub const METHODS: &[GpuMethod] = &[
         common: &[
             HILLAIRE_HIGHER_ORDERS[0],
             HILLAIRE_HIGHER_ORDERS[1],
+            HILLAIRE_HIGHER_ORDERS[2],
             EXPONENTIAL,
             COLUMNS,
         ],

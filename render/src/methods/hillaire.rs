@@ -2,8 +2,8 @@
 //! pass is `atmoscope_model::methods::hillaire::<pass>`.
 
 use super::{
-    Dispatch, GpuMethod, HILLAIRE_MS, MULTIPLE_SCATTERING_PASS, PassSpec, Repeat, Resource,
-    SKY_ENTRY_POINT, SUN_DISK_FROM_TABLE, TONE, TRANSMITTANCE, TRANSMITTANCE_PASS, Table,
+    Dispatch, GpuMethod, HILLAIRE_MS, MU_S_AXIS, MULTIPLE_SCATTERING_PASS, PassSpec, Repeat,
+    Resource, SKY_ENTRY_POINT, SUN_DISK_FROM_TABLE, TONE, TRANSMITTANCE, TRANSMITTANCE_PASS, Table,
     VIEW_RADIANCE, no_constants, read, shader,
 };
 use atmoscope_model::methods::hillaire::{aerial_perspective, ground_irradiance, sky_view};
@@ -20,6 +20,7 @@ pub const METHOD: GpuMethod = GpuMethod {
     common: &[
         SUN_DISK_FROM_TABLE,
         shader!("common/march.wgsl"),
+        MU_S_AXIS,
         shader!("hillaire/common.wgsl"),
     ],
     constants: no_constants,

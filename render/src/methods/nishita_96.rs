@@ -5,7 +5,7 @@
 //! f64 twin is `atmoscope_model::methods::nishita_96`.
 
 use super::{
-    CLOSED_FORM_COLUMNS, Dispatch, EXPONENTIAL, GpuMethod, MOVING_SKY,
+    CLOSED_FORM_COLUMNS, Dispatch, EXPONENTIAL, GpuMethod, MOVING_SKY, MU_S_AXIS,
     NESTED_MARCH_MOVING_SKY_FILES, PassSpec, Repeat, Resource, SINGLE_SCATTERING_SKY_FILES,
     SUN_ROUTE_TABLE, Shader, TRANSMITTANCE, TRANSMITTANCE_PASS, Table, moving_sky_pass, read,
     shader, sun_route_pass,
@@ -16,9 +16,11 @@ use atmoscope_model::scene::Method;
 
 pub const INTENSITY_VOLUME: Resource = Resource::table(&intensity_volume::TABLE);
 
-/// What every pass of the intensity-volume models includes: the volume's look-ups and gather,
+/// What every pass of the intensity-volume models includes: the twilight-dense μ_s axis, the
+/// volume's look-ups and gather,
 /// and the table-free sky's exponential medium.
-pub const INTENSITY_VOLUME_COMMON: [Shader; 3] = [
+pub const INTENSITY_VOLUME_COMMON: [Shader; 4] = [
+    MU_S_AXIS,
     shader!("shared/intensity_volume.wgsl"),
     EXPONENTIAL,
     CLOSED_FORM_COLUMNS,

@@ -213,10 +213,14 @@ pub const NO_HIGHER_ORDERS: Shader = shader!("shared/no_higher_orders.wgsl");
 
 /// Hillaire's Ψ_ms table as a single-scattering model's higher orders (the `-ms` rows): the
 /// table's look-up, and the sky pass's higher orders from it.
-pub const HILLAIRE_HIGHER_ORDERS: [Shader; 2] = [
+pub const HILLAIRE_HIGHER_ORDERS: [Shader; 3] = [
+    MU_S_AXIS,
     shader!("hillaire/common.wgsl"),
     shader!("shared/isotropic_higher_orders.wgsl"),
 ];
+
+/// The sun-zenith axis dense in twilight (Hillaire's tables, the intensity volumes).
+pub const MU_S_AXIS: Shader = shader!("shared/mu_s_axis.wgsl");
 
 /// The exponential medium and its closed forms of the optical depth along a ray (the analytic
 /// ways to the sun, and Leenman's depths along the view too).
@@ -230,9 +234,10 @@ pub const CLOSED_FORM_COLUMNS: Shader = shader!("shared/closed_form_columns.wgsl
 /// Hillaire's Ψ_ms (the `-ms` rows); the exponential medium and its columns either way.
 pub const SINGLE_SCATTERING_COMMON: [Shader; 3] =
     [NO_HIGHER_ORDERS, EXPONENTIAL, CLOSED_FORM_COLUMNS];
-pub const SINGLE_SCATTERING_MS_COMMON: [Shader; 4] = [
+pub const SINGLE_SCATTERING_MS_COMMON: [Shader; 5] = [
     HILLAIRE_HIGHER_ORDERS[0],
     HILLAIRE_HIGHER_ORDERS[1],
+    HILLAIRE_HIGHER_ORDERS[2],
     EXPONENTIAL,
     CLOSED_FORM_COLUMNS,
 ];

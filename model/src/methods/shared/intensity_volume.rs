@@ -25,6 +25,7 @@ use super::transmittance::sun_transmittance;
 use super::{Lanes, Lut, Params, Spacing, TableSpec, aerosol_phase, rayleigh_phase};
 use crate::geometry::{altitude_along, distance_to_ground, distance_to_top, hits_ground};
 use crate::methods::Inputs;
+use crate::methods::hillaire::{mu_s_axis_coordinate, mu_s_axis_mu_s};
 use crate::methods::shared::segment_weight;
 use std::f64::consts::PI;
 
@@ -37,8 +38,9 @@ pub const SUN_ANGLE_EDGES_DEG: [f64; SUN_ANGLE_BANDS as usize + 1] =
 pub const AZIMUTH_BANDS: u32 = 4;
 /// Directions in the table: half the quadrature's, whose other half are their mirror images.
 pub const DIRECTIONS: u32 = SUN_ANGLE_BANDS * AZIMUTH_BANDS;
-/// Texels of one direction's table: (μ_s, h).
-pub const SIZE: [u32; 2] = [32, 16];
+/// Texels of one direction's table: (μ_s, h); 64 on the μ_s axis, whose knots fall on texel
+/// centres of 64.
+pub const SIZE: [u32; 2] = [64, 16];
 
 /// What changes a volume: the medium and the ground that reflects into it.
 const INVALIDATED_BY: Inputs = Inputs::ATMOSPHERE.union(Inputs::GROUND_ALBEDO);
@@ -49,7 +51,7 @@ pub const TABLE: TableSpec = TableSpec {
     label: "intensity volume (scattered radiance per direction)",
     size: [SIZE[0], SIZE[1], DIRECTIONS],
     axes: [
-        "x: sun zenith cosine μ_s, −1 (left) to 1 (right), √ spacing around the horizon",
+        "x: sun zenith cosine μ_s, −1 (left) to 1 (right), dense from −0.3 to 0.1",
         "y: altitude h, ground (top row) to the top (bottom row), quadratic",
         "z: direction k: band k / 4 of angle from the sun (0°–4° first), band k % 4 of azimuth about it (towards the zenith first)",
     ],
@@ -138,22 +140,28 @@ fn sine(cosine: f64) -> f64 {
     (1.0 - cosine * cosine).max(0.0).sqrt()
 }
 
-/// Fractional texel coordinates of (h, mu_s): x = (1 + sign(μ_s)·√|μ_s|)/2, dense where the
-/// sun crosses the horizon; y = √(h / thickness), dense near the ground.
+/// Fractional texel coordinates of (h, mu_s): x on Hillaire's μ_s axis, dense in twilight
+/// (`hillaire::MU_S_AXIS_U`: the light falls about exponentially with μ_s once the sun is
+/// below the horizon, which linear interpolation between coarse texels overestimates, and the
+/// error grows with every order gathered from it); y = √(h / thickness), dense near the ground.
 pub fn texel_from_h_mu_s(p: &Params, h: f64, mu_s: f64) -> (f64, f64) {
     let [w, hh] = SIZE;
-    let u = 0.5 * (1.0 + mu_s.signum() * mu_s.abs().sqrt());
     let v = (h / p.thickness_m()).clamp(0.0, 1.0).sqrt();
-    (u * f64::from(w - 1), v * f64::from(hh - 1))
+    (
+        mu_s_axis_coordinate(mu_s) * f64::from(w - 1),
+        v * f64::from(hh - 1),
+    )
 }
 
 /// (h, mu_s) of the texel at fractional coordinates (fx, fy): the inverse of
 /// [`texel_from_h_mu_s`].
 pub fn h_mu_s_from_texel(p: &Params, fx: f64, fy: f64) -> (f64, f64) {
     let [w, hh] = SIZE;
-    let s = 2.0 * fx / f64::from(w - 1) - 1.0;
     let v = fy / f64::from(hh - 1);
-    (v * v * p.thickness_m(), s.signum() * s * s)
+    (
+        v * v * p.thickness_m(),
+        mu_s_axis_mu_s(fx / f64::from(w - 1)),
+    )
 }
 
 /// The radiance per unit solar irradiance of direction `k` at (h, mu_s), bilinear in the table.
