@@ -1,7 +1,9 @@
 // Pass (once per order n ≥ 2): order n of Haber et al.'s (2005) orders, the light of order n − 1
 // (previous_intensity_lut) gathered along each texel's ray, the ground lit by its sky
 // (shared/intensity_volume_march.wgsl); written as the last order and added to the volume. Twin
-// of model::methods::shared::intensity_volume::compute_next.
+// of model::methods::shared::intensity_volume::compute_next. The gather and the skylight are
+// shared/intensity_volume.wgsl's higher_orders and ground_skylight on previous_intensity_lut
+// instead of intensity_volume_lut: WGSL passes no storage buffer to a function.
 
 fn previous_texel(t: Taps) -> vec4<f32> {
     return blend(previous_intensity_lut[t.i.x], previous_intensity_lut[t.i.y],

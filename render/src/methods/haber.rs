@@ -4,7 +4,9 @@
 //! and `nishita_96`'s sky passes reading the volume. Its f64 twin is
 //! `atmoscope_model::methods::haber`.
 
-use super::nishita_96::{INTENSITY_VOLUME, INTENSITY_VOLUME_COMMON, ORDER_1_FILES, SKY_PASSES};
+use super::nishita_96::{
+    INTENSITY_MARCH, INTENSITY_VOLUME, INTENSITY_VOLUME_COMMON, ORDER_1, SKY_PASSES,
+};
 use super::{
     Dispatch, GpuMethod, PassSpec, Repeat, Resource, TRANSMITTANCE, TRANSMITTANCE_PASS, Table,
     read, shader,
@@ -15,7 +17,6 @@ use atmoscope_model::scene::Method;
 
 const DELTA: Resource = Resource::table(&intensity_volume::DELTA);
 const PREVIOUS: Resource = Resource::table(&intensity_volume::PREVIOUS);
-const MARCH: crate::spec::Shader = ORDER_1_FILES[1];
 
 pub const METHODS: &[GpuMethod] = &[GpuMethod {
     method: Method::Haber,
@@ -27,7 +28,7 @@ pub const METHODS: &[GpuMethod] = &[GpuMethod {
         TRANSMITTANCE_PASS,
         PassSpec::table(
             "first-order",
-            &[ORDER_1_FILES[0], MARCH, shader!("haber/first_order.wgsl")],
+            &[ORDER_1, INTENSITY_MARCH, shader!("haber/first_order.wgsl")],
             &[read(TRANSMITTANCE)],
             &[INTENSITY_VOLUME, DELTA, PREVIOUS],
             Dispatch::Volume(Table(&intensity_volume::TABLE)),
@@ -43,7 +44,7 @@ pub const METHODS: &[GpuMethod] = &[GpuMethod {
         ),
         PassSpec::table(
             "next-order",
-            &[MARCH, shader!("haber/next_order.wgsl")],
+            &[INTENSITY_MARCH, shader!("haber/next_order.wgsl")],
             &[read(PREVIOUS), read(INTENSITY_VOLUME)],
             &[DELTA, INTENSITY_VOLUME],
             Dispatch::Volume(Table(&intensity_volume::DELTA)),

@@ -17,8 +17,7 @@ use atmoscope_model::scene::Method;
 pub const INTENSITY_VOLUME: Resource = Resource::table(&intensity_volume::TABLE);
 
 /// What every pass of the intensity-volume models includes: the twilight-dense μ_s axis, the
-/// volume's look-ups and gather,
-/// and the table-free sky's exponential medium.
+/// volume's look-ups and gather, and the table-free sky's exponential medium and its columns.
 pub const INTENSITY_VOLUME_COMMON: [Shader; 4] = [
     MU_S_AXIS,
     shader!("shared/intensity_volume.wgsl"),
@@ -26,11 +25,12 @@ pub const INTENSITY_VOLUME_COMMON: [Shader; 4] = [
     CLOSED_FORM_COLUMNS,
 ];
 
-/// The files of a pass that marches the rays of an intensity volume's texels for order 1.
-pub const ORDER_1_FILES: [Shader; 2] = [
-    shader!("shared/intensity_volume_order1.wgsl"),
-    shader!("shared/intensity_volume_march.wgsl"),
-];
+/// The source of order 1 (the sunlight through the transmittance table) for the march of a
+/// volume's texels.
+pub const ORDER_1: Shader = shader!("shared/intensity_volume_order1.wgsl");
+
+/// The march of a volume's texels, on the source its pass defines.
+pub const INTENSITY_MARCH: Shader = shader!("shared/intensity_volume_march.wgsl");
 
 /// The way to the sun tabulated, the moving sky and the sky pass, all reading the volume.
 pub const SKY_PASSES: [PassSpec; 3] = [
@@ -56,8 +56,8 @@ pub const METHODS: &[GpuMethod] = &[GpuMethod {
         PassSpec::table(
             "intensity-volume",
             &[
-                ORDER_1_FILES[0],
-                ORDER_1_FILES[1],
+                ORDER_1,
+                INTENSITY_MARCH,
                 shader!("nishita_96/intensity_volume.wgsl"),
             ],
             &[read(TRANSMITTANCE)],

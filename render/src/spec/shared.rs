@@ -208,7 +208,8 @@ pub const NESTED_MARCH_PASSES: [PassSpec; 3] = [
     ),
 ];
 
-/// Single scattering alone: the `psi` of the table-free sky pass is zero.
+/// Single scattering alone: the table-free sky pass's `higher_orders` and `ground_skylight`
+/// are zero.
 pub const NO_HIGHER_ORDERS: Shader = shader!("shared/no_higher_orders.wgsl");
 
 /// Hillaire's Ψ_ms table as a single-scattering model's higher orders (the `-ms` rows): the

@@ -581,7 +581,9 @@ fn draw_chart<B: plotters::prelude::DrawingBackend>(
         .y_label_area_size(56)
         .build_cartesian_2d(
             {
-                let r = range(|c| c.frame_ms, 3.0);
+                // Room on the right for the legend (in the upper right corner), so that it
+                // hides none of the slowest models' points.
+                let r = range(|c| c.frame_ms, 25.0);
                 r.clone().log_scale().with_key_points(ticks(r))
             },
             {

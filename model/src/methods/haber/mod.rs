@@ -76,14 +76,15 @@ pub fn build(p: &Params, _: Viewpoint) -> Box<dyn SkyModel> {
 mod tests {
     use super::*;
     use crate::geometry::direction_from_angles;
+    use crate::methods::shared::Lut;
     use crate::methods::shared::optics::tests::params;
     use glam::DVec3;
 
     /// In daylight and with the sun below the horizon the sky of many orders is brighter than
-    /// that of two; the orders fade, and the volume holds their sum.
+    /// that of two; the orders fade, and each order the loop adds is added to the volume.
     #[test]
     fn twilight_brightens_with_the_orders() {
-        let p = params().with_scattering_orders(4);
+        let p = params().with_scattering_orders(3);
         let vp = Viewpoint { h: 10.0, mu_s: 0.0 };
         let (two, many) = (super::super::nishita_96::build(&p, vp), build(&p, vp));
         let position = DVec3::new(0.0, 0.0, p.bottom_radius_m + 10.0);
@@ -108,16 +109,27 @@ mod tests {
         let [volume, delta, previous] =
             ["intensity-volume", "delta-intensity", "previous-intensity"]
                 .map(|id| many.table(id).expect("haber's tables"));
-        let first = two.table("intensity-volume").expect("order 1");
         // The last order is fainter than the one before on the whole (not along every ray:
         // near the horizon a ray's optical depth passes 1).
-        let total =
-            |lut: &crate::methods::shared::Lut| -> f64 { lut.data.iter().map(|t| t[0]).sum() };
+        let total = |lut: &Lut| -> f64 { lut.data.iter().map(|t| t[0]).sum() };
         assert!(total(delta) < total(previous) && total(delta) > 0.0);
-        for i in 0..volume.data.len() {
+        // One order more adds its last order to the volume, and the order before it is the
+        // last of one order fewer.
+        let more = build(&p.clone().with_scattering_orders(4), vp);
+        let [more_volume, more_delta, more_previous] =
+            ["intensity-volume", "delta-intensity", "previous-intensity"]
+                .map(|id| more.table(id).expect("haber's tables"));
+        assert_eq!(more_previous, delta);
+        for ((m, v), d) in more_volume
+            .data
+            .iter()
+            .zip(&volume.data)
+            .zip(&more_delta.data)
+        {
             for l in 0..4 {
-                assert!(volume.data[i][l] >= first.data[i][l] + delta.data[i][l] - 1e-12);
+                assert!((m[l] - (v[l] + d[l])).abs() <= 1e-12 * m[l].abs().max(1e-30));
             }
         }
+        assert!(total(more_delta) < total(delta));
     }
 }

@@ -21,11 +21,11 @@
 //! `shaders/shared/intensity_volume.wgsl` (the look-ups and the gather) and
 //! `shaders/shared/intensity_volume_march.wgsl` (the passes).
 
+use super::mu_s_axis::{mu_s_axis_coordinate, mu_s_axis_mu_s};
 use super::transmittance::sun_transmittance;
 use super::{Lanes, Lut, Params, Spacing, TableSpec, aerosol_phase, rayleigh_phase};
 use crate::geometry::{altitude_along, distance_to_ground, distance_to_top, hits_ground};
 use crate::methods::Inputs;
-use crate::methods::hillaire::{mu_s_axis_coordinate, mu_s_axis_mu_s};
 use crate::methods::shared::segment_weight;
 use std::f64::consts::PI;
 
@@ -141,7 +141,7 @@ fn sine(cosine: f64) -> f64 {
 }
 
 /// Fractional texel coordinates of (h, mu_s): x on Hillaire's μ_s axis, dense in twilight
-/// (`hillaire::MU_S_AXIS_U`: the light falls about exponentially with μ_s once the sun is
+/// (`shared::mu_s_axis`: the light falls about exponentially with μ_s once the sun is
 /// below the horizon, which linear interpolation between coarse texels overestimates, and the
 /// error grows with every order gathered from it); y = √(h / thickness), dense near the ground.
 pub fn texel_from_h_mu_s(p: &Params, h: f64, mu_s: f64) -> (f64, f64) {
@@ -358,25 +358,26 @@ mod tests {
         );
     }
 
-    /// The cells tile the sphere (4π); the quadrature integrates the Rayleigh phase within
-    /// 2 % and a uniform sky's irradiance within 1 % (whatever the sun's place, which turns
-    /// the cells about the zenith); normalised, a uniform field gathers to
-    /// exactly 1 through either phase.
+    /// The cells tile the sphere (4π); the gather of a field that differs from cell to cell is
+    /// the normalised sum over the cells' centres taken as vectors; before the normalisation
+    /// the quadrature integrates the Rayleigh phase within 2 %; a uniform sky's irradiance is
+    /// π within 1 % wherever the sun is (which turns the cells about the zenith).
     #[test]
     fn the_direction_set_integrates_the_sphere_and_the_phase_functions() {
         use glam::DVec3;
         let p = params();
-        let mut volume = Lut::from_spec(&TABLE, p.batches.len(), |_, _, _, _| Lanes::ONE);
         let total: f64 = (0..DIRECTIONS).map(|k| 2.0 * cell(k).2).sum();
         assert!((total - 4.0 * PI).abs() < 1e-12, "{total}");
-        for (mu_s, mu, nu) in [(0.5, 1.0, 0.5), (0.2, -0.3, 0.1), (-0.1, 0.0, 0.9)] {
-            let (air, aerosol) = gathered(&p, &volume, 0, (1_000.0, mu_s), mu, nu);
-            for (a, b) in air.iter().zip(aerosol.iter()) {
-                assert!((a - 1.0).abs() < 1e-12, "{mu_s} {mu} {nu}: {a}");
-                assert!((b - 1.0).abs() < 1e-12, "{mu_s} {mu} {nu}: {b}");
-            }
-            // The cells' centres as vectors in the local frame (x towards the sun's azimuth),
-            // against the view's, before any normalisation.
+        let field = |k: usize| 1.0 + (k * k) as f64;
+        let volume = Lut::from_spec(&TABLE, p.batches.len(), |_, z, _, _| Lanes::splat(field(z)));
+        for (mu_s, mu, nu) in [
+            (0.5f64, 1.0f64, 0.5),
+            (0.2, -0.3, 0.1),
+            (-0.1, 0.0, 0.9),
+            (0.7, 0.4, -0.2),
+        ] {
+            // The cells' centres as vectors in the local frame (x towards the sun's azimuth,
+            // `up` the sun's frame's axis towards the zenith), against the view's.
             let sun = DVec3::new(sine(mu_s), 0.0, mu_s);
             let up = DVec3::new(-mu_s, 0.0, sine(mu_s));
             let cos_phi = if mu.abs() < 1.0 {
@@ -385,31 +386,48 @@ mod tests {
                 1.0
             };
             let view = DVec3::new(sine(mu) * cos_phi, sine(mu) * sine(cos_phi), mu);
-            let rayleigh: f64 = (0..DIRECTIONS)
-                .flat_map(|k| {
-                    let (cos_alpha, beta, solid_angle) = cell(k);
-                    [beta, -beta].map(|b| {
-                        let d =
-                            sun * cos_alpha + (up * b.cos() + DVec3::Y * b.sin()) * sine(cos_alpha);
-                        assert!((d.z - direction(k, mu_s).0).abs() < 1e-12);
-                        rayleigh_phase(&p, 0, view.dot(d).clamp(-1.0, 1.0))[0] * solid_angle
-                    })
-                })
-                .sum();
-            assert!((rayleigh - 1.0).abs() < 0.02, "{rayleigh}");
+            assert!((view.dot(sun) - nu).abs() < 1e-12);
+            let (mut sums, mut weights) = ([Lanes::ZERO; 2], [Lanes::ZERO; 2]);
+            for k in 0..DIRECTIONS {
+                let (cos_alpha, beta, solid_angle) = cell(k);
+                for b in [beta, -beta] {
+                    let d = sun * cos_alpha + (up * b.cos() + DVec3::Y * b.sin()) * sine(cos_alpha);
+                    assert!((d.z - direction(k, mu_s).0).abs() < 1e-12);
+                    let cos_theta = view.dot(d).clamp(-1.0, 1.0);
+                    let phases = [
+                        rayleigh_phase(&p, 0, cos_theta),
+                        aerosol_phase(&p, 0, cos_theta),
+                    ];
+                    for c in 0..2 {
+                        sums[c] += phases[c] * solid_angle * field(k as usize);
+                        weights[c] += phases[c] * solid_angle;
+                    }
+                }
+            }
+            let (air, aerosol) = gathered(&p, &volume, 0, (1_000.0, mu_s), mu, nu);
+            for (c, got) in [air, aerosol].iter().enumerate() {
+                for i in 0..4 {
+                    let want = sums[c][i] / weights[c][i];
+                    assert!(
+                        (got[i] / want - 1.0).abs() < 1e-9,
+                        "{mu_s} {mu} {nu}, {c}: {} vs {want}",
+                        got[i]
+                    );
+                }
+            }
+            assert!((weights[0][0] - 1.0).abs() < 0.02, "{}", weights[0][0]);
         }
-        // A uniform sky of unit radiance gives π on a horizontal surface.
+        let uniform = Lut::from_spec(&TABLE, p.batches.len(), |_, _, _, _| Lanes::ONE);
         for mu_s in [1.0, 0.5, 0.0, -0.3] {
-            let e = sky_irradiance(&p, &volume, 0, mu_s);
+            let e = sky_irradiance(&p, &uniform, 0, mu_s);
             assert!((e[0] / PI - 1.0).abs() < 0.01, "{mu_s}: {}", e[0]);
         }
-        volume.data.fill(Lanes::ZERO);
-        assert_eq!(sky_irradiance(&p, &volume, 0, 0.3), Lanes::ZERO);
     }
 
     /// Order 1 is what the transmittance lets through: brighter towards the sun than away
-    /// from it in daylight, dark where the planet hides the sun from the whole ray; the second
-    /// order is everywhere positive and dimmer than the first on the ground and up high.
+    /// from it in daylight, dark where the planet hides the sun from every ray; at the ground
+    /// in daylight the second order is positive in every cell, below the first in the cells
+    /// that look steeply up, and so is its skylight.
     #[test]
     fn the_orders_fall_and_the_first_sees_the_sun() {
         let p = params();
@@ -421,9 +439,12 @@ mod tests {
         // The first band is the aureole round the sun; the last looks away from it.
         let (towards, away) = (texel(&first, 0), texel(&first, DIRECTIONS - 1));
         assert!(towards[0] > away[0], "{towards:?} {away:?}");
-        let night = h_mu_s_from_texel(&p, 0.0, 0.0);
-        assert_eq!(night.1, -1.0);
-        assert!(first.texel(0, 0, 0, 0)[0] < 1e-12);
+        // With the sun 30° below the horizon, the Earth's shadow covers every ray from the
+        // ground, and the ground its rays meet; in daylight every ray sees light.
+        for k in 0..DIRECTIONS {
+            assert_eq!(lookup(&p, &first, 0, 0.0, -0.5, k), Lanes::ZERO, "{k}");
+            assert!(lookup(&p, &first, 0, 0.0, 0.5, k).iter().all(|&l| l > 0.0));
+        }
         // Along steep rays up the second order is below the first; near the horizon, where
         // a ray crosses optical depths past 1 at blue wavelengths, it need not be.
         for k in 0..DIRECTIONS {

@@ -10,6 +10,7 @@ pub mod intensity_volume;
 pub mod lut;
 pub mod march;
 pub mod moving_sky;
+pub mod mu_s_axis;
 pub mod optics;
 pub mod ray;
 pub mod segments_sky;

@@ -1,9 +1,11 @@
 //! The sky pass of the table-free single-scattering models (`nishita`, `trapezoid`, `schuler`,
-//! `galaj-taylor`): per pixel, single scattering marched along the view ray with the model's own
-//! transmittance towards the sun at every sample, and the sunlit ground behind it; from above
-//! the atmosphere the march starts where the ray enters it; the models differ only in their way
-//! to the sun ([`Way`]): a quadrature rule along the sun's ray, or a closed form on the
-//! exponential medium ([`super::exponential`]). Twin of `shaders/shared/single_scattering_sky.wgsl`,
+//! `galaj-taylor`, `galaj-spline`, their `-ms` rows, `nishita-96`, `haber`): per pixel, single
+//! scattering marched along the view ray with the model's own transmittance towards the sun at
+//! every sample, plus the model's higher orders ([`HigherOrders`]), and the ground behind it lit
+//! by the sun and the higher orders' skylight; from above the atmosphere the march starts where
+//! the ray enters it. The models differ in their way to the sun ([`Way`]: a quadrature rule
+//! along the sun's ray, or a closed form on the exponential medium, [`super::exponential`]) and
+//! in their higher orders. Twin of `shaders/shared/single_scattering_sky.wgsl`,
 //! which reads the counts, the way and the fitted medium from the model's constants.
 
 use super::exponential::{self, ExponentialMedium};
