@@ -38,8 +38,8 @@ fn order_ground(layer: u32, mu_s_g: f32) -> vec4<f32> {
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
 fn main(@builtin(global_invocation_id) invocation: vec3<u32>) {
-    let v = intensity_volume_texel(dispatched(invocation));
-    if any(v.xy >= INTENSITY_VOLUME_SIZE) || v.w >= batch_count() {
+    let v = intensity_volume_texel(invocation);
+    if !inside_intensity_volume(v) {
         return;
     }
     let i = intensity_index(v);

@@ -6,10 +6,15 @@
 // intensity_volume_lut gathered towards the view and the skylight it sends onto the ground.
 // Twin of the module's look-ups and gather.
 
-// The texel (x: μ_s, y: h, z: direction, w: batch) of a Volume dispatch's invocation, and its
-// index in a volume's buffer.
-fn intensity_volume_texel(id: vec3<u32>) -> vec4<u32> {
+// The texel (x: μ_s, y: h, z: direction, w: batch) of a Volume dispatch's invocation, whether
+// it lies inside the volume, and its index in a volume's buffer.
+fn intensity_volume_texel(invocation: vec3<u32>) -> vec4<u32> {
+    let id = dispatched(invocation);
     return vec4<u32>(id.x, id.y, id.z % INTENSITY_DIRECTIONS, id.z / INTENSITY_DIRECTIONS);
+}
+
+fn inside_intensity_volume(v: vec4<u32>) -> bool {
+    return all(v.xy < INTENSITY_VOLUME_SIZE) && v.w < batch_count();
 }
 
 fn intensity_index(v: vec4<u32>) -> u32 {

@@ -291,42 +291,49 @@ fn march(
     l
 }
 
-/// Order 1: the sunlight scattered once towards each texel's point along its direction, and
-/// the sunlit ground, per unit solar irradiance.
-pub fn compute_single(p: &Params, transmittance: &Lut) -> Lut {
+/// A volume whose every texel is [`march`]ed with the source `source(layer, h, mu_s, mu, nu)`
+/// and the ground's `ground(layer, mu_s_g)`.
+fn volume(
+    p: &Params,
+    source: impl Fn(usize, f64, f64, f64, f64) -> (Lanes, Lanes) + Sync,
+    ground: impl Fn(usize, f64) -> Lanes + Sync,
+) -> Lut {
     Lut::from_spec(&TABLE, p.batches.len(), |layer, z, y, x| {
-        let at = h_mu_s_from_texel(p, x as f64, y as f64);
         march(
             p,
             layer,
-            at,
+            h_mu_s_from_texel(p, x as f64, y as f64),
             z as u32,
-            |h_t, mu_s_t, _, nu| {
-                let sun_t = sun_transmittance(p, transmittance, layer, h_t, mu_s_t);
-                (
-                    rayleigh_phase(p, layer, nu) * sun_t,
-                    aerosol_phase(p, layer, nu) * sun_t,
-                )
-            },
-            |mu_s_g| sun_transmittance(p, transmittance, layer, 0.0, mu_s_g) * mu_s_g.max(0.0),
+            |h, mu_s, mu, nu| source(layer, h, mu_s, mu, nu),
+            |mu_s_g| ground(layer, mu_s_g),
         )
     })
+}
+
+/// Order 1: the sunlight scattered once towards each texel's point along its direction, and
+/// the sunlit ground, per unit solar irradiance.
+pub fn compute_single(p: &Params, transmittance: &Lut) -> Lut {
+    volume(
+        p,
+        |layer, h, mu_s, _, nu| {
+            let sun_t = sun_transmittance(p, transmittance, layer, h, mu_s);
+            (
+                rayleigh_phase(p, layer, nu) * sun_t,
+                aerosol_phase(p, layer, nu) * sun_t,
+            )
+        },
+        |layer, mu_s_g| sun_transmittance(p, transmittance, layer, 0.0, mu_s_g) * mu_s_g.max(0.0),
+    )
 }
 
 /// Order n + 1 from order n (`previous`): its light gathered along each texel's ray, and the
 /// ground lit by its sky.
 pub fn compute_next(p: &Params, previous: &Lut) -> Lut {
-    Lut::from_spec(&TABLE, p.batches.len(), |layer, z, y, x| {
-        let at = h_mu_s_from_texel(p, x as f64, y as f64);
-        march(
-            p,
-            layer,
-            at,
-            z as u32,
-            |h_t, mu_s_t, mu_t, nu| gathered(p, previous, layer, (h_t, mu_s_t), mu_t, nu),
-            |mu_s_g| sky_irradiance(p, previous, layer, mu_s_g),
-        )
-    })
+    volume(
+        p,
+        |layer, h, mu_s, mu, nu| gathered(p, previous, layer, (h, mu_s), mu, nu),
+        |layer, mu_s_g| sky_irradiance(p, previous, layer, mu_s_g),
+    )
 }
 
 #[cfg(test)]
