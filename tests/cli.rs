@@ -602,6 +602,28 @@ fn preetham_renders_ground_views_and_refuses_others_with_a_message() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A headless command outside any display session (no display, no runtime directory, Mesa's
+/// device-select layer as installed) prints its own lines and nothing else: the layer, which
+/// would say twice that XDG_RUNTIME_DIR is unset, is off for headless commands.
+#[test]
+fn headless_commands_print_no_display_session_warning() {
+    let out = std::env::temp_dir().join(format!("atmoscope-headless-{}.png", std::process::id()));
+    let o = Command::new(env!("CARGO_BIN_EXE_atmoscope"))
+        .args(["render", "--size", "16x16", "--out"])
+        .arg(&out)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("XDG_RUNTIME_DIR")
+        .env_remove("NODEVICE_SELECT")
+        .output()
+        .expect("run atmoscope");
+    let _ = std::fs::remove_file(&out);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    let others: Vec<&str> = err.lines().filter(|l| !l.starts_with("wrote ")).collect();
+    assert!(others.is_empty(), "{others:?}");
+}
+
 #[test]
 fn render_writes_png_luminance_map_and_exr_and_refuses_bad_input() {
     let dir = std::env::temp_dir().join(format!("atmoscope-render-{}", std::process::id()));
