@@ -21,46 +21,51 @@ fn intensity_index(v: vec4<u32>) -> u32 {
     return ((v.w * INTENSITY_DIRECTIONS + v.z) * INTENSITY_VOLUME_SIZE.y + v.y) * INTENSITY_VOLUME_SIZE.x + v.x;
 }
 
-// Cell k relative to the sun: the cosine of its centre's angle from the sun, its azimuth about
-// the sun (0 towards the zenith) and the solid angle of one of its two mirror cells; twin of
-// intensity_volume::cell.
-fn intensity_cell(k: u32) -> vec3<f32> {
+// The bounds of cell k: the cosines of its band's edges (from the sun outwards), its azimuth
+// band's first β and the bands' width in β; twin of intensity_volume::cell_bounds.
+fn intensity_cell_bounds(k: u32) -> vec4<f32> {
     let band = k / INTENSITY_AZIMUTH_BANDS;
-    let c0 = INTENSITY_BAND_EDGE_COS[band];
-    let c1 = INTENSITY_BAND_EDGE_COS[band + 1u];
     let width = PI / f32(INTENSITY_AZIMUTH_BANDS);
-    return vec3<f32>(0.5 * (c0 + c1), width * (f32(k % INTENSITY_AZIMUTH_BANDS) + 0.5), (c0 - c1) * width);
+    return vec4<f32>(INTENSITY_BAND_EDGE_COS[band], INTENSITY_BAND_EDGE_COS[band + 1u],
+        width * f32(k % INTENSITY_AZIMUTH_BANDS), width);
 }
 
 fn sine_of(cosine: f32) -> f32 {
     return sqrt(max(1.0 - cosine * cosine, 0.0));
 }
 
+// The zenith cosine of the direction at angle α from the sun and azimuth beta about it.
+fn zenith_cosine(cos_alpha: f32, beta: f32, mu_s: f32) -> f32 {
+    return cos_alpha * mu_s + sine_of(cos_alpha) * cos(beta) * sine_of(mu_s);
+}
+
+// Cell k relative to the sun: the cosine of its centre's angle from the sun, its azimuth about
+// the sun (0 towards the zenith) and the solid angle of one of its two mirror cells; twin of
+// intensity_volume::cell.
+fn intensity_cell(k: u32) -> vec3<f32> {
+    let b = intensity_cell_bounds(k);
+    return vec3<f32>(0.5 * (b.x + b.y), b.z + 0.5 * b.w, (b.x - b.y) * b.w);
+}
+
 // The zenith cosine and the view–sun cosine of cell k where the sun's zenith cosine is mu_s.
 fn intensity_direction(k: u32, mu_s: f32) -> vec2<f32> {
     let cell = intensity_cell(k);
-    let mu = cell.x * mu_s + sine_of(cell.x) * cos(cell.y) * sine_of(mu_s);
-    return vec2<f32>(clamp(mu, -1.0, 1.0), cell.x);
+    return vec2<f32>(clamp(zenith_cosine(cell.x, cell.y, mu_s), -1.0, 1.0), cell.x);
 }
 
 // ∫ max(μ, 0) dΩ over one of cell k's mirror cells, by the midpoint rule on an
 // INTENSITY_SUBCELLS² grid of its cos α and β; twin of intensity_volume::projected_solid_angle.
 fn projected_solid_angle(k: u32, mu_s: f32) -> f32 {
-    let band = k / INTENSITY_AZIMUTH_BANDS;
-    let c0 = INTENSITY_BAND_EDGE_COS[band];
-    let c1 = INTENSITY_BAND_EDGE_COS[band + 1u];
-    let width = PI / f32(INTENSITY_AZIMUTH_BANDS);
+    let b = intensity_cell_bounds(k);
     let n = f32(INTENSITY_SUBCELLS);
-    let s_s = sine_of(mu_s);
     var sum = 0.0;
     for (var i = 0u; i < INTENSITY_SUBCELLS; i++) {
-        let cos_alpha = c0 + (c1 - c0) * (f32(i) + 0.5) / n;
+        let cos_alpha = b.x + (b.y - b.x) * (f32(i) + 0.5) / n;
         for (var j = 0u; j < INTENSITY_SUBCELLS; j++) {
-            let beta = width * (f32(k % INTENSITY_AZIMUTH_BANDS) + (f32(j) + 0.5) / n);
-            sum += max(cos_alpha * mu_s + sine_of(cos_alpha) * cos(beta) * s_s, 0.0);
+            sum += max(zenith_cosine(cos_alpha, b.z + b.w * (f32(j) + 0.5) / n, mu_s), 0.0);
         }
     }
-    return sum * (c0 - c1) * width / (n * n);
+    return sum * (b.x - b.y) * b.w / (n * n);
 }
 
 fn intensity_texel_from_h_mu_s(h: f32, mu_s: f32) -> vec2<f32> {

@@ -2,8 +2,8 @@
 //! stored at points of the atmosphere for a fixed set of directions, from which the next
 //! scattering order is gathered. Nishita et al. sampled the volume in a grid aligned with the
 //! sun; in a spherically symmetric atmosphere a point is known by its altitude h and the sun's
-//! zenith cosine μ_s there, and the field at it by directions fixed in its local frame (its
-//! zenith, the sun's azimuth), so one volume is a table over (μ_s, h) per direction.
+//! zenith cosine μ_s there, and the field at it by directions fixed relative to the sun and the
+//! zenith there, so one volume is a table over (μ_s, h) per direction.
 //!
 //! The directions are centred on the sun, whose once-scattered aerosol light (the aureole) is
 //! the brightest and narrowest part of the field: [`SUN_ANGLE_BANDS`] bands of angle α from the
@@ -91,23 +91,39 @@ pub fn band_edge_cosines() -> [f64; SUN_ANGLE_BANDS as usize + 1] {
 /// Sub-cells per side of the grid over which [`projected_solid_angle`] integrates a cell.
 pub const SUBCELLS: u32 = 4;
 
+/// The bounds of the cell of table direction `k`: the cosines of its band's edges (from the
+/// sun outwards), its azimuth band's first β (rad) and the bands' width in β.
+fn cell_bounds(k: u32) -> (f64, f64, f64, f64) {
+    let band = (k / AZIMUTH_BANDS) as usize;
+    let edges = band_edge_cosines();
+    let width = PI / f64::from(AZIMUTH_BANDS);
+    (
+        edges[band],
+        edges[band + 1],
+        width * f64::from(k % AZIMUTH_BANDS),
+        width,
+    )
+}
+
+/// The zenith cosine of the direction at angle α from the sun (cosine `cos_alpha`) and azimuth
+/// `beta` about it, where the sun's zenith cosine is `mu_s`.
+fn zenith_cosine(cos_alpha: f64, beta: f64, mu_s: f64) -> f64 {
+    cos_alpha * mu_s + sine(cos_alpha) * beta.cos() * sine(mu_s)
+}
+
 /// ∫ max(μ, 0) dΩ over one of the mirror cells of table direction `k` where the sun's zenith
 /// cosine is `mu_s`, sr: its weight in the irradiance of a horizontal surface, by the midpoint
 /// rule on a [`SUBCELLS`]² grid of its cos α and β, so that the cells the horizon cuts count
 /// for the part above it.
 pub fn projected_solid_angle(k: u32, mu_s: f64) -> f64 {
-    let (band, a) = ((k / AZIMUTH_BANDS) as usize, k % AZIMUTH_BANDS);
-    let edges = band_edge_cosines();
-    let (c0, c1) = (edges[band], edges[band + 1]);
-    let width = PI / f64::from(AZIMUTH_BANDS);
+    let (c0, c1, beta0, width) = cell_bounds(k);
     let n = f64::from(SUBCELLS);
     let mut sum = 0.0;
     for i in 0..SUBCELLS {
         let cos_alpha = c0 + (c1 - c0) * (f64::from(i) + 0.5) / n;
         for j in 0..SUBCELLS {
-            let beta = width * (f64::from(a) + (f64::from(j) + 0.5) / n);
-            let mu = cos_alpha * mu_s + sine(cos_alpha) * beta.cos() * sine(mu_s);
-            sum += mu.max(0.0);
+            let beta = beta0 + width * (f64::from(j) + 0.5) / n;
+            sum += zenith_cosine(cos_alpha, beta, mu_s).max(0.0);
         }
     }
     sum * (c0 - c1) * width / (n * n)
@@ -117,23 +133,18 @@ pub fn projected_solid_angle(k: u32, mu_s: f64) -> f64 {
 /// (the mean of the band's), its azimuth β about the sun (rad, in [0, π], 0 towards the zenith)
 /// and the solid angle of one of its two mirror cells, sr.
 pub fn cell(k: u32) -> (f64, f64, f64) {
-    let (band, a) = ((k / AZIMUTH_BANDS) as usize, k % AZIMUTH_BANDS);
-    let edges = band_edge_cosines();
-    let (c0, c1) = (edges[band], edges[band + 1]);
-    let width = PI / f64::from(AZIMUTH_BANDS);
-    (
-        0.5 * (c0 + c1),
-        width * (f64::from(a) + 0.5),
-        (c0 - c1) * width,
-    )
+    let (c0, c1, beta0, width) = cell_bounds(k);
+    (0.5 * (c0 + c1), beta0 + 0.5 * width, (c0 - c1) * width)
 }
 
 /// The zenith cosine μ and the view–sun cosine ν of table direction `k` where the sun's zenith
 /// cosine is `mu_s` (both mirror cells have them).
 pub fn direction(k: u32, mu_s: f64) -> (f64, f64) {
     let (cos_alpha, beta, _) = cell(k);
-    let mu = cos_alpha * mu_s + sine(cos_alpha) * beta.cos() * sine(mu_s);
-    (mu.clamp(-1.0, 1.0), cos_alpha)
+    (
+        zenith_cosine(cos_alpha, beta, mu_s).clamp(-1.0, 1.0),
+        cos_alpha,
+    )
 }
 
 fn sine(cosine: f64) -> f64 {
