@@ -1983,3 +1983,68 @@ fn a_named_view_without_its_reference_is_an_error_that_says_how_to_render_it() {
         );
     }
 }
+
+/// The explorer's first view (its first scene, `presets::FIRST_SCENE`, drawn the way the
+/// window draws it, metered): a picture worth a look, not a grey field. Bounds: mean grey
+/// level 25–70 % of white; colourfulness (Hasler & Süsstrunk 2003) at least 20, past their
+/// "slightly colourful" 15; the sky away from the sun blue (B/R ≥ 1.3); the sky low towards
+/// the sun at least 1.3 times warmer (R/B) than that.
+#[test]
+fn the_explorers_first_view_is_a_blue_sky_warmer_towards_the_sun() {
+    let png = std::env::temp_dir().join(format!("atmoscope-first-{}.png", std::process::id()));
+    let o = atmoscope(&[
+        "render",
+        "--preset",
+        atmoscope::presets::FIRST_SCENE,
+        "--size",
+        "256x200",
+        "--out",
+        png.to_str().expect("utf-8 path"),
+    ]);
+    if skipped_without_gpu(&o) {
+        return;
+    }
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = image::open(&png).expect("PNG written").to_rgb8();
+    let _ = std::fs::remove_file(&png);
+    let (w, h) = img.dimensions();
+    let px: Vec<[f64; 3]> = img.pixels().map(|p| p.0.map(f64::from)).collect();
+    let n = px.len() as f64;
+    let grey = px.iter().map(|p| (p[0] + p[1] + p[2]) / 3.0).sum::<f64>() / n / 255.0;
+    let (rg, yb): (Vec<f64>, Vec<f64>) = px
+        .iter()
+        .map(|p| (p[0] - p[1], 0.5 * (p[0] + p[1]) - p[2]))
+        .unzip();
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    let sd = |v: &[f64]| {
+        let m = mean(v);
+        (v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / v.len() as f64).sqrt()
+    };
+    let colourfulness = sd(&rg).hypot(sd(&yb)) + 0.3 * mean(&rg).hypot(mean(&yb));
+    // Mean colour of a region given in fractions of the image.
+    let region = |x0: f64, x1: f64, y0: f64, y1: f64| {
+        let mut sum = [0.0; 3];
+        let mut count = 0.0;
+        for y in (y0 * f64::from(h)) as u32..(y1 * f64::from(h)) as u32 {
+            for x in (x0 * f64::from(w)) as u32..(x1 * f64::from(w)) as u32 {
+                let p = img.get_pixel(x, y).0;
+                for c in 0..3 {
+                    sum[c] += f64::from(p[c]);
+                }
+                count += 1.0;
+            }
+        }
+        sum.map(|s| s / count)
+    };
+    let away = region(0.0, 0.3, 0.0, 0.3);
+    let towards = region(0.7, 0.95, 0.55, 0.68);
+    let blue = away[2] / away[0];
+    let warmer = (towards[0] / towards[2]) / (away[0] / away[2]);
+    eprintln!(
+        "grey {grey:.3}, colourfulness {colourfulness:.1}, away {away:.0?} (B/R {blue:.2}), towards {towards:.0?}, warmer ×{warmer:.2}"
+    );
+    assert!((0.25..=0.70).contains(&grey), "mean grey {grey:.3}");
+    assert!(colourfulness >= 20.0, "colourfulness {colourfulness:.1}");
+    assert!(blue >= 1.3, "B/R {blue:.2} away from the sun");
+    assert!(warmer >= 1.3, "towards the sun only ×{warmer:.2} warmer");
+}

@@ -5,6 +5,17 @@ use std::path::Path;
 
 include!(concat!(env!("OUT_DIR"), "/presets.rs"));
 
+/// The shipped preset the explorer opens on when there is no last session and no scene on
+/// the command line: a view chosen to show what the app is for.
+pub const FIRST_SCENE: &str = "golden-hour.ron";
+
+/// The explorer's first scene (`FIRST_SCENE`); the built-in default scene should it not load.
+pub fn first_scene() -> Scene {
+    load_shipped(FIRST_SCENE)
+        .and_then(Result::ok)
+        .unwrap_or_default()
+}
+
 /// Parses and validates one shipped preset by file name.
 pub fn load_shipped(name: &str) -> Option<Result<Scene, SceneError>> {
     SHIPPED
@@ -32,5 +43,12 @@ mod tests {
                 Scene::from_ron(&scene.to_ron(), Path::new(name)).unwrap_or_else(|e| panic!("{e}"));
             assert_eq!(again, scene, "{name} does not round-trip");
         }
+    }
+
+    #[test]
+    fn the_first_scene_is_the_shipped_one() {
+        let shipped = load_shipped(FIRST_SCENE).expect("listed").expect("valid");
+        assert_eq!(first_scene(), shipped);
+        assert_ne!(shipped, Scene::default());
     }
 }

@@ -49,8 +49,18 @@ fn harness_with(layout: Layout, size: egui::Vec2) -> Harness<'static, ExplorerAp
     h
 }
 
+/// The layout the tests start from: the default, past the welcome window and with the
+/// Inspector open (the tests read its panels).
+fn test_layout() -> Layout {
+    Layout {
+        welcomed: true,
+        show_inspector: true,
+        ..Layout::default()
+    }
+}
+
 fn harness() -> Harness<'static, ExplorerApp> {
-    harness_with(Layout::default(), egui::vec2(1280.0, 1000.0))
+    harness_with(test_layout(), egui::vec2(1280.0, 1000.0))
 }
 
 fn views<'a>(h: &'a Harness<'static, ExplorerApp>) -> &'a atmoscope::gui::Views {
@@ -383,7 +393,7 @@ fn a_captioned_png_export_keeps_the_view_and_adds_its_caption_below() {
 
 #[test]
 fn the_compare_tab_shows_a_delta_e_figure() {
-    let mut layout = Layout::default();
+    let mut layout = test_layout();
     layout.compare.reference = atmoscope_model::scene::WavelengthSet::SpectralN(8);
     let mut h = harness_with(layout, egui::vec2(900.0, 700.0));
     h.get_by_label("Compare").click();
@@ -529,7 +539,7 @@ fn reference_harness(target_spp: u64) -> Harness<'static, ExplorerApp> {
             size: 0,
             target_spp,
         },
-        ..Layout::default()
+        ..test_layout()
     };
     harness_with(layout, egui::vec2(900.0, 700.0))
 }
@@ -590,7 +600,7 @@ fn the_reference_pauses_while_its_tab_is_hidden() {
 fn main_window_snapshot() {
     let layout = Layout {
         show_performance: false,
-        ..Layout::default()
+        ..test_layout()
     };
     let mut h = harness_with(layout, egui::vec2(960.0, 600.0));
     h.snapshot("explorer");
@@ -702,7 +712,7 @@ fn the_last_scene_and_layout_are_restored_and_options_win() {
     assert_eq!(scene, asked, "a scene from the command line wins");
     assert_eq!(
         atmoscope::gui::restore(None, None),
-        (Scene::default(), Layout::default())
+        (atmoscope::presets::first_scene(), Layout::default())
     );
 }
 
@@ -1331,7 +1341,7 @@ fn step_until_settled(h: &mut Harness<'static, ExplorerApp>, what: &str) -> (usi
 /// until the first image, which then appears. The fast tier covers every model on the Sky tab
 /// and every tab with Bruneton's (the longest build); the research tier every pair.
 fn frames_keep_coming(models: &[atmoscope_model::scene::Method], tabs: &[Tab]) {
-    let mut h = harness_with(Layout::default(), egui::vec2(800.0, 500.0));
+    let mut h = harness_with(test_layout(), egui::vec2(800.0, 500.0));
     h.state_mut()
         .set_rebuild_slices(Some(atmoscope::engine_setup::REBUILD_SLICE));
     h.state_mut().scene.render.quality = atmoscope_model::scene::Quality::Low;
@@ -1373,4 +1383,60 @@ fn frames_keep_coming_for_every_model_on_every_tab() {
         .map(|m| m.method)
         .collect();
     frames_keep_coming(&models, &Tab::ALL);
+}
+
+/// The first start: the welcome window over the first scene with the view given the room
+/// (no Inspector, no Performance table); closed once, it stays closed, and Help brings it back.
+#[test]
+fn the_first_start_welcomes_once_and_help_brings_the_welcome_back() {
+    let mut h = harness_with(Layout::default(), egui::vec2(1280.0, 800.0));
+    h.get_by_label("Welcome to Atmoscope");
+    assert!(!h.state().layout.show_inspector && !h.state().layout.show_performance);
+    h.get_by_label("Start exploring").click();
+    h.run();
+    assert!(h.query_by_label("Welcome to Atmoscope").is_none());
+    let mut storage = MemoryStorage::default();
+    eframe::App::save(h.state_mut(), &mut storage);
+    assert!(atmoscope::gui::restore(Some(&storage), None).1.welcomed);
+
+    h.get_by_label("Help").click();
+    h.run();
+    h.get_by_label("Ctrl+Shift+C");
+    h.get_by_label("Welcome…").click();
+    h.run();
+    h.get_by_label("Welcome to Atmoscope");
+}
+
+/// Every panel's widgets fit its width on every tab at 1280×800 and 1920×1080, with both side
+/// panels and the Performance table open: controls wrap rather than run off a tab (the app
+/// notes any panel whose contents came out wider than the panel). What is taller scrolls.
+#[test]
+fn no_widget_of_any_tab_lies_outside_the_window() {
+    let mut overflows = Vec::new();
+    for size in [egui::vec2(1280.0, 800.0), egui::vec2(1920.0, 1080.0)] {
+        let layout = Layout {
+            show_performance: true,
+            ..test_layout()
+        };
+        let mut h = harness_with(layout, size);
+        for tab in Tab::ALL {
+            h.key_press(tab.key());
+            h.run();
+            if let Some(dir) = std::env::var_os("ATMOSCOPE_SCREENSHOTS") {
+                // For the docs and the closing notes: each tab at each size.
+                let path =
+                    Path::new(&dir).join(format!("{}-{}x{}.png", tab.label(), size.x, size.y));
+                h.render().expect("rendered").save(&path).expect("saved");
+            }
+            let overflowed = &h.state().overflowed;
+            if !overflowed.is_empty() {
+                overflows.push(format!("{tab:?} at {size:?}: {overflowed:?}"));
+            }
+        }
+    }
+    assert!(
+        overflows.is_empty(),
+        "wider than their panel:\n{}",
+        overflows.join("\n")
+    );
 }

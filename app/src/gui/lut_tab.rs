@@ -50,7 +50,7 @@ impl LutTab {
         if s.lane.is_some_and(|l| l >= lanes) {
             s.lane = None;
         }
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             egui::ComboBox::from_label("table")
                 .selected_text(table.label)
                 .show_ui(ui, |ui| {
@@ -78,10 +78,19 @@ impl LutTab {
                 })
                 .response
                 .on_hover_text("Colour combines every wavelength of the set with its matrix to sRGB; a single wavelength shows that band alone in grey.");
-            ui.add(egui::Slider::new(&mut s.exposure_ev, LUT_EXPOSURE_EV).suffix(" EV").text("exposure"))
-                .on_hover_text("Brightness of the table's image: each EV doubles it.");
-            ui.checkbox(&mut s.normalise, "normalise")
-                .on_hover_text("Scale the brightest texel to white first, so tables of any unit are visible.");
+        });
+        // A slider with its value and label is three widgets: on a row of its own, so that a
+        // narrow panel never splits it.
+        ui.horizontal_wrapped(|ui| {
+            ui.add(
+                egui::Slider::new(&mut s.exposure_ev, LUT_EXPOSURE_EV)
+                    .suffix(" EV")
+                    .text("exposure"),
+            )
+            .on_hover_text("Brightness of the table's image: each EV doubles it.");
+            ui.checkbox(&mut s.normalise, "normalise").on_hover_text(
+                "Scale the brightest texel to white first, so tables of any unit are visible.",
+            );
         });
         let [w, hh, depth] = table.size;
         s.slice = s.slice.min(depth - 1);

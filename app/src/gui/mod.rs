@@ -8,6 +8,7 @@ pub mod compare_tab;
 pub mod exposure;
 pub mod files;
 pub mod gpu_view;
+pub mod help;
 pub mod inspector;
 pub mod jobs;
 pub mod lut_tab;
@@ -112,6 +113,9 @@ pub struct ExplorerApp {
     pub pending_exports: Vec<(ExportKind, PathBuf)>,
     /// A scripted session playing in the window (`atmoscope bench gui`); it saves nothing.
     pub session: Option<scripted::Session>,
+    /// The panels whose contents came out wider than the panel in the last frame (they should
+    /// wrap): read by the layout tests.
+    pub overflowed: Vec<&'static str>,
 }
 
 /// A lesson the user started: its window stays until closed and its numbers follow the scene.
@@ -159,6 +163,7 @@ impl ExplorerApp {
             thumbnail_dir: crate::cache::dir("thumbnails"),
             pending_exports: Vec::new(),
             session: None,
+            overflowed: Vec::new(),
         }
     }
 
@@ -511,6 +516,9 @@ impl ExplorerApp {
                         self.layout.tab = tab;
                     }
                 }
+                if i.key_pressed(Key::S) && i.modifiers.is_none() {
+                    self.layout.show_scene ^= true;
+                }
                 if i.key_pressed(Key::I) && i.modifiers.is_none() {
                     self.layout.show_inspector ^= true;
                 }
@@ -519,6 +527,9 @@ impl ExplorerApp {
                 }
                 if i.key_pressed(Key::F) && i.modifiers.is_none() {
                     self.layout.full_view ^= true;
+                }
+                if i.key_pressed(Key::Escape) {
+                    self.layout.full_view = false;
                 }
             });
         }
@@ -558,6 +569,7 @@ impl ExplorerApp {
                     );
             });
             ui.menu_button("View", |ui| {
+                ui.checkbox(&mut self.layout.show_scene, "Scene panel  (S)");
                 ui.checkbox(&mut self.layout.show_inspector, "Inspector  (I)");
                 ui.checkbox(&mut self.layout.show_performance, "Performance  (P)");
                 ui.checkbox(&mut self.layout.full_view, "Full view: hide the panels  (F)");
@@ -598,6 +610,7 @@ impl ExplorerApp {
                     }
                 }
             });
+            ui.menu_button("Help", |ui| help::menu(ui, &mut self.layout));
             ui.separator();
             for tab in Tab::ALL {
                 ui.selectable_value(&mut self.layout.tab, tab, tab.label())
@@ -721,12 +734,14 @@ impl eframe::App for ExplorerApp {
         if let Some(v) = &mut self.views {
             v.main.set_metering(self.scene.display.auto_exposure);
         }
+        self.overflowed.clear();
         let mut commands = self.shortcuts(&ctx);
         egui::Panel::top("menu").show(ui, |ui| commands.extend(self.menu(ui)));
         let full = self.layout.full_view;
         let status = !full || self.message.is_some() || !self.exports.is_empty();
         if status {
             egui::Panel::bottom("status").show(ui, |ui| {
+                let room = ui.max_rect();
                 if let Some(message) = &self.message {
                     let mut dismissed = false;
                     ui.horizontal(|ui| {
@@ -765,14 +780,16 @@ impl eframe::App for ExplorerApp {
                     }
                     performance_panel::show(ui, &shown, self.ui_frame_ms, &views.gpu.adapter);
                 }
+                note_overflow(&mut self.overflowed, "status", room, ui);
             });
         }
-        if !full {
+        if self.layout.show_scene && !full {
             egui::Panel::left("scene")
                 .resizable(true)
                 .default_size(330.0)
                 .show(ui, |ui| {
                     egui::ScrollArea::vertical().show(ui, |ui| {
+                        let room = ui.max_rect();
                         commands.extend(scene_panel::show(
                             ui,
                             &self.scene,
@@ -780,6 +797,7 @@ impl eframe::App for ExplorerApp {
                             self.lesson.as_ref().map(|l| l.lesson.section),
                             &self.thumbnails,
                         ));
+                        note_overflow(&mut self.overflowed, "scene", room, ui);
                     });
                 });
         }
@@ -789,10 +807,12 @@ impl eframe::App for ExplorerApp {
                 .default_size(360.0)
                 .show(ui, |ui| {
                     egui::ScrollArea::vertical().show(ui, |ui| {
+                        let room = ui.max_rect();
                         self.inspector.show(ui, &self.scene);
                         egui::CollapsingHeader::new("Summary per wavelength")
                             .default_open(false)
                             .show(ui, |ui| self.summary.show(ui, &self.scene));
+                        note_overflow(&mut self.overflowed, "inspector", room, ui);
                     });
                 });
         }
@@ -801,8 +821,13 @@ impl eframe::App for ExplorerApp {
         } else {
             egui::CentralPanel::default()
         };
-        centre.show(ui, |ui| commands.extend(self.centre(ui)));
+        centre.show(ui, |ui| {
+            let room = ui.max_rect();
+            commands.extend(self.centre(ui));
+            note_overflow(&mut self.overflowed, "centre", room, ui);
+        });
         self.lesson_window(&ctx);
+        commands.extend(help::welcome(&ctx, &mut self.layout));
         for c in commands {
             self.apply(&ctx, c);
         }
@@ -831,6 +856,19 @@ impl eframe::App for ExplorerApp {
         }
         eframe::set_value(storage, SCENE_KEY, &self.scene);
         eframe::set_value(storage, LAYOUT_KEY, &self.layout);
+    }
+}
+
+/// Notes `panel` if what `ui` holds came out wider than `room`, the rect it was given (egui
+/// widens a Ui's own rects to take what overflows them).
+fn note_overflow(
+    overflowed: &mut Vec<&'static str>,
+    panel: &'static str,
+    room: egui::Rect,
+    ui: &egui::Ui,
+) {
+    if ui.min_rect().right() > room.right() + 0.5 {
+        overflowed.push(panel);
     }
 }
 
@@ -865,7 +903,7 @@ pub fn run(args: SceneArgs) -> anyhow::Result<ExitCode> {
 
 /// The scene and layout to open with: `from_args` if given, else the last session's (a stored
 /// scene that no longer validates is dropped, a stored layout is brought into range), else the
-/// defaults.
+/// explorer's first scene (`presets::first_scene`) and the default layout.
 pub fn restore(storage: Option<&dyn eframe::Storage>, from_args: Option<Scene>) -> (Scene, Layout) {
     let stored = storage
         .and_then(|s| eframe::get_value::<Scene>(s, SCENE_KEY))
@@ -874,7 +912,12 @@ pub fn restore(storage: Option<&dyn eframe::Storage>, from_args: Option<Scene>) 
         .and_then(|s| eframe::get_value::<Layout>(s, LAYOUT_KEY))
         .unwrap_or_default()
         .validated();
-    (from_args.or(stored).unwrap_or_default(), layout)
+    (
+        from_args
+            .or(stored)
+            .unwrap_or_else(crate::presets::first_scene),
+        layout,
+    )
 }
 
 fn wgpu_options() -> eframe::egui_wgpu::WgpuConfiguration {

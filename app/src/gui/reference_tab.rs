@@ -154,7 +154,7 @@ impl ReferenceTab {
     }
 
     pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene, settings: &mut ReferenceSettings) {
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             egui::ComboBox::from_label("size")
                 .selected_text(format!(
                     "{}×{}",

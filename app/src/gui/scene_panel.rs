@@ -443,7 +443,7 @@ fn sun(ui: &mut egui::Ui, s: &mut Scene) {
                     .text("longitude"),
             );
             ui.label(format!(
-                "→ elevation {:.2}°, azimuth {:.2}°",
+                "sun at elevation {:.2}°, azimuth {:.2}°",
                 angles.elevation_deg, angles.azimuth_deg
             ))
             .on_hover_text(

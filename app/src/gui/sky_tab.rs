@@ -230,7 +230,7 @@ fn legend(ui: &mut egui::Ui, layout: &mut Layout, read_out: Option<f64>) {
         }
     });
     ui.add_space(14.0);
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         ui.label("cd/m², log scale from 10^");
         let [mut lo, mut hi] = layout.luminance_log10_range;
         ui.add(egui::DragValue::new(&mut lo).range(LUMINANCE_LOG10_LIMITS[0]..=hi - 1.0).speed(0.1))

@@ -112,10 +112,17 @@ pub struct Layout {
     pub compare: CompareSettings,
     pub luts: LutSettings,
     pub reference: ReferenceSettings,
+    /// The Scene panel on the left (S).
+    pub show_scene: bool,
+    /// The Inspector on the right (I); clicking a pixel opens it.
     pub show_inspector: bool,
+    /// The Performance table under the view (P).
     pub show_performance: bool,
     /// Only the view (and the menu): for presenting, and for measuring a frame of a given size.
     pub full_view: bool,
+    /// The welcome window was closed: it is shown on the first start only (Help → Welcome
+    /// brings it back).
+    pub welcomed: bool,
     /// Burn a caption (scene, model, wavelength set, exposure) under exported PNGs.
     pub caption_exports: bool,
 }
@@ -130,9 +137,11 @@ impl Default for Layout {
             compare: CompareSettings::default(),
             luts: LutSettings::default(),
             reference: ReferenceSettings::default(),
-            show_inspector: true,
-            show_performance: true,
+            show_scene: true,
+            show_inspector: false,
+            show_performance: false,
             full_view: false,
+            welcomed: false,
             caption_exports: false,
         }
     }
