@@ -9,6 +9,7 @@
 pub mod args;
 pub mod bench_results;
 pub mod cache;
+pub mod chart_style;
 pub mod cli;
 pub mod engine_setup;
 pub mod files;

@@ -200,7 +200,7 @@ impl BenchTab {
             }
         }
         let mut commands = Vec::new();
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             match &self.run {
                 Some(job) => {
                     job.show(ui);
@@ -248,7 +248,7 @@ impl BenchTab {
         let mut views: Vec<&str> = rows.iter().map(|r| r.view.as_str()).collect();
         views.sort();
         views.dedup();
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             ui.label(format!("{} ({} rows)", path.display(), rows.len()));
             egui::ComboBox::from_label("view")
                 .selected_text(self.view.as_deref().unwrap_or("mean of every view"))
@@ -321,13 +321,19 @@ fn render_command(scene: &Scene, c: &Config) -> Option<Command> {
     Some(Command::SetScene(Box::new(s)))
 }
 
-const MARKERS: [MarkerShape; 5] = [
-    MarkerShape::Circle,
-    MarkerShape::Up,
-    MarkerShape::Cross,
-    MarkerShape::Square,
-    MarkerShape::Diamond,
-];
+/// egui_plot's shape for a chart marker, and whether it is filled.
+fn marker_shape(marker: crate::chart_style::Marker) -> (MarkerShape, bool) {
+    use crate::chart_style::Marker;
+    match marker {
+        Marker::Circle => (MarkerShape::Circle, true),
+        Marker::Ring => (MarkerShape::Circle, false),
+        Marker::Triangle => (MarkerShape::Up, true),
+        Marker::OpenTriangle => (MarkerShape::Up, false),
+        Marker::Square => (MarkerShape::Square, true),
+        Marker::OpenSquare => (MarkerShape::Square, false),
+        Marker::Cross => (MarkerShape::Cross, true),
+    }
+}
 
 /// The scatter, log–log (axes in log10, labelled in ms and ΔE); returns the index of a
 /// clicked configuration.
@@ -393,9 +399,15 @@ fn chart(ui: &mut egui::Ui, configs: &[Config], view: Option<&str>) -> Option<us
                     .filter(|c| c.method == *model && c.timed())
                     .map(log)
                     .collect();
+                // The family's colour, the model's marker within it (`chart_style`).
+                let style = crate::chart_style::style(model, i);
+                let [r, g, b] = style.colour;
+                let (shape, filled) = marker_shape(style.marker);
                 p.points(
                     Points::new(*model, PlotPoints::from(points))
-                        .shape(MARKERS[i % MARKERS.len()])
+                        .color(egui::Color32::from_rgb(r, g, b))
+                        .shape(shape)
+                        .filled(filled)
                         .radius(5.0),
                 );
             }

@@ -283,6 +283,66 @@ pub trait SkyModel: Send + Sync {
     }
 }
 
+/// The kinds of method in the registry.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Family {
+    /// Tables of scattered light precomputed per atmosphere and read per pixel.
+    PrecomputedTables,
+    /// Single scattering marched per pixel, the optical depths exact or in closed form.
+    SingleScattering,
+    /// The same plus Hillaire's isotropic higher orders Ψ_ms (the `-ms` rows).
+    WithIsotropicOrders,
+    /// The view ray as one or a few homogeneous slabs in closed form.
+    ClosedFormSlab,
+    /// Nishita et al.'s (1996) intensity volume, gathered order by order.
+    IntensityVolume,
+    /// Analytic distributions fitted to measured or simulated skies.
+    AnalyticFit,
+    /// No atmosphere: the benchmarks' floor.
+    Baseline,
+    /// The path tracer.
+    GroundTruth,
+}
+
+impl Family {
+    pub const ALL: [Family; 8] = [
+        Family::PrecomputedTables,
+        Family::SingleScattering,
+        Family::WithIsotropicOrders,
+        Family::ClosedFormSlab,
+        Family::IntensityVolume,
+        Family::AnalyticFit,
+        Family::Baseline,
+        Family::GroundTruth,
+    ];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Family::PrecomputedTables => "precomputed tables",
+            Family::SingleScattering => "single scattering",
+            Family::WithIsotropicOrders => "single + isotropic orders",
+            Family::ClosedFormSlab => "closed-form slabs",
+            Family::IntensityVolume => "intensity volume",
+            Family::AnalyticFit => "analytic fits",
+            Family::Baseline => "baseline",
+            Family::GroundTruth => "ground truth",
+        }
+    }
+
+    /// This family's position in `ALL` and `model`'s among the registry's rows of the family:
+    /// a chart's colour and marker for the model, distinct for every row. None for an id the
+    /// registry does not have.
+    pub fn style_of(model: &str) -> Option<(usize, usize)> {
+        let info = by_id(model)?;
+        let family = Family::ALL.iter().position(|&f| f == info.family)?;
+        let within = MODELS
+            .iter()
+            .filter(|m| m.family == info.family)
+            .position(|m| m.id == info.id)?;
+        Some((family, within))
+    }
+}
+
 /// One row of the registry.
 #[derive(Debug, Clone, Copy)]
 pub struct ModelInfo {
@@ -290,6 +350,8 @@ pub struct ModelInfo {
     /// Stable id, as the command line spells it.
     pub id: &'static str,
     pub label: &'static str,
+    /// The kind of method, for grouping in charts and lists.
+    pub family: Family,
     pub citation: &'static str,
     /// One or two sentences: what the model does and what it costs.
     pub summary: &'static str,
@@ -375,6 +437,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::Hillaire,
         id: "hillaire",
+        family: Family::PrecomputedTables,
         label: "Hillaire 2020",
         citation: "S. Hillaire (2020), A Scalable and Production Ready Sky and Atmosphere Rendering Technique, Computer Graphics Forum 39(4)",
         summary: "Transmittance and multiple-scattering tables, a sky-view table at the camera's altitude and an aerial-perspective volume; ray-marched from space.",
@@ -394,6 +457,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::Bruneton,
         id: "bruneton",
+        family: Family::PrecomputedTables,
         label: "Bruneton & Neyret 2008",
         citation: "E. Bruneton, F. Neyret (2008), Precomputed Atmospheric Scattering, Computer Graphics Forum 27(4); parameterisation of E. Bruneton's 2017 reference implementation",
         summary: "4D scattering tables (altitude, view, sun, view–sun angle) with every order up to N gathered one by one at precompute time, and sky irradiance; only their 2D slices at the camera depend on the sun or the camera's altitude.",
@@ -413,6 +477,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::GarciaLinan,
         id: "garcia-linan",
+        family: Family::PrecomputedTables,
         label: "García Liñán 2023",
         citation: "F. García Liñán (2023), A real-time spectral atmosphere model, master's thesis",
         summary: "Transmittance table and ray-marched single scattering in a sky texture, plus a closed-form ground-bounce term and a fitted logistic multiple-scattering term.",
@@ -432,6 +497,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::Elek,
         id: "elek",
+        family: Family::PrecomputedTables,
         label: "Elek 2009",
         citation: "O. Elek (2009), Rendering Parametrizable Planetary Atmospheres with Multiple Scattering in Real-Time, CESCG; as described in J. Boody's Atmosphere Plus notes after Bodare & Sandberg (2014)",
         summary: "3D tables (altitude, view, sun) without the view–sun azimuth, Rayleigh and Mie apart with their phase functions applied at look-up (a modified Rayleigh phase), every order up to N gathered one by one; only their rows at the camera (one blend per texel) depend on the sun or the camera's altitude.",
@@ -451,6 +517,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::Nishita,
         id: "nishita",
+        family: Family::SingleScattering,
         label: "Nishita 1993",
         citation: "T. Nishita, T. Sirai, K. Tadamura, E. Nakamae (1993), Display of the Earth Taking into Account Atmospheric Scattering, SIGGRAPH; per pixel on the GPU as in S. O'Neil (2005), Accurate Atmospheric Scattering, GPU Gems 2",
         summary: "Single scattering by nested quadrature, no tables of the atmosphere: every pixel marches its view ray and, at each sample, the ray to the sun. No higher orders; all the cost is in the frame (in motion on a software GPU, in the moving sky: the same marches at 192 × 108 directions).",
@@ -470,6 +537,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::Trapezoid,
         id: "trapezoid",
+        family: Family::SingleScattering,
         label: "Trapezoid rule",
         citation: "Single scattering with the trapezoid rule along the sun's ray, the baseline of T. Gałaj, F. Pietrusiak, M. Galewski, R. Ledzion, A. Wojciechowski (2021), Hybrid Integration Method for Sunlight Atmospheric Scattering, IEEE Access 9",
         summary: "Nishita's table-free single scattering with the optical depth towards the sun by the trapezoid rule (both ends sampled) instead of midpoints; the same sample counts.",
@@ -489,6 +557,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::NishitaMs,
         id: "nishita-ms",
+        family: Family::WithIsotropicOrders,
         label: "Nishita 1993 + Hillaire's Ψ_ms",
         citation: "Nishita et al. (1993) as the nishita row, with the multiple-scattering table of S. Hillaire (2020) as its higher orders",
         summary: "The nishita row's table-free single scattering plus Hillaire's isotropic higher orders Ψ_ms, looked up at every sample: two small tables that depend on the atmosphere alone (and the moving sky for views in motion on a software GPU).",
@@ -508,6 +577,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::TrapezoidMs,
         id: "trapezoid-ms",
+        family: Family::WithIsotropicOrders,
         label: "Trapezoid rule + Hillaire's Ψ_ms",
         citation: "The trapezoid row, with the multiple-scattering table of S. Hillaire (2020) as its higher orders",
         summary: "The trapezoid row's single scattering plus Hillaire's isotropic higher orders Ψ_ms.",
@@ -527,6 +597,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::Schuler,
         id: "schuler",
+        family: Family::SingleScattering,
         label: "Schuler 2012",
         citation: "C. Schuler (2012), An Approximation to the Chapman Grazing-Incidence Function for Atmospheric Scattering, GPU Pro 3; as compared by D. Leenman (2025)",
         summary: "Nishita's per-pixel single scattering with the march towards the sun replaced by Schuler's closed-form Chapman function on exponential fits of air and aerosol (ozone as a thin shell); no tables of the atmosphere (views in motion on a software GPU are drawn from the moving sky), no higher orders.",
@@ -546,6 +617,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::SchulerMs,
         id: "schuler-ms",
+        family: Family::WithIsotropicOrders,
         label: "Schuler 2012 + Hillaire's Ψ_ms",
         citation: "The schuler row, with the multiple-scattering table of S. Hillaire (2020) as its higher orders",
         summary: "The schuler row's single scattering plus Hillaire's isotropic higher orders Ψ_ms.",
@@ -565,6 +637,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::GalajTaylor,
         id: "galaj-taylor",
+        family: Family::SingleScattering,
         label: "Gałaj 2021 (Taylor)",
         citation: "T. Gałaj, F. Pietrusiak, M. Galewski, R. Ledzion, A. Wojciechowski (2021), Hybrid Integration Method for Sunlight Atmospheric Scattering, IEEE Access 9: the Taylor-series transmittance (a = b = 0.45)",
         summary: "Single scattering marched along the view ray, with the optical depth towards the sun from one closed form per constituent: the altitude along the sun's ray expanded to order 1 + a about a point b of the way to the top; exponential fits of air and aerosol, ozone as a thin shell; no tables of the atmosphere (views in motion on a software GPU are drawn from the moving sky), no higher orders.",
@@ -584,6 +657,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::GalajTaylorMs,
         id: "galaj-taylor-ms",
+        family: Family::WithIsotropicOrders,
         label: "Gałaj 2021 (Taylor) + Hillaire's Ψ_ms",
         citation: "The galaj-taylor row, with the multiple-scattering table of S. Hillaire (2020) as its higher orders",
         summary: "The galaj-taylor row's single scattering plus Hillaire's isotropic higher orders Ψ_ms.",
@@ -603,6 +677,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::GalajSpline,
         id: "galaj-spline",
+        family: Family::SingleScattering,
         label: "Gałaj 2021 (spline)",
         citation: "T. Gałaj, F. Pietrusiak, M. Galewski, R. Ledzion, A. Wojciechowski (2021), Hybrid Integration Method for Sunlight Atmospheric Scattering, IEEE Access 9: the spline transmittance (Hermite, 50 × 20 mesh)",
         summary: "Single scattering marched along the view ray, with the optical depth towards the sun integrated exactly over a cubic Hermite spline of the integrand, read from a 50 × 20 mesh per constituent (lines above the ground in distance, lines meeting it in altitude); exponential fits of air and aerosol, ozone as a thin shell; no higher orders.",
@@ -622,6 +697,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::GalajSplineMs,
         id: "galaj-spline-ms",
+        family: Family::WithIsotropicOrders,
         label: "Gałaj 2021 (spline) + Hillaire's Ψ_ms",
         citation: "The galaj-spline row, with the multiple-scattering table of S. Hillaire (2020) as its higher orders",
         summary: "The galaj-spline row's single scattering plus Hillaire's isotropic higher orders Ψ_ms.",
@@ -641,6 +717,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::Flat,
         id: "flat",
+        family: Family::ClosedFormSlab,
         label: "Leenman 2025 (flat)",
         citation: "D. Leenman (2025), A visual and performance comparison of atmospheric scattering models, master's thesis: the flat homogeneous atmosphere on the sphere, after Jodie (2019)",
         summary: "Single scattering of the whole view ray as one slab in closed form, every optical depth the chord through a homogeneous shell one scale height thick; no tables, no march, no higher orders, no Earth shadow in the sky.",
@@ -660,6 +737,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::Raymarched,
         id: "raymarched",
+        family: Family::ClosedFormSlab,
         label: "Leenman 2025 (raymarched)",
         citation: "D. Leenman (2025), A visual and performance comparison of atmospheric scattering models, master's thesis: five slab segments along the view ray (his eq. 55) with homogeneous-shell optical depths",
         summary: "The flat model's slab integral over five segments of the view ray, each between its ends' view and sun optical depths; no tables, no higher orders, no Earth shadow in the sky.",
@@ -679,6 +757,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::ONeil,
         id: "oneil",
+        family: Family::SingleScattering,
         label: "O'Neil 2005",
         citation: "S. O'Neil (2005), Accurate Atmospheric Scattering, in GPU Gems 2, ch. 16, Addison-Wesley, 253–268",
         summary: "The games-era sky: Nishita's single scattering in five samples per view ray, every optical depth from one fitted function of the angle times the density (refitted to the scene's planet and air), air and aerosol sharing one scale height, no ozone; no tables, no higher orders, no Earth shadow.",
@@ -698,6 +777,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::Nishita96,
         id: "nishita-96",
+        family: Family::IntensityVolume,
         label: "Nishita 1996",
         citation: "T. Nishita, Y. Dobashi, K. Kaneda, H. Yamashita (1996), Display Method of the Sky Color Taking into Account Multiple Scattering, Pacific Graphics",
         summary: "The nishita row's single scattering plus the second order, gathered at every view sample from an intensity volume: the once-scattered light stored per altitude and sun angle for 64 cells of directions centred on the sun, computed once per atmosphere.",
@@ -717,6 +797,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::Haber,
         id: "haber",
+        family: Family::IntensityVolume,
         label: "Haber 2005",
         citation: "J. Haber, M. Magnor, H.-P. Seidel (2005), Physically based simulation of twilight phenomena, ACM Transactions on Graphics 24(4), 1353–1373",
         summary: "Multiple scattering for twilight: the intensity volume of nishita-96 iterated order by order to the scene's count (each order gathered from the one before, Earth's shadow included), the view marching single scattering and gathering one order more; no refraction.",
@@ -736,6 +817,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::Preetham,
         id: "preetham",
+        family: Family::AnalyticFit,
         label: "Preetham 1999",
         citation: "A. J. Preetham, P. Shirley, B. Smits (1999), A Practical Analytic Model for Daylight, SIGGRAPH; on the sky-luminance distribution of R. Perez, R. Seals, J. Michalsky (1993)",
         summary: "The analytic daylight model: Perez's five-parameter distribution in xyY, linear in the turbidity, scaled by fitted zenith values; one closed form per pixel, no tables. Ground views in daylight only; the ground gets the direct sun alone.",
@@ -755,6 +837,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::HosekWilkie,
         id: "hosek-wilkie",
+        family: Family::AnalyticFit,
         label: "Hosek–Wilkie 2012",
         citation: "L. Hosek, A. Wilkie (2012), An Analytic Model for Full Spectral Sky-Dome Radiance, ACM Transactions on Graphics 31(4); the sun from L. Hosek, A. Wilkie (2013), Adding a Solar Radiance Function to the Hosek Skylight Model, IEEE Computer Graphics and Applications 33(3)",
         summary: "The analytic sky of production renderers: a nine-parameter distribution per band (11 bands, 320–720 nm, or its own sRGB fit), each parameter a Bézier curve in the sun's elevation blended over turbidity and ground albedo; the sun from the 2013 solar radiance function. One closed form per pixel, coefficients computed on the CPU per sun. Ground views in daylight only.",
@@ -774,6 +857,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::CieStandardSky,
         id: "cie-standard-sky",
+        family: Family::AnalyticFit,
         label: "CIE standard general sky",
         citation: "CIE S 011/E:2003 (ISO 15469:2004), Spatial distribution of daylight — CIE standard general sky; zenith luminance of A. J. Preetham, P. Shirley, B. Smits (1999)",
         summary: "The daylighting standard's 15 relative luminance distributions (overcast to turbid clear, `render.cie_sky_type`), a gradation in the zenith angle times an indicatrix in the angle from the sun; the zenith luminance from Preetham's formula at the scene's turbidity. A luminance model: no spectrum, the colour of the sun. Ground views in daylight only.",
@@ -793,6 +877,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::Empty,
         id: "empty",
+        family: Family::Baseline,
         label: "No atmosphere",
         citation: "The baseline of D. Leenman (2025), A visual and performance comparison of atmospheric scattering models, master's thesis (his empty shader): the planet without air",
         summary: "A black sky over ground lit by the sun as in space: the cheapest frame and the largest error, the benchmark's baseline.",
@@ -812,6 +897,7 @@ pub const MODELS: &[ModelInfo] = &[
     ModelInfo {
         method: Method::PathTracer,
         id: "path-tracer",
+        family: Family::GroundTruth,
         label: "Path tracer",
         citation: "Spectral Monte Carlo path tracer with ratio tracking and next-event estimation (this project)",
         summary: "The offline ground truth: all scattering orders, no tables. `atmoscope reference` and the Reference tab render with it.",

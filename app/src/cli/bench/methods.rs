@@ -622,39 +622,68 @@ fn draw_chart<B: plotters::prelude::DrawingBackend>(
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(2)));
     let models = crate::bench_results::models_in_order(configs);
     for (i, model) in models.iter().enumerate() {
-        let colour = crate::images::PALETTE[i % crate::images::PALETTE.len()];
-        let points = configs
+        // The family's colour, the model's marker within it (`chart_style`).
+        let style = crate::chart_style::style(model, i);
+        let [r, g, b] = style.colour;
+        let colour = RGBColor(r, g, b);
+        let points: Vec<(f64, f64)> = configs
             .iter()
             .filter(|c| c.method == *model)
-            .map(|c| (c.frame_ms, c.de2000_mean));
-        // One marker shape per model, so the chart reads without colour too.
-        match i % 3 {
-            0 => chart
-                .draw_series(points.map(|p| Circle::new(p, 6, colour.filled())))
-                .map_err(err)?
-                .label(*model)
-                .legend(move |(x, y)| Circle::new((x + 9, y), 6, colour.filled())),
-            1 => chart
-                .draw_series(points.map(|p| TriangleMarker::new(p, 7, colour.filled())))
-                .map_err(err)?
-                .label(*model)
-                .legend(move |(x, y)| TriangleMarker::new((x + 9, y), 7, colour.filled())),
-            _ => chart
-                .draw_series(points.map(|p| Cross::new(p, 6, colour.stroke_width(2))))
-                .map_err(err)?
-                .label(*model)
-                .legend(move |(x, y)| Cross::new((x + 9, y), 6, colour.stroke_width(2))),
+            .map(|c| (c.frame_ms, c.de2000_mean))
+            .collect();
+        // Each marker drawn at a point's pixel, and the same in the legend.
+        macro_rules! series {
+            ($shape:expr) => {
+                chart
+                    .draw_series(points.iter().map(|&p| EmptyElement::at(p) + $shape))
+                    .map_err(err)?
+                    .label(*model)
+                    .legend(move |(x, y)| EmptyElement::at((x + 9, y)) + $shape)
+            };
+        }
+        use crate::chart_style::Marker;
+        let (filled, open) = (colour.filled(), colour.stroke_width(2));
+        match style.marker {
+            Marker::Circle => series!(Circle::new((0, 0), 6, filled)),
+            Marker::Ring => series!(Circle::new((0, 0), 6, open)),
+            Marker::Triangle => series!(TriangleMarker::new((0, 0), 7, filled)),
+            Marker::OpenTriangle => series!(TriangleMarker::new((0, 0), 7, open)),
+            Marker::Square => series!(Rectangle::new([(-5, -5), (5, 5)], filled)),
+            Marker::OpenSquare => series!(Rectangle::new([(-5, -5), (5, 5)], open)),
+            Marker::Cross => series!(Cross::new((0, 0), 6, open)),
         };
     }
-    chart
-        .draw_series(configs.iter().map(|c| {
-            Text::new(
-                format!("{} {}", c.wavelengths, c.quality),
-                (c.frame_ms * 1.06, c.de2000_mean),
-                ("sans-serif", 12),
-            )
-        }))
-        .map_err(err)?;
+    // Each point's wavelength set and quality beside it where that covers no other label or
+    // marker; in a crowd some are left out (the legend and summary.md name every one).
+    let at: Vec<(i32, i32)> = configs
+        .iter()
+        .map(|c| chart.backend_coord(&(c.frame_ms, c.de2000_mean)))
+        .collect();
+    let texts: Vec<String> = configs
+        .iter()
+        .map(|c| format!("{} {}", c.wavelengths, c.quality))
+        .collect();
+    // 12 px sans-serif: about 6.5 px a character.
+    let sizes: Vec<(i32, i32)> = texts
+        .iter()
+        .map(|t| ((t.chars().count() as f64 * 6.5).ceil() as i32, 13))
+        .collect();
+    let (xs, ys) = chart.plotting_area().get_pixel_range();
+    let area = crate::chart_style::PixelBox {
+        x: xs.start,
+        y: ys.start,
+        w: xs.end - xs.start,
+        h: ys.end - ys.start,
+    };
+    for (text, place) in texts
+        .iter()
+        .zip(crate::chart_style::place_labels(&at, &sizes, 7, area))
+    {
+        if let Some(b) = place {
+            root.draw(&Text::new(text.clone(), (b.x, b.y), ("sans-serif", 12)))
+                .map_err(err)?;
+        }
+    }
     chart
         .configure_series_labels()
         .position(SeriesLabelPosition::UpperRight)
