@@ -5,6 +5,7 @@ use crate::presets::load_shipped;
 use anyhow::{Context, bail};
 use atmoscope_model::Scene;
 use atmoscope_model::aerosol::AerosolType;
+use atmoscope_model::ground::GroundType;
 use atmoscope_model::profiles::{AirProfile, OzoneProfile};
 use atmoscope_model::scene::limits::{self, Limit};
 use atmoscope_model::scene::{OzoneColumn, SunSettings};
@@ -64,8 +65,13 @@ pub struct SceneArgs {
     pub ozone_latitude: Option<f64>,
     #[arg(long, value_name = "DU", allow_hyphen_values = true, help = ranged("Total ozone column", limits::OZONE_COLUMN_DU))]
     pub ozone_du: Option<f64>,
-    #[arg(long, value_name = "A", allow_hyphen_values = true, help = ranged("Ground albedo", limits::GROUND_ALBEDO))]
+    #[arg(long, value_name = "A", allow_hyphen_values = true, conflicts_with = "ground", help = ranged("Albedo of a grey ground (sets the ground grey)", limits::GROUND_ALBEDO))]
     pub albedo: Option<f64>,
+    /// Ground type, its measured spectral albedo used by every model and the path tracer:
+    /// grey (the scene's albedo at every wavelength), fresh-snow, grass, desert-sand,
+    /// dry-soil, ocean.
+    #[arg(long, value_name = "TYPE")]
+    pub ground: Option<String>,
     /// Air density profile: us-standard-1976, afgl-us-standard, afgl-tropical,
     /// afgl-midlatitude-summer, afgl-midlatitude-winter, afgl-subarctic-summer,
     /// afgl-subarctic-winter, exponential-fit, exponential-8km.
@@ -201,6 +207,15 @@ impl SceneArgs {
         }
         if let Some(a) = self.albedo {
             atm.ground_albedo = a;
+            atm.ground = GroundType::Grey;
+        }
+        if let Some(name) = &self.ground {
+            atm.ground = GroundType::from_cli_name(name).with_context(|| {
+                format!(
+                    "--ground {name}: unknown; choose one of {}",
+                    names(&GroundType::ALL, GroundType::cli_name)
+                )
+            })?;
         }
         if let Some(h) = self.altitude_m {
             scene.camera.altitude_m = h;

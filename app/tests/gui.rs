@@ -135,6 +135,42 @@ fn choosing_an_aerosol_type_sets_its_typical_amount_and_redraws() {
     assert_ne!(radiance(&mut h), before);
 }
 
+/// A measured ground replaces the albedo slider with its spectrum, and the view (sky and
+/// ground) brightens over snow.
+#[test]
+fn choosing_fresh_snow_shows_its_spectrum_and_brightens_the_view() {
+    let mut h = harness();
+    let before = radiance(&mut h);
+    h.get_by_role_and_label(Role::ComboBox, "Ground").click();
+    h.run();
+    h.get_by_label("fresh snow").click_accesskit();
+    h.run();
+    let atm = &h.state().scene.atmosphere;
+    assert_eq!(atm.ground, atmoscope_model::ground::GroundType::FreshSnow);
+    h.get_by_label("visible albedo 0.90 (400–700 nm)");
+    assert!(h.query_by_label("ground albedo").is_none());
+    let after = radiance(&mut h);
+    let view = main_view(&h).expect("drawn");
+    let w = view.width as usize;
+    // Mean luminance-like sum of the top and the bottom tenth of the rows: sky and ground.
+    let rows = |r: &[[f32; 4]], top: bool| {
+        let n = r.len() / w / 10 * w;
+        let part = if top { &r[..n] } else { &r[r.len() - n..] };
+        part.iter()
+            .map(|p| f64::from(p[0] + p[1] + p[2]))
+            .sum::<f64>()
+            / n as f64
+    };
+    let (sky, ground) = (
+        rows(&after, true) / rows(&before, true),
+        rows(&after, false) / rows(&before, false),
+    );
+    assert!(
+        sky > 1.05 && ground > 2.0,
+        "sky ×{sky:.3}, ground ×{ground:.3}"
+    );
+}
+
 #[test]
 fn month_slider_sets_the_ozone_column_and_redraws() {
     let mut h = harness();
@@ -1390,7 +1426,13 @@ fn frames_keep_coming_for_every_model_on_every_tab() {
 #[test]
 fn the_first_start_welcomes_once_and_help_brings_the_welcome_back() {
     let mut h = harness_with(Layout::default(), egui::vec2(1280.0, 800.0));
+    h.state_mut().scene = atmoscope::presets::first_scene();
+    h.run();
     h.get_by_label("Welcome to Atmoscope");
+    if let Some(dir) = std::env::var_os("ATMOSCOPE_SCREENSHOTS") {
+        let path = Path::new(&dir).join("first-start-1280x800.png");
+        h.render().expect("rendered").save(&path).expect("saved");
+    }
     assert!(!h.state().layout.show_inspector && !h.state().layout.show_performance);
     h.get_by_label("Start exploring").click();
     h.run();
@@ -1419,6 +1461,11 @@ fn no_widget_of_any_tab_lies_outside_the_window() {
             ..test_layout()
         };
         let mut h = harness_with(layout, size);
+        // The scene a first start opens on, and the shipped benchmark results, as in the
+        // docs' screenshots.
+        h.state_mut().scene = atmoscope::presets::first_scene();
+        h.state_mut().bench =
+            atmoscope::gui::bench_tab::BenchTab::new(bench_dir("layout")).with_shipped_results();
         for tab in Tab::ALL {
             h.key_press(tab.key());
             h.run();

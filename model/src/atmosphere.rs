@@ -12,6 +12,7 @@ use crate::aerosol::{
 };
 use crate::constants::AOD_REFERENCE_NM;
 use crate::geometry::{self, Ray};
+use crate::ground::GroundType;
 use crate::ozone::OzoneCrossSection;
 use crate::phase;
 use crate::profiles::{AirProfile, ScaledOzone};
@@ -194,7 +195,9 @@ pub struct Atmosphere {
     pub bottom_radius_m: f64,
     /// Radius of the top of the atmosphere, m.
     pub top_radius_m: f64,
+    /// The grey ground's albedo (0–1), used where `ground` is grey.
     pub ground_albedo: f64,
+    pub ground: GroundType,
     pub solar_spectrum: SolarSpectrum,
     /// The Earth–Sun distance, AU (0.98–1.02; 1 unless built by [`Atmosphere::for_scene`]
     /// from a sun placed by date): sunlight scales as its inverse square.
@@ -269,6 +272,7 @@ impl Atmosphere {
             bottom_radius_m: bottom,
             top_radius_m: bottom + top_m,
             ground_albedo: s.ground_albedo,
+            ground: s.ground,
             solar_spectrum: s.solar_spectrum,
             sun_distance_au: 1.0,
             aerosol_type: kind,
@@ -308,6 +312,13 @@ impl Atmosphere {
             None => self.solar_spectrum.spectrum().sample(wavelength_nm),
         };
         at_1_au * self.sun_distance_au.powi(-2)
+    }
+
+    /// The ground's albedo (0–1) at `wavelength_nm`, averaged over a band `band_nm` wide
+    /// where given.
+    pub fn ground_albedo_at(&self, wavelength_nm: f64, band_nm: Option<f64>) -> f64 {
+        self.ground
+            .albedo(self.ground_albedo, wavelength_nm, band_nm)
     }
 
     /// Height of the atmosphere above the ground, m.

@@ -13,6 +13,7 @@ pub mod csv_table;
 pub mod display;
 pub mod files;
 pub mod geometry;
+pub mod ground;
 pub mod lanes;
 pub mod methods;
 pub mod mie;

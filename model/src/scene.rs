@@ -7,6 +7,7 @@
 
 use crate::aerosol::AerosolType;
 use crate::constants::{EARTH_ATMOSPHERE_TOP_M, EARTH_RADIUS_M};
+use crate::ground::GroundType;
 use crate::ozone::{self, OzoneCrossSection};
 use crate::profiles::{AirProfile, OzoneProfile};
 use crate::solar_spectrum::SolarSpectrum;
@@ -68,8 +69,11 @@ pub struct AtmosphereSettings {
     pub rayleigh_depolarisation: bool,
     pub aerosol: AerosolSettings,
     pub ozone: OzoneSettings,
-    /// Lambertian ground albedo (0–1).
+    /// Lambertian ground albedo (0–1) of the grey ground.
     pub ground_albedo: f64,
+    /// The ground's surface: grey (`ground_albedo` at every wavelength) or a measured
+    /// spectral albedo (`ground::GroundType`).
+    pub ground: GroundType,
     pub solar_spectrum: SolarSpectrum,
 }
 
@@ -84,6 +88,7 @@ impl Default for AtmosphereSettings {
             aerosol: AerosolSettings::default(),
             ozone: OzoneSettings::default(),
             ground_albedo: 0.3,
+            ground: GroundType::Grey,
             solar_spectrum: SolarSpectrum::default(),
         }
     }

@@ -8,6 +8,7 @@ use crate::lessons::Section;
 use crate::presets::SHIPPED;
 use atmoscope_model::Scene;
 use atmoscope_model::aerosol::AerosolType;
+use atmoscope_model::ground::GroundType;
 use atmoscope_model::methods::{self, cie_standard_sky};
 use atmoscope_model::ozone::OzoneCrossSection;
 use atmoscope_model::profiles::{AirProfile, OzoneProfile};
@@ -301,12 +302,56 @@ fn ozone(ui: &mut egui::Ui, s: &mut Scene) {
     );
 }
 
+/// A measured ground's albedo against wavelength over the engine's range, its visible albedo
+/// and its source.
+fn ground_spectrum(ui: &mut egui::Ui, ground: GroundType) {
+    let points: Vec<[f64; 2]> = (360..=830)
+        .step_by(5)
+        .map(|w| [f64::from(w), ground.albedo(0.0, f64::from(w), None)])
+        .collect();
+    egui_plot::Plot::new("ground-spectrum")
+        .height(90.0)
+        .include_y(0.0)
+        .include_y(1.0)
+        .allow_drag(false)
+        .allow_zoom(false)
+        .allow_scroll(false)
+        .x_axis_label("wavelength (nm)")
+        .y_axis_label("albedo")
+        .show(ui, |p| {
+            p.line(egui_plot::Line::new(
+                ground.label(),
+                egui_plot::PlotPoints::from(points),
+            ))
+        });
+    if let Some(a) = ground.stated_visible_albedo() {
+        ui.label(format!("visible albedo {a:.2} (400–700 nm)"));
+    }
+    ui.small(ground.source());
+}
+
 fn ground_and_air(ui: &mut egui::Ui, s: &mut Scene) {
     let atm = &mut s.atmosphere;
-    ui.add(Slider::new(&mut atm.ground_albedo, limits::GROUND_ALBEDO.range()).text("ground albedo")).on_hover_text(
-        "Share of light the ground reflects: ocean 0.06, forest 0.15, sand 0.4, fresh snow 0.9. A bright ground lights \
-         the sky from below.",
-    );
+    ComboBox::from_label("Ground")
+        .selected_text(atm.ground.label())
+        .show_ui(ui, |ui| {
+            for g in GroundType::ALL {
+                ui.selectable_value(&mut atm.ground, g, g.label());
+            }
+        })
+        .response
+        .on_hover_text(
+            "The ground's surface. A measured one reflects each wavelength as that surface does, in the ground's colour \
+             and in the light it sends back up into the sky: snow brightens the sky from below.",
+        );
+    if atm.ground == GroundType::Grey {
+        ui.add(Slider::new(&mut atm.ground_albedo, limits::GROUND_ALBEDO.range()).text("ground albedo")).on_hover_text(
+            "Share of light the grey ground reflects at every wavelength: ocean 0.06, forest 0.15, sand 0.4, fresh snow \
+             0.9. A bright ground lights the sky from below.",
+        );
+    } else {
+        ground_spectrum(ui, atm.ground);
+    }
     ComboBox::from_label("Air profile")
         .selected_text(atm.air_profile.cli_name())
         .show_ui(ui, |ui| {

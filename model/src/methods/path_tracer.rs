@@ -796,7 +796,11 @@ impl<'a> PathTracer<'a> {
         let mut weight = Lanes::ONE;
         let mut ray = *ray;
         let max_order = self.settings.max_order.unwrap_or(u32::MAX);
-        let albedo = self.atmosphere.ground_albedo;
+        // The ground's albedo at the lanes' wavelengths.
+        let albedo = lanes
+            .wavelengths_nm
+            .map(|w| self.atmosphere.ground_albedo_at(w, None));
+        let reflects = albedo.iter().any(|&a| a > 0.0);
         let bottom = self.atmosphere.bottom_radius_m;
         let mut order = 0u32;
         // The light the path's first vertex can find, times its weight there: what the
@@ -835,11 +839,11 @@ impl<'a> PathTracer<'a> {
                 let g = (ray.origin + ray.direction * seg.end).normalize() * (bottom + 1e-3);
                 let s_dir = self.sample_sun(rng);
                 let cos_s = g.normalize().dot(s_dir);
-                if cos_s > 0.0 && albedo > 0.0 {
+                if cos_s > 0.0 && reflects {
                     let view_t = self.ratio_track(&ray, &intervals, seg.end, lanes, &medium, rng);
                     let sun_t = self.transmittance(&Ray::new(g, s_dir), lanes, &medium, rng);
                     for i in 0..LANES {
-                        radiance[i] += weight[i] * view_t[i] * albedo / PI
+                        radiance[i] += weight[i] * view_t[i] * albedo[i] / PI
                             * cos_s
                             * lanes.solar_irradiance[i]
                             * sun_t[i];
@@ -856,7 +860,7 @@ impl<'a> PathTracer<'a> {
             // ([`Self::scattering_point`]). Not delta tracking: its null collisions, escapes and
             // per-lane probabilities would make the weights of every order above random.
             let tau_mean = mean_depth(&intervals, &medium);
-            let p_ground = if seg.ground && albedo > 0.0 {
+            let p_ground = if seg.ground && reflects {
                 (-tau_mean).exp()
             } else {
                 0.0
@@ -868,7 +872,7 @@ impl<'a> PathTracer<'a> {
                     None => self.ratio_track(&ray, &intervals, seg.end, lanes, &medium, rng),
                 };
                 for i in 0..LANES {
-                    weight[i] *= view_t[i] * albedo / p_ground;
+                    weight[i] *= view_t[i] * albedo[i] / p_ground;
                 }
                 let n = (ray.origin + ray.direction * seg.end).normalize();
                 // Cosine-weighted direction over the ground's upper hemisphere.

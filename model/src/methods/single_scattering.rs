@@ -105,7 +105,7 @@ pub fn radiance_parts(atm: &Atmosphere, ray: &Ray, sun: DVec3, wavelength_nm: f6
         let cos_s = n.dot(sun);
         if cos_s > 0.0 {
             let x = n * atm.bottom_radius_m;
-            parts.ground = view_transmittance(t1) * atm.ground_albedo / PI
+            parts.ground = view_transmittance(t1) * atm.ground_albedo_at(wavelength_nm, None) / PI
                 * cos_s
                 * e_sun
                 * atm.transmittance_to_sun(&optics, x, sun);

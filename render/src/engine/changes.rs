@@ -17,19 +17,21 @@ pub(super) struct AtmosphereKey {
 }
 
 impl AtmosphereKey {
-    /// The key with the ground albedo left out (`Inputs::GROUND_ALBEDO` apart).
+    /// The key with the ground's albedo and type left out (`Inputs::GROUND_ALBEDO` apart).
     pub(super) fn without_albedo(&self) -> AtmosphereKey {
         let mut k = self.clone();
         k.settings.ground_albedo = 0.0;
+        k.settings.ground = atmoscope_model::ground::GroundType::Grey;
         k
     }
 }
 
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Snapshot {
-    /// The atmosphere's key without the ground albedo, which is apart.
+    /// The atmosphere's key without the ground, which is apart.
     pub(super) atmosphere: AtmosphereKey,
-    pub(super) ground_albedo: f64,
+    /// The ground's type and grey albedo.
+    pub(super) ground: (atmoscope_model::ground::GroundType, f64),
     pub(super) viewpoint: [f64; 2],
     /// The sun's direction and the scale of its light (`SunSettings::sunlight_scale`).
     pub(super) sun: [f64; 4],
@@ -50,7 +52,7 @@ impl Snapshot {
             }
         };
         mark(self.atmosphere != p.atmosphere, Inputs::ATMOSPHERE);
-        mark(self.ground_albedo != p.ground_albedo, Inputs::GROUND_ALBEDO);
+        mark(self.ground != p.ground, Inputs::GROUND_ALBEDO);
         mark(self.viewpoint != p.viewpoint, Inputs::VIEWPOINT);
         mark(self.sun != p.sun, Inputs::SUN);
         mark(self.camera != p.camera, Inputs::CAMERA);

@@ -42,7 +42,7 @@ impl FrameSetup {
         let size = [view.width.max(1), view.height.max(1)];
         let snapshot = Snapshot {
             atmosphere: state.key.without_albedo(),
-            ground_albedo: state.key.settings.ground_albedo,
+            ground: (state.key.settings.ground, state.key.settings.ground_albedo),
             viewpoint: [viewpoint.h, viewpoint.mu_s],
             sun: sun.extend(scene.sun.sunlight_scale()).to_array(),
             camera: (scene.camera.clone(), view.projection),

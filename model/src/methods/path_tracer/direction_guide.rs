@@ -108,6 +108,7 @@ pub(super) struct DirectionGuide {
     slices: Vec<OnceLock<Box<Slice>>>,
     optics: [Optics; GUIDE_WAVELENGTHS_NM.len()],
     solar_irradiance: [f64; GUIDE_WAVELENGTHS_NM.len()],
+    ground_albedo: [f64; GUIDE_WAVELENGTHS_NM.len()],
     /// The slices' fluence interpolated at the table's nodes, as f64 bits: NaN until a thread
     /// first needs the node, which every thread would fill with the same value.
     fluence_nodes: Vec<AtomicU64>,
@@ -132,6 +133,7 @@ impl DirectionGuide {
                 .collect(),
             optics: GUIDE_WAVELENGTHS_NM.map(|w| atmosphere.optics(w)),
             solar_irradiance: GUIDE_WAVELENGTHS_NM.map(|w| atmosphere.solar_irradiance(w, None)),
+            ground_albedo: GUIDE_WAVELENGTHS_NM.map(|w| atmosphere.ground_albedo_at(w, None)),
             fluence_nodes: (0..FLUENCE_ROWS * FLUENCE_COLUMNS)
                 .map(|_| AtomicU64::new(f64::NAN.to_bits()))
                 .collect(),
@@ -397,7 +399,7 @@ impl PathTracer<'_> {
             let mu_g = (g.normalize().dot(sun)).max(0.0);
             let transmittance = sun_transmittance(g, &depth);
             for i in 0..radiance.len() {
-                radiance[i] += self.atmosphere.ground_albedo / PI * mu_g * transmittance[i];
+                radiance[i] += guide.ground_albedo[i] / PI * mu_g * transmittance[i];
             }
         }
         (0..radiance.len())

@@ -180,7 +180,9 @@ impl Params {
                     }),
                     aerosol_g: lanes(&|i| optics[i].aerosol_g),
                     solar_irradiance,
-                    ground_albedo: Lanes::splat(atm.ground_albedo),
+                    ground_albedo: lanes(&|i| {
+                        atm.ground_albedo_at(colour.wavelengths_nm[i], colour.bandwidth_nm)
+                    }),
                     colour,
                 }
             })
