@@ -4,14 +4,16 @@
 
 use atmoscope_model::methods::Family;
 
-/// One colour per `Family::ALL`, as sRGB bytes, dark enough to read on white.
+/// One colour per `Family::ALL`, as sRGB bytes, dark enough to read on white. Hues that lie
+/// close (blue and sky blue, vermillion and orange) go to families whose points lie apart on
+/// the charts (tables against intensity volumes, marches against analytic fits).
 pub const FAMILY_COLOURS: [[u8; 3]; 8] = [
     [0, 114, 178],   // blue
     [213, 94, 0],    // vermillion
     [0, 158, 115],   // bluish green
     [204, 121, 167], // reddish purple
-    [230, 159, 0],   // orange
     [86, 180, 233],  // sky blue
+    [230, 159, 0],   // orange
     [110, 110, 110], // grey
     [0, 0, 0],       // black
 ];

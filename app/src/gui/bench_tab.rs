@@ -335,6 +335,38 @@ fn marker_shape(marker: crate::chart_style::Marker) -> (MarkerShape, bool) {
     }
 }
 
+/// A model's marker as drawn on the chart, for the table's key.
+fn marker_icon(ui: &mut egui::Ui, style: crate::chart_style::Style) {
+    use crate::chart_style::Marker;
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(12.0, 12.0), egui::Sense::hover());
+    let [r, g, b] = style.colour;
+    let colour = egui::Color32::from_rgb(r, g, b);
+    let (c, h) = (rect.center(), 5.0);
+    let stroke = egui::Stroke::new(1.5, colour);
+    let painter = ui.painter();
+    let triangle = vec![
+        c + egui::vec2(0.0, -h),
+        c + egui::vec2(h, h),
+        c + egui::vec2(-h, h),
+    ];
+    let square = egui::Rect::from_center_size(c, egui::vec2(2.0 * h - 1.0, 2.0 * h - 1.0));
+    let shape = match style.marker {
+        Marker::Circle => egui::Shape::circle_filled(c, h, colour),
+        Marker::Ring => egui::Shape::circle_stroke(c, h - 0.5, stroke),
+        Marker::Triangle => egui::Shape::convex_polygon(triangle, colour, egui::Stroke::NONE),
+        Marker::OpenTriangle => egui::Shape::closed_line(triangle, stroke),
+        Marker::Square => egui::Shape::rect_filled(square, 0.0, colour),
+        Marker::OpenSquare => {
+            egui::Shape::rect_stroke(square, 0.0, stroke, egui::StrokeKind::Inside)
+        }
+        Marker::Cross => egui::Shape::Vec(vec![
+            egui::Shape::line_segment([c + egui::vec2(-h, -h), c + egui::vec2(h, h)], stroke),
+            egui::Shape::line_segment([c + egui::vec2(-h, h), c + egui::vec2(h, -h)], stroke),
+        ]),
+    };
+    painter.add(shape);
+}
+
 /// The scatter, log–log (axes in log10, labelled in ms and ΔE); returns the index of a
 /// clicked configuration.
 fn chart(ui: &mut egui::Ui, configs: &[Config], view: Option<&str>) -> Option<usize> {
@@ -399,12 +431,15 @@ fn chart(ui: &mut egui::Ui, configs: &[Config], view: Option<&str>) -> Option<us
                     .filter(|c| c.method == *model && c.timed())
                     .map(log)
                     .collect();
-                // The family's colour, the model's marker within it (`chart_style`).
+                // The family's colour, the model's marker within it (`chart_style`); the
+                // legend names the families (the table's markers name the models).
                 let style = crate::chart_style::style(model, i);
                 let [r, g, b] = style.colour;
                 let (shape, filled) = marker_shape(style.marker);
+                let legend = atmoscope_model::methods::by_id(model)
+                    .map_or(*model, |m| m.family.label());
                 p.points(
-                    Points::new(*model, PlotPoints::from(points))
+                    Points::new(legend, PlotPoints::from(points))
                         .color(egui::Color32::from_rgb(r, g, b))
                         .shape(shape)
                         .filled(filled)
@@ -490,17 +525,23 @@ fn table(ui: &mut egui::Ui, configs: &[Config]) -> Option<usize> {
     let mut order: Vec<usize> = (0..configs.len()).collect();
     order.sort_by(|&a, &b| configs[a].frame_ms.total_cmp(&configs[b].frame_ms));
     let mut clicked = None;
+    // Scroll bars beside the table, not floating over its last row (where they took the
+    // clicks meant for its button).
+    ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
     egui::ScrollArea::both().show(ui, |ui| {
         egui::Grid::new("bench-table").striped(true).show(ui, |ui| {
             for h in [
-                "model / set / quality (click to render)", "", "frame ms", "precompute ms", "tables MiB",
+                "", "model / set / quality (click to render)", "", "frame ms", "precompute ms", "tables MiB",
                 "ΔE2000", "p95", "FLIP", "rel. RMSE",
             ] {
                 ui.strong(h);
             }
             ui.end_row();
+            let models = crate::bench_results::models_in_order(configs);
             for i in order {
                 let c = &configs[i];
+                let index = models.iter().position(|m| *m == c.method).unwrap_or(0);
+                marker_icon(ui, crate::chart_style::style(&c.method, index));
                 if ui
                     .button(c.name())
                     .on_hover_text("render the views with this model, wavelength set and quality")
