@@ -2109,3 +2109,55 @@ fn fresh_snow_brightens_the_zenith_by_what_the_path_tracer_gives() {
         "{grass:?} {grey:?}"
     );
 }
+
+/// `export-engine` writes each engine's snippet (to a file atomically, or stdout) for the
+/// scene given, and refuses an engine it does not know.
+#[test]
+fn export_engine_writes_each_engines_snippet_for_the_scene() {
+    let dir = std::env::temp_dir().join(format!("atmoscope-export-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    for (target, file, words) in [
+        ("bevy", "atmosphere.rs", "rayleigh_density_exp_scale"),
+        ("unreal", "atmosphere.json", "\"OtherTentDistribution\""),
+        ("blender", "atmosphere.py", "sky.aerosol_density = "),
+    ] {
+        let out = dir.join(file);
+        let o = atmoscope(&[
+            "export-engine",
+            "--target",
+            target,
+            "--no-fidelity",
+            "--preset",
+            "desert-dust-afternoon",
+            "--out",
+            out.to_str().expect("utf-8"),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let text = std::fs::read_to_string(&out).expect("written");
+        assert!(
+            text.contains(words) && text.contains("Desert dust afternoon"),
+            "{text}"
+        );
+    }
+    // Desert dust scatters more than Blender's Earth holds: a density well above 1.
+    let o = atmoscope(&[
+        "export-engine",
+        "--target",
+        "blender",
+        "--no-fidelity",
+        "--preset",
+        "desert-dust-afternoon",
+    ]);
+    let script = stdout(&o);
+    let density: f64 = script
+        .lines()
+        .find_map(|l| l.strip_prefix("sky.aerosol_density = "))
+        .expect("aerosol density")
+        .parse()
+        .expect("number");
+    assert!(density > 10.0, "{script}");
+    let o = atmoscope(&["export-engine", "--target", "godot"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("bevy"), "{}", stderr(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -11,6 +11,7 @@ pub mod bench_results;
 pub mod cache;
 pub mod chart_style;
 pub mod cli;
+pub mod engine_export;
 pub mod engine_setup;
 pub mod files;
 pub mod gui;

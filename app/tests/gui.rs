@@ -1487,3 +1487,66 @@ fn no_widget_of_any_tab_lies_outside_the_window() {
         overflows.join("\n")
     );
 }
+
+/// File → Export to engine: the Unreal properties of the scene to copy, read back as the
+/// scene's atmosphere, and the ΔE2000 over the suite measured in the background.
+#[test]
+fn the_engine_export_window_copies_parameters_and_measures_them() {
+    let mut h = harness();
+    h.get_by_label("File").click();
+    h.run();
+    h.get_by_label("Export to engine…").click();
+    h.run();
+    h.get_by_label("Unreal SkyAtmosphere").click();
+    h.run();
+    h.get_by_label("Copy").click();
+    h.step();
+    let copied = h
+        .output()
+        .platform_output
+        .commands
+        .iter()
+        .find_map(|c| match c {
+            egui::OutputCommand::CopyText(text) => Some(text.clone()),
+            _ => None,
+        })
+        .expect("the parameters went to the clipboard");
+    let atmoscope::engine_export::Exported::Exponential(back) =
+        atmoscope::engine_export::Target::Unreal
+            .read(&copied)
+            .expect("Unreal properties")
+    else {
+        panic!("Unreal reads as exponentials")
+    };
+    let fit = atmoscope_model::engine_atmosphere::EngineAtmosphere::fit(
+        &atmoscope_model::Atmosphere::for_scene(&h.state().scene),
+    );
+    for c in 0..3 {
+        let close = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-9;
+        assert!(close(
+            back.rayleigh_scattering_per_m[c],
+            fit.rayleigh_scattering_per_m[c]
+        ));
+        assert!(close(
+            back.mie_scattering_per_m[c],
+            fit.mie_scattering_per_m[c]
+        ));
+        assert!(close(
+            back.ozone_absorption_per_m[c],
+            fit.ozone_absorption_per_m[c]
+        ));
+    }
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(300);
+    while h.state().engine_export.running() && std::time::Instant::now() < deadline {
+        std::thread::sleep(std::time::Duration::from_millis(200));
+        h.step();
+    }
+    h.run();
+    let errors = h.state().engine_export.errors().expect("measured");
+    assert_eq!(errors.len(), atmoscope_model::views::suite().len());
+    h.get_by_label_contains("ΔE2000 against the scene's full physics over 21 views");
+    if let Some(dir) = std::env::var_os("ATMOSCOPE_SCREENSHOTS") {
+        let path = Path::new(&dir).join("engine-export.png");
+        h.render().expect("rendered").save(&path).expect("saved");
+    }
+}

@@ -11,6 +11,7 @@ pub mod colour;
 pub mod constants;
 pub mod csv_table;
 pub mod display;
+pub mod engine_atmosphere;
 pub mod files;
 pub mod geometry;
 pub mod ground;

@@ -5,6 +5,7 @@ mod aerosols;
 pub mod bench;
 pub mod common;
 mod compare;
+mod export_engine;
 mod fit;
 mod info;
 mod learn;
@@ -66,6 +67,9 @@ pub enum Command {
     /// Refit García Liñán's multiple-scattering constants against path-traced references of
     /// the view suite; reports the error before and after.
     FitGarciaLinan(fit::garcia_linan::FitGarciaLinanArgs),
+    /// The scene's atmosphere for bevy, Unreal or Blender: the snippet to paste, and the
+    /// ΔE2000 over the view suite of what the engine's parameters keep of the scene.
+    ExportEngine(export_engine::ExportEngineArgs),
     /// Numerical stress: scenes over the whole parameter space, every model on the GPU against
     /// its f64 CPU twin; a report, and a preset per failing case.
     Stress(stress::StressArgs),
@@ -118,6 +122,7 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Compare(args) => compare::run(&args),
         Command::FitWavelengths(args) => fit::wavelengths::run(&args),
         Command::FitGarciaLinan(args) => fit::garcia_linan::run(&args),
+        Command::ExportEngine(args) => export_engine::run(&args),
         Command::Stress(args) => stress::run(&args),
         Command::Bench { bench } => bench::run(&bench),
     }

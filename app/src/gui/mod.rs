@@ -5,6 +5,7 @@
 
 pub mod bench_tab;
 pub mod compare_tab;
+pub mod engine_export_window;
 pub mod exposure;
 pub mod files;
 pub mod gpu_view;
@@ -116,6 +117,8 @@ pub struct ExplorerApp {
     /// The panels whose contents came out wider than the panel in the last frame (they should
     /// wrap): read by the layout tests.
     pub overflowed: Vec<&'static str>,
+    /// File → Export to engine.
+    pub engine_export: engine_export_window::EngineExportWindow,
 }
 
 /// A lesson the user started: its window stays until closed and its numbers follow the scene.
@@ -164,6 +167,7 @@ impl ExplorerApp {
             pending_exports: Vec::new(),
             session: None,
             overflowed: Vec::new(),
+            engine_export: Default::default(),
         }
     }
 
@@ -476,6 +480,7 @@ impl ExplorerApp {
             || self.bench.running()
             || tracing
             || self.thumbnails.loading()
+            || self.engine_export.running()
     }
 
     fn shortcuts(&mut self, ctx: &egui::Context) -> Vec<Command> {
@@ -562,6 +567,9 @@ impl ExplorerApp {
                     if ui.button(format!("{}…{key}", kind.title())).clicked() {
                         commands.extend(files::pick_export(kind).map(|p| Command::Export(kind, p)));
                     }
+                }
+                if ui.button("Export to engine…").clicked() {
+                    self.engine_export.open = true;
                 }
                 ui.checkbox(&mut self.layout.caption_exports, "Caption on PNG exports")
                     .on_hover_text(
@@ -828,6 +836,9 @@ impl eframe::App for ExplorerApp {
         });
         self.lesson_window(&ctx);
         commands.extend(help::welcome(&ctx, &mut self.layout));
+        if let Some(notice) = self.engine_export.show(&ctx, &self.scene) {
+            self.notice = Some(notice);
+        }
         for c in commands {
             self.apply(&ctx, c);
         }

@@ -1,0 +1,212 @@
+//! File → Export to engine: the scene's atmosphere as bevy's, Unreal's or Blender's parameters
+//! (`engine_export`), to copy or save, and how close each engine can come to the scene's full
+//! physics, measured over the view suite in the background.
+
+use super::jobs::Job;
+use crate::engine_export::{Target, ViewError, fidelity, mean_delta_e};
+use atmoscope_model::Scene;
+use eframe::egui;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// What the snippet depends on: the atmosphere, the sun and the camera.
+type Key = (Target, Scene);
+
+fn key(target: Target, scene: &Scene) -> Key {
+    let mut s = Scene::default();
+    s.atmosphere = scene.atmosphere.clone();
+    s.sun = scene.sun;
+    s.camera = scene.camera.clone();
+    s.name = scene.name.clone();
+    (target, s)
+}
+
+enum Measure {
+    Running(Job<Result<Vec<ViewError>, String>>),
+    Done(Result<Vec<ViewError>, String>),
+}
+
+pub struct EngineExportWindow {
+    pub open: bool,
+    pub target: Target,
+    /// The snippet, for the key it was written for.
+    text: Option<(Key, String)>,
+    /// The measurement of a key, running or done.
+    measure: Option<(Key, Measure)>,
+}
+
+impl Default for EngineExportWindow {
+    fn default() -> Self {
+        EngineExportWindow {
+            open: false,
+            target: Target::Bevy,
+            text: None,
+            measure: None,
+        }
+    }
+}
+
+impl EngineExportWindow {
+    /// Whether a measurement runs (the window repaints for its progress).
+    pub fn running(&self) -> bool {
+        matches!(&self.measure, Some((_, Measure::Running(_))))
+    }
+
+    /// The measured errors of the current snippet, once done.
+    pub fn errors(&self) -> Option<&[ViewError]> {
+        match &self.measure {
+            Some((_, Measure::Done(Ok(e)))) => Some(e),
+            _ => None,
+        }
+    }
+
+    /// Draws the window while open; returns a notice for the status bar (what was copied or
+    /// saved, or why saving failed).
+    pub fn show(&mut self, ctx: &egui::Context, scene: &Scene) -> Option<String> {
+        if !self.open {
+            return None;
+        }
+        let k = key(self.target, scene);
+        if self.text.as_ref().is_none_or(|(t, _)| *t != k) {
+            self.text = Some((k.clone(), self.target.write(scene)));
+        }
+        if let Some((_, Measure::Running(job))) = &mut self.measure
+            && let Some(result) = job.take()
+        {
+            let done = result.and_then(|r| r);
+            if let Some((mk, _)) = self.measure.take() {
+                self.measure = Some((mk, Measure::Done(done)));
+            }
+        }
+        // The first look at a snippet measures it; a changed scene waits for the button.
+        if self.measure.is_none() {
+            self.start(ctx, scene);
+        }
+        let mut notice = None;
+        let mut open = self.open;
+        let text = self
+            .text
+            .as_ref()
+            .map_or("", |(_, t)| t.as_str())
+            .to_owned();
+        egui::Window::new("Export to engine")
+            .open(&mut open)
+            .default_width(560.0)
+            .default_height(520.0)
+            .show(ctx, |ui| {
+                ui.horizontal_wrapped(|ui| {
+                    for t in Target::ALL {
+                        if ui
+                            .selectable_value(&mut self.target, t, t.label())
+                            .changed()
+                        {
+                            self.measure = None;
+                        }
+                    }
+                });
+                ui.label(
+                    "The scene's atmosphere fitted to the engine's parameters: air and aerosol as \
+                     exponentials, ozone as a tent (bevy, Unreal) or Blender's own Earth scaled by \
+                     densities, each keeping the scene's vertical optical depths.",
+                );
+                ui.horizontal(|ui| {
+                    if ui.button("Copy").clicked() {
+                        ctx.copy_text(text.clone());
+                        notice = Some(format!("copied the {} parameters", self.target.label()));
+                    }
+                    if ui.button("Save…").clicked()
+                        && let Some(path) = rfd::FileDialog::new()
+                            .set_title("Save the engine's parameters")
+                            .add_filter(self.target.label(), &[self.target.extension()])
+                            .set_file_name(format!("atmosphere.{}", self.target.extension()))
+                            .save_file()
+                    {
+                        notice = Some(match crate::files::write_atomic(&path, text.as_bytes()) {
+                            Ok(()) => format!("wrote {}", path.display()),
+                            Err(e) => format!("{e:#}"),
+                        });
+                    }
+                });
+                self.show_measure(ui, ctx, scene);
+                egui::ScrollArea::vertical()
+                    .max_height(320.0)
+                    .show(ui, |ui| {
+                        ui.add(
+                            egui::TextEdit::multiline(&mut text.as_str())
+                                .code_editor()
+                                .desired_width(f32::INFINITY),
+                        );
+                    });
+            });
+        self.open = open;
+        notice
+    }
+
+    fn start(&mut self, ctx: &egui::Context, scene: &Scene) {
+        let k = key(self.target, scene);
+        let (target, scene) = (self.target, scene.clone());
+        let text = target.write(&scene);
+        let job = Job::spawn(
+            format!("measuring the {} parameters", target.label()),
+            ctx,
+            move |p| {
+                let exported = target.read(&text).map_err(|e| format!("{e:#}"))?;
+                let views = atmoscope_model::views::suite();
+                let done = AtomicUsize::new(0);
+                let progress = |_: &str| {
+                    let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+                    p.set(n as f32 / views.len() as f32);
+                };
+                Ok(fidelity(&scene, &exported, views, &progress))
+            },
+        );
+        self.measure = Some((k, Measure::Running(job)));
+    }
+
+    fn show_measure(&mut self, ui: &mut egui::Ui, ctx: &egui::Context, scene: &Scene) {
+        let current = self
+            .measure
+            .as_ref()
+            .is_some_and(|(k, _)| *k == key(self.target, scene));
+        match &self.measure {
+            Some((_, Measure::Running(job))) => {
+                job.show(ui);
+            }
+            Some((_, Measure::Done(Ok(errors)))) => {
+                let (engine, colours) = mean_delta_e(errors);
+                if !current {
+                    ui.label("For the scene as it was when measured:");
+                }
+                ui.label(format!(
+                    "ΔE2000 against the scene's full physics over {} views: {engine:.2} \
+                     with these parameters, {colours:.2} from the engine's colours alone \
+                     (both drawn by Hillaire's model).",
+                    errors.len()
+                ));
+                egui::CollapsingHeader::new("per view").show(ui, |ui| {
+                    egui::Grid::new("engine-fidelity")
+                        .striped(true)
+                        .show(ui, |ui| {
+                            for h in ["view", "parameters", "p95", "colours alone"] {
+                                ui.strong(h);
+                            }
+                            ui.end_row();
+                            for e in errors {
+                                ui.label(&e.view);
+                                ui.label(format!("{:.2}", e.delta_e2000_mean));
+                                ui.label(format!("{:.2}", e.delta_e2000_p95));
+                                ui.label(format!("{:.2}", e.colours_delta_e2000_mean));
+                                ui.end_row();
+                            }
+                        });
+                });
+            }
+            Some((_, Measure::Done(Err(e)))) => {
+                ui.colored_label(ui.visuals().error_fg_color, e);
+            }
+            None => {}
+        }
+        if !current && !self.running() && ui.button("Measure again").clicked() {
+            self.start(ctx, scene);
+        }
+    }
+}
