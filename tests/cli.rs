@@ -2080,7 +2080,7 @@ fn zenith_over(method: &str, ground: &str) -> Vec<f64> {
 /// Fresh snow (visible albedo 0.90) under the default sky raises the zenith radiance over the
 /// grey ground (0.3) by what the path tracer gives: Bruneton's ground bounce within 15 % of
 /// the path tracer's increase, Hillaire's isotropic higher orders within 60 % (measured:
-/// docs/measurements/ground-types-2026-12-05.md). Grass, darker than the grey ground in the
+/// docs/measurements/artists-2026-12-06.md). Grass, darker than the grey ground in the
 /// visible, lowers it.
 #[test]
 fn fresh_snow_brightens_the_zenith_by_what_the_path_tracer_gives() {
@@ -2089,7 +2089,8 @@ fn fresh_snow_brightens_the_zenith_by_what_the_path_tracer_gives() {
         let snow = zenith_over(method, "fresh-snow");
         grey.iter().zip(&snow).map(|(g, s)| s / g - 1.0).collect()
     };
-    // 65 536 paths and the same seed over both grounds: the ratios' noise is about 0.5 %.
+    // Many paths and the same seed over both grounds keep the ratios' noise well under the
+    // bounds (docs/measurements/artists-2026-12-06.md).
     let truth = increase("path-tracer");
     for t in &truth {
         assert!((0.2..0.45).contains(t), "path tracer: snow adds {t:.3}");

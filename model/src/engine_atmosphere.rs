@@ -3,13 +3,15 @@
 //! channels at 680, 550 and 440 nm; air and aerosol each one exponential; ozone one tent; a
 //! Henyey–Greenstein aerosol; a ground albedo per channel.
 //!
-//! [`EngineAtmosphere::fit`] keeps each constituent's vertical optical depth at every channel:
+//! [`EngineAtmosphere::fit`] keeps each constituent's vertical optical depth at every channel,
+//! from the moments of the profile the real-time models read (`shared::exponential::moments`):
 //! - air: its ground density, and the scale height that holds its column (column / ground
 //!   density);
-//! - aerosol: its mean height (the first moment of its profile, which is the scale height of
-//!   an exponential) and the extinction at the ground that holds its optical depth there;
-//! - ozone: a symmetric tent at the profile's mean height with the profile's variance
-//!   (a tent of half-width w has variance w²/6), its tip holding the column.
+//! - aerosol: its mean height (the centroid of its profile, which is the scale height of an
+//!   exponential) and the extinction at the ground that holds its optical depth there, as
+//!   the analytic models' `ExponentialMedium` fits it;
+//! - ozone: a symmetric tent at the profile's centroid with the profile's variance (a tent of
+//!   half-width w has variance w²/6), its tip holding the column.
 //!
 //! [`EngineAtmosphere::params`] turns it back into the optics the real-time models draw, so that
 //! what the parameterisation loses can be measured against the scene's full physics.
@@ -17,12 +19,14 @@
 use crate::atmosphere::Atmosphere;
 use crate::methods::shared::optics::Params;
 use crate::scene::AerosolPhase;
+use crate::methods::shared::exponential::moments;
+use crate::scene::{Quality, WavelengthSet};
 use crate::wavelengths::RGB3_NM;
 
 /// The channels' wavelengths, nm: red, green, blue (Hillaire's).
 pub const CHANNELS_NM: [f64; 3] = RGB3_NM;
 
-/// Steps of the integrals over height.
+/// Steps of the tent's integral over height.
 const STEPS: usize = 4000;
 
 /// An atmosphere of exponentials and a tent, in SI units.
@@ -71,68 +75,96 @@ impl EngineAtmosphere {
         ground_albedo: [0.3; 3],
     };
 
-    /// The exponentials and tent that keep `atm`'s vertical optical depths (module docs).
+    /// The exponentials and tent that keep `atm`'s vertical optical depths (module docs),
+    /// from its optics at the RGB3 channels (whose lanes average the sunlight and the ground's
+    /// albedo over their bands).
     pub fn fit(atm: &Atmosphere) -> EngineAtmosphere {
-        let top = atm.thickness_m();
-        let dh = top / STEPS as f64;
-        let heights = (0..STEPS).map(|i| (i as f64 + 0.5) * dh);
-        // ∫ f dh, ∫ h·f dh and ∫ h²·f dh of each density by the midpoint rule.
-        let mut air = 0.0;
-        let mut aerosol = [0.0; 2];
-        let mut ozone = [0.0; 3];
-        for h in heights {
-            let d = atm.densities(h);
-            air += d.air_m3 * dh;
-            aerosol[0] += d.aerosol_per_m * dh;
-            aerosol[1] += h * d.aerosol_per_m * dh;
-            ozone[0] += d.ozone_m3 * dh;
-            ozone[1] += h * d.ozone_m3 * dh;
-            ozone[2] += h * h * d.ozone_m3 * dh;
-        }
-        let air_ground = atm.air_density_m3(0.0);
-        let rayleigh_scale_height_m = if air_ground > 0.0 {
+        let p = Params::new(atm, WavelengthSet::Rgb3, Quality::default());
+        let b = &p.batches[0];
+        // Column and centroid of air (relative density, 1 at its densest, the ground), ozone
+        // (relative to its peak) and aerosol (m⁻¹ per unit of optical depth).
+        let (air, _, _) = moments(&p, 0);
+        let air_ground = p.profile[0][0];
+        let rayleigh_scale_height_m = if air > 0.0 && air_ground > 0.0 {
             air / air_ground
         } else {
             8000.0
         };
-        let mie_scale_height_m = if aerosol[0] > 0.0 {
-            (aerosol[1] / aerosol[0]).max(1.0)
+        let (aerosol, aerosol_centroid, _) = moments(&p, 2);
+        let mie_scale_height_m = if aerosol > 0.0 {
+            aerosol_centroid.max(1.0)
         } else {
             1200.0
         };
-        let (ozone_tip_altitude_m, ozone_half_width_m, ozone_tip_m3) = if ozone[0] > 0.0 {
-            let mean = ozone[1] / ozone[0];
-            let variance = (ozone[2] / ozone[0] - mean * mean).max(0.0);
-            // The tent stays above the ground.
-            let half_width = (6.0 * variance).sqrt().clamp(1.0, mean.max(1.0));
-            (mean, half_width, ozone[0] / half_width)
+        let (ozone, ozone_centroid, ozone_spread) = moments(&p, 1);
+        let (ozone_tip_altitude_m, ozone_half_width_m) = if ozone > 0.0 {
+            // A tent of half-width w has variance w²/6; it stays above the ground.
+            let w = (6.0f64.sqrt() * ozone_spread).clamp(1.0, ozone_centroid.max(1.0));
+            (ozone_centroid, w)
         } else {
-            (25_000.0, 15_000.0, 0.0)
+            (25_000.0, 15_000.0)
         };
-        let optics = CHANNELS_NM.map(|w| atm.optics(w));
+        // Lanes 0, 1, 2 are the channels (`wavelengths::batches(Rgb3)`).
         let per_channel = |f: &dyn Fn(usize) -> f64| [f(0), f(1), f(2)];
-        // The aerosol's optical depth, spread over an exponential of its mean height.
-        let mie_extinction = per_channel(&|i| optics[i].aerosol_optical_depth / mie_scale_height_m);
+        let mie = aerosol / mie_scale_height_m;
         EngineAtmosphere {
-            bottom_radius_m: atm.bottom_radius_m,
-            top_radius_m: atm.top_radius_m,
-            rayleigh_scattering_per_m: per_channel(&|i| {
-                optics[i].rayleigh_cross_section_m2 * air_ground
-            }),
+            bottom_radius_m: p.bottom_radius_m,
+            top_radius_m: p.top_radius_m,
+            rayleigh_scattering_per_m: per_channel(&|c| b.rayleigh_scattering[c] * air_ground),
             rayleigh_scale_height_m,
-            mie_scattering_per_m: per_channel(&|i| mie_extinction[i] * optics[i].aerosol_ssa),
-            mie_absorption_per_m: per_channel(&|i| {
-                mie_extinction[i] * (1.0 - optics[i].aerosol_ssa)
-            }),
+            mie_scattering_per_m: per_channel(&|c| b.aerosol_scattering[c] * mie),
+            mie_absorption_per_m: per_channel(&|c| b.aerosol_absorption[c] * mie),
             mie_scale_height_m,
-            mie_asymmetry: atm.optics(550.0).aerosol_g,
-            ozone_absorption_per_m: per_channel(&|i| {
-                optics[i].ozone_cross_section_m2 * ozone_tip_m3
+            mie_asymmetry: b.aerosol_g[1],
+            ozone_absorption_per_m: per_channel(&|c| {
+                b.ozone_absorption[c] * ozone / ozone_half_width_m
             }),
             ozone_tip_altitude_m,
             ozone_half_width_m,
-            ground_albedo: CHANNELS_NM.map(|w| atm.ground_albedo_at(w, None)),
+            ground_albedo: per_channel(&|c| b.ground_albedo[c]),
         }
+    }
+
+    /// Why this atmosphere cannot be drawn (a snippet read back may say anything): radii,
+    /// heights and widths finite and positive, the top above the ground, coefficients and
+    /// albedos finite and not negative, the asymmetry within −1–1.
+    pub fn check(&self) -> Result<(), String> {
+        let positive = [
+            ("bottom radius", self.bottom_radius_m),
+            ("Rayleigh scale height", self.rayleigh_scale_height_m),
+            ("Mie scale height", self.mie_scale_height_m),
+            ("ozone half-width", self.ozone_half_width_m),
+        ];
+        for (name, v) in positive {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(format!("{name} {v} m: must be positive"));
+            }
+        }
+        if !(self.top_radius_m.is_finite() && self.top_radius_m > self.bottom_radius_m) {
+            return Err(format!(
+                "top radius {} m: must lie above the bottom radius {} m",
+                self.top_radius_m, self.bottom_radius_m
+            ));
+        }
+        let coefficients = [
+            ("Rayleigh scattering", self.rayleigh_scattering_per_m),
+            ("Mie scattering", self.mie_scattering_per_m),
+            ("Mie absorption", self.mie_absorption_per_m),
+            ("ozone absorption", self.ozone_absorption_per_m),
+            ("ground albedo", self.ground_albedo),
+        ];
+        for (name, c) in coefficients {
+            if c.iter().any(|v| !(v.is_finite() && *v >= 0.0)) {
+                return Err(format!("{name} {c:?}: must be finite and not negative"));
+            }
+        }
+        if !(-1.0..=1.0).contains(&self.mie_asymmetry) || !self.ozone_tip_altitude_m.is_finite() {
+            return Err(format!(
+                "Mie asymmetry {} (−1–1) or ozone tip {} m out of range",
+                self.mie_asymmetry, self.ozone_tip_altitude_m
+            ));
+        }
+        Ok(())
     }
 
     /// The ozone tent's density relative to its tip at height `h_m` (0–1).
@@ -237,9 +269,9 @@ mod tests {
         a.aerosol.aod550 = 4.44e-6 * 1200.0;
         let fit = EngineAtmosphere::fit(&Atmosphere::for_scene(&s));
         let e = EngineAtmosphere::HILLAIRE_EARTH;
-        // His Rayleigh coefficients (Bruneton & Neyret's) lie 13–17 % above the ones our
-        // cross-sections give at the US Standard Atmosphere's ground density, which agree
-        // with Bucholtz (1995); their spectral shape agrees within 3 %.
+        // His Rayleigh coefficients (Bruneton & Neyret's) lie above the ones our
+        // cross-sections give at the US Standard Atmosphere's ground density, which follow
+        // Bucholtz (1995): held to 10–20 % above, the spectral shape to 3 %.
         let r = |c: usize| fit.rayleigh_scattering_per_m[c] / e.rayleigh_scattering_per_m[c];
         for c in 0..3 {
             assert!((0.80..0.90).contains(&r(c)), "{c}: {fit:?}");

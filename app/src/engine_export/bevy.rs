@@ -96,7 +96,7 @@ pub fn read(text: &str) -> anyhow::Result<EngineAtmosphere> {
     };
     let grey = |name: &str| -> anyhow::Result<[f64; 3]> { Ok([scalar(name)?; 3]) };
     let half_width = scalar("ozone_layer_width")? / 2.0;
-    Ok(EngineAtmosphere {
+    let e = EngineAtmosphere {
         bottom_radius_m: scalar("bottom_radius")?,
         top_radius_m: scalar("top_radius")?,
         rayleigh_scattering_per_m: vector("rayleigh_scattering")?,
@@ -109,7 +109,9 @@ pub fn read(text: &str) -> anyhow::Result<EngineAtmosphere> {
         ozone_tip_altitude_m: scalar("ozone_layer_altitude")?,
         ozone_half_width_m: half_width,
         ground_albedo: vector("ground_albedo")?,
-    })
+    };
+    e.check().map_err(|why| anyhow::anyhow!("{why}"))?;
+    Ok(e)
 }
 
 /// A Rust float literal (`1.5`, `6.5e-7`, `6_360_000.0`).
@@ -158,6 +160,17 @@ mod tests {
         }
         assert!(text.contains("ozone_layer_width: 30000.0,"), "{text}");
         assert!(read("mie_asymmetry: 0.8,").is_err());
+        let flat = text.replace(
+            "rayleigh_density_exp_scale: 1.0 / 8000.0",
+            "rayleigh_density_exp_scale: 0.0",
+        );
+        assert!(
+            read(&flat)
+                .unwrap_err()
+                .to_string()
+                .contains("scale height"),
+            "{flat}"
+        );
         let broken = text.replace("Vec3::new(0.3, 0.3, 0.3)", "Vec3::new(0.3, 0.3)");
         assert!(read(&broken).is_err(), "{broken}");
     }

@@ -35,7 +35,8 @@ const ALTITUDE_M: (f64, f64) = (1.0, 99_999.0);
 #[derive(Debug, Clone, PartialEq)]
 pub struct BlenderSky {
     pub sun_elevation_deg: f64,
-    /// The sun's azimuth, degrees clockwise from north (the node's rotation).
+    /// The sun's azimuth, degrees clockwise from north: Blender 5's rotation, which turns
+    /// clockwise from +Y seen from above.
     pub sun_rotation_deg: f64,
     pub altitude_m: f64,
     pub air_density: f64,
@@ -120,13 +121,19 @@ pub fn write(b: &BlenderSky, scene_name: &str) -> String {
         "# Atmoscope: the atmosphere of \"{scene_name}\" as Blender 5's Sky Texture, Multiple\n\
          # Scattering. The densities scale Blender's own Earth so that its air (at 560 nm) and\n\
          # aerosol (at 550 nm) have the scene's vertical optical depths and its ozone the scene's\n\
-         # column. The sun's rotation is its azimuth, clockwise from north: turn it to your\n\
-         # scene's north. (Blender 4's Nishita type names the aerosol `dust_density`.)\n\
+         # column. The sun's rotation is its azimuth, clockwise from +Y seen from above (+Y is\n\
+         # north). The sky is linked to the world's background. (Blender 4's Nishita type names\n\
+         # the aerosol `dust_density`.)\n\
          import bpy, math\n\
-         world = bpy.context.scene.world\n\
+         world = bpy.context.scene.world or bpy.data.worlds.new(\"World\")\n\
+         bpy.context.scene.world = world\n\
          world.use_nodes = True\n\
-         nodes = world.node_tree.nodes\n\
+         nodes, links = world.node_tree.nodes, world.node_tree.links\n\
          sky = nodes.get(\"Sky Texture\") or nodes.new(\"ShaderNodeTexSky\")\n\
+         background = nodes.get(\"Background\") or nodes.new(\"ShaderNodeBackground\")\n\
+         output = nodes.get(\"World Output\") or nodes.new(\"ShaderNodeOutputWorld\")\n\
+         links.new(sky.outputs[\"Color\"], background.inputs[\"Color\"])\n\
+         links.new(background.outputs[\"Background\"], output.inputs[\"Surface\"])\n\
          sky.sky_type = 'MULTIPLE_SCATTERING'\n\
          sky.sun_elevation = math.radians({:.4})\n\
          sky.sun_rotation = math.radians({:.4})\n\
@@ -234,10 +241,14 @@ mod tests {
         let back = read(&write(&fit, "test")).expect("reads");
         assert!((back.sun_elevation_deg - 30.0).abs() < 1e-4);
         assert!((back.air_density - 1.0).abs() < 1e-5);
-        assert!(read("sky.air_density = 2000\n").is_err());
-        let script =
-            write(&fit, "test").replace("sky.ozone_density = 1.00000", "sky.ozone_density = x");
-        assert!(read(&script).is_err());
+        let script = write(&fit, "test");
+        let dense = script.replace("sky.air_density = 1.00000", "sky.air_density = 2000");
+        assert!(
+            read(&dense).unwrap_err().to_string().contains("0 to 1000"),
+            "{dense}"
+        );
+        let broken = script.replace("sky.ozone_density = 1.00000", "sky.ozone_density = x");
+        assert!(read(&broken).is_err());
         // The default scene needs more aerosol than Blender's Earth has, and about its air.
         let default = BlenderSky::fit(&base, &Atmosphere::for_scene(&base));
         assert!(default.aerosol_density > 3.0, "{default:?}");

@@ -139,13 +139,14 @@ pub const FIDELITY_SIZE: (u32, u32) = (64, 36);
 /// ΔE2000 between the scene drawn by Hillaire's model with its full physics (`FULL_PHYSICS`)
 /// and with the engine's atmosphere, over the `views` (the view suite's, which the CLI and
 /// the window measure) that the model draws: the scene's atmosphere, the view's camera and
-/// sun, displayed with the view's exposure and the scene's tone map. `progress` is told
-/// each view's name as it starts.
+/// sun, displayed with the view's exposure and the scene's tone map. `go_on` is told each
+/// view's name as it starts; where it answers false (the work was cancelled) the view is
+/// left out.
 pub fn fidelity(
     scene: &Scene,
     exported: &Exported,
     views: &[View],
-    progress: &(dyn Fn(&str) + Sync),
+    go_on: &(dyn Fn(&str) -> bool + Sync),
 ) -> Vec<ViewError> {
     let hillaire = methods::info(Method::Hillaire);
     let Some(build) = hillaire.build else {
@@ -158,7 +159,9 @@ pub fn fidelity(
             let mut full = view.apply(scene);
             full.render.method = Method::Hillaire;
             full.render.wavelengths = FULL_PHYSICS;
-            progress(&view.name);
+            if !go_on(&view.name) {
+                return None;
+            }
             let reference = methods::render(&full, view.projection, w, h).ok()?;
             let mut sampled = full.clone();
             sampled.render.wavelengths = exported.colours();
@@ -224,11 +227,12 @@ pub fn fidelity_table(target: Target, errors: &[ViewError]) -> String {
     s
 }
 
-/// A number as the snippets write it: enough digits to read back to a part in 10⁶.
+/// A number as the snippets write it, to seven significant digits or more: plain from 0.1 up
+/// to 10⁷, in exponent form elsewhere.
 fn number(v: f64) -> String {
     if v == 0.0 {
         "0.0".into()
-    } else if (1e-3..1e7).contains(&v.abs()) {
+    } else if (0.1..1e7).contains(&v.abs()) {
         let s = format!("{v:.7}");
         let s = s.trim_end_matches('0');
         if s.ends_with('.') {
@@ -292,7 +296,7 @@ mod tests {
             (Target::Blender, &blender_earth),
         ] {
             let exported = target.read(&target.write(scene)).expect("reads back");
-            let errors = fidelity(scene, &exported, &views(), &|_| {});
+            let errors = fidelity(scene, &exported, &views(), &|_| true);
             assert_eq!(errors.len(), 4, "{target:?}");
             let (engine, colours) = mean_delta_e(&errors);
             eprintln!("{}", fidelity_table(target, &errors));

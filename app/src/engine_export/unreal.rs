@@ -4,7 +4,7 @@
 //! component's properties by their C++ names (the Python editor API spells them in
 //! snake_case: `rayleigh_scattering_scale`, …).
 
-use anyhow::{Context, bail};
+use anyhow::Context;
 use atmoscope_model::engine_atmosphere::EngineAtmosphere;
 use serde::{Deserialize, Serialize};
 
@@ -150,18 +150,8 @@ pub fn write(e: &EngineAtmosphere, scene_name: &str) -> String {
 pub fn read(text: &str) -> anyhow::Result<EngineAtmosphere> {
     let f: File = serde_json::from_str(text).context("not the properties Atmoscope writes")?;
     let p = f.sky_atmosphere_component;
-    let numbers = [
-        p.bottom_radius,
-        p.atmosphere_height,
-        p.rayleigh_exponential_distribution,
-        p.mie_exponential_distribution,
-        p.other_tent_distribution.width,
-    ];
-    if numbers.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
-        bail!("radii, heights and distributions must be positive");
-    }
     let t = p.other_tent_distribution;
-    Ok(EngineAtmosphere {
+    let e = EngineAtmosphere {
         bottom_radius_m: p.bottom_radius * 1000.0,
         top_radius_m: (p.bottom_radius + p.atmosphere_height) * 1000.0,
         rayleigh_scattering_per_m: per_m(p.rayleigh_scattering_scale, p.rayleigh_scattering),
@@ -176,7 +166,9 @@ pub fn read(text: &str) -> anyhow::Result<EngineAtmosphere> {
         ozone_half_width_m: t.width * 1000.0,
         ground_albedo: [p.ground_albedo.r, p.ground_albedo.g, p.ground_albedo.b]
             .map(from_srgb_byte),
-    })
+    };
+    e.check().map_err(|why| anyhow::anyhow!("{why}"))?;
+    Ok(e)
 }
 
 #[cfg(test)]

@@ -5,19 +5,40 @@
 use super::jobs::Job;
 use crate::engine_export::{Target, ViewError, fidelity, mean_delta_e};
 use atmoscope_model::Scene;
+use atmoscope_model::scene::{AtmosphereSettings, Quality, SunSettings, ToneMap};
 use eframe::egui;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// What the snippet depends on: the atmosphere, the sun and the camera.
-type Key = (Target, Scene);
+/// What a snippet depends on: the atmosphere, the scene's name, and for Blender the sun and
+/// the camera's altitude it writes too.
+type TextKey = (
+    Target,
+    AtmosphereSettings,
+    String,
+    Option<(SunSettings, f64)>,
+);
 
-fn key(target: Target, scene: &Scene) -> Key {
-    let mut s = Scene::default();
-    s.atmosphere = scene.atmosphere.clone();
-    s.sun = scene.sun;
-    s.camera = scene.camera.clone();
-    s.name = scene.name.clone();
-    (target, s)
+/// What a measurement depends on: the atmosphere, and the tone map and quality it is drawn
+/// with (the views bring their own sun and camera).
+type MeasureKey = (Target, AtmosphereSettings, ToneMap, Quality);
+
+fn text_key(target: Target, scene: &Scene) -> TextKey {
+    let blender = (target == Target::Blender).then_some((scene.sun, scene.camera.altitude_m));
+    (
+        target,
+        scene.atmosphere.clone(),
+        scene.name.clone(),
+        blender,
+    )
+}
+
+fn measure_key(target: Target, scene: &Scene) -> MeasureKey {
+    (
+        target,
+        scene.atmosphere.clone(),
+        scene.display.tone_map,
+        scene.render.quality,
+    )
 }
 
 enum Measure {
@@ -29,9 +50,9 @@ pub struct EngineExportWindow {
     pub open: bool,
     pub target: Target,
     /// The snippet, for the key it was written for.
-    text: Option<(Key, String)>,
+    text: Option<(TextKey, String)>,
     /// The measurement of a key, running or done.
-    measure: Option<(Key, Measure)>,
+    measure: Option<(MeasureKey, Measure)>,
 }
 
 impl Default for EngineExportWindow {
@@ -65,7 +86,7 @@ impl EngineExportWindow {
         if !self.open {
             return None;
         }
-        let k = key(self.target, scene);
+        let k = text_key(self.target, scene);
         if self.text.as_ref().is_none_or(|(t, _)| *t != k) {
             self.text = Some((k.clone(), self.target.write(scene)));
         }
@@ -99,7 +120,7 @@ impl EngineExportWindow {
                             .selectable_value(&mut self.target, t, t.label())
                             .changed()
                         {
-                            self.measure = None;
+                            self.stop();
                         }
                     }
                 });
@@ -141,8 +162,16 @@ impl EngineExportWindow {
         notice
     }
 
+    /// Drops the measurement, cancelling it if it runs.
+    fn stop(&mut self) {
+        if let Some((_, Measure::Running(job))) = &self.measure {
+            job.cancel();
+        }
+        self.measure = None;
+    }
+
     fn start(&mut self, ctx: &egui::Context, scene: &Scene) {
-        let k = key(self.target, scene);
+        let k = measure_key(self.target, scene);
         let (target, scene) = (self.target, scene.clone());
         let text = target.write(&scene);
         let job = Job::spawn(
@@ -152,11 +181,16 @@ impl EngineExportWindow {
                 let exported = target.read(&text).map_err(|e| format!("{e:#}"))?;
                 let views = atmoscope_model::views::suite();
                 let done = AtomicUsize::new(0);
-                let progress = |_: &str| {
+                let go_on = |_: &str| {
                     let n = done.fetch_add(1, Ordering::Relaxed) + 1;
                     p.set(n as f32 / views.len() as f32);
+                    !p.cancelled()
                 };
-                Ok(fidelity(&scene, &exported, views, &progress))
+                let errors = fidelity(&scene, &exported, views, &go_on);
+                if p.cancelled() {
+                    return Err("measurement cancelled".into());
+                }
+                Ok(errors)
             },
         );
         self.measure = Some((k, Measure::Running(job)));
@@ -166,10 +200,12 @@ impl EngineExportWindow {
         let current = self
             .measure
             .as_ref()
-            .is_some_and(|(k, _)| *k == key(self.target, scene));
+            .is_some_and(|(k, _)| *k == measure_key(self.target, scene));
         match &self.measure {
             Some((_, Measure::Running(job))) => {
-                job.show(ui);
+                if job.show(ui) {
+                    job.cancel();
+                }
             }
             Some((_, Measure::Done(Ok(errors)))) => {
                 let (engine, colours) = mean_delta_e(errors);

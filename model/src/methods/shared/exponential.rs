@@ -44,7 +44,7 @@ pub struct ExponentialMedium {
 
 /// Column, centroid altitude and spread (standard deviation of altitude) of profile component
 /// `k`, by the trapezoid rule over the profile's samples.
-fn moments(p: &Params, k: usize) -> (f64, f64, f64) {
+pub fn moments(p: &Params, k: usize) -> (f64, f64, f64) {
     let n = p.profile.len();
     let h = |i: usize| p.thickness_m() * (i as f64 / (n - 1) as f64).powi(2);
     let (mut m0, mut m1, mut m2) = (0.0, 0.0, 0.0);
