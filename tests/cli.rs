@@ -430,7 +430,12 @@ fn probe_values(method: &str, extra: &[&str]) -> Vec<f64> {
         "--json",
     ];
     args.extend_from_slice(extra);
-    let o = atmoscope(&args);
+    probe_radiances(method, &args)
+}
+
+/// The radiance of each sample of `atmoscope probe ARGS --json` by `method`.
+fn probe_radiances(method: &str, args: &[&str]) -> Vec<f64> {
+    let o = atmoscope(args);
     assert!(o.status.success(), "{method}: {}", stderr(&o));
     let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
     assert_eq!(v["method"].as_str(), Some(method));
@@ -2051,30 +2056,25 @@ fn the_explorers_first_view_is_a_blue_sky_warmer_towards_the_sun() {
 
 /// The zenith radiance at 450, 550 and 650 nm over a ground type (default scene otherwise).
 fn zenith_over(method: &str, ground: &str) -> Vec<f64> {
-    let o = atmoscope(&[
-        "probe",
-        "--view-zenith-deg",
-        "0",
-        "--view-azimuth-deg",
-        "0",
-        "--wavelengths-nm",
-        "450,550,650",
-        "--method",
+    probe_radiances(
         method,
-        "--ground",
-        ground,
-        "--spp",
-        "65536",
-        "--json",
-    ]);
-    assert!(o.status.success(), "{method}: {}", stderr(&o));
-    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
-    v["samples"]
-        .as_array()
-        .expect("samples")
-        .iter()
-        .map(|s| s["radiance"].as_f64().expect("radiance"))
-        .collect()
+        &[
+            "probe",
+            "--view-zenith-deg",
+            "0",
+            "--view-azimuth-deg",
+            "0",
+            "--wavelengths-nm",
+            "450,550,650",
+            "--method",
+            method,
+            "--ground",
+            ground,
+            "--spp",
+            "65536",
+            "--json",
+        ],
+    )
 }
 
 /// Fresh snow (visible albedo 0.90) under the default sky raises the zenith radiance over the

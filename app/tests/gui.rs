@@ -823,15 +823,9 @@ fn every_lesson_of_the_learn_menu_sets_its_scene_tab_and_pixel_and_shows_compute
     h.get_by_label(&after);
 }
 
-#[test]
-fn copy_scene_as_ron_from_the_file_menu() {
-    let mut h = harness();
-    h.get_by_label("File").click();
-    h.run();
-    h.get_by_label_contains("Copy scene as RON").click();
-    h.step();
-    let copied = h
-        .output()
+/// The text the last frame put on the clipboard.
+fn copied_text(h: &Harness<'static, ExplorerApp>) -> Option<String> {
+    h.output()
         .platform_output
         .commands
         .iter()
@@ -839,7 +833,16 @@ fn copy_scene_as_ron_from_the_file_menu() {
             egui::OutputCommand::CopyText(text) => Some(text.clone()),
             _ => None,
         })
-        .expect("the scene went to the clipboard");
+}
+
+#[test]
+fn copy_scene_as_ron_from_the_file_menu() {
+    let mut h = harness();
+    h.get_by_label("File").click();
+    h.run();
+    h.get_by_label_contains("Copy scene as RON").click();
+    h.step();
+    let copied = copied_text(&h).expect("the scene went to the clipboard");
     let scene = Scene::from_ron(&copied, Path::new("clipboard")).expect("valid RON");
     assert_eq!(scene, h.state().scene);
 }
@@ -1501,16 +1504,7 @@ fn the_engine_export_window_copies_parameters_and_measures_them() {
     h.run();
     h.get_by_label("Copy").click();
     h.step();
-    let copied = h
-        .output()
-        .platform_output
-        .commands
-        .iter()
-        .find_map(|c| match c {
-            egui::OutputCommand::CopyText(text) => Some(text.clone()),
-            _ => None,
-        })
-        .expect("the parameters went to the clipboard");
+    let copied = copied_text(&h).expect("the parameters went to the clipboard");
     let atmoscope::engine_export::Exported::Exponential(back) =
         atmoscope::engine_export::Target::Unreal
             .read(&copied)

@@ -17,9 +17,9 @@
 //! what the parameterisation loses can be measured against the scene's full physics.
 
 use crate::atmosphere::Atmosphere;
+use crate::methods::shared::exponential::moments;
 use crate::methods::shared::optics::Params;
 use crate::scene::AerosolPhase;
-use crate::methods::shared::exponential::moments;
 use crate::scene::{Quality, WavelengthSet};
 use crate::wavelengths::RGB3_NM;
 

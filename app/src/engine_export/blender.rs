@@ -45,18 +45,20 @@ pub struct BlenderSky {
 }
 
 impl BlenderSky {
+    /// Blender's own Earth: every density 1 (the sun 30° high in the south, the camera 1 m up).
+    pub const EARTH: BlenderSky = BlenderSky {
+        sun_elevation_deg: 30.0,
+        sun_rotation_deg: 180.0,
+        altitude_m: 1.0,
+        air_density: 1.0,
+        aerosol_density: 1.0,
+        ozone_density: 1.0,
+    };
+
     /// The densities that give Blender's sky the scene's vertical optical depths of air (at
     /// 560 nm) and aerosol (at 550 nm) and its ozone column; the scene's sun and altitude.
     pub fn fit(scene: &Scene, atm: &Atmosphere) -> BlenderSky {
-        let unit = BlenderSky {
-            sun_elevation_deg: 0.0,
-            sun_rotation_deg: 0.0,
-            altitude_m: 1.0,
-            air_density: 1.0,
-            aerosol_density: 1.0,
-            ozone_density: 1.0,
-        };
-        let blender = Atmosphere::for_scene(&unit.scene(scene));
+        let blender = Atmosphere::for_scene(&BlenderSky::EARTH.scene(scene));
         let depth = |a: &Atmosphere, w: f64| a.vertical_optical_depth(&a.optics(w), 0.0);
         let ratio = |a: f64, b: f64| if b > 0.0 { a / b } else { 0.0 };
         let angles = scene.sun.angles();
@@ -218,15 +220,7 @@ mod tests {
     #[test]
     fn blenders_earth_fits_to_unit_densities_and_the_script_reads_back() {
         let base = Scene::default();
-        let unit = BlenderSky {
-            sun_elevation_deg: 30.0,
-            sun_rotation_deg: 180.0,
-            altitude_m: 1.0,
-            air_density: 1.0,
-            aerosol_density: 1.0,
-            ozone_density: 1.0,
-        };
-        let earth = unit.scene(&base);
+        let earth = BlenderSky::EARTH.scene(&base);
         assert!(earth.validate().is_ok(), "{:?}", earth.validate());
         let fit = BlenderSky::fit(&earth, &Atmosphere::for_scene(&earth));
         for (name, v) in [

@@ -281,15 +281,7 @@ mod tests {
         a.aerosol.kind = AerosolType::Custom;
         a.aerosol.custom.angstrom_exponent = 0.0;
         a.aerosol.custom.scale_height_km = 1.2;
-        let blender_earth = blender::BlenderSky {
-            sun_elevation_deg: 30.0,
-            sun_rotation_deg: 180.0,
-            altitude_m: 1.0,
-            air_density: 1.0,
-            aerosol_density: 1.0,
-            ozone_density: 1.0,
-        }
-        .scene(&Scene::default());
+        let blender_earth = blender::BlenderSky::EARTH.scene(&Scene::default());
         for (target, scene) in [
             (Target::Bevy, &exponential),
             (Target::Unreal, &exponential),
