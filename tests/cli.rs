@@ -2162,3 +2162,71 @@ fn export_engine_writes_each_engines_snippet_for_the_scene() {
     assert!(stderr(&o).contains("bevy"), "{}", stderr(&o));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `probe --stokes` with exact single scattering: Stokes vectors with their degree and angle,
+/// the degree highest 90° from the sun, the electric vector horizontal in the sun's vertical;
+/// other methods are refused with how to ask.
+#[test]
+fn probe_stokes_gives_the_polarisation_of_single_scattering() {
+    let o = atmoscope(&[
+        "probe",
+        "--view-zenith-deg",
+        "45",
+        "--view-azimuth-deg",
+        "0,90,180",
+        "--wavelengths-nm",
+        "450",
+        "--method",
+        "single-scattering",
+        "--sun-elevation-deg",
+        "0",
+        "--aerosol",
+        "none",
+        "--stokes",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
+    let samples = v["samples"].as_array().expect("samples");
+    let dop: Vec<f64> = samples
+        .iter()
+        .map(|s| s["degree_of_polarization"].as_f64().expect("DoP"))
+        .collect();
+    // 90° from the sun (azimuth 90° from it, sun on the horizon): the air's maximum.
+    assert!(
+        dop[1] > 0.9 && dop[1] > dop[0] && dop[1] > dop[2],
+        "{dop:?}"
+    );
+    for s in samples {
+        let st: Vec<f64> = s["stokes"]
+            .as_array()
+            .expect("stokes")
+            .iter()
+            .map(|x| x.as_f64().expect("number"))
+            .collect();
+        assert_eq!(st[0], s["radiance"].as_f64().expect("radiance"));
+        let degree = st[1].hypot(st[2]) / st[0];
+        assert!((degree - s["degree_of_polarization"].as_f64().expect("DoP")).abs() < 1e-12);
+    }
+    // Towards and away from the sun the light vibrates horizontally: ±90°.
+    for i in [0, 2] {
+        let aop = samples[i]["angle_of_polarization_deg"]
+            .as_f64()
+            .expect("AoP");
+        assert!((aop.abs() - 90.0).abs() < 1e-6, "{aop}");
+    }
+    let o = atmoscope(&[
+        "probe",
+        "--view-zenith-deg",
+        "0",
+        "--view-azimuth-deg",
+        "0",
+        "--stokes",
+    ]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("--method single-scattering"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -20,6 +20,7 @@ pub mod methods;
 pub mod mie;
 pub mod ozone;
 pub mod phase;
+pub mod polarisation;
 pub mod profiles;
 pub mod quadrature;
 pub mod rayleigh;

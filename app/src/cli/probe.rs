@@ -32,6 +32,11 @@ pub fn run(probe_args: &ProbeArgs) -> anyhow::Result<ExitCode> {
     if args.spp < 2 {
         bail!("--spp: at least 2 paths are needed for a standard error");
     }
+    if args.stokes && args.method != ProbeMethod::SingleScattering {
+        bail!(
+            "--stokes: the Stokes vector comes from the exact single-scattering integrator; add --method single-scattering"
+        );
+    }
     let scene = probe_args.scene.scene()?;
     if let ProbeMethod::Model(m) = args.method {
         let mut drawn = scene.clone();
@@ -58,10 +63,17 @@ pub fn run(probe_args: &ProbeArgs) -> anyhow::Result<ExitCode> {
     if let Some(t) = p.turbidity {
         println!("turbidity: {t:.3}");
     }
-    println!(" zenith°  azimuth°   λ (nm)   radiance (W/m²/sr/nm)   L/E (1/sr)    std. error");
+    let polarised = if args.stokes { "   DoP    AoP°" } else { "" };
+    println!(
+        " zenith°  azimuth°   λ (nm)   radiance (W/m²/sr/nm)   L/E (1/sr)    std. error{polarised}"
+    );
     for s in &p.samples {
+        let polarised = match (s.degree_of_polarization, s.angle_of_polarization_deg) {
+            (Some(d), Some(a)) => format!("  {d:5.3}  {a:6.1}"),
+            _ => String::new(),
+        };
         println!(
-            "{:8.2}  {:8.2}  {:7.1}   {:>20.6e}   {:>10.6}    {:>10.2e}",
+            "{:8.2}  {:8.2}  {:7.1}   {:>20.6e}   {:>10.6}    {:>10.2e}{polarised}",
             s.view_zenith_deg,
             s.view_azimuth_deg,
             s.wavelength_nm,

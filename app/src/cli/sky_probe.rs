@@ -10,6 +10,7 @@ use atmoscope_model::methods::path_tracer::{LANES, LaneOptics, PathTracer, PathT
 use atmoscope_model::methods::rng::Rng;
 use atmoscope_model::methods::shared::{Params, sun_disk, viewpoint};
 use atmoscope_model::methods::{self, single_scattering};
+use atmoscope_model::polarisation::{self, Stokes};
 use atmoscope_model::scene::Method;
 use atmoscope_model::{Atmosphere, Scene};
 use clap::Args;
@@ -94,6 +95,11 @@ pub struct ProbeRequest {
     /// Random seed (path tracer).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    /// Give each sample's Stokes vector (I, Q, U, V) in the meridian frame, its degree and
+    /// angle of polarisation: with --method single-scattering, the exact polarisation of
+    /// sunlight scattered once (air polarises; aerosol and ground do not).
+    #[arg(long)]
+    pub stokes: bool,
 }
 
 #[derive(Serialize, Debug)]
@@ -107,6 +113,16 @@ pub struct Sample {
     pub radiance_per_irradiance: f64,
     /// Monte Carlo standard error of `radiance_per_irradiance` (0 for deterministic methods).
     pub std_error: f64,
+    /// With `--stokes`: (I, Q, U, V) in the unit of `radiance`, Q and U in the meridian frame
+    /// (`model::polarisation`): Q > 0 vibrating vertically, the angle from up towards right.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stokes: Option<[f64; 4]>,
+    /// With `--stokes`: √(Q² + U² + V²)/I, 0–1.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub degree_of_polarization: Option<f64>,
+    /// With `--stokes`: ½·atan2(U, Q), degrees, −90–90.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub angle_of_polarization_deg: Option<f64>,
 }
 
 #[derive(Serialize, Debug)]
@@ -211,6 +227,8 @@ pub fn probe(scene: &Scene, args: &ProbeRequest) -> Probe {
                 .enumerate()
                 .map(|(i, &w)| {
                     let e = atm.solar_irradiance(w, None);
+                    let stokes = (args.stokes && args.method == ProbeMethod::SingleScattering)
+                        .then(|| polarisation::single_scattering_stokes(&atm, &ray, sun, w));
                     Sample {
                         view_zenith_deg: zenith,
                         view_azimuth_deg: azimuth,
@@ -218,6 +236,9 @@ pub fn probe(scene: &Scene, args: &ProbeRequest) -> Probe {
                         radiance: mean[i],
                         radiance_per_irradiance: mean[i] / e,
                         std_error: se[i] / e,
+                        stokes: stokes.map(Stokes::to_array),
+                        degree_of_polarization: stokes.map(|s| s.degree_of_polarization()),
+                        angle_of_polarization_deg: stokes.map(|s| s.angle_of_polarization_deg()),
                     }
                 })
                 .collect()

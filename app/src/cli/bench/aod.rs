@@ -67,6 +67,7 @@ pub fn run(args: &AodBench) -> anyhow::Result<ExitCode> {
         max_order: None,
         spp: args.spp,
         seed: 1,
+        stokes: false,
     };
     let mut rows = Vec::new();
     for &sun in &args.suns {

@@ -290,6 +290,7 @@ pub fn run(args: &ClearSkyBench) -> anyhow::Result<ExitCode> {
                 max_order: None,
                 spp: args.spp,
                 seed: 1,
+                stokes: false,
             },
         );
         rows.push(Row {

@@ -1,0 +1,214 @@
+//! Polarised skylight: Stokes vectors in the local meridian frame, and the polarisation of
+//! sunlight scattered once by air (Chandrasekhar 1950, §I.15–17; Hansen & Travis 1974, §2.2).
+//!
+//! **The frame.** At the observer, looking along `view` (into the sky), the reference
+//! direction `e_up` lies in the meridian plane (the plane through the local zenith and the
+//! view), perpendicular to the view and towards the zenith: "up" in an upright picture.
+//! `e_right = view × e_up` is "right". The angle of polarisation χ is the angle of the electric
+//! vector from `e_up` towards `e_right` (clockwise as the observer sees the sky), in −90°–90°,
+//! and Q = I·P·cos 2χ, U = I·P·sin 2χ: Q > 0 where the light vibrates vertically (in the
+//! meridian plane), Q < 0 horizontally. Straight up or down the meridian plane is undefined:
+//! `e_up` is then north.
+//!
+//! **Once-scattered sunlight.** Air scatters unpolarised sunlight into light polarised
+//! perpendicular to the scattering plane (the plane of the sun, the scatterer and the
+//! observer), by the degree [`rayleigh_degree`]. The aerosols of the Henyey–Greenstein and
+//! Cornette–Shanks phases scatter without polarising, and the Lambertian ground depolarises:
+//! they add to I alone. The scattering angle is the same all along a view ray (the sun is at
+//! infinity), so the polarised radiance of single scattering is the degree at that angle times
+//! the air's part of the single-scattered radiance.
+
+use crate::atmosphere::Atmosphere;
+use crate::geometry::Ray;
+use crate::methods::single_scattering;
+use glam::DVec3;
+
+/// A Stokes vector (I, Q, U, V) in the meridian frame, in the unit of the radiance.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Stokes {
+    pub i: f64,
+    pub q: f64,
+    pub u: f64,
+    pub v: f64,
+}
+
+impl Stokes {
+    /// Light of radiance `i` polarised by degree `degree` (0–1) at angle `chi` (radians) from
+    /// the frame's `e_up`.
+    pub fn polarised(i: f64, degree: f64, chi: f64) -> Stokes {
+        Stokes {
+            i,
+            q: i * degree * (2.0 * chi).cos(),
+            u: i * degree * (2.0 * chi).sin(),
+            v: 0.0,
+        }
+    }
+
+    pub fn to_array(self) -> [f64; 4] {
+        [self.i, self.q, self.u, self.v]
+    }
+
+    /// The degree of polarisation √(Q² + U² + V²)/I, 0–1 (0 where I is 0).
+    pub fn degree_of_polarization(&self) -> f64 {
+        if self.i > 0.0 {
+            ((self.q * self.q + self.u * self.u + self.v * self.v).sqrt() / self.i).min(1.0)
+        } else {
+            0.0
+        }
+    }
+
+    /// The angle of polarisation χ = ½·atan2(U, Q), degrees in −90–90 (the frame's docs).
+    pub fn angle_of_polarization_deg(&self) -> f64 {
+        // + 0.0 turns −0 into 0.
+        0.5 * self.u.atan2(self.q).to_degrees() + 0.0
+    }
+}
+
+/// The degree of linear polarisation of unpolarised light scattered once by air at scattering
+/// cosine `nu`, for depolarisation ratio `rho` (0 = ideal dipoles; air ≈ 0.03):
+/// (1−γ)·sin²Θ / [(1+3γ) + (1−γ)·cos²Θ] with γ = ρ/(2−ρ), the ratio of the phase matrix's
+/// polarising term to `phase::rayleigh`'s. At 90° it is (1−ρ)/(1+ρ); without depolarisation,
+/// sin²Θ/(1+cos²Θ).
+pub fn rayleigh_degree(nu: f64, rho: f64) -> f64 {
+    let gamma = rho / (2.0 - rho);
+    let nu2 = (nu * nu).min(1.0);
+    (1.0 - gamma) * (1.0 - nu2) / ((1.0 + 3.0 * gamma) + (1.0 - gamma) * nu2)
+}
+
+/// The meridian frame (`e_up`, `e_right`) of a view direction `view` at a point whose local
+/// zenith is `zenith` (unit vectors).
+pub fn meridian_frame(view: DVec3, zenith: DVec3) -> (DVec3, DVec3) {
+    let mut up = zenith - view * view.dot(zenith);
+    if up.length_squared() < 1e-18 {
+        // Straight up or down: north (the frame's +y) in the plane across the view.
+        up = DVec3::Y - view * view.dot(DVec3::Y);
+    }
+    let up = up.normalize();
+    (up, view.cross(up))
+}
+
+/// The angle (radians) from the frame's `e_up` to the electric vector of light scattered
+/// towards the observer from `view` out of sunlight from the sun in direction `sun`: the
+/// vector perpendicular to the scattering plane.
+pub fn perpendicular_angle(view: DVec3, sun: DVec3, zenith: DVec3) -> f64 {
+    let (up, right) = meridian_frame(view, zenith);
+    let e = view.cross(sun);
+    let chi = e.dot(right).atan2(e.dot(up));
+    // An electric vector and its opposite are the same polarisation: fold into −90°–90°.
+    if chi > std::f64::consts::FRAC_PI_2 {
+        chi - std::f64::consts::PI
+    } else if chi < -std::f64::consts::FRAC_PI_2 {
+        chi + std::f64::consts::PI
+    } else {
+        chi
+    }
+}
+
+/// The Stokes vector of single-scattered light reaching `ray.origin` from `-ray.direction` at
+/// `wavelength_nm` with the sun in direction `sun` (the exact integrator of
+/// `methods::single_scattering`; W·m⁻²·sr⁻¹·nm⁻¹).
+pub fn single_scattering_stokes(
+    atm: &Atmosphere,
+    ray: &Ray,
+    sun: DVec3,
+    wavelength_nm: f64,
+) -> Stokes {
+    let parts = single_scattering::radiance_parts(atm, ray, sun, wavelength_nm);
+    let i = parts.total();
+    if i <= 0.0 {
+        return Stokes::default();
+    }
+    let rho = atm.optics(wavelength_nm).rayleigh_depolarisation;
+    let nu = ray.direction.dot(sun);
+    let polarised = rayleigh_degree(nu, rho) * parts.rayleigh;
+    let chi = perpendicular_angle(ray.direction, sun, ray.origin.normalize());
+    Stokes::polarised(i, polarised / i, chi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::aerosol::AerosolType;
+    use crate::geometry::direction_from_angles;
+    use crate::scene::Scene;
+
+    #[test]
+    fn rayleighs_degree_is_the_classic_formula() {
+        for deg in [0.0f64, 30.0, 60.0, 90.0, 120.0, 180.0] {
+            let nu = deg.to_radians().cos();
+            let ideal = (1.0 - nu * nu) / (1.0 + nu * nu);
+            assert!((rayleigh_degree(nu, 0.0) - ideal).abs() < 1e-12, "{deg}");
+        }
+        // With depolarisation, at 90°: (1−ρ)/(1+ρ).
+        let rho = 0.0279;
+        assert!((rayleigh_degree(0.0, rho) - (1.0 - rho) / (1.0 + rho)).abs() < 1e-12);
+        // The scaled form sin²Θ/(1 + cos²Θ + 2ρ/(1−ρ)).
+        let nu: f64 = 0.4;
+        let scaled = (1.0 - nu * nu) / (1.0 + nu * nu + 2.0 * rho / (1.0 - rho));
+        assert!((rayleigh_degree(nu, rho) - scaled).abs() < 1e-12);
+    }
+
+    /// A pure-air sky over a black ground: the degree is Rayleigh's at the view's scattering
+    /// angle; the electric vector lies across the scattering plane (horizontal where the sun
+    /// is in the view's vertical plane); mirror views about the sun's vertical have mirrored
+    /// Stokes vectors (U changes sign).
+    #[test]
+    fn single_scattering_polarises_across_the_scattering_plane_symmetrically() {
+        let mut s = Scene::default();
+        s.atmosphere.aerosol.kind = AerosolType::None;
+        s.atmosphere.aerosol.aod550 = 0.0;
+        s.atmosphere.ground_albedo = 0.0;
+        s.sun = crate::scene::SunSettings::Angles {
+            elevation_deg: 20.0,
+            azimuth_deg: 90.0,
+        };
+        let atm = Atmosphere::for_scene(&s);
+        let sun = direction_from_angles(20.0, 90.0);
+        let origin = DVec3::new(0.0, 0.0, atm.bottom_radius_m + 1.0);
+        let look = |elevation: f64, azimuth: f64| {
+            let ray = Ray::new(origin, direction_from_angles(elevation, azimuth));
+            single_scattering_stokes(&atm, &ray, sun, 550.0)
+        };
+        // In the sun's vertical (towards it and away): horizontal, Q < 0, U = 0.
+        for azimuth in [90.0, 270.0] {
+            let st = look(45.0, azimuth);
+            assert!(st.q < 0.0 && st.u.abs() < 1e-9 * st.i, "{azimuth}: {st:?}");
+            assert!((st.angle_of_polarization_deg().abs() - 90.0).abs() < 1e-6);
+        }
+        // 90° from the sun: Rayleigh's degree with the air's depolarisation.
+        let view = direction_from_angles(70.0, 270.0 - 90.0);
+        let nu = view.dot(sun);
+        let st = look(70.0, 180.0);
+        let rho = atm.optics(550.0).rayleigh_depolarisation;
+        assert!((st.degree_of_polarization() - rayleigh_degree(nu, rho)).abs() < 1e-9);
+        // Mirror views about the sun's vertical plane.
+        for (elevation, offset) in [(10.0, 40.0), (50.0, 100.0), (80.0, 150.0)] {
+            let (a, b) = (
+                look(elevation, 90.0 + offset),
+                look(elevation, 90.0 - offset),
+            );
+            assert!((a.i - b.i).abs() < 1e-9 * a.i, "{a:?} {b:?}");
+            assert!((a.q - b.q).abs() < 1e-9 * a.i, "{a:?} {b:?}");
+            assert!((a.u + b.u).abs() < 1e-9 * a.i, "{a:?} {b:?}");
+        }
+    }
+
+    /// Aerosol and ground add unpolarised light: the polarised radiance stays the air's,
+    /// and the degree falls by the air's share of the light.
+    #[test]
+    fn aerosol_and_ground_add_only_unpolarised_light() {
+        let s = Scene::default();
+        let atm = Atmosphere::for_scene(&s);
+        let sun = direction_from_angles(30.0, 180.0);
+        let origin = DVec3::new(0.0, 0.0, atm.bottom_radius_m + 1.0);
+        let ray = Ray::new(origin, direction_from_angles(40.0, 90.0));
+        let st = single_scattering_stokes(&atm, &ray, sun, 450.0);
+        let parts = single_scattering::radiance_parts(&atm, &ray, sun, 450.0);
+        let rho = atm.optics(450.0).rayleigh_depolarisation;
+        let air_only = rayleigh_degree(ray.direction.dot(sun), rho);
+        let expected = air_only * parts.rayleigh / parts.total();
+        assert!((st.degree_of_polarization() - expected).abs() < 1e-12);
+        assert!(st.degree_of_polarization() < air_only && parts.aerosol > 0.0);
+        assert_eq!(st.i, parts.total());
+    }
+}
