@@ -7,8 +7,10 @@
 //! `e_right = view × e_up` is "right". The angle of polarisation χ is the angle of the electric
 //! vector from `e_up` towards `e_right` (clockwise as the observer sees the sky), in −90°–90°,
 //! and Q = I·P·cos 2χ, U = I·P·sin 2χ: Q > 0 where the light vibrates vertically (in the
-//! meridian plane), Q < 0 horizontally. Straight up or down the meridian plane is undefined:
-//! `e_up` is then north.
+//! meridian plane), Q < 0 horizontally: Chandrasekhar's Q, with U of the sign opposite to the
+//! IAU's (which counts the angle counter-clockwise as seen on the sky). Straight up or down the
+//! meridian plane is undefined: `e_up` is then the scene frame's north (+y; the camera's north
+//! unless it has moved back over the planet).
 //!
 //! **Once-scattered sunlight.** Air scatters unpolarised sunlight into light polarised
 //! perpendicular to the scattering plane (the plane of the sun, the scatterer and the
@@ -36,10 +38,13 @@ impl Stokes {
     /// Light of radiance `i` polarised by degree `degree` (0–1) at angle `chi` (radians) from
     /// the frame's `e_up`.
     pub fn polarised(i: f64, degree: f64, chi: f64) -> Stokes {
+        // Rounding leaves U a few parts in 10¹⁶ of I where χ is ±90°: zero, so that the angle
+        // comes out +90° rather than either sign.
+        let u = i * degree * (2.0 * chi).sin();
         Stokes {
             i,
             q: i * degree * (2.0 * chi).cos(),
-            u: i * degree * (2.0 * chi).sin(),
+            u: if u.abs() < 1e-12 * i.abs() { 0.0 } else { u },
             v: 0.0,
         }
     }
@@ -57,7 +62,7 @@ impl Stokes {
         }
     }
 
-    /// The angle of polarisation χ = ½·atan2(U, Q), degrees in −90–90 (the frame's docs).
+    /// The angle of polarisation χ = ½·atan2(U, Q), degrees in (−90, 90] (the frame's docs).
     pub fn angle_of_polarization_deg(&self) -> f64 {
         // + 0.0 turns −0 into 0.
         0.5 * self.u.atan2(self.q).to_degrees() + 0.0
@@ -78,12 +83,14 @@ pub fn rayleigh_degree(nu: f64, rho: f64) -> f64 {
 /// The meridian frame (`e_up`, `e_right`) of a view direction `view` at a point whose local
 /// zenith is `zenith` (unit vectors).
 pub fn meridian_frame(view: DVec3, zenith: DVec3) -> (DVec3, DVec3) {
-    let mut up = zenith - view * view.dot(zenith);
-    if up.length_squared() < 1e-18 {
-        // Straight up or down: north (the frame's +y) in the plane across the view.
-        up = DVec3::Y - view * view.dot(DVec3::Y);
-    }
-    let up = up.normalize();
+    let across = |d: DVec3| d - view * view.dot(d);
+    // Straight up or down: north (the frame's +y), or east where the view lies along +y.
+    let up = [zenith, DVec3::Y, DVec3::X]
+        .into_iter()
+        .map(across)
+        .find(|u| u.length_squared() > 1e-18)
+        .unwrap_or(DVec3::Z)
+        .normalize();
     (up, view.cross(up))
 }
 
@@ -104,9 +111,10 @@ pub fn perpendicular_angle(view: DVec3, sun: DVec3, zenith: DVec3) -> f64 {
     }
 }
 
-/// The Stokes vector of single-scattered light reaching `ray.origin` from `-ray.direction` at
-/// `wavelength_nm` with the sun in direction `sun` (the exact integrator of
-/// `methods::single_scattering`; W·m⁻²·sr⁻¹·nm⁻¹).
+/// The Stokes vector of single-scattered light seen from `ray.origin` looking along
+/// `ray.direction` (the light travels along −`ray.direction`), at `wavelength_nm` with the sun
+/// in direction `sun` (the exact integrator of `methods::single_scattering`;
+/// W·m⁻²·sr⁻¹·nm⁻¹).
 pub fn single_scattering_stokes(
     atm: &Atmosphere,
     ray: &Ray,
@@ -169,17 +177,20 @@ mod tests {
             let ray = Ray::new(origin, direction_from_angles(elevation, azimuth));
             single_scattering_stokes(&atm, &ray, sun, 550.0)
         };
-        // In the sun's vertical (towards it and away): horizontal, Q < 0, U = 0.
+        // In the sun's vertical (towards it and away): horizontal, Q < 0, U = 0, χ = 90°.
         for azimuth in [90.0, 270.0] {
             let st = look(45.0, azimuth);
-            assert!(st.q < 0.0 && st.u.abs() < 1e-9 * st.i, "{azimuth}: {st:?}");
-            assert!((st.angle_of_polarization_deg().abs() - 90.0).abs() < 1e-6);
+            assert!(st.q < 0.0 && st.u == 0.0, "{azimuth}: {st:?}");
+            assert_eq!(st.angle_of_polarization_deg(), 90.0);
         }
-        // 90° from the sun: Rayleigh's degree with the air's depolarisation.
-        let view = direction_from_angles(70.0, 270.0 - 90.0);
-        let nu = view.dot(sun);
-        let st = look(70.0, 180.0);
+        // 90° from the sun (opposite azimuth, 70° up against 20° up): the air's maximum,
+        // (1−ρ)/(1+ρ); and Rayleigh's degree at another angle.
         let rho = atm.optics(550.0).rayleigh_depolarisation;
+        assert!(direction_from_angles(70.0, 270.0).dot(sun).abs() < 1e-12);
+        let peak = look(70.0, 270.0).degree_of_polarization();
+        assert!((peak - (1.0 - rho) / (1.0 + rho)).abs() < 1e-9, "{peak}");
+        let nu = direction_from_angles(70.0, 180.0).dot(sun);
+        let st = look(70.0, 180.0);
         assert!((st.degree_of_polarization() - rayleigh_degree(nu, rho)).abs() < 1e-9);
         // Mirror views about the sun's vertical plane.
         for (elevation, offset) in [(10.0, 40.0), (50.0, 100.0), (80.0, 150.0)] {
@@ -191,6 +202,28 @@ mod tests {
             assert!((a.q - b.q).abs() < 1e-9 * a.i, "{a:?} {b:?}");
             assert!((a.u + b.u).abs() < 1e-9 * a.i, "{a:?} {b:?}");
         }
+    }
+
+    /// The handedness of the frame: with the sun 45° up in the east and the view 45° up in
+    /// the north, the sun appears up and to the right of the view's centre, and the electric
+    /// vector across the scattering plane lies at −atan(1/√2) from up (clockwise positive);
+    /// with the sun in the west, at +atan(1/√2).
+    #[test]
+    fn the_angle_runs_clockwise_from_up_as_the_observer_sees_the_sky() {
+        let view = direction_from_angles(45.0, 0.0);
+        let expected = (1.0f64 / 2.0f64.sqrt()).atan();
+        for (sun_azimuth, sign) in [(90.0, -1.0), (270.0, 1.0)] {
+            let chi = perpendicular_angle(view, direction_from_angles(45.0, sun_azimuth), DVec3::Z);
+            assert!(
+                (chi - sign * expected).abs() < 1e-12,
+                "{sun_azimuth}: {chi}"
+            );
+        }
+        // Straight up, up is north: the sun in the east gives a north–south vector.
+        let chi = perpendicular_angle(DVec3::Z, direction_from_angles(0.0, 90.0), DVec3::Z);
+        assert!(chi.abs() < 1e-12, "{chi}");
+        let (up, right) = meridian_frame(DVec3::Y, DVec3::Z);
+        assert_eq!((up, right), (DVec3::Z, DVec3::X));
     }
 
     /// Aerosol and ground add unpolarised light: the polarised radiance stays the air's,
