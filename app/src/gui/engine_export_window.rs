@@ -6,6 +6,7 @@ use super::jobs::Job;
 use crate::engine_export::{Target, ViewError, fidelity, mean_delta_e};
 use atmoscope_model::Scene;
 use atmoscope_model::scene::{AtmosphereSettings, Quality, SunSettings, ToneMap};
+use atmoscope_model::views::View;
 use eframe::egui;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -49,6 +50,8 @@ enum Measure {
 pub struct EngineExportWindow {
     pub open: bool,
     pub target: Target,
+    /// The views a measurement draws: the suite's (the GUI tests take fewer).
+    pub views: Vec<View>,
     /// The snippet, for the key it was written for.
     text: Option<(TextKey, String)>,
     /// The measurement of a key, running or done.
@@ -60,6 +63,7 @@ impl Default for EngineExportWindow {
         EngineExportWindow {
             open: false,
             target: Target::Bevy,
+            views: atmoscope_model::views::suite().to_vec(),
             text: None,
             measure: None,
         }
@@ -172,21 +176,20 @@ impl EngineExportWindow {
 
     fn start(&mut self, ctx: &egui::Context, scene: &Scene) {
         let k = measure_key(self.target, scene);
-        let (target, scene) = (self.target, scene.clone());
+        let (target, scene, views) = (self.target, scene.clone(), self.views.clone());
         let text = target.write(&scene);
         let job = Job::spawn(
             format!("measuring the {} parameters", target.label()),
             ctx,
             move |p| {
                 let exported = target.read(&text).map_err(|e| format!("{e:#}"))?;
-                let views = atmoscope_model::views::suite();
                 let done = AtomicUsize::new(0);
                 let go_on = |_: &str| {
                     let n = done.fetch_add(1, Ordering::Relaxed) + 1;
                     p.set(n as f32 / views.len() as f32);
                     !p.cancelled()
                 };
-                let errors = fidelity(&scene, &exported, views, &go_on);
+                let errors = fidelity(&scene, &exported, &views, &go_on);
                 if p.cancelled() {
                     return Err("measurement cancelled".into());
                 }
