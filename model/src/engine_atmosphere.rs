@@ -271,7 +271,7 @@ mod tests {
         let e = EngineAtmosphere::HILLAIRE_EARTH;
         // His Rayleigh coefficients (Bruneton & Neyret's) lie above the ones our
         // cross-sections give at the US Standard Atmosphere's ground density, which follow
-        // Bucholtz (1995): held to 10–20 % above, the spectral shape to 3 %.
+        // Bucholtz (1995): ours held to 80–90 % of his, the spectral shape to 3 %.
         let r = |c: usize| fit.rayleigh_scattering_per_m[c] / e.rayleigh_scattering_per_m[c];
         for c in 0..3 {
             assert!((0.80..0.90).contains(&r(c)), "{c}: {fit:?}");
