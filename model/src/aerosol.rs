@@ -20,6 +20,7 @@
 use crate::constants::AOD_REFERENCE_NM;
 use crate::csv_table::tables;
 use crate::mie::{self, BulkOptics, LogNormal};
+use crate::polarisation::mueller::ReducedMatrix;
 use num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -487,6 +488,9 @@ pub struct MiePhase {
     /// [`MIE_PHASE_WAVELENGTHS_NM`]; each row integrates to 1 over the sphere as
     /// [`crate::phase::tabulated`] interpolates it.
     pub ln_rows: Vec<f64>,
+    /// The scattering matrix over the phase function at the same angles and wavelengths:
+    /// (b₁, a₃, b₂) = (S₁₂, S₃₃, S₃₄)/S₁₁ of the mixture (spheres: a₂ = 1, a₄ = a₃).
+    pub matrix_rows: Vec<[f64; 3]>,
 }
 
 impl MiePhase {
@@ -506,6 +510,40 @@ impl MiePhase {
             Self::node_at(wavelength_nm),
             nu,
         )
+    }
+
+    /// The scattering matrix over the phase function at `wavelength_nm` and scattering cosine
+    /// `nu`: each element linear in u = √(θ/π) within a row, like ln p, and between two
+    /// wavelengths' rows weighted by their phase functions, as the mixed phase mixes them.
+    pub fn matrix(&self, wavelength_nm: f64, nu: f64) -> ReducedMatrix {
+        let n = MIE_PHASE_ANGLES;
+        let rows = self.ln_rows.len() / n;
+        let u = (nu.clamp(-1.0, 1.0).acos() / std::f64::consts::PI).sqrt();
+        let x = u * (n - 1) as f64;
+        let i = (x as usize).min(n - 2);
+        let t = x - i as f64;
+        let at = |r: usize| {
+            let (l, m) = (&self.ln_rows[r * n..], &self.matrix_rows[r * n..]);
+            let p = (l[i] + t * (l[i + 1] - l[i])).exp();
+            (
+                p,
+                std::array::from_fn::<f64, 3, _>(|k| m[i][k] + t * (m[i + 1][k] - m[i][k])),
+            )
+        };
+        let node = Self::node_at(wavelength_nm);
+        let r0 = (node as usize).min(rows - 1);
+        let r1 = (r0 + 1).min(rows - 1);
+        let s = node - r0 as f64;
+        let ((p0, m0), (p1, m1)) = (at(r0), at(r1));
+        let (w0, w1) = ((1.0 - s) * p0, s * p1);
+        let [b1, a3, b2] = std::array::from_fn(|k| (w0 * m0[k] + w1 * m1[k]) / (w0 + w1));
+        ReducedMatrix {
+            b1,
+            a2: 1.0,
+            a3,
+            a4: a3,
+            b2,
+        }
     }
 }
 
@@ -532,8 +570,8 @@ fn compute_phase(mixture: Mixture) -> MiePhase {
     let jobs: Vec<(usize, usize)> = (0..MIE_PHASE_WAVELENGTHS_NM.len())
         .flat_map(|w| (0..components.len()).map(move |c| (w, c)))
         .collect();
-    // (wavelength, component) → (C_sca, dC_sca/dΩ) per particle.
-    let parts: Vec<(usize, f64, Vec<f64>)> = jobs
+    // (wavelength, component) → (C_sca, its scattering matrix) per particle.
+    let parts: Vec<(usize, f64, Vec<mie::MatrixElements>)> = jobs
         .par_iter()
         .map(|&(w, c)| {
             let (component, count) = &components[c];
@@ -541,26 +579,39 @@ fn compute_phase(mixture: Mixture) -> MiePhase {
             (
                 w,
                 count * bulk.sca_um2,
-                differential.iter().map(|d| count * d).collect(),
+                differential.iter().map(|d| d.map(|e| count * e)).collect(),
             )
         })
         .collect();
     let mut ln_rows = Vec::with_capacity(MIE_PHASE_WAVELENGTHS_NM.len() * n);
+    let mut matrix_rows = Vec::with_capacity(MIE_PHASE_WAVELENGTHS_NM.len() * n);
     for w in 0..MIE_PHASE_WAVELENGTHS_NM.len() {
-        let (mut sca, mut differential) = (0.0, vec![0.0; n]);
+        let (mut sca, mut differential) = (0.0, vec![[0.0; 4]; n]);
         for (_, s, d) in parts.iter().filter(|(pw, _, _)| *pw == w) {
             sca += s;
-            differential.iter_mut().zip(d).for_each(|(a, b)| *a += b);
+            for (a, b) in differential.iter_mut().zip(d) {
+                a.iter_mut().zip(b).for_each(|(a, b)| *a += b);
+            }
         }
         let row: Vec<f64> = differential
             .iter()
-            .map(|d| (d / sca).max(f64::MIN_POSITIVE).ln())
+            .map(|d| (d[0] / sca).max(f64::MIN_POSITIVE).ln())
             .collect();
+        matrix_rows.extend(differential.iter().map(|d| {
+            if d[0] > 0.0 {
+                [d[1] / d[0], d[2] / d[0], d[3] / d[0]]
+            } else {
+                [0.0, 1.0, 0.0]
+            }
+        }));
         // Normalise the row as it will be read: the interpolation, not the nodes, integrates to 1.
         let norm = crate::phase::tabulated_integral(&row, n).ln();
         ln_rows.extend(row.iter().map(|l| l - norm));
     }
-    MiePhase { ln_rows }
+    MiePhase {
+        ln_rows,
+        matrix_rows,
+    }
 }
 
 /// An OPAC component at one humidity: size distribution and refractive index table.
@@ -628,7 +679,11 @@ impl Component {
 
     /// [`Component::optics`] and the mean differential scattering cross-section per particle
     /// at each scattering cosine of `nus`, µm² sr⁻¹.
-    fn scattering(&self, wavelength_nm: f64, nus: &[f64]) -> (BulkOptics, Vec<f64>) {
+    fn scattering(
+        &self,
+        wavelength_nm: f64,
+        nus: &[f64],
+    ) -> (BulkOptics, Vec<mie::MatrixElements>) {
         mie::lognormal_scattering(
             &self.size,
             wavelength_nm / 1000.0,
@@ -651,6 +706,45 @@ impl Component {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The types' Mie matrices over their phase functions: forward, the light keeps its
+    /// polarisation and none is made (b₁ = 0, a₃ = 1); elsewhere no element exceeds 1 in size
+    /// and b₁² + a₃² + b₂² ≤ 1 (a mixture of spheres is no purer than one, Hovenier's
+    /// inequality); at a wavelength of the table, the node's own values.
+    #[test]
+    fn mie_matrices_are_physical_and_start_forward_as_the_identity() {
+        for t in [
+            AerosolType::DesertDust,
+            AerosolType::Urban,
+            AerosolType::MaritimeClean,
+        ] {
+            let phase = type_phase(t).expect("a mixture type");
+            let forward = phase.matrix(550.0, 1.0);
+            assert!(
+                forward.b1.abs() < 1e-6 && (forward.a3 - 1.0).abs() < 1e-6,
+                "{t:?}"
+            );
+            for k in 0..=60 {
+                let nu = (k as f64 * 3.0f64).to_radians().cos();
+                for w in [400.0, 550.0, 800.0] {
+                    let m = phase.matrix(w, nu);
+                    assert!(
+                        m.b1 * m.b1 + m.a3 * m.a3 + m.b2 * m.b2 <= 1.0 + 1e-9,
+                        "{t:?} {w} {nu}: {m:?}"
+                    );
+                }
+            }
+            let n = MIE_PHASE_ANGLES;
+            let (row, i) = (2, 90);
+            let theta = std::f64::consts::PI * (i as f64 / (n - 1) as f64).powi(2);
+            let m = phase.matrix(MIE_PHASE_WAVELENGTHS_NM[row], theta.cos());
+            let node = phase.matrix_rows[row * n + i];
+            assert!(
+                (m.b1 - node[0]).abs() < 1e-9 && (m.a3 - node[1]).abs() < 1e-9,
+                "{t:?}"
+            );
+        }
+    }
 
     /// Dust's and sea salt's Mie phase functions integrate to 1 at every wavelength, have the
     /// mixture's g for mean cosine, and peak forward far above Henyey–Greenstein with that g

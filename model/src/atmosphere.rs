@@ -15,6 +15,7 @@ use crate::geometry::{self, Ray};
 use crate::ground::GroundType;
 use crate::ozone::OzoneCrossSection;
 use crate::phase;
+use crate::polarisation::mueller::ReducedMatrix;
 use crate::profiles::{AirProfile, ScaledOzone};
 use crate::quadrature::integrate_adaptive;
 use crate::rayleigh;
@@ -402,6 +403,16 @@ impl Atmosphere {
     pub fn aerosol_phase(&self, optics: &Optics, nu: f64) -> f64 {
         self.aerosol_phase
             .value(self.mie_phase, optics.wavelength_nm, optics.aerosol_g, nu)
+    }
+
+    /// The aerosol's scattering matrix over its phase function at scattering cosine `nu`: the
+    /// type's Mie matrix where the phase is Mie, else one that makes no polarisation
+    /// ([`ReducedMatrix::UNPOLARISING`]).
+    pub fn aerosol_matrix(&self, optics: &Optics, nu: f64) -> ReducedMatrix {
+        match (self.aerosol_phase, self.mie_phase) {
+            (AerosolPhase::Mie, Some(m)) => m.matrix(optics.wavelength_nm, nu),
+            _ => ReducedMatrix::UNPOLARISING,
+        }
     }
 
     /// Rayleigh phase function value for scattering-angle cosine `nu`.

@@ -87,13 +87,19 @@ fn efficiencies(x: f64, ab: &[(Complex64, Complex64)]) -> MieEfficiencies {
     }
 }
 
-/// [`sphere`] and the scattered intensity i = (|S₁|² + |S₂|²)/2 at each scattering cosine of
-/// `nus` (unpolarised light; Bohren & Huffman §4.4: S₁, S₂ from the angular functions π_n, τ_n
-/// by upward recurrence). The differential scattering cross-section is i/k², k = 2π/λ, and
-/// its integral over the sphere is Q_sca·πr².
-pub fn sphere_intensity(x: f64, m: Complex64, nus: &[f64]) -> (MieEfficiencies, Vec<f64>) {
+/// The four independent elements of a sphere's scattering matrix, (S₁₁, S₁₂, S₃₃, S₃₄) in
+/// Bohren & Huffman's notation (§4.4): S₁₁ = (|S₂|² + |S₁|²)/2 the intensity of unpolarised
+/// light, S₁₂ = (|S₂|² − |S₁|²)/2, S₃₃ = Re(S₂S₁*), S₃₄ = Im(S₂S₁*); with S₂₂ = S₁₁ and
+/// S₄₄ = S₃₃. Stokes vectors referred to the scattering plane (Q = I∥ − I⊥).
+pub type MatrixElements = [f64; 4];
+
+/// [`sphere`] and the scattering matrix's [`MatrixElements`] at each scattering cosine of `nus`
+/// (S₁, S₂ from the angular functions π_n, τ_n by upward recurrence). The differential
+/// scattering cross-section of unpolarised light is S₁₁/k², k = 2π/λ, and its integral over the
+/// sphere is Q_sca·πr².
+pub fn sphere_matrix(x: f64, m: Complex64, nus: &[f64]) -> (MieEfficiencies, Vec<MatrixElements>) {
     let ab = coefficients(x, m);
-    let intensity = nus
+    let elements = nus
         .iter()
         .map(|&mu| {
             let (mut s1, mut s2) = (Complex64::new(0.0, 0.0), Complex64::new(0.0, 0.0));
@@ -108,10 +114,16 @@ pub fn sphere_intensity(x: f64, m: Complex64, nus: &[f64]) -> (MieEfficiencies, 
                 pi_prev = pi;
                 pi = pi_next;
             }
-            0.5 * (s1.norm_sqr() + s2.norm_sqr())
+            let s2_s1 = s2 * s1.conj();
+            [
+                0.5 * (s2.norm_sqr() + s1.norm_sqr()),
+                0.5 * (s2.norm_sqr() - s1.norm_sqr()),
+                s2_s1.re,
+                s2_s1.im,
+            ]
         })
         .collect();
-    (efficiencies(x, &ab), intensity)
+    (efficiencies(x, &ab), elements)
 }
 
 /// A log-normal number size distribution dN/d ln r ∝ exp(−(ln r − ln r_mod)²/(2 ln²σ)),
@@ -169,22 +181,23 @@ pub fn lognormal(dist: &LogNormal, wavelength_um: f64, m: Complex64, points: usi
     lognormal_scattering(dist, wavelength_um, m, points, &[]).0
 }
 
-/// [`lognormal`] and the distribution's mean differential scattering cross-section per
-/// particle at each scattering cosine of `nus`, µm² sr⁻¹ (divided by `sca_um2` it is the phase
-/// function, normalised to 1 over the sphere).
+/// [`lognormal`] and the distribution's mean scattering matrix per particle at each scattering
+/// cosine of `nus`: the [`MatrixElements`] over k², µm² sr⁻¹ (the first, the differential
+/// scattering cross-section, divided by `sca_um2` is the phase function, normalised to 1 over
+/// the sphere).
 pub fn lognormal_scattering(
     dist: &LogNormal,
     wavelength_um: f64,
     m: Complex64,
     points: usize,
     nus: &[f64],
-) -> (BulkOptics, Vec<f64>) {
+) -> (BulkOptics, Vec<MatrixElements>) {
     let (ln_lo, ln_hi) = (dist.r_min_um.ln(), dist.r_max_um.ln());
     let ln_s = dist.sigma.ln();
     let step = (ln_hi - ln_lo) / points as f64;
     let k = 2.0 * PI / wavelength_um;
     let (mut weight_sum, mut ext, mut sca, mut g_sca) = (0.0, 0.0, 0.0, 0.0);
-    let mut differential = vec![0.0; nus.len()];
+    let mut differential = vec![[0.0; 4]; nus.len()];
     for i in 0..points {
         let ln_r = ln_lo + (i as f64 + 0.5) * step;
         let w = (-(ln_r - dist.r_mod_um.ln()).powi(2) / (2.0 * ln_s * ln_s)).exp();
@@ -192,17 +205,21 @@ pub fn lognormal_scattering(
             continue;
         }
         let r = ln_r.exp();
-        let (e, intensity) = sphere_intensity(k * r, m, nus);
+        let (e, elements) = sphere_matrix(k * r, m, nus);
         let area = PI * r * r;
         weight_sum += w;
         ext += w * e.q_ext * area;
         sca += w * e.q_sca * area;
         g_sca += w * e.q_sca * area * e.g;
-        for (d, i) in differential.iter_mut().zip(&intensity) {
-            *d += w * i / (k * k);
+        for (d, s) in differential.iter_mut().zip(&elements) {
+            for (d, s) in d.iter_mut().zip(s) {
+                *d += w * s / (k * k);
+            }
         }
     }
-    differential.iter_mut().for_each(|d| *d /= weight_sum);
+    differential
+        .iter_mut()
+        .for_each(|d| d.iter_mut().for_each(|d| *d /= weight_sum));
     let bulk = BulkOptics {
         ext_um2: ext / weight_sum,
         sca_um2: sca / weight_sum,
@@ -277,7 +294,8 @@ mod tests {
             (3.0, Complex64::new(1.53, 0.008)),
             (25.0, Complex64::new(1.45, 0.0)),
         ] {
-            let (e, i) = sphere_intensity(x, m, &nus);
+            let (e, elements) = sphere_matrix(x, m, &nus);
+            let i: Vec<f64> = elements.iter().map(|e| e[0]).collect();
             let d_nu = 2.0 / n as f64;
             let total: f64 = 2.0 * PI * i.iter().sum::<f64>() * d_nu;
             let mean_cos: f64 =
@@ -294,8 +312,33 @@ mod tests {
                 e.g
             );
         }
-        let (_, i) = sphere_intensity(0.01, Complex64::new(1.5, 0.0), &[1.0, 0.0, -1.0]);
-        assert!((i[0] / i[2] - 1.0).abs() < 1e-3 && (i[0] / i[1] - 2.0).abs() < 1e-3);
+        let (_, e) = sphere_matrix(0.01, Complex64::new(1.5, 0.0), &[1.0, 0.0, -1.0]);
+        assert!((e[0][0] / e[2][0] - 1.0).abs() < 1e-3 && (e[0][0] / e[1][0] - 2.0).abs() < 1e-3);
+    }
+
+    /// A small sphere scatters as a dipole: Rayleigh's matrix without depolarisation
+    /// (S₁₂/S₁₁ = −sin²Θ/(1+cos²Θ), S₃₃/S₁₁ = 2cosΘ/(1+cos²Θ), S₃₄ ≈ 0). Every size keeps
+    /// S₁₂² + S₃₃² + S₃₄² = S₁₁² (one sphere scatters fully polarised light, Bohren & Huffman
+    /// eq. 4.78), and the polarisation at 90° of a large one is far from full.
+    #[test]
+    fn the_matrix_of_a_small_sphere_is_the_dipoles_and_every_sphere_is_pure() {
+        let nus = [0.9, 0.5, 0.0, -0.4, -0.95];
+        let (_, small) = sphere_matrix(0.01, Complex64::new(1.5, 0.0), &nus);
+        for (nu, e) in nus.iter().zip(&small) {
+            let dipole = crate::polarisation::mueller::ReducedMatrix::rayleigh(*nu, 0.0);
+            assert!((e[1] / e[0] - dipole.b1).abs() < 1e-3, "{nu}: {e:?}");
+            assert!((e[2] / e[0] - dipole.a3).abs() < 1e-3, "{nu}: {e:?}");
+            assert!((e[3] / e[0]).abs() < 1e-3, "{nu}: {e:?}");
+        }
+        for x in [0.01, 2.0, 15.0] {
+            let (_, elements) = sphere_matrix(x, Complex64::new(1.45, 0.01), &nus);
+            for e in &elements {
+                let pure = e[1] * e[1] + e[2] * e[2] + e[3] * e[3];
+                assert!((pure / (e[0] * e[0]) - 1.0).abs() < 1e-9, "x {x}: {e:?}");
+            }
+        }
+        let (_, large) = sphere_matrix(15.0, Complex64::new(1.45, 0.01), &[0.0]);
+        assert!((large[0][1] / large[0][0]).abs() < 0.9);
     }
 
     #[test]

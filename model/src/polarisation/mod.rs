@@ -14,16 +14,24 @@
 //!
 //! **Once-scattered sunlight.** Air scatters unpolarised sunlight into light polarised
 //! perpendicular to the scattering plane (the plane of the sun, the scatterer and the
-//! observer), by the degree [`rayleigh_degree`]. The aerosols of the Henyey–Greenstein and
+//! observer), by the degree [`rayleigh_degree`]. A Mie aerosol polarises by its own matrix
+//! (across the plane or, at some angles, along it); the aerosols of the Henyey–Greenstein and
 //! Cornette–Shanks phases scatter without polarising, and the Lambertian ground depolarises:
 //! they add to I alone. The scattering angle is the same all along a view ray (the sun is at
-//! infinity), so the polarised radiance of single scattering is the degree at that angle times
-//! the air's part of the single-scattered radiance.
+//! infinity), so the polarised radiance of single scattering is each constituent's degree at
+//! that angle times its part of the single-scattered radiance.
+//!
+//! **Many orders** are the vector path tracer's (`methods::path_tracer`), with the matrices and
+//! rotations of [`mueller`].
+
+pub mod estimate;
+pub mod mueller;
 
 use crate::atmosphere::Atmosphere;
 use crate::geometry::Ray;
 use crate::methods::single_scattering;
 use glam::DVec3;
+use mueller::ReducedMatrix;
 
 /// A Stokes vector (I, Q, U, V) in the meridian frame, in the unit of the radiance.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -36,7 +44,7 @@ pub struct Stokes {
 
 impl Stokes {
     /// Light of radiance `i` polarised by degree `degree` (0–1) at angle `chi` (radians) from
-    /// the frame's `e_up`.
+    /// the frame's `e_up` (a negative degree: at χ + 90°).
     pub fn polarised(i: f64, degree: f64, chi: f64) -> Stokes {
         // Rounding leaves U a few parts in 10¹⁶ of I where χ is ±90°: zero, so that the angle
         // comes out +90° rather than either sign.
@@ -126,11 +134,14 @@ pub fn single_scattering_stokes(
     if i <= 0.0 {
         return Stokes::default();
     }
-    let rho = atm.optics(wavelength_nm).rayleigh_depolarisation;
+    let optics = atm.optics(wavelength_nm);
     let nu = ray.direction.dot(sun);
-    let polarised = rayleigh_degree(nu, rho) * parts.rayleigh;
+    // Q referred to the scattering plane, over I: −b₁ of each constituent is the degree it
+    // polarises across the plane.
+    let across = -(ReducedMatrix::rayleigh(nu, optics.rayleigh_depolarisation).b1 * parts.rayleigh
+        + atm.aerosol_matrix(&optics, nu).b1 * parts.aerosol);
     let chi = perpendicular_angle(ray.direction, sun, ray.origin.normalize());
-    Stokes::polarised(i, polarised / i, chi)
+    Stokes::polarised(i, across / i, chi)
 }
 
 #[cfg(test)]
