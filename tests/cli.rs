@@ -2177,8 +2177,10 @@ fn export_engine_writes_each_engines_snippet_for_the_scene() {
 }
 
 /// `probe --stokes` with exact single scattering: Stokes vectors with their degree and angle,
-/// the degree highest 90° from the sun, the electric vector horizontal in the sun's vertical;
-/// other methods are refused with how to ask.
+/// the degree highest 90° from the sun, the electric vector horizontal in the sun's vertical.
+/// With the path tracer, its vector mode, with standard errors: 90° from the sun multiple
+/// scattering makes the degree lower than single scattering's. The real-time models are
+/// refused with how to ask.
 #[test]
 fn probe_stokes_gives_the_polarisation_of_single_scattering() {
     let o = atmoscope(&[
@@ -2228,17 +2230,57 @@ fn probe_stokes_gives_the_polarisation_of_single_scattering() {
             .expect("AoP");
         assert!((aop.abs() - 90.0).abs() < 1e-6, "{aop}");
     }
+    let traced = atmoscope(&[
+        "probe",
+        "--view-zenith-deg",
+        "45",
+        "--view-azimuth-deg",
+        "90",
+        "--wavelengths-nm",
+        "450",
+        "--method",
+        "path-tracer",
+        "--spp",
+        "3000",
+        "--sun-elevation-deg",
+        "0",
+        "--aerosol",
+        "none",
+        "--stokes",
+        "--json",
+    ]);
+    assert!(traced.status.success(), "{}", stderr(&traced));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&traced)).expect("JSON");
+    let s = &v["samples"][0];
+    let number = |key: &str| s[key].as_f64().unwrap_or_else(|| panic!("{key}: {s}"));
+    let (degree, se) = (
+        number("degree_of_polarization"),
+        number("degree_of_polarization_std_error"),
+    );
+    assert!(se > 0.0 && se < 0.02, "{s}");
+    assert!(
+        degree < dop[1] - 3.0 * se && degree > 0.5,
+        "{degree} ± {se} vs {}",
+        dop[1]
+    );
+    assert_eq!(
+        s["stokes_std_error"].as_array().map(Vec::len),
+        Some(4),
+        "{s}"
+    );
     let o = atmoscope(&[
         "probe",
         "--view-zenith-deg",
         "0",
         "--view-azimuth-deg",
         "0",
+        "--method",
+        "hillaire",
         "--stokes",
     ]);
     assert!(!o.status.success());
     assert!(
-        stderr(&o).contains("--method single-scattering"),
+        stderr(&o).contains("--method path-tracer"),
         "{}",
         stderr(&o)
     );

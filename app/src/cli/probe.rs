@@ -32,9 +32,9 @@ pub fn run(probe_args: &ProbeArgs) -> anyhow::Result<ExitCode> {
     if args.spp < 2 {
         bail!("--spp: at least 2 paths are needed for a standard error");
     }
-    if args.stokes && args.method != ProbeMethod::SingleScattering {
+    if args.stokes && matches!(args.method, ProbeMethod::Model(_)) {
         bail!(
-            "--stokes: the Stokes vector comes from the exact single-scattering integrator; add --method single-scattering"
+            "--stokes: the Stokes vector comes from the vector path tracer or the exact single-scattering integrator; add --method path-tracer or --method single-scattering"
         );
     }
     let scene = probe_args.scene.scene()?;
@@ -63,13 +63,23 @@ pub fn run(probe_args: &ProbeArgs) -> anyhow::Result<ExitCode> {
     if let Some(t) = p.turbidity {
         println!("turbidity: {t:.3}");
     }
-    let polarised = if args.stokes { "   DoP    AoP°" } else { "" };
+    let polarised = match (args.stokes, p.spp > 0) {
+        (true, true) => "   DoP ± s.e.        AoP° ± s.e.",
+        (true, false) => "   DoP    AoP°",
+        _ => "",
+    };
     println!(
         " zenith°  azimuth°   λ (nm)   radiance (W/m²/sr/nm)   L/E (1/sr)    std. error{polarised}"
     );
     for s in &p.samples {
         let polarised = match (s.degree_of_polarization, s.angle_of_polarization_deg) {
-            (Some(d), Some(a)) => format!("  {d:5.3}  {a:6.1}"),
+            (Some(d), Some(a)) => match (
+                s.degree_of_polarization_std_error,
+                s.angle_of_polarization_std_error_deg,
+            ) {
+                (Some(sd), Some(sa)) => format!("  {d:5.3} ± {sd:5.3}  {a:6.1} ± {sa:4.1}"),
+                _ => format!("  {d:5.3}  {a:6.1}"),
+            },
             _ => String::new(),
         };
         println!(

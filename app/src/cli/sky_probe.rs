@@ -10,6 +10,7 @@ use atmoscope_model::methods::path_tracer::{LANES, LaneOptics, PathTracer, PathT
 use atmoscope_model::methods::rng::Rng;
 use atmoscope_model::methods::shared::{Params, sun_disk, viewpoint};
 use atmoscope_model::methods::{self, single_scattering};
+use atmoscope_model::polarisation::estimate::{StokesEstimate, StokesMean};
 use atmoscope_model::polarisation::{self, Stokes};
 use atmoscope_model::scene::Method;
 use atmoscope_model::{Atmosphere, Scene};
@@ -97,7 +98,9 @@ pub struct ProbeRequest {
     pub seed: u64,
     /// Give each sample's Stokes vector (I, Q, U, V) in the meridian frame, its degree and
     /// angle of polarisation: with --method single-scattering, the exact polarisation of
-    /// sunlight scattered once (air polarises; aerosol and ground do not).
+    /// sunlight scattered once; with --method path-tracer, the vector path tracer's, with
+    /// standard errors (air and Mie aerosols polarise; Henyey–Greenstein and Cornette–Shanks
+    /// aerosols make no polarisation; the ground depolarises).
     #[arg(long)]
     pub stokes: bool,
 }
@@ -123,6 +126,14 @@ pub struct Sample {
     /// With `--stokes`: ½·atan2(U, Q), degrees, −90–90.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub angle_of_polarization_deg: Option<f64>,
+    /// With `--stokes` and the path tracer: standard errors of `stokes`, of the degree (0–1)
+    /// and of the angle (degrees).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stokes_std_error: Option<[f64; 4]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub degree_of_polarization_std_error: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub angle_of_polarization_std_error_deg: Option<f64>,
 }
 
 #[derive(Serialize, Debug)]
@@ -186,6 +197,7 @@ pub fn probe(scene: &Scene, args: &ProbeRequest) -> Probe {
             let ray = Ray::new(camera.position, dir);
             let batch = &batches[b];
             let lanes_nm = Lanes::from_fn(|i| batch[i.min(batch.len() - 1)]);
+            let mut traced_stokes = None;
             let (mean, se) = match args.method {
                 ProbeMethod::Model(_) => (
                     model.as_ref().map_or([f64::NAN; LANES], |m| {
@@ -203,6 +215,21 @@ pub fn probe(scene: &Scene, args: &ProbeRequest) -> Probe {
                         .map(|w| single_scattering::radiance(&atm, &ray, sun, w)),
                     [0.0; LANES],
                 ),
+                ProbeMethod::PathTracer if args.stokes => {
+                    let lanes = LaneOptics::new(&atm, lanes_nm);
+                    let mut sums = [StokesMean::default(); LANES];
+                    for k in 0..args.spp {
+                        let mut rng = Rng::new(args.seed, (d * 1000 + b) as u64, k);
+                        let s = tracer.radiance_stokes(&ray, &lanes, &mut rng);
+                        sums.iter_mut().zip(s).for_each(|(m, s)| m.add(s));
+                    }
+                    let estimates = sums.map(|m| m.estimate());
+                    traced_stokes = Some(estimates);
+                    (
+                        estimates.map(|e| e.mean.i),
+                        estimates.map(|e| e.std_error[0]),
+                    )
+                }
                 ProbeMethod::PathTracer => {
                     let lanes = LaneOptics::new(&atm, lanes_nm);
                     let (mut sum, mut sum2) = ([0.0; LANES], [0.0; LANES]);
@@ -227,8 +254,11 @@ pub fn probe(scene: &Scene, args: &ProbeRequest) -> Probe {
                 .enumerate()
                 .map(|(i, &w)| {
                     let e = atm.solar_irradiance(w, None);
-                    let stokes = (args.stokes && args.method == ProbeMethod::SingleScattering)
-                        .then(|| polarisation::single_scattering_stokes(&atm, &ray, sun, w));
+                    let traced = traced_stokes.map(|e: [StokesEstimate; LANES]| e[i]);
+                    let stokes = traced.map(|e| e.mean).or_else(|| {
+                        (args.stokes && args.method == ProbeMethod::SingleScattering)
+                            .then(|| polarisation::single_scattering_stokes(&atm, &ray, sun, w))
+                    });
                     Sample {
                         view_zenith_deg: zenith,
                         view_azimuth_deg: azimuth,
@@ -239,6 +269,9 @@ pub fn probe(scene: &Scene, args: &ProbeRequest) -> Probe {
                         stokes: stokes.map(Stokes::to_array),
                         degree_of_polarization: stokes.map(|s| s.degree_of_polarization()),
                         angle_of_polarization_deg: stokes.map(|s| s.angle_of_polarization_deg()),
+                        stokes_std_error: traced.map(|e| e.std_error),
+                        degree_of_polarization_std_error: traced.map(|e| e.degree_std_error),
+                        angle_of_polarization_std_error_deg: traced.map(|e| e.angle_std_error_deg),
                     }
                 })
                 .collect()

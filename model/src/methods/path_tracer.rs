@@ -33,12 +33,15 @@ use crate::atmosphere::{Atmosphere, Densities, Optics};
 use crate::constants::SUN_ANGULAR_RADIUS_RAD;
 use crate::geometry::{Ray, sphere_distances};
 use crate::phase;
+use crate::polarisation::mueller::ReducedMatrix;
+use crate::polarisation::{Stokes, meridian_frame};
 use glam::DVec3;
 use std::f64::consts::PI;
 use std::sync::Arc;
 
 mod direction_guide;
 mod in_scattering;
+mod stokes;
 
 pub use direction_guide::GUIDE_SHARE;
 
@@ -790,9 +793,35 @@ impl<'a> PathTracer<'a> {
     /// goes on from the ground or from a point of the segment ([`Self::scattering_point`]),
     /// so segment k carries scattering order k and no order is counted twice.
     pub fn radiance(&self, ray: &Ray, lanes: &LaneOptics, rng: &mut Rng) -> Lanes {
+        let out = self.trace(ray, lanes, None, rng);
+        Lanes::from_fn(|i| out[i][0])
+    }
+
+    /// The vector mode: the Stokes vector (I, Q, U, V) of [`Self::radiance`]'s light at the four
+    /// wavelengths of `lanes`, referred to the meridian frame of `ray` at its origin
+    /// (`polarisation::meridian_frame`). Each path carries its Mueller products
+    /// ([`stokes`]): air scatters by Hansen & Travis's matrix, a Mie aerosol by its type's, the
+    /// Henyey–Greenstein and Cornette–Shanks aerosols without polarising
+    /// ([`ReducedMatrix::UNPOLARISING`]), the ground depolarises. The same paths as the scalar
+    /// mode's for a seed, so their I differ by polarisation's effect alone.
+    pub fn radiance_stokes(&self, ray: &Ray, lanes: &LaneOptics, rng: &mut Rng) -> [Stokes; LANES] {
+        let (up, _) = meridian_frame(ray.direction, ray.origin.normalize());
+        self.trace(ray, lanes, Some(stokes::PathStokes::new(up)), rng)
+            .map(|[i, q, u, v]| Stokes { i, q, u, v })
+    }
+
+    /// [`Self::radiance`], or with `polar` the Stokes vector of [`Self::radiance_stokes`]; in
+    /// the scalar mode only I (the first element) is filled.
+    fn trace(
+        &self,
+        ray: &Ray,
+        lanes: &LaneOptics,
+        mut polar: Option<stokes::PathStokes>,
+        rng: &mut Rng,
+    ) -> [[f64; 4]; LANES] {
         let medium = self.medium(lanes);
         let majorants = &medium.majorant;
-        let mut radiance = Lanes::ZERO;
+        let mut radiance = [[0.0; 4]; LANES];
         let mut weight = Lanes::ONE;
         let mut ray = *ray;
         let max_order = self.settings.max_order.unwrap_or(u32::MAX);
@@ -825,12 +854,28 @@ impl<'a> PathTracer<'a> {
                 let s_dir = self.sample_sun(rng);
                 let sun_t = self.transmittance(&Ray::new(x, s_dir), lanes, &medium, rng);
                 let nu = ray.direction.dot(s_dir);
+                let plane = polar.as_ref().map(|p| p.plane(ray.direction, s_dir));
                 for i in 0..LANES {
-                    let c = lanes.optics[i].coefficients(&d);
-                    let source = c.rayleigh_scattering * self.phase(0, &lanes.optics[i], nu)
-                        + c.aerosol_scattering * self.phase(1, &lanes.optics[i], nu);
-                    radiance[i] +=
-                        weight[i] * view_t[i] * source * lanes.solar_irradiance[i] * sun_t[i] / pdf;
+                    let o = &lanes.optics[i];
+                    let c = o.coefficients(&d);
+                    let (rayleigh, aerosol) = (
+                        c.rayleigh_scattering * self.phase(0, o, nu),
+                        c.aerosol_scattering * self.phase(1, o, nu),
+                    );
+                    let source = rayleigh + aerosol;
+                    let Some((p, plane)) = polar.as_ref().zip(plane) else {
+                        radiance[i][0] +=
+                            weight[i] * view_t[i] * source * lanes.solar_irradiance[i] * sun_t[i]
+                                / pdf;
+                        continue;
+                    };
+                    // Sunlight is unpolarised: each constituent turns it into (1, b₁, 0, 0)
+                    // times its part, referred to the scattering plane.
+                    let across =
+                        rayleigh * self.matrix(0, o, nu).b1 + aerosol * self.matrix(1, o, nu).b1;
+                    let scale = weight[i] * view_t[i] * lanes.solar_irradiance[i] * sun_t[i] / pdf;
+                    let s = p.scattered(i, plane, source, across);
+                    (0..4).for_each(|k| radiance[i][k] += scale * s[k]);
                 }
             }
             // The lanes' transmittances to the ground, where its sunlight needed them.
@@ -843,10 +888,17 @@ impl<'a> PathTracer<'a> {
                     let view_t = self.ratio_track(&ray, &intervals, seg.end, lanes, &medium, rng);
                     let sun_t = self.transmittance(&Ray::new(g, s_dir), lanes, &medium, rng);
                     for i in 0..LANES {
-                        radiance[i] += weight[i] * view_t[i] * albedo[i] / PI
+                        let l = weight[i] * view_t[i] * albedo[i] / PI
                             * cos_s
                             * lanes.solar_irradiance[i]
                             * sun_t[i];
+                        match &polar {
+                            Some(p) => {
+                                let s = p.unpolarised(i, l);
+                                (0..4).for_each(|k| radiance[i][k] += s[k]);
+                            }
+                            None => radiance[i][0] += l,
+                        }
                     }
                     to_ground = Some(view_t);
                 }
@@ -882,6 +934,9 @@ impl<'a> PathTracer<'a> {
                 let dir =
                     t * (r * phi.cos()) + b * (r * phi.sin()) + n * (1.0 - r * r).max(0.0).sqrt();
                 ray = Ray::new(n * (bottom + 1e-3), dir);
+                if let Some(p) = polar.as_mut() {
+                    p.depolarise(dir);
+                }
                 max_weight(&weight)
             } else if let Some((t, pdf)) =
                 self.scattering_point(&ray, &intervals, &medium, tau_mean, rng)
@@ -943,6 +998,11 @@ impl<'a> PathTracer<'a> {
                 }
                 let dir =
                     self.scattered(constituent, ray.direction, guide, lanes, &mut weight, rng);
+                if let Some(p) = polar.as_mut() {
+                    let nu = ray.direction.dot(dir);
+                    let matrices = lanes.optics.map(|o| self.matrix(constituent, &o, nu));
+                    p.scatter(ray.direction, dir, matrices);
+                }
                 ray = Ray::new(x, dir);
                 judged
             } else {
@@ -985,6 +1045,15 @@ impl<'a> PathTracer<'a> {
             weight[i] *= self.phase(constituent, &lanes.optics[i], nu) / pdf;
         }
         dir
+    }
+
+    /// The scattering matrix of `constituent` over its phase function.
+    fn matrix(&self, constituent: usize, optics: &Optics, nu: f64) -> ReducedMatrix {
+        if constituent == 0 {
+            ReducedMatrix::rayleigh(nu, optics.rayleigh_depolarisation)
+        } else {
+            self.atmosphere.aerosol_matrix(optics, nu)
+        }
     }
 
     fn phase(&self, constituent: usize, optics: &Optics, nu: f64) -> f64 {
