@@ -531,6 +531,59 @@ fn reference_writes_exr_and_preview_and_caches_and_compare_reads_them() {
     assert_eq!(v["rmse"].as_f64(), Some(0.0));
     assert_eq!(v["delta_e2000_mean"].as_f64(), Some(0.0));
 
+    // The vector mode adds the photometric Stokes vector as channels I, Q, U, V, with I the
+    // luminance of the colour channels and a degree of polarisation of at most 1.
+    let polarised = dir.join("noon-stokes.exr");
+    let o = atmoscope(&[
+        "reference",
+        "--view",
+        "fisheye-sun30",
+        "--size",
+        "12x12",
+        "--spp",
+        "4",
+        "--stokes",
+        "--out",
+        polarised.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let image = exr::prelude::read_all_flat_layers_from_file(&polarised).expect("EXR");
+    let layer = &image.layer_data[0];
+    let channel = |name: &str| -> Vec<f32> {
+        let c = layer
+            .channel_data
+            .list
+            .iter()
+            .find(|c| c.name.to_string() == name)
+            .unwrap_or_else(|| panic!("channel {name}"));
+        c.sample_data.values_as_f32().collect()
+    };
+    let [r, g, b, i, q, u] = ["R", "G", "B", "I", "Q", "U"].map(channel);
+    let mut polarised_pixels = 0;
+    for k in 0..i.len() {
+        let y = 0.2126 * r[k] + 0.7152 * g[k] + 0.0722 * b[k];
+        assert!(
+            (i[k] - y).abs() <= 2e-3 * y + 1e-9,
+            "pixel {k}: I {} vs Y {y}",
+            i[k]
+        );
+        assert!(q[k].hypot(u[k]) <= i[k] * 1.0001 + 1e-9, "pixel {k}");
+        polarised_pixels += usize::from(q[k].hypot(u[k]) > 0.2 * i[k]);
+    }
+    assert!(
+        polarised_pixels > 20,
+        "{polarised_pixels} pixels over 20 % polarised"
+    );
+    assert!(
+        layer
+            .attributes
+            .other
+            .keys()
+            .any(|k| k.to_string() == "stokesFrame"),
+        "{:?}",
+        layer.attributes.other
+    );
+
     let o = atmoscope(&["reference", "--view", "no-such-view", "--out", "x.exr"]);
     assert!(!o.status.success());
     assert!(

@@ -9,14 +9,54 @@ use std::path::Path;
 
 /// Linear sRGB radiance (W·m⁻²·sr⁻¹) as 32-bit float EXR.
 pub fn write_exr(path: &Path, rgb: &[[f64; 3]], width: u32, height: u32) -> anyhow::Result<()> {
-    use exr::prelude::{AttributeValue, Image, SpecificChannels, Text, Vec2, WritableImage};
+    write_exr_with_stokes(path, rgb, None, width, height)
+}
+
+/// [`write_exr`], with a photometric Stokes vector per pixel (I, Q, U, V; the path tracer's
+/// vector mode) as four more channels of those names and an attribute saying their frame.
+pub fn write_exr_with_stokes(
+    path: &Path,
+    rgb: &[[f64; 3]],
+    stokes: Option<&[[f64; 4]]>,
+    width: u32,
+    height: u32,
+) -> anyhow::Result<()> {
+    use exr::prelude::{
+        AnyChannel, AnyChannels, AttributeValue, Encoding, FlatSamples, Image, Layer,
+        LayerAttributes, SmallVec, Text, Vec2, WritableImage,
+    };
     let (w, h) = (width as usize, height as usize);
     anyhow::ensure!(rgb.len() == w * h, "image size");
-    let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
-        let c = rgb[y * w + x];
-        (c[0] as f32, c[1] as f32, c[2] as f32)
-    });
-    let mut image = Image::from_channels((w, h), channels);
+    anyhow::ensure!(stokes.is_none_or(|s| s.len() == w * h), "Stokes image size");
+    let channel = |name: &str, values: Vec<f32>| AnyChannel::new(name, FlatSamples::F32(values));
+    let mut channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = ["R", "G", "B"]
+        .iter()
+        .enumerate()
+        .map(|(c, name)| channel(name, rgb.iter().map(|p| p[c] as f32).collect()))
+        .collect();
+    if let Some(stokes) = stokes {
+        for (c, name) in ["I", "Q", "U", "V"].iter().enumerate() {
+            channels.push(channel(name, stokes.iter().map(|s| s[c] as f32).collect()));
+        }
+    }
+    let mut attributes = LayerAttributes::default();
+    attributes.other.insert(
+        Text::from(EXR_UNIT_ATTRIBUTE),
+        AttributeValue::Text(Text::from(EXR_UNIT)),
+    );
+    if stokes.is_some() {
+        attributes.other.insert(
+            Text::from(EXR_STOKES_ATTRIBUTE),
+            AttributeValue::Text(Text::from(EXR_STOKES)),
+        );
+    }
+    let layer = Layer::new(
+        Vec2(w, h),
+        attributes,
+        Encoding::FAST_LOSSLESS,
+        AnyChannels::sort(channels),
+    );
+    let mut image = Image::from_layer(layer);
     // Linear sRGB: its primaries and D65 white, from the conversion the renderer uses.
     let xy = |c: [f64; 3]| {
         let v = linear_srgb_to_xyz(c);
@@ -29,10 +69,6 @@ pub fn write_exr(path: &Path, rgb: &[[f64; 3]], width: u32, height: u32) -> anyh
         blue: xy([0.0, 0.0, 1.0]),
         white: xy([1.0, 1.0, 1.0]),
     });
-    image.layer_data.attributes.other.insert(
-        Text::from(EXR_UNIT_ATTRIBUTE),
-        AttributeValue::Text(Text::from(EXR_UNIT)),
-    );
     let mut bytes = std::io::Cursor::new(Vec::new());
     image
         .write()
@@ -40,6 +76,10 @@ pub fn write_exr(path: &Path, rgb: &[[f64; 3]], width: u32, height: u32) -> anyh
         .with_context(|| format!("cannot encode {}", path.display()))?;
     crate::files::write_atomic(path, bytes.get_ref())
 }
+
+/// The EXR attribute saying what the I, Q, U, V channels are, and its text.
+pub const EXR_STOKES_ATTRIBUTE: &str = "stokesFrame";
+pub const EXR_STOKES: &str = "photometric Stokes vector (ybar-weighted like Y, W m^-2 sr^-1); Q > 0 vibrating along up in the picture, U > 0 at +45 deg from up towards view x up (right in perspective and panorama views, left in the fisheye)";
 
 /// The EXR attribute naming the unit of the pixel values, and the unit.
 pub const EXR_UNIT_ATTRIBUTE: &str = "radianceUnit";

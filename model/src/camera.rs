@@ -259,7 +259,7 @@ impl Camera {
 
     /// [`Camera::pixel_axes`] anywhere: where a side of the pixel falls outside the projection
     /// (the fisheye's rim) the difference is taken one-sided.
-    fn pixel_axes_at(&self, x: f64, y: f64, width: u32, height: u32) -> PixelAxes {
+    pub(crate) fn pixel_axes_at(&self, x: f64, y: f64, width: u32, height: u32) -> PixelAxes {
         let dir = |x: f64, y: f64| self.ray(x, y, width, height).map(|r| r.direction);
         let across = |dx: f64, dy: f64| match (
             dir(x + 0.5 * dx, y + 0.5 * dy),

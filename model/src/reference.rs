@@ -195,6 +195,10 @@ pub struct ReferenceRender {
     /// The tracer's preparation of the atmosphere, for every pass.
     prepared: Arc<Prepared>,
     pixels: Vec<Pixel>,
+    /// In the vector mode ([`Self::with_stokes`]), per pixel the sums of the paths' Stokes
+    /// vectors weighted by ȳ like Y (I_Y, Q_Y, U_Y, V_Y), W·m⁻²·sr⁻¹, in the pixel's image
+    /// frame ([`Self::stokes_y`]).
+    stokes: Option<Vec<[f64; 4]>>,
 }
 
 impl ReferenceRender {
@@ -224,7 +228,31 @@ impl ReferenceRender {
             spectral,
             prepared,
             pixels,
+            stokes: None,
         }
+    }
+
+    /// The same render in the path tracer's vector mode: its luminance and colour come from the
+    /// vector mode's I, and [`Self::stokes_y`] gives each pixel's photometric Stokes vector.
+    pub fn with_stokes(mut self) -> Self {
+        self.stokes = Some(vec![[0.0; 4]; self.pixels.len()]);
+        self
+    }
+
+    /// Per pixel (row-major, top row first) the mean Stokes vector weighted by ȳ like the
+    /// luminance (I_Y = Y), W·m⁻²·sr⁻¹, referred to the image frame: e₁ is "up" in the picture
+    /// at the pixel (against its row index), e₂ = view × e₁, "right" in the perspective and
+    /// panorama pictures and "left" in the fisheye, which shows the dome as seen from above
+    /// (east to the right of north). Unlike the meridian frame it has no singular point at the
+    /// zenith, where a pixel's paths would otherwise cancel. None unless [`Self::with_stokes`].
+    pub fn stokes_y(&self) -> Option<Vec<[f64; 4]>> {
+        let sums = self.stokes.as_ref()?;
+        Some(
+            sums.iter()
+                .zip(&self.pixels)
+                .map(|(s, p)| s.map(|v| v / p.samples.max(1) as f64))
+                .collect(),
+        )
     }
 
     pub fn pixels(&self) -> &[Pixel] {
@@ -248,10 +276,16 @@ impl ReferenceRender {
         let sampler = WavelengthSampler::default();
         let (w, h, seed, camera) = (self.width, self.height, self.seed, self.camera);
         let spectral = &self.spectral;
+        let vector = self.stokes.is_some();
+        let stokes_rows: Vec<Option<&mut [[f64; 4]]>> = match self.stokes.as_mut() {
+            Some(s) => s.chunks_mut(w as usize).map(Some).collect(),
+            None => (0..h).map(|_| None).collect(),
+        };
         self.pixels
             .par_chunks_mut(w as usize)
+            .zip(stokes_rows)
             .enumerate()
-            .for_each(|(y, row)| {
+            .for_each(|(y, (row, mut stokes_row))| {
                 if cancel.load(Ordering::Relaxed) {
                     return;
                 }
@@ -264,6 +298,8 @@ impl ReferenceRender {
                     let coverage = camera.pixel_coverage(x as u32, y as u32, w, h);
                     let inside_only = (MIN_COVERAGE..1.0).contains(&coverage);
                     let share = if inside_only { coverage } else { 1.0 };
+                    // The vector mode's frame: "up" in the picture at the pixel.
+                    let image_up = -camera.pixel_axes_at(x as f64 + 0.5, y as f64 + 0.5, w, h).y;
                     for _ in 0..spp {
                         let mut rng = Rng::new(seed, index, pixel.samples);
                         pixel.samples += 1;
@@ -281,7 +317,16 @@ impl ReferenceRender {
                         pixel.covered = true;
                         let (wavelengths, pdf) = sampler.sample(rng.uniform());
                         let (lanes, cmf) = spectral.lanes(wavelengths);
-                        let l = tracer.radiance(&ray, &lanes, &mut rng);
+                        let (l, stokes) = if vector {
+                            let d = ray.direction;
+                            let up = (image_up - d * d.dot(image_up)).normalize_or(
+                                crate::polarisation::meridian_frame(d, ray.origin.normalize()).0,
+                            );
+                            let s = tracer.radiance_stokes(&ray, up, &lanes, &mut rng);
+                            (Lanes::from_fn(|i| s[i].i), Some(s))
+                        } else {
+                            (tracer.radiance(&ray, &lanes, &mut rng), None)
+                        };
                         let mut xyz = [0.0; 3];
                         for i in 0..LANES {
                             let v = share * l[i] / (LANES as f64 * pdf[i]);
@@ -293,6 +338,16 @@ impl ReferenceRender {
                             pixel.xyz_sum[c] += xyz[c];
                         }
                         pixel.y_sum_sq += xyz[1] * xyz[1];
+                        if let (Some(s), Some(sum)) =
+                            (stokes, stokes_row.as_mut().and_then(|r| r.get_mut(x)))
+                        {
+                            for i in 0..LANES {
+                                let weight = share * cmf[i][1] / (LANES as f64 * pdf[i]);
+                                for (k, v) in s[i].to_array().into_iter().enumerate() {
+                                    sum[k] += weight * v;
+                                }
+                            }
+                        }
                     }
                 }
             });
@@ -522,6 +577,41 @@ mod tests {
             checked += 1;
         }
         assert!(checked >= 8, "{checked} rim pixels checked");
+    }
+
+    /// The vector mode's photometric Stokes vectors: I_Y is the pixel's Y, and with the sun on
+    /// the horizon of a clear sky the zenith, 90° from it, is strongly polarised (single
+    /// scattering would give 0.94; multiple scattering lowers it) and the horizon towards the
+    /// sun far less.
+    #[test]
+    fn a_vector_render_gives_each_pixel_its_photometric_stokes_vector() {
+        let mut scene = Scene::default();
+        scene.atmosphere.aerosol.kind = crate::aerosol::AerosolType::None;
+        scene.sun = crate::scene::SunSettings::Angles {
+            elevation_deg: 0.0,
+            azimuth_deg: 0.0,
+        };
+        let never = AtomicBool::new(false);
+        let settings = PathTracerSettings::default();
+        let mut r =
+            ReferenceRender::new(&scene, Projection::Fisheye, 9, 9, 3, settings).with_stokes();
+        r.run_pass(48, &never);
+        let stokes = r.stokes_y().expect("vector mode");
+        for (s, p) in stokes.iter().zip(r.pixels()) {
+            assert!(
+                (s[0] - p.xyz().y).abs() <= 1e-12 * p.xyz().y,
+                "{s:?} vs {:?}",
+                p.xyz()
+            );
+        }
+        let degree = |s: [f64; 4]| s[1].hypot(s[2]) / s[0];
+        let zenith = degree(stokes[4 * 9 + 4]);
+        assert!(zenith > 0.6 && zenith < 0.94, "{zenith}");
+        assert!(
+            ReferenceRender::new(&scene, Projection::Fisheye, 9, 9, 3, settings)
+                .stokes_y()
+                .is_none()
+        );
     }
 
     #[test]

@@ -9,7 +9,9 @@ use atmoscope_model::methods::path_tracer::{
     LANES, LaneOptics, Lanes, PathTracer, PathTracerSettings,
 };
 use atmoscope_model::methods::rng::Rng;
-use atmoscope_model::polarisation::{Stokes, rayleigh_degree, single_scattering_stokes};
+use atmoscope_model::polarisation::{
+    Stokes, meridian_frame, rayleigh_degree, single_scattering_stokes,
+};
 use atmoscope_model::scene::{AerosolPhase, AtmosphereSettings};
 use glam::DVec3;
 
@@ -22,9 +24,10 @@ fn estimate(
     seed: u64,
 ) -> [([f64; 4], [f64; 4]); LANES] {
     let (mut sum, mut sum2) = ([[0.0; 4]; LANES], [[0.0; 4]; LANES]);
+    let up = meridian(ray);
     for k in 0..n {
         let mut rng = Rng::new(seed, 0, k);
-        let s = pt.radiance_stokes(ray, lanes, &mut rng);
+        let s = pt.radiance_stokes(ray, up, lanes, &mut rng);
         for i in 0..LANES {
             for (c, v) in s[i].to_array().into_iter().enumerate() {
                 sum[i][c] += v;
@@ -40,6 +43,11 @@ fn estimate(
         });
         (mean, se)
     })
+}
+
+/// The ray's meridian frame's e₁, the frame of `single_scattering_stokes`.
+fn meridian(ray: &Ray) -> DVec3 {
+    meridian_frame(ray.direction, ray.origin.normalize()).0
 }
 
 fn at_altitude(atm: &Atmosphere, h: f64, elevation: f64, azimuth: f64) -> Ray {
@@ -126,7 +134,7 @@ fn the_vector_mode_is_the_scalar_mode_where_nothing_polarises() {
         let ray = at_altitude(&atm, 500.0, elevation, azimuth);
         for k in 0..300 {
             let scalar = pt.radiance(&ray, &lanes, &mut Rng::new(3, 1, k));
-            let vector = pt.radiance_stokes(&ray, &lanes, &mut Rng::new(3, 1, k));
+            let vector = pt.radiance_stokes(&ray, meridian(&ray), &lanes, &mut Rng::new(3, 1, k));
             for i in 0..LANES {
                 let Stokes { i: v_i, q, u, v } = vector[i];
                 assert!(

@@ -103,11 +103,48 @@ pub fn path_traced(
         eprintln!("{label}: from the cache ({})", cached.display());
         return Ok(rgb);
     }
-    let settings = PathTracerSettings {
-        max_order: pt.max_order,
-        ..PathTracerSettings::default()
-    };
-    let mut render = ReferenceRender::new(scene, projection, w, h, pt.seed, settings);
+    let mut render = ReferenceRender::new(scene, projection, w, h, pt.seed, pt.settings());
+    run_to_target(&mut render, pt, label);
+    let rgb = render.linear_srgb();
+    if let Some(dir) = cached.parent()
+        && std::fs::create_dir_all(dir).is_ok()
+    {
+        // The cache is an optimisation: failing to fill it loses nothing.
+        let _ = write_exr(&cached, &rgb, w, h);
+    }
+    Ok(rgb)
+}
+
+/// The path tracer's vector mode over `scene` through `projection` at `size`: linear sRGB
+/// and, per pixel, the photometric Stokes vector in the image frame
+/// (`ReferenceRender::stokes_y`). Not cached: the cache holds colour images only.
+pub fn path_traced_stokes(
+    scene: &Scene,
+    projection: Projection,
+    (w, h): (u32, u32),
+    pt: &PathTrace,
+    label: &str,
+) -> (Vec<[f64; 3]>, Vec<[f64; 4]>) {
+    let mut render =
+        ReferenceRender::new(scene, projection, w, h, pt.seed, pt.settings()).with_stokes();
+    run_to_target(&mut render, pt, label);
+    let stokes = render.stokes_y().unwrap_or_default();
+    (render.linear_srgb(), stokes)
+}
+
+impl PathTrace {
+    fn settings(&self) -> PathTracerSettings {
+        PathTracerSettings {
+            max_order: self.max_order,
+            ..PathTracerSettings::default()
+        }
+    }
+}
+
+/// Runs `render` in passes to `pt`'s paths per pixel or noise, with a progress bar labelled
+/// `label`, and reports what it reached.
+fn run_to_target(render: &mut ReferenceRender, pt: &PathTrace, label: &str) {
+    let (w, h) = (render.width, render.height);
     let target_spp = pt
         .spp
         .unwrap_or(if pt.noise.is_some() { 1 << 20 } else { 64 });
@@ -141,20 +178,12 @@ pub fn path_traced(
         }
     }
     bar.finish();
-    let rgb = render.linear_srgb();
-    if let Some(dir) = cached.parent()
-        && std::fs::create_dir_all(dir).is_ok()
-    {
-        // The cache is an optimisation: failing to fill it loses nothing.
-        let _ = write_exr(&cached, &rgb, w, h);
-    }
     eprintln!(
         "{label}: {} spp, noise {:.2} % (mean per-pixel relative standard error of luminance), {:.1} s",
         render.samples_per_pixel(),
         render.mean_relative_error() * 100.0,
         start.elapsed().as_secs_f64(),
     );
-    Ok(rgb)
 }
 
 /// `--projection`: what a rendered view shows.

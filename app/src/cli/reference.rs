@@ -3,8 +3,8 @@
 //! Results are cached under a hash of the scene and settings, so asking again is instant.
 
 use crate::args::parse_size;
-use crate::cli::common::{PathTrace, path_traced};
-use crate::images::{write_exr, write_png};
+use crate::cli::common::{PathTrace, path_traced, path_traced_stokes};
+use crate::images::{write_exr, write_exr_with_stokes, write_png};
 use crate::scene_args::SceneArgs;
 use anyhow::{Context, bail};
 use atmoscope_model::Scene;
@@ -73,6 +73,11 @@ pub struct ReferenceArgs {
     /// Ignore and overwrite the cache.
     #[arg(long)]
     pub no_cache: bool,
+    /// Trace in the vector mode and add the photometric Stokes vector as channels I, Q, U, V
+    /// (ȳ-weighted like Y, W·m⁻²·sr⁻¹; Q and U referred to "up" in the picture at each
+    /// pixel). Not cached.
+    #[arg(long)]
+    pub stokes: bool,
 }
 
 /// What to render.
@@ -171,9 +176,17 @@ fn render_job(job: &Job, args: &ReferenceArgs) -> anyhow::Result<()> {
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let rgb = path_traced(&job.scene, job.projection, job.size, &settings, &label)?;
     let png = job.out.with_extension("png");
-    write_exr(&job.out, &rgb, w, h)?;
+    let rgb = if args.stokes {
+        let (rgb, stokes) =
+            path_traced_stokes(&job.scene, job.projection, job.size, &settings, &label);
+        write_exr_with_stokes(&job.out, &rgb, Some(&stokes), w, h)?;
+        rgb
+    } else {
+        let rgb = path_traced(&job.scene, job.projection, job.size, &settings, &label)?;
+        write_exr(&job.out, &rgb, w, h)?;
+        rgb
+    };
     write_png(&png, &rgb, w, h, &job.scene)?;
     eprintln!("{}: preview {}", job.out.display(), png.display());
     Ok(())

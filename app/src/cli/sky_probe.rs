@@ -218,9 +218,10 @@ pub fn probe(scene: &Scene, args: &ProbeRequest) -> Probe {
                 ProbeMethod::PathTracer if args.stokes => {
                     let lanes = LaneOptics::new(&atm, lanes_nm);
                     let mut sums = [StokesMean::default(); LANES];
+                    let (up, _) = polarisation::meridian_frame(dir, camera.position.normalize());
                     for k in 0..args.spp {
                         let mut rng = Rng::new(args.seed, (d * 1000 + b) as u64, k);
-                        let s = tracer.radiance_stokes(&ray, &lanes, &mut rng);
+                        let s = tracer.radiance_stokes(&ray, up, &lanes, &mut rng);
                         sums.iter_mut().zip(s).for_each(|(m, s)| m.add(s));
                     }
                     let estimates = sums.map(|m| m.estimate());

@@ -33,8 +33,8 @@ use crate::atmosphere::{Atmosphere, Densities, Optics};
 use crate::constants::SUN_ANGULAR_RADIUS_RAD;
 use crate::geometry::{Ray, sphere_distances};
 use crate::phase;
+use crate::polarisation::Stokes;
 use crate::polarisation::mueller::ReducedMatrix;
-use crate::polarisation::{Stokes, meridian_frame};
 use glam::DVec3;
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -798,15 +798,22 @@ impl<'a> PathTracer<'a> {
     }
 
     /// The vector mode: the Stokes vector (I, Q, U, V) of [`Self::radiance`]'s light at the four
-    /// wavelengths of `lanes`, referred to the meridian frame of `ray` at its origin
-    /// (`polarisation::meridian_frame`). Each path carries its Mueller products
-    /// ([`stokes`]): air scatters by Hansen & Travis's matrix, a Mie aerosol by its type's, the
-    /// Henyey–Greenstein and Cornette–Shanks aerosols without polarising
-    /// ([`ReducedMatrix::UNPOLARISING`]), the ground depolarises. The same paths as the scalar
-    /// mode's for a seed, so their I differ by polarisation's effect alone.
-    pub fn radiance_stokes(&self, ray: &Ray, lanes: &LaneOptics, rng: &mut Rng) -> [Stokes; LANES] {
-        let (up, _) = meridian_frame(ray.direction, ray.origin.normalize());
-        self.trace(ray, lanes, Some(stokes::PathStokes::new(up)), rng)
+    /// wavelengths of `lanes`, referred to the frame whose e₁ is `e_up` (a unit vector
+    /// perpendicular to `ray.direction`; e₂ = direction × e₁): the meridian frame of
+    /// `polarisation::meridian_frame` for a direction in the sky, "up" in the picture for an
+    /// image. Each path carries its Mueller products ([`stokes`]): air scatters by Hansen &
+    /// Travis's matrix, a Mie aerosol by its type's, the Henyey–Greenstein and Cornette–Shanks
+    /// aerosols without polarising ([`ReducedMatrix::UNPOLARISING`]), the ground depolarises.
+    /// The same paths as the scalar mode's for a seed, so their I differ by polarisation's
+    /// effect alone.
+    pub fn radiance_stokes(
+        &self,
+        ray: &Ray,
+        e_up: DVec3,
+        lanes: &LaneOptics,
+        rng: &mut Rng,
+    ) -> [Stokes; LANES] {
+        self.trace(ray, lanes, Some(stokes::PathStokes::new(e_up)), rng)
             .map(|[i, q, u, v]| Stokes { i, q, u, v })
     }
 
