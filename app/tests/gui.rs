@@ -485,6 +485,10 @@ fn the_inspector_splits_a_pixel_into_its_parts() {
         let total: f64 = a.shares.iter().sum();
         assert!((total - 1.0).abs() < 1e-9, "shares sum to {total}");
         assert!(a.shares.iter().all(|&s| s >= 0.0));
+        // Multiple scattering and the ground depolarise: the pixel's light is less polarised
+        // than its single scattering alone.
+        let degree = a.stokes.mean.degree_of_polarization();
+        assert!(degree < a.single_degree, "{degree} vs {}", a.single_degree);
         if sky {
             assert!(a.shares[0] > 0.05 && a.shares[1] > 0.05, "{:?}", a.shares);
             assert_eq!(a.shares[2], 0.0, "the sky has no ground share");
@@ -497,6 +501,7 @@ fn the_inspector_splits_a_pixel_into_its_parts() {
         }
     }
     h.get_by_label_contains("ground (single):");
+    h.get_by_label_contains("polarisation: degree");
 }
 
 /// A model that refuses the view (Preetham from orbit) leaves the sky tab without an image

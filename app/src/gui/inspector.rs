@@ -1,10 +1,12 @@
 //! The Inspector: what one pixel is made of, and plots of the atmosphere itself.
 //!
 //! A click on a view traces the pixel's ray off the UI thread: its spectral radiance by the path
-//! tracer (all orders, with the standard error), the exact single-scattering integral split into
-//! Rayleigh, aerosol and ground (Bruneton's and Hillaire's decomposition of the sky, computed here
-//! by quadrature), multiple scattering as the rest, and the transmittance to the sun. The pixel's
-//! XYZ, sRGB and luminance are those of the real-time render on screen.
+//! tracer's vector mode (all orders, with the standard error) and the polarisation of its light
+//! (the Stokes vector weighted by ȳ like the luminance, its degree and angle, in the ray's
+//! meridian frame), the exact single-scattering integral split into Rayleigh, aerosol and
+//! ground (Bruneton's and Hillaire's decomposition of the sky, computed here by quadrature) with
+//! its own degree of polarisation, multiple scattering as the rest, and the transmittance to
+//! the sun. The pixel's XYZ, sRGB and luminance are those of the real-time render on screen.
 
 use super::jobs::{Job, Progress};
 use atmoscope_model::atmosphere::Atmosphere;
@@ -16,6 +18,8 @@ use atmoscope_model::lanes::Lanes;
 use atmoscope_model::methods::path_tracer::{LANES, LaneOptics, PathTracer, PathTracerSettings};
 use atmoscope_model::methods::rng::Rng;
 use atmoscope_model::methods::single_scattering::{self, Parts};
+use atmoscope_model::polarisation::estimate::{StokesEstimate, StokesMean};
+use atmoscope_model::polarisation::{self, Stokes, meridian_frame};
 use atmoscope_model::scene::AtmosphereSettings;
 use atmoscope_model::{Scene, phase};
 use eframe::egui;
@@ -42,9 +46,15 @@ pub struct Probe {
 pub struct Analysis {
     pub probe: Probe,
     pub wavelengths_nm: Vec<f64>,
-    /// Path-traced radiance, all orders, W·m⁻²·sr⁻¹·nm⁻¹, and its standard error.
+    /// Path-traced radiance, all orders (the vector mode's I), W·m⁻²·sr⁻¹·nm⁻¹, and its
+    /// standard error.
     pub radiance: Vec<f64>,
     pub std_error: Vec<f64>,
+    /// The path-traced Stokes vector weighted by ȳ like the luminance, W·m⁻²·sr⁻¹, in the
+    /// ray's meridian frame, with its standard errors.
+    pub stokes: StokesEstimate,
+    /// The degree of polarisation of the single-scattered light alone, weighted by ȳ.
+    pub single_degree: f64,
     pub single: Vec<Parts>,
     /// Direct transmittance from the camera to the sun.
     pub sun_transmittance: Vec<f64>,
@@ -68,6 +78,13 @@ pub fn analyse(probe: Probe, progress: &Progress) -> Option<Analysis> {
     let wavelengths_nm: Vec<f64> = INSPECT_NM.step_by(INSPECT_STEP_NM).map(f64::from).collect();
     let tracer = PathTracer::new(&atm, sun, PathTracerSettings::default());
     let (mut radiance, mut std_error, mut single) = (Vec::new(), Vec::new(), Vec::new());
+    let (up, _) = meridian_frame(probe.ray.direction, probe.ray.origin.normalize());
+    let y_bar = &cie1931().y;
+    // Per path, the ȳ-weighted sum of its lanes' Stokes vectors (a rectangle rule over the
+    // wavelengths, as the luminance below weighs them); the paths of one index across the
+    // batches make one sample.
+    let mut photometric = vec![Stokes::default(); INSPECT_PATHS as usize];
+    let mut single_polarised = Stokes::default();
     let batches: Vec<&[f64]> = wavelengths_nm.chunks(LANES).collect();
     for (b, batch) in batches.iter().enumerate() {
         if progress.cancelled() {
@@ -76,29 +93,34 @@ pub fn analyse(probe: Probe, progress: &Progress) -> Option<Analysis> {
         let lanes_nm = Lanes::from_fn(|i| batch[i.min(batch.len() - 1)]);
         let lanes = LaneOptics::new(&atm, lanes_nm);
         let (mut sum, mut sum2) = ([0.0; LANES], [0.0; LANES]);
-        for k in 0..INSPECT_PATHS {
-            let l = tracer.radiance(&probe.ray, &lanes, &mut Rng::new(1, b as u64, k));
+        for (k, sample) in photometric.iter_mut().enumerate() {
+            let mut rng = Rng::new(1, b as u64, k as u64);
+            let s = tracer.radiance_stokes(&probe.ray, up, &lanes, &mut rng);
             for i in 0..LANES {
-                sum[i] += l[i];
-                sum2[i] += l[i] * l[i];
+                sum[i] += s[i].i;
+                sum2[i] += s[i].i * s[i].i;
+            }
+            for (i, &w) in batch.iter().enumerate() {
+                *sample = sample.plus(s[i].scaled(y_bar.sample(w)));
             }
         }
         let n = INSPECT_PATHS as f64;
-        for i in 0..batch.len() {
+        for (i, &w) in batch.iter().enumerate() {
             let mean = sum[i] / n;
             radiance.push(mean);
             std_error.push(((sum2[i] / n - mean * mean).max(0.0) / (n - 1.0)).sqrt());
-            single.push(single_scattering::radiance_parts(
-                &atm, &probe.ray, sun, batch[i],
-            ));
+            single.push(single_scattering::radiance_parts(&atm, &probe.ray, sun, w));
+            let s = polarisation::single_scattering_stokes(&atm, &probe.ray, sun, w);
+            single_polarised = single_polarised.plus(s.scaled(y_bar.sample(w)));
         }
         progress.set((b + 1) as f32 / batches.len() as f32);
     }
+    let mut stokes = StokesMean::default();
+    photometric.into_iter().for_each(|s| stokes.add(s));
     let sun_transmittance = wavelengths_nm
         .iter()
         .map(|&w| atm.transmittance_to_sun(&atm.optics(w), probe.ray.origin, sun))
         .collect();
-    let y_bar = &cie1931().y;
     let weigh = |f: &dyn Fn(usize) -> f64| -> f64 {
         (0..wavelengths_nm.len())
             .map(|i| y_bar.sample(wavelengths_nm[i]) * f(i))
@@ -123,6 +145,8 @@ pub fn analyse(probe: Probe, progress: &Progress) -> Option<Analysis> {
         radiance,
         std_error,
         single,
+        stokes: stokes.estimate(),
+        single_degree: single_polarised.degree_of_polarization(),
         sun_transmittance,
         shares,
     })
@@ -310,6 +334,22 @@ impl Inspector {
                     .text(format!("{name}: {:.1} %", 100.0 * share)),
             );
         }
+        let st = &a.stokes;
+        let m = st.mean;
+        ui.label(format!(
+            "polarisation: degree {:.1} % ± {:.1} (single scattering alone {:.1} %), angle {:.1}° ± {:.1}° from up",
+            100.0 * m.degree_of_polarization(),
+            100.0 * st.degree_std_error,
+            100.0 * a.single_degree,
+            m.angle_of_polarization_deg(),
+            st.angle_std_error_deg.min(90.0),
+        ))
+        .on_hover_text("The path tracer's vector mode: the share of the pixel's light (weighted by the eye's response) that is polarised, and the angle of its electric vector from up towards right in the plane through the zenith and the view (90° = horizontal). Multiple scattering lowers the degree below that of single scattering.");
+        ui.label(format!(
+            "Stokes (I, Q, U, V) = ({:.4e}, {:.4e}, {:.4e}, {:.1e}) W/(m² sr), ȳ-weighted",
+            m.i, m.q, m.u, m.v
+        ))
+        .on_hover_text("Q > 0: vibrating vertically; Q < 0: horizontally; U: at ±45°; V: circular (tiny in the sky).");
         let at = |nm: f64| {
             a.wavelengths_nm
                 .iter()

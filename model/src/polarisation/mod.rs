@@ -57,6 +57,25 @@ impl Stokes {
         }
     }
 
+    /// The sum of two Stokes vectors (in the same frame): incoherent light adds.
+    pub fn plus(self, o: Stokes) -> Stokes {
+        Stokes {
+            i: self.i + o.i,
+            q: self.q + o.q,
+            u: self.u + o.u,
+            v: self.v + o.v,
+        }
+    }
+
+    pub fn scaled(self, k: f64) -> Stokes {
+        Stokes {
+            i: k * self.i,
+            q: k * self.q,
+            u: k * self.u,
+            v: k * self.v,
+        }
+    }
+
     pub fn to_array(self) -> [f64; 4] {
         [self.i, self.q, self.u, self.v]
     }
