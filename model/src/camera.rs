@@ -257,9 +257,20 @@ impl Camera {
         Some(self.pixel_axes_at(x, y, width, height))
     }
 
+    /// "Up" in the picture at the view's point (x, y) for the ray `dir` through it: the unit
+    /// vector perpendicular to `dir` towards the rays half a pixel above (against the row
+    /// index); the meridian plane's up where that fails. The frame of the polarisation the
+    /// views show (twin of `image_up` in `shaders/views/polarisation.wgsl`).
+    pub fn image_up(&self, x: f64, y: f64, width: u32, height: u32, dir: DVec3) -> DVec3 {
+        let d = -self.pixel_axes_at(x, y, width, height).y;
+        (d - dir * dir.dot(d)).try_normalize().unwrap_or_else(|| {
+            crate::polarisation::meridian_frame(dir, self.position.normalize()).0
+        })
+    }
+
     /// [`Camera::pixel_axes`] anywhere: where a side of the pixel falls outside the projection
     /// (the fisheye's rim) the difference is taken one-sided.
-    pub(crate) fn pixel_axes_at(&self, x: f64, y: f64, width: u32, height: u32) -> PixelAxes {
+    fn pixel_axes_at(&self, x: f64, y: f64, width: u32, height: u32) -> PixelAxes {
         let dir = |x: f64, y: f64| self.ray(x, y, width, height).map(|r| r.direction);
         let across = |dx: f64, dy: f64| match (
             dir(x + 0.5 * dx, y + 0.5 * dy),
@@ -369,6 +380,7 @@ mod tests {
             pitch_deg: 0.0,
             fov_deg: 60.0,
             back_km: 0.0,
+            polariser_deg: None,
         }
     }
 

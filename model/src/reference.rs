@@ -298,30 +298,27 @@ impl ReferenceRender {
                     let coverage = camera.pixel_coverage(x as u32, y as u32, w, h);
                     let inside_only = (MIN_COVERAGE..1.0).contains(&coverage);
                     let share = if inside_only { coverage } else { 1.0 };
-                    // The vector mode's frame: "up" in the picture at the pixel.
-                    let image_up = -camera.pixel_axes_at(x as f64 + 0.5, y as f64 + 0.5, w, h).y;
                     for _ in 0..spp {
                         let mut rng = Rng::new(seed, index, pixel.samples);
                         pixel.samples += 1;
-                        let mut ray = None;
+                        // The ray and the point of the view it leaves from.
+                        let mut drawn = None;
                         for _ in 0..if inside_only { MAX_REDRAWS } else { 1 } {
-                            let (jx, jy) = (rng.uniform(), rng.uniform());
-                            ray = camera.ray(x as f64 + jx, y as f64 + jy, w, h);
-                            if ray.is_some() {
+                            let at = (x as f64 + rng.uniform(), y as f64 + rng.uniform());
+                            drawn = camera.ray(at.0, at.1, w, h).map(|r| (r, at));
+                            if drawn.is_some() {
                                 break;
                             }
                         }
-                        let Some(ray) = ray else {
+                        let Some((ray, (view_x, view_y))) = drawn else {
                             continue;
                         };
                         pixel.covered = true;
                         let (wavelengths, pdf) = sampler.sample(rng.uniform());
                         let (lanes, cmf) = spectral.lanes(wavelengths);
                         let (l, stokes) = if vector {
-                            let d = ray.direction;
-                            let up = (image_up - d * d.dot(image_up)).normalize_or(
-                                crate::polarisation::meridian_frame(d, ray.origin.normalize()).0,
-                            );
+                            // The frame: "up" in the picture where the path leaves.
+                            let up = camera.image_up(view_x, view_y, w, h, ray.direction);
                             let s = tracer.radiance_stokes(&ray, up, &lanes, &mut rng);
                             (Lanes::from_fn(|i| s[i].i), Some(s))
                         } else {

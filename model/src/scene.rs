@@ -299,6 +299,13 @@ pub struct CameraSettings {
     /// Distance the camera is moved back over the planet's surface against its heading, km
     /// (0–20 000), keeping its altitude; the sun stays fixed in the scene's frame.
     pub back_km: f64,
+    /// A linear polarising filter in front of the lens (a photographer's circular polariser
+    /// acts on the scene as one): None for none, else the angle of its transmission axis,
+    /// degrees (−90–90) from up in the picture towards right (left in the fisheye, which shows
+    /// the dome as from above). It passes (I + Q·cos 2θ + U·sin 2θ)/2 of the real-time sky's
+    /// light (`methods::shared::polarisation`): half of unpolarised light, like a real filter's
+    /// factor of one stop, which metered exposure makes up.
+    pub polariser_deg: Option<f64>,
 }
 
 impl Default for CameraSettings {
@@ -309,6 +316,7 @@ impl Default for CameraSettings {
             pitch_deg: 10.0,
             fov_deg: 70.0,
             back_km: 0.0,
+            polariser_deg: None,
         }
     }
 }
@@ -845,6 +853,12 @@ pub mod limits {
         max: 170.0,
         unit: "°",
     };
+    /// `camera.polariser_deg`.
+    pub const CAMERA_POLARISER_DEG: Limit = Limit {
+        min: -90.0,
+        max: 90.0,
+        unit: "°",
+    };
     /// `camera.back_km`.
     pub const CAMERA_BACK_KM: Limit = Limit {
         min: 0.0,
@@ -1074,6 +1088,9 @@ impl Scene {
         c.limit("camera.pitch_deg", cam.pitch_deg, limits::CAMERA_PITCH_DEG);
         c.limit("camera.fov_deg", cam.fov_deg, limits::CAMERA_FOV_DEG);
         c.limit("camera.back_km", cam.back_km, limits::CAMERA_BACK_KM);
+        if let Some(angle) = cam.polariser_deg {
+            c.limit("camera.polariser_deg", angle, limits::CAMERA_POLARISER_DEG);
+        }
         if let WavelengthSet::SpectralN(n) = self.render.wavelengths {
             if !self.render.wavelengths.is_valid() {
                 c.fail(

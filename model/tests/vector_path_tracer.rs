@@ -9,9 +9,8 @@ use atmoscope_model::methods::path_tracer::{
     LANES, LaneOptics, Lanes, PathTracer, PathTracerSettings,
 };
 use atmoscope_model::methods::rng::Rng;
-use atmoscope_model::polarisation::{
-    Stokes, meridian_frame, rayleigh_degree, single_scattering_stokes,
-};
+use atmoscope_model::methods::single_scattering;
+use atmoscope_model::polarisation::{Stokes, meridian_frame, rayleigh_degree};
 use atmoscope_model::scene::{AerosolPhase, AtmosphereSettings};
 use glam::DVec3;
 
@@ -45,7 +44,7 @@ fn estimate(
     })
 }
 
-/// The ray's meridian frame's e₁, the frame of `single_scattering_stokes`.
+/// The ray's meridian frame's e₁, the frame of `single_scattering::stokes`.
 fn meridian(ray: &Ray) -> DVec3 {
     meridian_frame(ray.direction, ray.origin.normalize()).0
 }
@@ -96,7 +95,7 @@ fn vector_order_one_agrees_with_the_vector_single_scattering_integrator() {
             let estimates = estimate(&pt, &ray, &lanes, 12_000, 5);
             for (i, (mean, se)) in estimates.into_iter().enumerate() {
                 let w = lanes.wavelengths_nm[i];
-                let exact = single_scattering_stokes(&atm, &ray, sun, w).to_array();
+                let exact = single_scattering::stokes(&atm, &ray, sun, w).to_array();
                 for c in 0..3 {
                     assert!(
                         (mean[c] - exact[c]).abs() <= 4.0 * se[c] + 1e-9 * exact[0],

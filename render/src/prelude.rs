@@ -4,8 +4,8 @@
 //! model's own and one pass's entry file.
 
 use crate::uniforms::{
-    DisplayMode, display_code, phase_code, projection_code, region_code, spacing_code,
-    tone_map_code,
+    DisplayMode, display_code, phase_code, polarisation_code, projection_code, region_code,
+    spacing_code, tone_map_code,
 };
 use crate::views::FALSE_COLOUR_STOPS;
 use atmoscope_model::camera::{Projection, Sees};
@@ -16,6 +16,7 @@ use atmoscope_model::constants::{
 };
 use atmoscope_model::display;
 use atmoscope_model::methods::hillaire as h;
+use atmoscope_model::methods::shared::polarisation as realtime;
 use atmoscope_model::methods::shared::{self, Spacing};
 use atmoscope_model::methods::{bruneton, elek, galaj_spline};
 use atmoscope_model::scene::{AerosolPhase, ToneMap};
@@ -226,6 +227,8 @@ pub fn wgsl_prelude() -> String {
         "f32",
         f(shared::SMALL_OPTICAL_THICKNESS),
     );
+    c("MS_LIKE_SINGLE", "f32", f(realtime::MS_LIKE_SINGLE));
+    c("MS_VERTICAL", "f32", f(realtime::MS_VERTICAL));
     c(
         "SMALL_DEPTH_DIFFERENCE",
         "f32",
@@ -378,6 +381,23 @@ pub fn wgsl_prelude() -> String {
         ("PHASE_MIE", phase_code(AerosolPhase::Mie)),
         ("DISPLAY_COLOUR", display_code(DisplayMode::Colour)),
         ("DISPLAY_LUMINANCE", display_code(DisplayMode::LUMINANCE)),
+        (
+            "DISPLAY_POLARISATION",
+            display_code(DisplayMode::Polarisation),
+        ),
+        (
+            "POLARISATION_OFF",
+            polarisation_code(DisplayMode::Colour, None),
+        ),
+        (
+            "POLARISATION_FILTER",
+            polarisation_code(DisplayMode::Colour, Some(0.0)),
+        ),
+        (
+            "POLARISATION_STOKES",
+            polarisation_code(DisplayMode::Polarisation, None),
+        ),
+        ("POLARISATION_VIEW_STEPS", realtime::VIEW_STEPS),
     ] {
         c(name, "u32", format!("{v}u"));
     }

@@ -20,6 +20,10 @@ pub enum DisplayMode {
     Colour,
     /// Luminance (cd/m²) in false colour, log scale from 10^log10_min to 10^log10_max.
     Luminance { log10_min: f64, log10_max: f64 },
+    /// The degree of polarisation of the real-time sky's light (`model::polarisation::
+    /// realtime`) in false colour, 0 to 1; the radiance image then holds the Stokes vector
+    /// (I_Y, Q_Y, U_Y) weighted by ȳ like the luminance, referred to up in the picture.
+    Polarisation,
 }
 
 impl DisplayMode {
@@ -69,6 +73,17 @@ pub fn display_code(d: DisplayMode) -> u32 {
     match d {
         DisplayMode::Colour => 0,
         DisplayMode::Luminance { .. } => 1,
+        DisplayMode::Polarisation => 2,
+    }
+}
+
+/// `POLARISATION` of the sky pass: what the view shows of the light's polarisation
+/// (`shaders/views/polarisation.wgsl`).
+pub fn polarisation_code(mode: DisplayMode, polariser_deg: Option<f64>) -> u32 {
+    match (mode, polariser_deg) {
+        (DisplayMode::Polarisation, _) => 2,
+        (_, Some(_)) => 1,
+        _ => 0,
     }
 }
 
@@ -138,7 +153,7 @@ impl From<&FrameInputs<'_>> for Globals {
                 log10_min,
                 log10_max,
             } => (log10_min, log10_max),
-            DisplayMode::Colour => (0.0, 1.0),
+            DisplayMode::Colour | DisplayMode::Polarisation => (0.0, 1.0),
         };
         let sunlight = f.scene.sun.sunlight_scale();
         Globals {
@@ -200,7 +215,12 @@ impl From<&FrameInputs<'_>> for Globals {
                 let e = e.map(|c| c * sunlight);
                 [e[0] as f32, e[1] as f32, e[2] as f32, 0.0]
             }),
-            sunlight: [sunlight as f32, 0.0, 0.0, 0.0],
+            sunlight: [
+                sunlight as f32,
+                f.scene.camera.polariser_deg.unwrap_or(0.0).to_radians() as f32,
+                0.0,
+                0.0,
+            ],
             white_balance: f
                 .balance
                 .map(|r| [r[0] as f32, r[1] as f32, r[2] as f32, 0.0]),

@@ -575,6 +575,79 @@ fn rendered_views_match_the_cpu_twin() {
     }
 }
 
+/// The polarisation the views show against the CPU twin's, for a model of each kind (tables with
+/// multiple scattering, single scattering alone, an analytic fit): the Polarisation mode's
+/// Stokes vectors (degree of polarisation within 0.01, angle within 1° where the light is over
+/// 5 % polarised, for 99 % of the pixels), and the view through the polarising filter at 30°
+/// (the colour twin test's bounds). The filter passes less than half the light where the sky
+/// is polarised and about half where it is not.
+#[test]
+fn polarisation_views_match_the_cpu_twin() {
+    let Some(gpu) = context() else { return };
+    // Looking east, 90° in azimuth from the sun in the south.
+    let mut noon = Scene::default();
+    noon.camera.pitch_deg = 30.0;
+    noon.camera.heading_deg = 90.0;
+    for (model, projection, w, h) in [
+        (Method::Bruneton, Projection::Perspective, 40, 24),
+        (Method::Nishita, Projection::Fisheye, 24, 24),
+        (Method::Preetham, Projection::Perspective, 40, 24),
+        (Method::Hillaire, Projection::Fisheye, 24, 24),
+    ] {
+        let scene = with(methods::info(model), &noon);
+        let name = format!("{model:?} {projection:?}");
+        let mut engine = Engine::new(&gpu.device, &gpu.queue);
+        let view = View {
+            mode: atmoscope_render::DisplayMode::Polarisation,
+            ..View::new(projection, w, h)
+        };
+        engine.render(&scene, &view);
+        let gpu_stokes = radiance_image(&engine);
+        let cpu_stokes = methods::render_stokes(&scene, projection, w, h).expect("a twin");
+        let degree = |s: [f64; 3]| {
+            if s[0] > 0.0 {
+                s[1].hypot(s[2]) / s[0]
+            } else {
+                0.0
+            }
+        };
+        let angle = |s: [f64; 3]| 0.5 * s[2].atan2(s[1]).to_degrees();
+        let mut off = 0;
+        let mut polarised = 0;
+        for (g, c) in gpu_stokes.iter().zip(&cpu_stokes) {
+            let turn = (angle(*g) - angle(*c)).rem_euclid(180.0);
+            let far = (degree(*g) - degree(*c)).abs() > 0.01
+                || (degree(*c) > 0.05 && turn.min(180.0 - turn) > 1.0);
+            off += usize::from(far);
+            polarised += usize::from(degree(*c) > 0.2);
+        }
+        eprintln!("{name}: {off} of {} pixels off", gpu_stokes.len());
+        assert!(off * 100 <= gpu_stokes.len(), "{name}: {off} pixels off");
+        assert!(
+            polarised * 4 > gpu_stokes.len(),
+            "{name}: {polarised} pixels over 20 %"
+        );
+        // The filter: the colour twin test's bounds, and what it lets through.
+        let mut filtered = scene.clone();
+        filtered.camera.polariser_deg = Some(30.0);
+        let through =
+            assert_engine_matches_the_twin(&mut engine, &name, &filtered, projection, w, h);
+        engine.render(&scene, &View::new(projection, w, h));
+        let open = radiance_image(&engine);
+        for ((t, o), s) in through.iter().zip(&open).zip(&gpu_stokes) {
+            let (lt, lo) = (luminance(*t), luminance(*o));
+            if lo > 0.0 {
+                let ratio = lt / lo;
+                let d = degree(*s);
+                assert!(
+                    ratio >= 0.5 * (1.0 - d) - 0.02 && ratio <= 0.5 * (1.0 + d) + 0.02,
+                    "{name}: {ratio} through a sky polarised by {d}"
+                );
+            }
+        }
+    }
+}
+
 /// The GPU's render of `scene` against the CPU twin's: ΔE2000 mean under 0.3 and at most 1 %
 /// of the pixels off by more than 1 % in luminance. Returns the GPU's radiance image.
 fn assert_render_matches_the_twin(

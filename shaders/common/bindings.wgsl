@@ -38,6 +38,8 @@ struct Globals {
     // x: the sunlight at the scene's Earth–Sun distance over that at 1 AU (1/d², d in AU), by
     // which the sky pass scales every radiance it writes (the tables hold sunlight at 1 AU);
     // yzw unused
+    // y: the camera's polarising filter's transmission axis from up in the picture, rad
+    // (views/polarisation.wgsl)
     sunlight: vec4<f32>,
     // white balance matrix rows on linear sRGB (model::white_balance), w unused
     white_balance: array<vec4<f32>, 3>,

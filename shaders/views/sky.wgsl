@@ -16,6 +16,9 @@
 // do, as a software GPU runs both sides of it for every lane. The sun's disk is never
 // interpolated: its pixels are drawn by a third dispatch at SKY_TILE = 1.
 //
+// With POLARISATION the radiance passes the camera's polarising filter, or in the Polarisation
+// display mode the radiance image holds the view's Stokes vector (views/polarisation.wgsl).
+//
 // The pass writes the view as displayed (views/tone.wgsl) beside its radiance, so a frame that
 // redraws the sky runs no display pass. A frame in tiles interpolates the displayed colours of
 // the corners and, unless WRITE_RADIANCE (the meter reads it), leaves the radiance image as the
@@ -51,13 +54,45 @@ fn batch_srgb(layer: u32, l: vec4<f32>) -> vec3<f32> {
         dot(batches[layer].to_srgb_b, l));
 }
 
-// Linear sRGB of the sky and ground along `dir` (no sun disk), summed over the batches.
-fn sky_rgb(dir: vec3<f32>) -> vec3<f32> {
+// A batch's weights of its lanes' radiances in the luminance Y (sunlight at 1 AU).
+fn batch_y(layer: u32) -> vec4<f32> {
+    return SRGB_TO_Y.x * batches[layer].to_srgb_r + SRGB_TO_Y.y * batches[layer].to_srgb_g
+        + SRGB_TO_Y.z * batches[layer].to_srgb_b;
+}
+
+// Linear sRGB of the sky and ground along `dir` seen at the view's point (x, y), with the sun's
+// `disk` where it reaches, summed over the batches and scaled to the scene's Earth–Sun distance:
+// through the camera's polarising filter where POLARISATION says so, or, for the Polarisation
+// display mode, the Stokes vector (I_Y, Q_Y, U_Y) referred to up in the picture
+// (views/polarisation.wgsl).
+fn shade(x: f32, y: f32, dir: vec3<f32>, disk: DiskInPixel) -> vec3<f32> {
     var rgb = vec3<f32>(0.0);
-    for (var layer = 0u; layer < batch_count(); layer++) {
-        rgb += batch_srgb(layer, view_radiance(layer, dir));
+    var stokes = vec3<f32>(0.0);
+    var up = vec3<f32>(0.0);
+    if POLARISATION == POLARISATION_STOKES {
+        up = image_up(x, y, dir);
     }
-    // Scaled once, to the scene's Earth–Sun distance.
+    for (var layer = 0u; layer < batch_count(); layer++) {
+        let sky = view_radiance(layer, dir);
+        var l = sky;
+        if SUN_DISK && disk.reaches {
+            let sun = sun_through_atmosphere(layer, globals.camera_position.w, globals.sun.w);
+            l += batches[layer].solar_irradiance * sun
+                * disk_radiance(disk, batches[layer].wavelengths_nm);
+        }
+        if POLARISATION == POLARISATION_FILTER {
+            l = through_polariser(layer, x, y, dir, l, sky);
+        }
+        if POLARISATION == POLARISATION_STOKES {
+            let s = sky_stokes(layer, dir, up, sky);
+            let w = batch_y(layer);
+            stokes += vec3<f32>(dot(w, l), dot(w, s.q), dot(w, s.u));
+        }
+        rgb += batch_srgb(layer, l);
+    }
+    if POLARISATION == POLARISATION_STOKES {
+        return globals.sunlight.x * stokes;
+    }
     return globals.sunlight.x * rgb;
 }
 
@@ -71,17 +106,7 @@ fn pixel(x: f32, y: f32) -> vec4<f32> {
     if SUN_DISK {
         disk = sun_pixel(x, y);
     }
-    var rgb = vec3<f32>(0.0);
-    for (var layer = 0u; layer < batch_count(); layer++) {
-        var l = view_radiance(layer, ray.xyz);
-        if SUN_DISK && disk.reaches {
-            let sun = sun_through_atmosphere(layer, globals.camera_position.w, globals.sun.w);
-            l += batches[layer].solar_irradiance * sun
-                * disk_radiance(disk, batches[layer].wavelengths_nm);
-        }
-        rgb += batch_srgb(layer, l);
-    }
-    return vec4<f32>(globals.sunlight.x * rgb, 1.0);
+    return vec4<f32>(shade(x, y, ray.xyz, disk), 1.0);
 }
 
 // A tile corner at pixel-grid point (x, y): linear sRGB without the disk, and what the ray sees.
@@ -92,7 +117,7 @@ fn tile_corner(x: f32, y: f32) -> vec4<f32> {
     }
     let up = normalize(globals.camera_position.xyz);
     let ground = hits_ground(globals.camera_position.w, dot(ray.xyz, up));
-    return vec4<f32>(sky_rgb(ray.xyz), select(CORNER_SKY, CORNER_GROUND, ground));
+    return vec4<f32>(shade(x, y, ray.xyz, no_disk()), select(CORNER_SKY, CORNER_GROUND, ground));
 }
 
 // Whether a tile may be interpolated from its corners.

@@ -1,6 +1,7 @@
 // What the display shows of a pixel's linear radiance: exposure, white balance, tone map and
 // sRGB (twin of model::display), or luminance in cd/m² on a log scale in false colour (twin of
-// render::views::false_colour). The display pass applies it to the radiance image; the sky pass
+// render::views::false_colour), or in the Polarisation mode the degree of polarisation in false
+// colour, from 0 to 1 (the radiance image then holds the Stokes vector (I_Y, Q_Y, U_Y)). The display pass applies it to the radiance image; the sky pass
 // applies it as it draws, so a frame that redraws the sky needs no display pass.
 
 // Pipeline constants, one variant per display mode, tone map and glare (see common/view.wgsl):
@@ -101,6 +102,10 @@ fn false_colour(t: f32) -> vec3<f32> {
 // What the display shows of linear radiance rgb seen at the view's point (x, y), before
 // dithering: glare, white balance, exposure, tone map and sRGB, or false colour.
 fn shown(x: f32, y: f32, rgb: vec3<f32>) -> vec3<f32> {
+    if DISPLAY_MODE == DISPLAY_POLARISATION {
+        // The radiance image holds (I_Y, Q_Y, U_Y): the degree of polarisation, 0 to 1.
+        return false_colour(select(0.0, length(rgb.yz) / rgb.x, rgb.x > 0.0));
+    }
     if DISPLAY_MODE == DISPLAY_LUMINANCE {
         let y_cd = dot(SRGB_TO_Y, rgb) * MAX_LUMINOUS_EFFICACY_LM_PER_W;
         let t = (log(max(y_cd, 1e-30)) / log(10.0) - globals.display.y) / (globals.display.z - globals.display.y);

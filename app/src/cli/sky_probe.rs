@@ -258,7 +258,7 @@ pub fn probe(scene: &Scene, args: &ProbeRequest) -> Probe {
                     let traced = traced_stokes.map(|e: [StokesEstimate; LANES]| e[i]);
                     let stokes = traced.map(|e| e.mean).or_else(|| {
                         (args.stokes && args.method == ProbeMethod::SingleScattering)
-                            .then(|| polarisation::single_scattering_stokes(&atm, &ray, sun, w))
+                            .then(|| single_scattering::stokes(&atm, &ray, sun, w))
                     });
                     Sample {
                         view_zenith_deg: zenith,

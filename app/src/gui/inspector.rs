@@ -19,7 +19,7 @@ use atmoscope_model::methods::path_tracer::{LANES, LaneOptics, PathTracer, PathT
 use atmoscope_model::methods::rng::Rng;
 use atmoscope_model::methods::single_scattering::{self, Parts};
 use atmoscope_model::polarisation::estimate::{StokesEstimate, StokesMean};
-use atmoscope_model::polarisation::{self, Stokes, meridian_frame};
+use atmoscope_model::polarisation::{Stokes, meridian_frame};
 use atmoscope_model::scene::AtmosphereSettings;
 use atmoscope_model::{Scene, phase};
 use eframe::egui;
@@ -110,7 +110,7 @@ pub fn analyse(probe: Probe, progress: &Progress) -> Option<Analysis> {
             radiance.push(mean);
             std_error.push(((sum2[i] / n - mean * mean).max(0.0) / (n - 1.0)).sqrt());
             single.push(single_scattering::radiance_parts(&atm, &probe.ray, sun, w));
-            let s = polarisation::single_scattering_stokes(&atm, &probe.ray, sun, w);
+            let s = single_scattering::stokes(&atm, &probe.ray, sun, w);
             single_polarised = single_polarised.plus(s.scaled(y_bar.sample(w)));
         }
         progress.set((b + 1) as f32 / batches.len() as f32);

@@ -981,7 +981,7 @@ pub fn render(
 }
 
 /// CPU render with a model already built ([`build`]: sunlight at 1 AU), its radiance scaled to
-/// the scene's Earth–Sun distance.
+/// the scene's Earth–Sun distance, through the camera's polarising filter where it has one.
 pub fn render_with(
     model: &dyn SkyModel,
     scene: &Scene,
@@ -989,35 +989,108 @@ pub fn render_with(
     width: u32,
     height: u32,
 ) -> Vec<[f64; 3]> {
+    shade(model, scene, camera, width, height, false)
+}
+
+/// [`render`]'s view as the Polarisation display mode sees it: per pixel the Stokes vector
+/// (I_Y, Q_Y, U_Y) weighted by ȳ like the luminance, W·m⁻²·sr⁻¹, referred to up in the picture
+/// (`Camera::image_up`); the filter, if any, left out. Twin of the GPU's.
+pub fn render_stokes(
+    scene: &Scene,
+    projection: Projection,
+    width: u32,
+    height: u32,
+) -> Result<Vec<[f64; 3]>, CannotDraw> {
+    let camera = Camera::new(
+        &scene.camera,
+        scene.atmosphere.planet_radius_km * 1000.0,
+        projection,
+    );
+    let model = build(scene, &camera)?;
+    Ok(shade(model.as_ref(), scene, &camera, width, height, true))
+}
+
+/// The Stokes Q and U per lane of a model's light `sky` (the sun's disk apart) along `dir` from
+/// `at`, referred to the frame whose e₁ is `e_up`: `shared::polarisation::sky_stokes` through
+/// the model's own transmittance towards the sun.
+#[allow(clippy::too_many_arguments)]
+pub fn sky_stokes(
+    model: &dyn SkyModel,
+    layer: usize,
+    at: (DVec3, f64),
+    dir: DVec3,
+    sun: DVec3,
+    e_up: DVec3,
+    sky: Lanes,
+) -> [Lanes; 2] {
+    let p = model.params();
+    let e = p.batches[layer].solar_irradiance;
+    shared::polarisation::sky_stokes(p, layer, at, dir, sun, e_up, sky, |h, mu_s| {
+        let t = model.sun(layer, h, mu_s, Lanes::ONE);
+        Lanes::from_fn(|k| if e[k] > 0.0 { t[k] / e[k] } else { 0.0 })
+    })
+}
+
+/// Every pixel of the view: linear sRGB through the polarising filter, or with `stokes` the
+/// Stokes vector (I_Y, Q_Y, U_Y); the sun's disk included (unpolarised).
+fn shade(
+    model: &dyn SkyModel,
+    scene: &Scene,
+    camera: &Camera,
+    width: u32,
+    height: u32,
+    stokes: bool,
+) -> Vec<[f64; 3]> {
     let a = scene.sun.angles();
     let sun = direction_from_angles(a.elevation_deg, a.azimuth_deg);
     let p = model.params();
     let colours: Vec<WavelengthBatch> = p.batches.iter().map(|b| b.colour.clone()).collect();
     let sun_in_view = camera.sun_in_view(sun, width, height);
     let sunlight = scene.sun.sunlight_scale();
+    let polariser = if stokes {
+        None
+    } else {
+        scene.camera.polariser_deg.map(f64::to_radians)
+    };
     (0..width * height)
         .into_par_iter()
         .map(|i| {
-            let (x, y) = (i % width, i / width);
-            match camera.ray(x as f64 + 0.5, y as f64 + 0.5, width, height) {
-                None => [0.0; 3],
-                Some(ray) => {
-                    let at = (ray.origin, scene.camera.altitude_m);
-                    let mu_s = sun.dot(ray.origin.normalize());
-                    // The disk's geometry once per pixel, its limb darkening per batch.
-                    let disk_here =
-                        sun_in_view.and_then(|s| s.pixel(x as f64 + 0.5, y as f64 + 0.5));
-                    let lanes: Vec<Lanes> = (0..p.batches.len())
-                        .map(|layer| {
-                            let disk = disk_here.map_or(Lanes::ZERO, |d| {
-                                d.radiance(&Lanes(colours[layer].wavelengths_nm))
-                            });
-                            model.radiance(layer, at, ray.direction, sun)
-                                + model.sun(layer, at.1, mu_s, disk)
-                        })
-                        .collect();
-                    to_linear_srgb(&colours, &lanes).map(|c| c * sunlight)
+            let (x, y) = (f64::from(i % width) + 0.5, f64::from(i / width) + 0.5);
+            let Some(ray) = camera.ray(x, y, width, height) else {
+                return [0.0; 3];
+            };
+            let at = (ray.origin, scene.camera.altitude_m);
+            let mu_s = sun.dot(ray.origin.normalize());
+            let up = (stokes || polariser.is_some())
+                .then(|| camera.image_up(x, y, width, height, ray.direction));
+            // The disk's geometry once per pixel, its limb darkening per batch.
+            let disk_here = sun_in_view.and_then(|s| s.pixel(x, y));
+            let mut parts = [Vec::new(), Vec::new(), Vec::new()];
+            for layer in 0..p.batches.len() {
+                let disk = disk_here.map_or(Lanes::ZERO, |d| {
+                    d.radiance(&Lanes(colours[layer].wavelengths_nm))
+                });
+                let sky = model.radiance(layer, at, ray.direction, sun);
+                let mut l = sky + model.sun(layer, at.1, mu_s, disk);
+                let polarised =
+                    up.map(|e_up| sky_stokes(model, layer, at, ray.direction, sun, e_up, sky));
+                if let (Some(theta), Some([q, u])) = (polariser, polarised) {
+                    l = Lanes::from_fn(|k| {
+                        0.5 * (l[k] + q[k] * (2.0 * theta).cos() + u[k] * (2.0 * theta).sin())
+                    });
                 }
+                let [q, u] = polarised.unwrap_or([Lanes::ZERO; 2]);
+                parts[0].push(l);
+                parts[1].push(q);
+                parts[2].push(u);
+            }
+            if stokes {
+                let y = |lanes: &[Lanes]| {
+                    crate::colour::linear_srgb_to_xyz(to_linear_srgb(&colours, lanes)).y
+                };
+                [y(&parts[0]), y(&parts[1]), y(&parts[2])].map(|c| c * sunlight)
+            } else {
+                to_linear_srgb(&colours, &parts[0]).map(|c| c * sunlight)
             }
         })
         .collect()

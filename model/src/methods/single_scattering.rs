@@ -9,6 +9,8 @@
 use crate::atmosphere::{Atmosphere, Optics};
 use crate::geometry::{self, Ray};
 use crate::phase;
+use crate::polarisation::mueller::ReducedMatrix;
+use crate::polarisation::{self, Stokes};
 use crate::quadrature::integrate_adaptive;
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -154,11 +156,32 @@ fn shadow_crossings(atm: &Atmosphere, ray: &Ray, sun: DVec3) -> Vec<f64> {
     vec![(-b - s) / (2.0 * a), (-b + s) / (2.0 * a)]
 }
 
+/// The Stokes vector of single-scattered light seen from `ray.origin` looking along
+/// `ray.direction` (the light travels along −`ray.direction`), at `wavelength_nm` with the sun
+/// in direction `sun` (the exact integrator of [`radiance_parts`];
+/// W·m⁻²·sr⁻¹·nm⁻¹).
+pub fn stokes(atm: &Atmosphere, ray: &Ray, sun: DVec3, wavelength_nm: f64) -> Stokes {
+    let parts = radiance_parts(atm, ray, sun, wavelength_nm);
+    let i = parts.total();
+    if i <= 0.0 {
+        return Stokes::default();
+    }
+    let optics = atm.optics(wavelength_nm);
+    let nu = ray.direction.dot(sun);
+    // Q referred to the scattering plane, over I: −b₁ of each constituent is the degree it
+    // polarises across the plane.
+    let across = -(ReducedMatrix::rayleigh(nu, optics.rayleigh_depolarisation).b1 * parts.rayleigh
+        + atm.aerosol_matrix(&optics, nu).b1 * parts.aerosol);
+    let chi = polarisation::perpendicular_angle(ray.direction, sun, ray.origin.normalize());
+    Stokes::polarised(i, across / i, chi)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::aerosol::AerosolType;
     use crate::geometry::direction_from_angles;
-    use crate::scene::AtmosphereSettings;
+    use crate::scene::{AtmosphereSettings, Scene};
 
     fn ray_from_ground(elevation_deg: f64, atm: &Atmosphere) -> Ray {
         Ray::new(
@@ -189,5 +212,74 @@ mod tests {
         let down = radiance_parts(&clean, &ray_from_ground(-30.0, &clean), sun, 550.0);
         assert_eq!((down.aerosol, down.ground), (0.0, 0.0), "{down:?}");
         assert!(down.rayleigh > 0.0);
+    }
+
+    /// A pure-air sky over a black ground: the degree is Rayleigh's at the view's scattering
+    /// angle; the electric vector lies across the scattering plane (horizontal where the sun
+    /// is in the view's vertical plane); mirror views about the sun's vertical have mirrored
+    /// Stokes vectors (U changes sign).
+    #[test]
+    fn single_scattering_polarises_across_the_scattering_plane_symmetrically() {
+        let mut s = Scene::default();
+        s.atmosphere.aerosol.kind = AerosolType::None;
+        s.atmosphere.aerosol.aod550 = 0.0;
+        s.atmosphere.ground_albedo = 0.0;
+        s.sun = crate::scene::SunSettings::Angles {
+            elevation_deg: 20.0,
+            azimuth_deg: 90.0,
+        };
+        let atm = Atmosphere::for_scene(&s);
+        let sun = direction_from_angles(20.0, 90.0);
+        let origin = DVec3::new(0.0, 0.0, atm.bottom_radius_m + 1.0);
+        let look = |elevation: f64, azimuth: f64| {
+            let ray = Ray::new(origin, direction_from_angles(elevation, azimuth));
+            stokes(&atm, &ray, sun, 550.0)
+        };
+        // In the sun's vertical (towards it and away): horizontal, Q < 0, U = 0, χ = 90°.
+        for azimuth in [90.0, 270.0] {
+            let st = look(45.0, azimuth);
+            assert!(st.q < 0.0 && st.u == 0.0, "{azimuth}: {st:?}");
+            assert_eq!(st.angle_of_polarization_deg(), 90.0);
+        }
+        // 90° from the sun (opposite azimuth, 70° up against 20° up): the air's maximum,
+        // (1−ρ)/(1+ρ); and Rayleigh's degree at another angle.
+        let rho = atm.optics(550.0).rayleigh_depolarisation;
+        assert!(direction_from_angles(70.0, 270.0).dot(sun).abs() < 1e-12);
+        let peak = look(70.0, 270.0).degree_of_polarization();
+        assert!((peak - (1.0 - rho) / (1.0 + rho)).abs() < 1e-9, "{peak}");
+        let nu = direction_from_angles(70.0, 180.0).dot(sun);
+        let st = look(70.0, 180.0);
+        assert!(
+            (st.degree_of_polarization() - polarisation::rayleigh_degree(nu, rho)).abs() < 1e-9
+        );
+        // Mirror views about the sun's vertical plane.
+        for (elevation, offset) in [(10.0, 40.0), (50.0, 100.0), (80.0, 150.0)] {
+            let (a, b) = (
+                look(elevation, 90.0 + offset),
+                look(elevation, 90.0 - offset),
+            );
+            assert!((a.i - b.i).abs() < 1e-9 * a.i, "{a:?} {b:?}");
+            assert!((a.q - b.q).abs() < 1e-9 * a.i, "{a:?} {b:?}");
+            assert!((a.u + b.u).abs() < 1e-9 * a.i, "{a:?} {b:?}");
+        }
+    }
+
+    /// Aerosol and ground add unpolarised light: the polarised radiance stays the air's,
+    /// and the degree falls by the air's share of the light.
+    #[test]
+    fn aerosol_and_ground_add_only_unpolarised_light() {
+        let s = Scene::default();
+        let atm = Atmosphere::for_scene(&s);
+        let sun = direction_from_angles(30.0, 180.0);
+        let origin = DVec3::new(0.0, 0.0, atm.bottom_radius_m + 1.0);
+        let ray = Ray::new(origin, direction_from_angles(40.0, 90.0));
+        let st = stokes(&atm, &ray, sun, 450.0);
+        let parts = radiance_parts(&atm, &ray, sun, 450.0);
+        let rho = atm.optics(450.0).rayleigh_depolarisation;
+        let air_only = polarisation::rayleigh_degree(ray.direction.dot(sun), rho);
+        let expected = air_only * parts.rayleigh / parts.total();
+        assert!((st.degree_of_polarization() - expected).abs() < 1e-12);
+        assert!(st.degree_of_polarization() < air_only && parts.aerosol > 0.0);
+        assert_eq!(st.i, parts.total());
     }
 }

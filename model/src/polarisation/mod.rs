@@ -21,17 +21,15 @@
 //! infinity), so the polarised radiance of single scattering is each constituent's degree at
 //! that angle times its part of the single-scattered radiance.
 //!
-//! **Many orders** are the vector path tracer's (`methods::path_tracer`), with the matrices and
-//! rotations of [`mueller`].
+//! The exact single scattering's Stokes vectors are `methods::single_scattering::stokes`; many
+//! orders are the vector path tracer's (`methods::path_tracer`), with the matrices and
+//! rotations of [`mueller`]; the real-time models' polarisation is
+//! `methods::shared::polarisation`.
 
 pub mod estimate;
 pub mod mueller;
 
-use crate::atmosphere::Atmosphere;
-use crate::geometry::Ray;
-use crate::methods::single_scattering;
 use glam::DVec3;
-use mueller::ReducedMatrix;
 
 /// A Stokes vector (I, Q, U, V) in the meridian frame, in the unit of the radiance.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -138,37 +136,10 @@ pub fn perpendicular_angle(view: DVec3, sun: DVec3, zenith: DVec3) -> f64 {
     }
 }
 
-/// The Stokes vector of single-scattered light seen from `ray.origin` looking along
-/// `ray.direction` (the light travels along −`ray.direction`), at `wavelength_nm` with the sun
-/// in direction `sun` (the exact integrator of `methods::single_scattering`;
-/// W·m⁻²·sr⁻¹·nm⁻¹).
-pub fn single_scattering_stokes(
-    atm: &Atmosphere,
-    ray: &Ray,
-    sun: DVec3,
-    wavelength_nm: f64,
-) -> Stokes {
-    let parts = single_scattering::radiance_parts(atm, ray, sun, wavelength_nm);
-    let i = parts.total();
-    if i <= 0.0 {
-        return Stokes::default();
-    }
-    let optics = atm.optics(wavelength_nm);
-    let nu = ray.direction.dot(sun);
-    // Q referred to the scattering plane, over I: −b₁ of each constituent is the degree it
-    // polarises across the plane.
-    let across = -(ReducedMatrix::rayleigh(nu, optics.rayleigh_depolarisation).b1 * parts.rayleigh
-        + atm.aerosol_matrix(&optics, nu).b1 * parts.aerosol);
-    let chi = perpendicular_angle(ray.direction, sun, ray.origin.normalize());
-    Stokes::polarised(i, across / i, chi)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::aerosol::AerosolType;
     use crate::geometry::direction_from_angles;
-    use crate::scene::Scene;
 
     #[test]
     fn rayleighs_degree_is_the_classic_formula() {
@@ -184,54 +155,6 @@ mod tests {
         let nu: f64 = 0.4;
         let scaled = (1.0 - nu * nu) / (1.0 + nu * nu + 2.0 * rho / (1.0 - rho));
         assert!((rayleigh_degree(nu, rho) - scaled).abs() < 1e-12);
-    }
-
-    /// A pure-air sky over a black ground: the degree is Rayleigh's at the view's scattering
-    /// angle; the electric vector lies across the scattering plane (horizontal where the sun
-    /// is in the view's vertical plane); mirror views about the sun's vertical have mirrored
-    /// Stokes vectors (U changes sign).
-    #[test]
-    fn single_scattering_polarises_across_the_scattering_plane_symmetrically() {
-        let mut s = Scene::default();
-        s.atmosphere.aerosol.kind = AerosolType::None;
-        s.atmosphere.aerosol.aod550 = 0.0;
-        s.atmosphere.ground_albedo = 0.0;
-        s.sun = crate::scene::SunSettings::Angles {
-            elevation_deg: 20.0,
-            azimuth_deg: 90.0,
-        };
-        let atm = Atmosphere::for_scene(&s);
-        let sun = direction_from_angles(20.0, 90.0);
-        let origin = DVec3::new(0.0, 0.0, atm.bottom_radius_m + 1.0);
-        let look = |elevation: f64, azimuth: f64| {
-            let ray = Ray::new(origin, direction_from_angles(elevation, azimuth));
-            single_scattering_stokes(&atm, &ray, sun, 550.0)
-        };
-        // In the sun's vertical (towards it and away): horizontal, Q < 0, U = 0, χ = 90°.
-        for azimuth in [90.0, 270.0] {
-            let st = look(45.0, azimuth);
-            assert!(st.q < 0.0 && st.u == 0.0, "{azimuth}: {st:?}");
-            assert_eq!(st.angle_of_polarization_deg(), 90.0);
-        }
-        // 90° from the sun (opposite azimuth, 70° up against 20° up): the air's maximum,
-        // (1−ρ)/(1+ρ); and Rayleigh's degree at another angle.
-        let rho = atm.optics(550.0).rayleigh_depolarisation;
-        assert!(direction_from_angles(70.0, 270.0).dot(sun).abs() < 1e-12);
-        let peak = look(70.0, 270.0).degree_of_polarization();
-        assert!((peak - (1.0 - rho) / (1.0 + rho)).abs() < 1e-9, "{peak}");
-        let nu = direction_from_angles(70.0, 180.0).dot(sun);
-        let st = look(70.0, 180.0);
-        assert!((st.degree_of_polarization() - rayleigh_degree(nu, rho)).abs() < 1e-9);
-        // Mirror views about the sun's vertical plane.
-        for (elevation, offset) in [(10.0, 40.0), (50.0, 100.0), (80.0, 150.0)] {
-            let (a, b) = (
-                look(elevation, 90.0 + offset),
-                look(elevation, 90.0 - offset),
-            );
-            assert!((a.i - b.i).abs() < 1e-9 * a.i, "{a:?} {b:?}");
-            assert!((a.q - b.q).abs() < 1e-9 * a.i, "{a:?} {b:?}");
-            assert!((a.u + b.u).abs() < 1e-9 * a.i, "{a:?} {b:?}");
-        }
     }
 
     /// The handedness of the frame: with the sun 45° up in the east and the view 45° up in
@@ -254,24 +177,5 @@ mod tests {
         assert!(chi.abs() < 1e-12, "{chi}");
         let (up, right) = meridian_frame(DVec3::Y, DVec3::Z);
         assert_eq!((up, right), (DVec3::Z, DVec3::X));
-    }
-
-    /// Aerosol and ground add unpolarised light: the polarised radiance stays the air's,
-    /// and the degree falls by the air's share of the light.
-    #[test]
-    fn aerosol_and_ground_add_only_unpolarised_light() {
-        let s = Scene::default();
-        let atm = Atmosphere::for_scene(&s);
-        let sun = direction_from_angles(30.0, 180.0);
-        let origin = DVec3::new(0.0, 0.0, atm.bottom_radius_m + 1.0);
-        let ray = Ray::new(origin, direction_from_angles(40.0, 90.0));
-        let st = single_scattering_stokes(&atm, &ray, sun, 450.0);
-        let parts = single_scattering::radiance_parts(&atm, &ray, sun, 450.0);
-        let rho = atm.optics(450.0).rayleigh_depolarisation;
-        let air_only = rayleigh_degree(ray.direction.dot(sun), rho);
-        let expected = air_only * parts.rayleigh / parts.total();
-        assert!((st.degree_of_polarization() - expected).abs() < 1e-12);
-        assert!(st.degree_of_polarization() < air_only && parts.aerosol > 0.0);
-        assert_eq!(st.i, parts.total());
     }
 }

@@ -35,7 +35,7 @@ pub(super) struct Snapshot {
     pub(super) viewpoint: [f64; 2],
     /// The sun's direction and the scale of its light (`SunSettings::sunlight_scale`).
     pub(super) sun: [f64; 4],
-    pub(super) camera: (CameraSettings, Projection),
+    pub(super) camera: (CameraSettings, Projection, bool),
     pub(super) size: [u32; 2],
     pub(super) display: (f64, ToneMap, DisplayMode, bool, WhiteBalance, bool),
 }

@@ -45,7 +45,13 @@ impl FrameSetup {
             ground: (state.key.settings.ground, state.key.settings.ground_albedo),
             viewpoint: [viewpoint.h, viewpoint.mu_s],
             sun: sun.extend(scene.sun.sunlight_scale()).to_array(),
-            camera: (scene.camera.clone(), view.projection),
+            // The Polarisation mode's radiance image holds Stokes vectors: entering or leaving
+            // it redraws the view, as a new camera would.
+            camera: (
+                scene.camera.clone(),
+                view.projection,
+                view.mode == DisplayMode::Polarisation,
+            ),
             size,
             display: (
                 scene.display.exposure_ev,
@@ -127,6 +133,9 @@ impl FrameSetup {
             Constant::WriteRadiance => u32::from(self.write_radiance),
             Constant::FirstOrder => 1,
             Constant::SunBelowTables => u32::from(self.sun_below_tables),
+            Constant::Polarisation => {
+                uniforms::polarisation_code(view.mode, scene.camera.polariser_deg)
+            }
         }
     }
 

@@ -198,7 +198,7 @@ mod tests {
     /// The files each pass lists make the module the engine compiles, by the rules the
     /// entry points need: what writes the display has the tone map before its own file, a sky
     /// pass ends with the entry point after the radiance it draws (the moving sky's in motion
-    /// when it reads that), the moving sky's pass with its own entry point, and a pass that
+    /// when it reads that) and the polarisation it draws on, the moving sky's pass with its own entry point, and a pass that
     /// defines the way to the sun has one `sun_transmittance_by_way`, from the table only when
     /// it reads that table.
     #[test]
@@ -218,8 +218,8 @@ mod tests {
                         VIEW_RADIANCE
                     };
                     assert_eq!(
-                        &files[files.len() - 2..],
-                        [radiance, SKY_ENTRY_POINT],
+                        &files[files.len() - 3..],
+                        [radiance, SKY_POLARISATION, SKY_ENTRY_POINT],
                         "{name}: its entry point"
                     );
                 }

@@ -261,6 +261,9 @@ pub enum Constant {
     /// Whether a view ray may start with the sun below Bruneton's tables (102° from the
     /// zenith): only then does its sky pass carry the code for such rays.
     SunBelowTables,
+    /// What the sky pass does with the light's polarisation (`POLARISATION_*`): nothing, the
+    /// camera's polarising filter, or the Stokes vector of the Polarisation display mode.
+    Polarisation,
 }
 
 impl Constant {
@@ -279,12 +282,13 @@ impl Constant {
             Constant::WriteRadiance => "WRITE_RADIANCE",
             Constant::FirstOrder => "FIRST_ORDER",
             Constant::SunBelowTables => "SUN_BELOW_TABLES",
+            Constant::Polarisation => "POLARISATION",
         }
     }
 }
 
 /// The pipeline constants of every sky pass ([`PassSpec::sky`]).
-pub const SKY_CONSTANTS: [Constant; 10] = [
+pub const SKY_CONSTANTS: [Constant; 11] = [
     Constant::Projection,
     Constant::AboveAtmosphere,
     Constant::SunDisk,
@@ -295,6 +299,7 @@ pub const SKY_CONSTANTS: [Constant; 10] = [
     Constant::ToneMap,
     Constant::Glare,
     Constant::WriteRadiance,
+    Constant::Polarisation,
 ];
 
 /// How many workgroups a pass runs.
@@ -545,10 +550,18 @@ impl GpuMethod {
         } else {
             self.common
         };
+        // A sky pass's entry point draws the light's polarisation too.
+        let (own, entry): (&[Shader], &[Shader]) = match pass.files.split_last() {
+            Some((last, rest)) if *last == SKY_ENTRY_POINT => {
+                (rest, &[SKY_POLARISATION, SKY_ENTRY_POINT])
+            }
+            _ => (pass.files, &[]),
+        };
         COMMON
             .iter()
             .chain(model)
-            .chain(pass.files)
+            .chain(own)
+            .chain(entry)
             .copied()
             .collect()
     }

@@ -34,6 +34,10 @@ pub const TONE: Shader = shader!("views/tone.wgsl");
 /// The entry point every sky pass ends with; the pass's own file defines `radiance(layer, dir)`.
 pub const SKY_ENTRY_POINT: Shader = shader!("views/sky.wgsl");
 
+/// The polarisation of the real-time sky, which every sky pass's entry point draws on
+/// (`GpuMethod::files` puts it before [`SKY_ENTRY_POINT`]).
+pub const SKY_POLARISATION: Shader = shader!("views/polarisation.wgsl");
+
 /// What the entry point draws along a direction (`view_radiance`): the model's `radiance`, or
 /// for a sky pass that reads the moving sky in frames drawn in tiles that table.
 pub const VIEW_RADIANCE: Shader = shader!("views/radiance.wgsl");

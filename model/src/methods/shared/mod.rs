@@ -12,6 +12,7 @@ pub mod march;
 pub mod moving_sky;
 pub mod mu_s_axis;
 pub mod optics;
+pub mod polarisation;
 pub mod ray;
 pub mod segments_sky;
 pub mod single_scattering_sky;
