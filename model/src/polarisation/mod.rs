@@ -28,6 +28,7 @@
 
 pub mod estimate;
 pub mod mueller;
+pub mod neutral_points;
 
 use glam::DVec3;
 
