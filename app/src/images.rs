@@ -194,6 +194,7 @@ fn glyph(c: char) -> u16 {
         'd' => [1, 1, 7, 5, 7],
         'm' => [0, 6, 7, 5, 5],
         '/' => [1, 1, 2, 4, 4],
+        '%' => [5, 1, 2, 4, 5],
         _ => [0; 5],
     };
     rows.iter().fold(0, |acc, r| (acc << 3) | r)
@@ -203,6 +204,28 @@ fn glyph(c: char) -> u16 {
 /// 10^log10_min to 10^log10_max cd/m² with a label at every power of ten. Returns RGB8 rows and
 /// their count.
 pub fn legend_strip(width: u32, log10_min: f64, log10_max: f64) -> (Vec<u8>, u32) {
+    let ticks: Vec<(f64, String)> = (log10_min.ceil() as i32..=log10_max.floor() as i32)
+        .map(|k| {
+            (
+                (f64::from(k) - log10_min) / (log10_max - log10_min),
+                format!("1e{k}"),
+            )
+        })
+        .collect();
+    false_colour_strip(width, &ticks, "cd/m2")
+}
+
+/// A legend strip for the polarisation map: the degree of polarisation from 0 to 100 %.
+pub fn polarisation_strip(width: u32) -> (Vec<u8>, u32) {
+    let ticks: Vec<(f64, String)> = [0, 25, 50, 75, 100]
+        .map(|p| (f64::from(p) / 100.0, p.to_string()))
+        .to_vec();
+    false_colour_strip(width, &ticks, "%")
+}
+
+/// The false-colour bar `width` pixels wide with `ticks` (position 0–1, label) and `unit` at
+/// the right. Returns RGB8 rows and their count.
+fn false_colour_strip(width: u32, ticks: &[(f64, String)], unit: &str) -> (Vec<u8>, u32) {
     let scale = if width >= 320 { 2 } else { 1 };
     let (bar_top, bar_rows) = (4, 8);
     let text_top = bar_top + bar_rows + 3;
@@ -240,18 +263,13 @@ pub fn legend_strip(width: u32, log10_min: f64, log10_max: f64) -> (Vec<u8>, u32
             }
         }
     };
-    let unit = "cd/m2";
     let unit_x = w.saturating_sub(margin + unit.len() * 4 * scale);
     text(unit, unit_x);
-    let first = log10_min.ceil() as i32;
-    let last = log10_max.floor() as i32;
-    for k in first..=last {
-        let t = (f64::from(k) - log10_min) / (log10_max - log10_min);
-        let label = format!("1e{k}");
+    for (t, label) in ticks {
         let x = (margin as f64 + t * (span - 1) as f64 - (label.len() * 2 * scale) as f64).max(0.0);
         // Labels that would run into the unit are left out.
         if x as usize + (label.len() * 4 + 2) * scale < unit_x {
-            text(&label, x as usize);
+            text(label, x as usize);
         }
     }
     (img, rows as u32)

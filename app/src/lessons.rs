@@ -243,7 +243,10 @@ impl Lesson {
             message,
         })?;
         if let Some(p) = lesson.inspect {
-            if !matches!(lesson.tab, Tab::Sky | Tab::Fisheye | Tab::Luminance) {
+            if !matches!(
+                lesson.tab,
+                Tab::Sky | Tab::Fisheye | Tab::Luminance | Tab::Polarisation
+            ) {
                 return Err(LessonError::Invalid {
                     file: file.into(),
                     message: format!("the {} tab has no pixel to inspect", lesson.tab.label()),

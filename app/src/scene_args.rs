@@ -25,6 +25,8 @@ pub struct SceneArgs {
     pub preset: Option<PathBuf>,
     #[arg(long, value_name = "M", allow_hyphen_values = true, help = ranged("Camera height above the ground", limits::CAMERA_ALTITUDE_M))]
     pub altitude_m: Option<f64>,
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, help = ranged("A polarising filter on the camera, its transmission axis from up in the picture towards right", limits::CAMERA_POLARISER_DEG))]
+    pub polariser: Option<f64>,
     /// Sun zenith angle, degrees (0 to 180).
     #[arg(
         long,
@@ -216,6 +218,9 @@ impl SceneArgs {
                     names(&GroundType::ALL, GroundType::cli_name)
                 )
             })?;
+        }
+        if let Some(angle) = self.polariser {
+            scene.camera.polariser_deg = Some(angle);
         }
         if let Some(h) = self.altitude_m {
             scene.camera.altitude_m = h;

@@ -4,13 +4,14 @@
 use eframe::egui;
 use serde::{Deserialize, Serialize};
 
-/// The centre tabs, with their shortcut keys 1–7.
+/// The centre tabs, with their shortcut keys 1–8.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 pub enum Tab {
     #[default]
     Sky,
     Fisheye,
     Luminance,
+    Polarisation,
     Compare,
     Luts,
     Reference,
@@ -18,10 +19,11 @@ pub enum Tab {
 }
 
 impl Tab {
-    pub const ALL: [Tab; 7] = [
+    pub const ALL: [Tab; 8] = [
         Tab::Sky,
         Tab::Fisheye,
         Tab::Luminance,
+        Tab::Polarisation,
         Tab::Compare,
         Tab::Luts,
         Tab::Reference,
@@ -33,6 +35,7 @@ impl Tab {
             Tab::Sky => "Sky",
             Tab::Fisheye => "Fisheye",
             Tab::Luminance => "Luminance",
+            Tab::Polarisation => "Polarisation",
             Tab::Compare => "Compare",
             Tab::Luts => "LUTs",
             Tab::Reference => "Reference",
@@ -49,6 +52,9 @@ impl Tab {
             Tab::Luminance => {
                 "Brightness as the eye weighs it (cd/m²), in false colour on a log scale."
             }
+            Tab::Polarisation => {
+                "The sky dome's degree of polarisation in false colour, the direction of its electric vector as lines, and the neutral points."
+            }
             Tab::Compare => {
                 "The same view by two models or wavelength sets, and how much their colours differ (ΔE2000)."
             }
@@ -63,7 +69,7 @@ impl Tab {
     }
 
     pub fn key(self) -> egui::Key {
-        const KEYS: [egui::Key; 7] = [
+        const KEYS: [egui::Key; 8] = [
             egui::Key::Num1,
             egui::Key::Num2,
             egui::Key::Num3,
@@ -71,6 +77,7 @@ impl Tab {
             egui::Key::Num5,
             egui::Key::Num6,
             egui::Key::Num7,
+            egui::Key::Num8,
         ];
         KEYS[Tab::ALL.iter().position(|&t| t == self).unwrap_or(0)]
     }

@@ -547,7 +547,7 @@ fn the_scene_panel_chooses_the_cie_sky_type() {
 #[test]
 fn the_lut_tab_reads_every_table() {
     let mut h = harness();
-    h.key_press(egui::Key::Num5);
+    h.key_press(egui::Key::Num6);
     h.run();
     assert_eq!(h.state().layout.tab, Tab::Luts);
     // The tab shows the tables whatever their steps: the fewest build them soonest.
@@ -626,7 +626,7 @@ fn the_reference_pauses_while_its_tab_is_hidden() {
     let paused = spp(&h);
     std::thread::sleep(std::time::Duration::from_millis(500));
     assert_eq!(spp(&h), paused, "traced while hidden");
-    h.key_press(egui::Key::Num6);
+    h.key_press(egui::Key::Num7);
     h.run();
     for _ in 0..600 {
         if spp(&h) > paused {
@@ -950,6 +950,55 @@ fn the_luminance_tab_reads_out_the_pixel_under_the_pointer() {
         .unwrap_or_else(|| panic!("no value in {text}"));
     // Daylight sky: between a dim 10³ and the sun's aureole 10⁵ cd/m².
     assert!((1e3..1e5).contains(&value), "{value} cd/m²");
+}
+
+/// The Polarisation tab: the dome's degree of polarisation with its legend, the electric
+/// vector's lines, the read-out under the pointer, and at sunset in a clear sky the neutral
+/// points of Arago and Babinet, named and placed. The Scene panel's polarising filter turns the
+/// camera's filter on at its angle and off again.
+#[test]
+fn the_polarisation_tab_shows_the_degree_the_lines_and_the_neutral_points() {
+    let mut h = harness();
+    h.state_mut().scene.atmosphere.aerosol.kind = atmoscope_model::aerosol::AerosolType::None;
+    h.state_mut().scene.sun = atmoscope_model::scene::SunSettings::Angles {
+        elevation_deg: 2.0,
+        azimuth_deg: 180.0,
+    };
+    h.key_press(egui::Key::Num4);
+    h.run();
+    assert_eq!(h.state().layout.tab, Tab::Polarisation);
+    let view = main_view(&h).expect("drawn");
+    assert_eq!(view.mode, atmoscope_render::DisplayMode::Polarisation);
+    h.get_by_label("hover the dome to read the polarisation");
+    h.get_by_label_contains("Arago: elevation");
+    h.get_by_label_contains("Babinet: elevation");
+    if let Some(dir) = std::env::var_os("ATMOSCOPE_SCREENSHOTS") {
+        let path = Path::new(&dir).join("polarisation-tab.png");
+        h.render().expect("rendered").save(&path).expect("saved");
+    }
+    let centre = h.get_by_role(egui::accesskit::Role::Image).rect().center();
+    h.hover_at(centre);
+    h.run();
+    let text = h
+        .get_by_label_contains("under the pointer:")
+        .accesskit_node()
+        .value()
+        .unwrap_or_default();
+    let degree: f64 = text
+        .split("under the pointer: ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no degree in {text}"));
+    // The zenith, 88° from the sun: the band of strongest polarisation.
+    assert!((60.0..95.0).contains(&degree), "{degree} %");
+
+    h.get_by_label("polarising filter").click();
+    h.run();
+    assert_eq!(h.state().scene.camera.polariser_deg, Some(0.0));
+    h.get_by_label("polarising filter").click();
+    h.run();
+    assert_eq!(h.state().scene.camera.polariser_deg, None);
 }
 
 /// A stored layout is untrusted: out-of-range indices, absurd ranges, an offline model in

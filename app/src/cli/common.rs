@@ -194,6 +194,8 @@ pub enum ViewArg {
     Panorama,
     /// Luminance in cd/m², log scale in false colour, on the fisheye sky dome.
     Luminance,
+    /// The degree of polarisation in false colour, 0–100 %, on the fisheye sky dome (PNG).
+    Polarisation,
 }
 
 impl ViewArg {
@@ -204,6 +206,7 @@ impl ViewArg {
             ViewArg::Fisheye => (Projection::Fisheye, DisplayMode::Colour),
             ViewArg::Panorama => (Projection::Panorama, DisplayMode::Colour),
             ViewArg::Luminance => (Projection::Fisheye, DisplayMode::LUMINANCE),
+            ViewArg::Polarisation => (Projection::Fisheye, DisplayMode::Polarisation),
         }
     }
 }

@@ -108,6 +108,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
             log10_max,
         };
     }
+    if mode == DisplayMode::Polarisation && format == Format::Exr {
+        bail!(
+            "--projection polarisation draws the degree of polarisation as a PNG; the Stokes vectors as EXR channels come from `atmoscope reference --stokes`"
+        );
+    }
     let (width, height) = args.size.unwrap_or(size);
     let gpu = gpu()?;
     let mut engine = Engine::new(&gpu.device, &gpu.queue);
@@ -147,6 +152,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
             } = mode
             {
                 let (strip, strip_rows) = legend_strip(width, log10_min, log10_max);
+                rgb.extend(strip);
+                rows += strip_rows;
+            }
+            if mode == DisplayMode::Polarisation {
+                let (strip, strip_rows) = crate::images::polarisation_strip(width);
                 rgb.extend(strip);
                 rows += strip_rows;
             }

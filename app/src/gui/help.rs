@@ -8,8 +8,8 @@ use eframe::egui;
 /// "Shortcuts" table lists the same rows (a test compares them).
 pub const SHORTCUTS: &[(&str, &str)] = &[
     (
-        "1 – 7",
-        "Sky, Fisheye, Luminance, Compare, LUTs, Reference, Bench",
+        "1 – 8",
+        "Sky, Fisheye, Luminance, Polarisation, Compare, LUTs, Reference, Bench",
     ),
     (
         "S / I / P",
@@ -21,7 +21,7 @@ pub const SHORTCUTS: &[(&str, &str)] = &[
     ("Ctrl+E / Ctrl+Shift+E", "export the view as PNG / EXR"),
     (
         "drag",
-        "look around (Sky, Luminance); on the Fisheye, move the sun",
+        "look around (Sky, Luminance); on the Fisheye and Polarisation domes, move the sun",
     ),
     ("Shift-drag", "move the sun (Sky, Luminance)"),
     ("wheel", "raise or lower the camera"),

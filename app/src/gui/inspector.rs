@@ -280,7 +280,7 @@ impl Inspector {
         }
         let Some(a) = &self.result else {
             ui.label(
-                "Click a pixel of the Sky, Fisheye or Luminance view to see what it is made of.",
+                "Click a pixel of the Sky, Fisheye, Luminance or Polarisation view to see what it is made of.",
             );
             return;
         };

@@ -14,6 +14,7 @@ pub mod inspector;
 pub mod jobs;
 pub mod lut_tab;
 pub mod performance_panel;
+pub mod polarisation_overlay;
 pub mod reference_tab;
 pub mod scene_panel;
 pub mod scripted;
@@ -395,7 +396,10 @@ impl ExplorerApp {
         let Some(ray) = sky_tab::ray_at(&self.scene, &view, x, y) else {
             return;
         };
-        let displayed = views.main.radiance().ok().and_then(|r| r.at(x, y));
+        // The Polarisation tab's radiance image holds Stokes vectors, not colours.
+        let displayed = (tab != Tab::Polarisation)
+            .then(|| views.main.radiance().ok().and_then(|r| r.at(x, y)))
+            .flatten();
         let (elevation, azimuth) = angles_of(ray.direction);
         self.inspector.inspect(
             ctx,
@@ -429,7 +433,7 @@ impl ExplorerApp {
             // The tabs that draw the main view build it themselves.
             let drawn = matches!(
                 self.layout.tab,
-                Tab::Sky | Tab::Fisheye | Tab::Luminance | Tab::Luts
+                Tab::Sky | Tab::Fisheye | Tab::Luminance | Tab::Polarisation | Tab::Luts
             );
             if !drawn {
                 let view = views
@@ -641,7 +645,7 @@ impl ExplorerApp {
             r.set_visible(tab == Tab::Reference);
         }
         match tab {
-            Tab::Sky | Tab::Fisheye | Tab::Luminance => {
+            Tab::Sky | Tab::Fisheye | Tab::Luminance | Tab::Polarisation => {
                 sky_tab::show(ui, &self.scene, &mut views.main, tab, &mut self.layout)
             }
             Tab::Compare => {

@@ -533,6 +533,36 @@ fn camera(ui: &mut egui::Ui, s: &mut Scene) {
         "Moves the camera back over the curved planet, against its heading, keeping its altitude: from \
          orbit this shows the sunlit limb ahead. The sun stays where it is in the sky of the scene's origin.",
     );
+    polariser(ui, c);
+}
+
+/// The camera's polarising filter: on or off, and the angle of its transmission axis.
+fn polariser(ui: &mut egui::Ui, c: &mut atmoscope_model::scene::CameraSettings) {
+    // The angle stays in the widget's memory while the filter is off.
+    let id = egui::Id::unique("polariser angle");
+    let mut angle = c
+        .polariser_deg
+        .unwrap_or_else(|| ui.ctx().data(|d| d.get_temp(id)).unwrap_or(0.0));
+    let mut on = c.polariser_deg.is_some();
+    ui.checkbox(&mut on, "polarising filter").on_hover_text(
+        "A linear polariser in front of the lens, as a photographer's circular polariser acts on the \
+         sky: it passes (I + Q cos 2θ + U sin 2θ)/2 of the light, in every view and export. Turned \
+         across the electric vector, 90° from the sun, it darkens the blue sky; towards the sun it \
+         changes little. It passes half of unpolarised light (one stop), which metered exposure \
+         makes up. The sky's polarisation is the Polarisation tab's; aerosols add unpolarised light.",
+    );
+    ui.add_enabled(
+        on,
+        Slider::new(&mut angle, limits::CAMERA_POLARISER_DEG.range())
+            .suffix("°")
+            .text("filter angle"),
+    )
+    .on_hover_text(
+        "The filter's transmission axis, from up in the picture towards right: 0° passes light vibrating \
+         vertically, ±90° horizontally.",
+    );
+    ui.ctx().data_mut(|d| d.insert_temp(id, angle));
+    c.polariser_deg = on.then_some(angle);
 }
 
 /// What a model does, where it is valid and where it comes from.

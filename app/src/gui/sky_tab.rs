@@ -1,8 +1,11 @@
-//! The Sky, Fisheye and Luminance tabs: the real-time view with its controls. Drag to look
-//! around, the wheel changes altitude, Shift-drag (any drag on the fisheye) puts the sun under the
-//! pointer, a click inspects the pixel. The luminance map adds a legend and a hover read-out.
+//! The Sky, Fisheye, Luminance and Polarisation tabs: the real-time view with its controls.
+//! Drag to look around, the wheel changes altitude, Shift-drag (any drag on a dome) puts the sun
+//! under the pointer, a click inspects the pixel. The luminance map adds a legend and a hover
+//! read-out; the polarisation dome its legend, the electric vector's lines and the neutral
+//! points (`polarisation_overlay`).
 
 use super::gpu_view::{GpuView, building_over, mark, notice, pixels};
+use super::polarisation_overlay;
 use super::state::{Command, LUMINANCE_LOG10_LIMITS, Layout, Tab, angles_of, projection};
 use atmoscope_model::Scene;
 use atmoscope_model::camera::{Camera, Projection};
@@ -26,6 +29,9 @@ pub fn view_for(tab: Tab, layout: &Layout, size: [u32; 2]) -> View {
             log10_min: layout.luminance_log10_range[0],
             log10_max: layout.luminance_log10_range[1],
         };
+    }
+    if tab == Tab::Polarisation {
+        view.mode = DisplayMode::Polarisation;
     }
     view
 }
@@ -61,7 +67,11 @@ pub fn show(
     if tab == Tab::Luminance {
         avail.y -= LEGEND_HEIGHT;
     }
-    let points = if tab == Tab::Fisheye {
+    if tab == Tab::Polarisation {
+        avail.y -= polarisation_overlay::LEGEND_HEIGHT;
+    }
+    let dome = projection(tab) == Projection::Fisheye;
+    let points = if dome {
         Vec2::splat(avail.x.min(avail.y))
     } else {
         avail
@@ -92,7 +102,9 @@ pub fn show(
         }
     };
     let response = response.on_hover_text(match tab {
-        Tab::Fisheye => "Drag to move the sun over the dome · click a pixel to inspect it",
+        Tab::Fisheye | Tab::Polarisation => {
+            "Drag to move the sun over the dome · click a pixel to inspect it"
+        }
         _ => "Drag to look around · wheel: altitude · Shift-drag: move the sun · click: inspect",
     });
     let rect = response.rect;
@@ -113,7 +125,7 @@ pub fn show(
     };
 
     let mut s = scene.clone();
-    let move_sun = tab == Tab::Fisheye || ui.input(|i| i.modifiers.shift);
+    let move_sun = dome || ui.input(|i| i.modifiers.shift);
     if response.dragged() {
         if move_sun {
             let ray = response
@@ -154,8 +166,12 @@ pub fn show(
         commands.push(Command::SetScene(Box::new(s)));
     }
 
-    if tab == Tab::Fisheye {
+    if dome {
         compass(ui.painter(), rect, scene.camera.heading_deg);
+    }
+    if tab == Tab::Polarisation {
+        let hovered = response.hover_pos().and_then(pixel_at);
+        polarisation_overlay::show(ui, rect, scene, &view, gpu, hovered);
     }
     if tab == Tab::Luminance {
         let hovered = response.hover_pos().and_then(pixel_at);
@@ -193,12 +209,8 @@ fn compass(painter: &egui::Painter, rect: egui::Rect, heading_deg: f64) {
     }
 }
 
-/// The false-colour scale with a tick per decade, the range controls and the hover read-out.
-fn legend(ui: &mut egui::Ui, layout: &mut Layout, read_out: Option<f64>) {
-    let [lo, hi] = layout.luminance_log10_range;
-    let (rect, _) = ui.allocate_exact_size(Vec2::new(ui.available_width(), 14.0), Sense::hover());
-    // Room at both ends for the first and last tick labels.
-    let rect = rect.shrink2(Vec2::new(20.0, 0.0));
+/// The false-colour scale from its low end on the left to its high end on the right.
+pub fn false_colour_bar(painter: &egui::Painter, rect: egui::Rect) {
     let n = 64;
     for i in 0..n {
         let t0 = i as f32 / n as f32;
@@ -207,7 +219,7 @@ fn legend(ui: &mut egui::Ui, layout: &mut Layout, read_out: Option<f64>) {
         );
         let x0 = rect.left() + t0 * rect.width();
         let x1 = rect.left() + (i + 1) as f32 / n as f32 * rect.width();
-        ui.painter().rect_filled(
+        painter.rect_filled(
             egui::Rect::from_min_max(Pos2::new(x0, rect.top()), Pos2::new(x1, rect.bottom())),
             0.0,
             Color32::from_rgb(
@@ -217,6 +229,15 @@ fn legend(ui: &mut egui::Ui, layout: &mut Layout, read_out: Option<f64>) {
             ),
         );
     }
+}
+
+/// The false-colour scale with a tick per decade, the range controls and the hover read-out.
+fn legend(ui: &mut egui::Ui, layout: &mut Layout, read_out: Option<f64>) {
+    let [lo, hi] = layout.luminance_log10_range;
+    let (rect, _) = ui.allocate_exact_size(Vec2::new(ui.available_width(), 14.0), Sense::hover());
+    // Room at both ends for the first and last tick labels.
+    let rect = rect.shrink2(Vec2::new(20.0, 0.0));
+    false_colour_bar(ui.painter(), rect);
     ui.horizontal(|ui| {
         for k in (lo.ceil() as i32)..=(hi.floor() as i32) {
             let t = ((f64::from(k) - lo) / (hi - lo)) as f32;

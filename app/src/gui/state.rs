@@ -258,7 +258,7 @@ impl Default for ReferenceSettings {
 /// The projection a tab draws.
 pub fn projection(tab: Tab) -> Projection {
     match tab {
-        Tab::Fisheye => Projection::Fisheye,
+        Tab::Fisheye | Tab::Polarisation => Projection::Fisheye,
         _ => Projection::Perspective,
     }
 }
