@@ -12,7 +12,7 @@
 use crate::presets::load_shipped;
 use crate::summary;
 use crate::tab::Tab;
-use atmoscope_model::Scene;
+use atmoscope_model::{Atmosphere, Scene};
 use serde::Deserialize;
 use std::path::Path;
 use thiserror::Error;
@@ -112,10 +112,18 @@ pub enum Quantity {
     AltitudeKm,
     OzoneDu,
     Aod550,
+    /// The degree of polarisation of sunlight scattered once, 90° from the sun in its vertical
+    /// plane (on the far side when the sun is up), percent (at λ); air alone's limit there,
+    /// (1−ρ)/(1+ρ), percent (at λ); and what a polarising filter passes of that light turned
+    /// across and along its electric vector, percent of the light without the filter (at λ).
+    Polarisation90Percent,
+    AirPolarisationPercent,
+    PolariserAcrossPercent,
+    PolariserAlongPercent,
 }
 
 impl Quantity {
-    const NAMES: [(&'static str, Quantity, bool); 15] = [
+    const NAMES: [(&'static str, Quantity, bool); 19] = [
         ("tau_rayleigh", Quantity::TauRayleigh, true),
         ("tau_ozone", Quantity::TauOzone, true),
         ("tau_aerosol", Quantity::TauAerosol, true),
@@ -131,6 +139,26 @@ impl Quantity {
         ("altitude_km", Quantity::AltitudeKm, false),
         ("ozone_du", Quantity::OzoneDu, false),
         ("aod550", Quantity::Aod550, false),
+        (
+            "polarisation_90_percent",
+            Quantity::Polarisation90Percent,
+            true,
+        ),
+        (
+            "air_polarisation_percent",
+            Quantity::AirPolarisationPercent,
+            true,
+        ),
+        (
+            "polariser_across_percent",
+            Quantity::PolariserAcrossPercent,
+            true,
+        ),
+        (
+            "polariser_along_percent",
+            Quantity::PolariserAlongPercent,
+            true,
+        ),
     ];
 }
 
@@ -334,8 +362,16 @@ impl Lesson {
                     let visibility_km =
                         |extinction_per_m: f64| -VISIBILITY_CONTRAST.ln() / extinction_per_m / 1e3;
                     let at_550 = row(VISIBILITY_NM).map(|r| r.extinction_at_camera_per_m);
-                    let percent =
-                        matches!(v.quantity, Quantity::SunPercent | Quantity::HorizonPercent);
+                    let percent = matches!(
+                        v.quantity,
+                        Quantity::SunPercent
+                            | Quantity::HorizonPercent
+                            | Quantity::Polarisation90Percent
+                            | Quantity::AirPolarisationPercent
+                            | Quantity::PolariserAcrossPercent
+                            | Quantity::PolariserAlongPercent
+                    );
+                    let degree_90 = || v.wavelength_nm.map(|w| polarisation_90(scene, w));
                     let value = match (v.quantity, v.wavelength_nm.and_then(row)) {
                         (Quantity::VisibilityKm, _) => at_550.map(|e| visibility_km(e.total)),
                         (Quantity::AirVisibilityKm, _) => at_550.map(|e| visibility_km(e.rayleigh)),
@@ -356,6 +392,21 @@ impl Lesson {
                         }
                         (Quantity::AerosolSsa, Some(r)) => Some(r.aerosol_ssa),
                         (Quantity::AerosolG, Some(r)) => Some(r.aerosol_g),
+                        (Quantity::Polarisation90Percent, Some(_)) => {
+                            degree_90().map(|d| 100.0 * d)
+                        }
+                        (Quantity::AirPolarisationPercent, Some(_)) => v.wavelength_nm.map(|w| {
+                            let rho = Atmosphere::for_scene(scene)
+                                .optics(w)
+                                .rayleigh_depolarisation;
+                            100.0 * atmoscope_model::polarisation::rayleigh_degree(0.0, rho)
+                        }),
+                        (Quantity::PolariserAcrossPercent, Some(_)) => {
+                            degree_90().map(|d| 50.0 * (1.0 - d))
+                        }
+                        (Quantity::PolariserAlongPercent, Some(_)) => {
+                            degree_90().map(|d| 50.0 * (1.0 + d))
+                        }
                         (_, None) => None,
                     };
                     match value {
@@ -367,6 +418,29 @@ impl Lesson {
             })
             .collect()
     }
+}
+
+/// The degree of polarisation (0–1) of the sunlight scattered once that reaches the camera of
+/// `scene` from 90° from the sun in the sun's vertical plane, at `wavelength_nm` (exact single
+/// scattering, `methods::single_scattering::stokes`).
+fn polarisation_90(scene: &Scene, wavelength_nm: f64) -> f64 {
+    use atmoscope_model::geometry::{Ray, direction_from_angles};
+    let atm = Atmosphere::for_scene(scene);
+    let a = scene.sun.angles();
+    let sun = direction_from_angles(a.elevation_deg, a.azimuth_deg);
+    let view = if a.elevation_deg >= 0.0 {
+        direction_from_angles(90.0 - a.elevation_deg, a.azimuth_deg + 180.0)
+    } else {
+        direction_from_angles(90.0 + a.elevation_deg, a.azimuth_deg)
+    };
+    let origin = glam::DVec3::new(0.0, 0.0, atm.bottom_radius_m + scene.camera.altitude_m);
+    atmoscope_model::methods::single_scattering::stokes(
+        &atm,
+        &Ray::new(origin, view),
+        sun,
+        wavelength_nm,
+    )
+    .degree_of_polarization()
 }
 
 /// Every shipped lesson, in file order: (file name, lesson or why it does not load).

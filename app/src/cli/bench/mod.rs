@@ -8,6 +8,7 @@ mod gpu;
 mod leenman;
 mod methods;
 mod path_tracer;
+mod polarisation;
 mod transmittance;
 
 use clap::Subcommand;
@@ -33,6 +34,10 @@ pub enum Bench {
     /// time, table memory and error against path-traced references; results.csv, a summary
     /// and the Pareto chart of time against error.
     Methods(methods::MethodsBench),
+    /// The real-time models' degree of polarisation against the path tracer's vector mode,
+    /// per view of the suite (mean and 95th percentile of the absolute difference), and the
+    /// vector mode's cost against the scalar one.
+    Polarisation(polarisation::PolarisationBench),
     /// Optical depth to the top of the atmosphere by the midpoint rule, the trapezoid rule and
     /// the transmittance table against adaptive quadrature, with the CPU time per evaluation.
     Transmittance(transmittance::TransmittanceBench),
@@ -56,6 +61,7 @@ pub fn run(bench: &Bench) -> anyhow::Result<ExitCode> {
         Bench::ClearSky(args) => clear_sky::run(args),
         Bench::Leenman(args) => leenman::run(args),
         Bench::Transmittance(args) => transmittance::run(args),
+        Bench::Polarisation(args) => polarisation::run(args),
         // The session plays in the explorer's window, which `atmoscope::run` opens for it.
         Bench::Gui(_) => anyhow::bail!("`bench gui` runs from the atmoscope command"),
     }
