@@ -230,6 +230,11 @@ pub fn wgsl_prelude() -> String {
     c("MS_LIKE_SINGLE", "f32", f(realtime::MS_LIKE_SINGLE));
     c("MS_VERTICAL", "f32", f(realtime::MS_VERTICAL));
     c(
+        "POLARISATION_DENSE_BELOW_M",
+        "f32",
+        f(realtime::DENSE_NEAR_CAMERA_BELOW_M),
+    );
+    c(
         "SMALL_DEPTH_DIFFERENCE",
         "f32",
         f(shared::segments_sky::SMALL_DEPTH_DIFFERENCE),

@@ -38,6 +38,20 @@ fn rayleigh_b1(nu: f32, rho: vec4<f32>) -> vec4<f32> {
     return -0.75 * delta * (1.0 - nu2) / a1;
 }
 
+// The middle and length (m) of sample s of a view ray t_max long from altitude h0: spaced as u²
+// from a camera in the lower atmosphere, evenly from higher up; twin of
+// model::methods::shared::polarisation::view_step.
+fn view_step(s: u32, t_max: f32, h0: f32) -> vec2<f32> {
+    let n = f32(POLARISATION_VIEW_STEPS);
+    var a = f32(s) / n;
+    var b = f32(s + 1u) / n;
+    if h0 < POLARISATION_DENSE_BELOW_M {
+        a *= a;
+        b *= b;
+    }
+    return vec2<f32>(0.5 * (a + b) * t_max, (b - a) * t_max);
+}
+
 // Up in the picture at the view's point (x, y), perpendicular to the ray dir: from the rays half
 // a pixel above and below (twin of the reference render's frame, model::reference); the
 // meridian plane's up where they fail.
@@ -83,12 +97,13 @@ fn sky_stokes(layer: u32, dir: vec3<f32>, e_up: vec3<f32>, i_model: vec4<f32>) -
     if cc.c.ground {
         t_max = distance_to_ground(h0, mu0);
     }
-    let dt = t_max / f32(POLARISATION_VIEW_STEPS);
     var i1 = vec4<f32>(0.0);
     var q1 = vec4<f32>(0.0);
     var throughput = vec4<f32>(1.0);
     for (var s = 0u; s < POLARISATION_VIEW_STEPS; s++) {
-        let t = (f32(s) + 0.5) * dt;
+        let step = view_step(s, t_max, h0);
+        let t = step.x;
+        let dt = step.y;
         let at = altitude_along(h0, mu0, t);
         let mu_s_t = clamp((r0 * mu_s0 + t * nu) / at.y, -1.0, 1.0);
         let m = medium(b, at.x);

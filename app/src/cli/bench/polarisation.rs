@@ -21,11 +21,11 @@ pub struct PolarisationBench {
     #[arg(
         long,
         value_delimiter = ',',
-        default_value = "fisheye-sun90,fisheye-sun30,fisheye-sun5,fisheye-sun0,ground-sunrise,ground-noon,twilight-6"
+        default_value = "fisheye-sun90,fisheye-sun30,fisheye-sun5,ground-sunrise,ground-noon"
     )]
     pub views: Vec<String>,
     /// Image size, pixels on the longer side (the view's aspect kept).
-    #[arg(long, default_value_t = 40, value_parser = clap::value_parser!(u32).range(8..=512))]
+    #[arg(long, default_value_t = 32, value_parser = clap::value_parser!(u32).range(8..=512))]
     pub size: u32,
     /// Paths per pixel of the vector references.
     #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(2..))]

@@ -4,7 +4,7 @@
 //! `shaders/views/polarisation.wgsl`.
 //!
 //! **Single scattering** is marched like the table-free models' skies ([`VIEW_STEPS`] midpoint
-//! samples): its radiance I₁ and its Q referred to the scattering plane, from air's matrix
+//! samples, crowded near a camera in the lower atmosphere): its radiance I₁ and its Q referred to the scattering plane, from air's matrix
 //! (`mueller::ReducedMatrix::rayleigh`). The aerosols polarise nothing here, whatever their
 //! phase: the GPU holds no Mie matrix.
 //!
@@ -38,8 +38,8 @@ pub const MS_LIKE_SINGLE: f64 = 0.44;
 /// tracer has them.
 pub const MS_VERTICAL: f64 = 0.15;
 
-/// Midpoint samples of single scattering along a view ray.
-pub const VIEW_STEPS: u32 = 16;
+/// Midpoint samples of single scattering along a view ray ([`view_step`]).
+pub const VIEW_STEPS: u32 = 24;
 
 /// Once-scattered sunlight along a view ray, per lane, W·m⁻²·sr⁻¹·nm⁻¹.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -76,11 +76,10 @@ pub fn single_scattered(
     } else {
         distance_to_top(h0, mu0, big_r, p.top_radius_m)
     };
-    let dt = t_max / f64::from(VIEW_STEPS);
     let (mut i, mut q) = (Lanes::ZERO, Lanes::ZERO);
     let mut throughput = Lanes::ONE;
     for s in 0..VIEW_STEPS {
-        let t = (f64::from(s) + 0.5) * dt;
+        let (t, dt) = view_step(s, t_max, h0);
         let (h_t, r_t) = altitude_along(h0, mu0, t, big_r);
         let mu_s_t = ((r0 * mu_s0 + t * nu) / r_t).clamp(-1.0, 1.0);
         let m = p.medium(layer, h_t);
@@ -100,6 +99,24 @@ pub fn single_scattered(
         ground: c.ground,
     })
 }
+
+/// The middle and length (m) of sample `s` of a view ray `t_max` long from altitude `h0`:
+/// spaced as u² (u = s/[`VIEW_STEPS`]) from a camera in the lower atmosphere, where a low-lying
+/// haze of scale height 1–2 km would otherwise fall inside the first sample of a long slant
+/// ray, and evenly from higher up.
+pub fn view_step(s: u32, t_max: f64, h0: f64) -> (f64, f64) {
+    let n = f64::from(VIEW_STEPS);
+    let (u0, u1) = (f64::from(s) / n, f64::from(s + 1) / n);
+    let (a, b) = if h0 < DENSE_NEAR_CAMERA_BELOW_M {
+        (u0 * u0, u1 * u1)
+    } else {
+        (u0, u1)
+    };
+    (0.5 * (a + b) * t_max, (b - a) * t_max)
+}
+
+/// Below this altitude (m) the view samples crowd near the camera ([`view_step`]).
+pub const DENSE_NEAR_CAMERA_BELOW_M: f64 = 20_000.0;
 
 /// (cos 2χ, sin 2χ) of the unit vector `e` (perpendicular to the view) in the frame whose e₁
 /// is `e_up` and e₂ = `dir` × e₁; zeros for a zero `e`.
