@@ -2236,25 +2236,29 @@ fn export_engine_writes_each_engines_snippet_for_the_scene() {
 /// refused with how to ask.
 #[test]
 fn probe_stokes_gives_the_polarisation_of_single_scattering() {
-    let o = atmoscope(&[
-        "probe",
-        "--view-zenith-deg",
-        "45",
-        "--view-azimuth-deg",
-        "0,90,180",
-        "--wavelengths-nm",
-        "450",
-        "--method",
-        "single-scattering",
-        "--sun-elevation-deg",
-        "0",
-        "--aerosol",
-        "none",
-        "--stokes",
-        "--json",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
+    // Sun on the horizon, clear air, 450 nm, 45° up at the given azimuths.
+    let probe = |azimuths: &str, method: &[&str]| -> serde_json::Value {
+        let mut args = vec![
+            "probe",
+            "--view-zenith-deg",
+            "45",
+            "--view-azimuth-deg",
+            azimuths,
+            "--wavelengths-nm",
+            "450",
+            "--sun-elevation-deg",
+            "0",
+            "--aerosol",
+            "none",
+            "--stokes",
+            "--json",
+        ];
+        args.extend(method);
+        let o = atmoscope(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        serde_json::from_str(&stdout(&o)).expect("JSON")
+    };
+    let v = probe("0,90,180", &["--method", "single-scattering"]);
     let samples = v["samples"].as_array().expect("samples");
     let dop: Vec<f64> = samples
         .iter()
@@ -2283,27 +2287,7 @@ fn probe_stokes_gives_the_polarisation_of_single_scattering() {
             .expect("AoP");
         assert!((aop.abs() - 90.0).abs() < 1e-6, "{aop}");
     }
-    let traced = atmoscope(&[
-        "probe",
-        "--view-zenith-deg",
-        "45",
-        "--view-azimuth-deg",
-        "90",
-        "--wavelengths-nm",
-        "450",
-        "--method",
-        "path-tracer",
-        "--spp",
-        "3000",
-        "--sun-elevation-deg",
-        "0",
-        "--aerosol",
-        "none",
-        "--stokes",
-        "--json",
-    ]);
-    assert!(traced.status.success(), "{}", stderr(&traced));
-    let v: serde_json::Value = serde_json::from_str(&stdout(&traced)).expect("JSON");
+    let v = probe("90", &["--method", "path-tracer", "--spp", "3000"]);
     let s = &v["samples"][0];
     let number = |key: &str| s[key].as_f64().unwrap_or_else(|| panic!("{key}: {s}"));
     let (degree, se) = (

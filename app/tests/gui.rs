@@ -924,6 +924,20 @@ fn a_timelapse_exports_in_the_background_and_can_be_cancelled() {
     assert_eq!(written as u32, frames);
 }
 
+/// The first number of a view's read-out under the pointer.
+fn read_out(h: &Harness<'static, ExplorerApp>) -> f64 {
+    let text = h
+        .get_by_label_contains("under the pointer:")
+        .accesskit_node()
+        .value()
+        .unwrap_or_default();
+    text.split("under the pointer: ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no value in {text}"))
+}
+
 #[test]
 fn the_luminance_tab_reads_out_the_pixel_under_the_pointer() {
     let mut h = harness();
@@ -937,17 +951,7 @@ fn the_luminance_tab_reads_out_the_pixel_under_the_pointer() {
     h.get_by_label("hover the map to read the luminance");
     h.hover_at(egui::pos2(620.0, 300.0));
     h.run();
-    let text = h
-        .get_by_label_contains("under the pointer:")
-        .accesskit_node()
-        .value()
-        .unwrap_or_default();
-    let value: f64 = text
-        .split("under the pointer: ")
-        .nth(1)
-        .and_then(|t| t.split(' ').next())
-        .and_then(|v| v.parse().ok())
-        .unwrap_or_else(|| panic!("no value in {text}"));
+    let value = read_out(&h);
     // Daylight sky: between a dim 10³ and the sun's aureole 10⁵ cd/m².
     assert!((1e3..1e5).contains(&value), "{value} cd/m²");
 }
@@ -979,17 +983,7 @@ fn the_polarisation_tab_shows_the_degree_the_lines_and_the_neutral_points() {
     let centre = h.get_by_role(egui::accesskit::Role::Image).rect().center();
     h.hover_at(centre);
     h.run();
-    let text = h
-        .get_by_label_contains("under the pointer:")
-        .accesskit_node()
-        .value()
-        .unwrap_or_default();
-    let degree: f64 = text
-        .split("under the pointer: ")
-        .nth(1)
-        .and_then(|t| t.split(' ').next())
-        .and_then(|v| v.parse().ok())
-        .unwrap_or_else(|| panic!("no degree in {text}"));
+    let degree = read_out(&h);
     // The zenith, 88° from the sun: the band of strongest polarisation.
     assert!((60.0..95.0).contains(&degree), "{degree} %");
 

@@ -971,13 +971,18 @@ pub fn render(
     width: u32,
     height: u32,
 ) -> Result<Vec<[f64; 3]>, CannotDraw> {
+    let (model, camera) = built(scene, projection)?;
+    Ok(render_with(model.as_ref(), scene, &camera, width, height))
+}
+
+/// The scene's model built for its camera through `projection`, and that camera.
+fn built(scene: &Scene, projection: Projection) -> Result<(Box<dyn SkyModel>, Camera), CannotDraw> {
     let camera = Camera::new(
         &scene.camera,
         scene.atmosphere.planet_radius_km * 1000.0,
         projection,
     );
-    let model = build(scene, &camera)?;
-    Ok(render_with(model.as_ref(), scene, &camera, width, height))
+    Ok((build(scene, &camera)?, camera))
 }
 
 /// CPU render with a model already built ([`build`]: sunlight at 1 AU), its radiance scaled to
@@ -1001,12 +1006,7 @@ pub fn render_stokes(
     width: u32,
     height: u32,
 ) -> Result<Vec<[f64; 3]>, CannotDraw> {
-    let camera = Camera::new(
-        &scene.camera,
-        scene.atmosphere.planet_radius_km * 1000.0,
-        projection,
-    );
-    let model = build(scene, &camera)?;
+    let (model, camera) = built(scene, projection)?;
     Ok(shade(model.as_ref(), scene, &camera, width, height, true))
 }
 

@@ -27,6 +27,9 @@
 //!
 //! The direct solar disk seen by a camera ray is not included: renderers add it analytically.
 //! Radiance is spectral radiance for the scene's solar spectrum, W·m⁻²·sr⁻¹·nm⁻¹.
+//!
+//! The vector mode ([`PathTracer::radiance_stokes`], [`stokes`]) traces the same paths and
+//! carries each lane's Mueller products, for the Stokes vector of the light.
 
 use super::rng::Rng;
 use crate::atmosphere::{Atmosphere, Densities, Optics};
