@@ -7,6 +7,7 @@ use crate::cli::common::{gpu, outside_sun_disk};
 use anyhow::Context;
 use atmoscope_model::methods::{self, path_tracer::PathTracerSettings};
 use atmoscope_model::reference::ReferenceRender;
+use atmoscope_model::scene::Method;
 use atmoscope_model::views;
 use atmoscope_render::{DisplayMode, Engine, View};
 use clap::Args;
@@ -103,7 +104,8 @@ pub fn run(args: &PolarisationBench) -> anyhow::Result<ExitCode> {
             .map(|s| [s[0], s[1], s[2]])
             .collect();
         let off_sun = outside_sun_disk(&scene, view.projection, w, h);
-        for model in methods::realtime() {
+        // The empty sky has no light to polarise.
+        for model in methods::realtime().filter(|m| m.method != Method::Empty) {
             let mut s = scene.clone();
             s.render.method = model.method;
             if model.cannot_draw(&s).is_some() {
