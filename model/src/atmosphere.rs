@@ -407,11 +407,11 @@ impl Atmosphere {
 
     /// The aerosol's scattering matrix over its phase function at scattering cosine `nu`: the
     /// type's Mie matrix where the phase is Mie, else one that makes no polarisation
-    /// ([`ReducedMatrix::UNPOLARISING`]).
+    /// ([`ReducedMatrix::unpolarising`]).
     pub fn aerosol_matrix(&self, optics: &Optics, nu: f64) -> ReducedMatrix {
         match (self.aerosol_phase, self.mie_phase) {
             (AerosolPhase::Mie, Some(m)) => m.matrix(optics.wavelength_nm, nu),
-            _ => ReducedMatrix::UNPOLARISING,
+            _ => ReducedMatrix::unpolarising(nu),
         }
     }
 

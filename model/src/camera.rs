@@ -258,11 +258,15 @@ impl Camera {
     }
 
     /// "Up" in the picture at the view's point (x, y) for the ray `dir` through it: the unit
-    /// vector perpendicular to `dir` towards the rays half a pixel above (against the row
-    /// index); the meridian plane's up where that fails. The frame of the polarisation the
-    /// views show (twin of `image_up` in `shaders/views/polarisation.wgsl`).
+    /// vector perpendicular to `dir` towards the camera's up in a perspective view, else towards
+    /// the rays half a pixel above (against the row index); the meridian plane's up (or north,
+    /// or east) where that fails. The frame of the polarisation the views show (twin of
+    /// `image_up` in `shaders/views/polarisation.wgsl`).
     pub fn image_up(&self, x: f64, y: f64, width: u32, height: u32, dir: DVec3) -> DVec3 {
-        let d = -self.pixel_axes_at(x, y, width, height).y;
+        let d = match self.projection {
+            Projection::Perspective => self.perspective_axes()[2],
+            _ => -self.pixel_axes_at(x, y, width, height).y,
+        };
         (d - dir * dir.dot(d)).try_normalize().unwrap_or_else(|| {
             crate::polarisation::meridian_frame(dir, self.position.normalize()).0
         })

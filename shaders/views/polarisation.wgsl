@@ -1,5 +1,5 @@
 // The polarisation of the real-time sky, for every model's sky pass (twin of
-// model::polarisation::realtime): sunlight scattered once along the view ray, lit through the
+// model::methods::shared::polarisation): sunlight scattered once along the view ray, lit through the
 // model's own transmittance towards the sun (`sun_through_atmosphere`) and polarised by air's
 // matrix, plus the correction for the light of the higher orders (the model's radiance less
 // single scattering's), partly polarised like single scattering and partly vertically.
@@ -52,29 +52,42 @@ fn view_step(s: u32, t_max: f32, h0: f32) -> vec2<f32> {
     return vec2<f32>(0.5 * (a + b) * t_max, (b - a) * t_max);
 }
 
-// Up in the picture at the view's point (x, y), perpendicular to the ray dir: from the rays half
-// a pixel above and below (twin of the reference render's frame, model::reference); the
-// meridian plane's up where they fail.
+// The unit vector across `dir` nearest `v`, or zero.
+fn across(v: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
+    return normalize_or_zero(v - dir * dot(dir, v));
+}
+
+// Up in the picture at the view's point (x, y), perpendicular to the ray dir: the camera's up in
+// a perspective view, else from the rays half a pixel above and below; where that fails, the
+// meridian plane's up, or north, or east (twin of model::camera::Camera::image_up).
 fn image_up(x: f32, y: f32, dir: vec3<f32>) -> vec3<f32> {
-    let above = camera_ray(x, y - 0.5);
-    let below = camera_ray(x, y + 0.5);
-    var d = above.xyz - below.xyz;
-    if above.w == 0.0 {
-        d = dir - below.xyz;
-    } else if below.w == 0.0 {
-        d = above.xyz - dir;
+    var d = globals.view_up.xyz;
+    if PROJECTION != PROJECTION_PERSPECTIVE {
+        let above = camera_ray(x, y - 0.5);
+        let below = camera_ray(x, y + 0.5);
+        d = above.xyz - below.xyz;
+        if above.w == 0.0 {
+            d = dir - below.xyz;
+        } else if below.w == 0.0 {
+            d = above.xyz - dir;
+        }
     }
-    let up = d - dir * dot(dir, d);
-    if length(up) > 1e-9 {
-        return normalize(up);
+    var up = across(d, dir);
+    if length(up) == 0.0 {
+        up = across(normalize(globals.camera_position.xyz), dir);
     }
-    let zenith = normalize(globals.camera_position.xyz);
-    return normalize_or_zero(zenith - dir * dot(dir, zenith));
+    if length(up) == 0.0 {
+        up = across(vec3<f32>(0.0, 1.0, 0.0), dir);
+    }
+    if length(up) == 0.0 {
+        up = across(vec3<f32>(1.0, 0.0, 0.0), dir);
+    }
+    return up;
 }
 
 // Q and U per lane of batch `layer`'s light i_model (the model's radiance, the sun's disk
 // apart) along dir, referred to the frame whose e₁ is e_up; twin of
-// model::polarisation::realtime::sky_stokes.
+// model::methods::shared::polarisation::sky_stokes.
 fn sky_stokes(layer: u32, dir: vec3<f32>, e_up: vec3<f32>, i_model: vec4<f32>) -> LaneStokes {
     var out: LaneStokes;
     out.q = vec4<f32>(0.0);

@@ -806,7 +806,7 @@ impl<'a> PathTracer<'a> {
     /// `polarisation::meridian_frame` for a direction in the sky, "up" in the picture for an
     /// image. Each path carries its Mueller products ([`stokes`]): air scatters by Hansen &
     /// Travis's matrix, a Mie aerosol by its type's, the Henyey–Greenstein and Cornette–Shanks
-    /// aerosols without polarising ([`ReducedMatrix::UNPOLARISING`]), the ground depolarises.
+    /// aerosols without polarising ([`ReducedMatrix::unpolarising`]), the ground depolarises.
     /// The same paths as the scalar mode's for a seed, so their I differ by polarisation's
     /// effect alone.
     pub fn radiance_stokes(

@@ -40,17 +40,23 @@ pub struct ReducedMatrix {
 }
 
 impl ReducedMatrix {
-    /// What the Henyey–Greenstein and Cornette–Shanks aerosols scatter with: no polarisation
-    /// made from unpolarised light, and what arrives polarised keeps its polarisation relative
-    /// to the scattering plane (as real particles do near the forward peak, where most of an
-    /// aerosol's light goes). A phase function alone says nothing more.
-    pub const UNPOLARISING: ReducedMatrix = ReducedMatrix {
-        b1: 0.0,
-        a2: 1.0,
-        a3: 1.0,
-        a4: 1.0,
-        b2: 0.0,
-    };
+    /// What the Henyey–Greenstein and Cornette–Shanks aerosols scatter with at scattering
+    /// cosine `nu`: no polarisation made from unpolarised light (b₁ = 0), and what arrives
+    /// polarised keeps its polarisation near the forward peak, where most of an aerosol's light
+    /// goes, as real particles do (a₂ = 1, a₃ = a₄ → 1); a₃ and a₄ follow a small sphere's
+    /// 2ν/(1+ν²), down to −1 at backscatter, where a₃ = −a₂ makes the light independent of
+    /// which plane through the exact backward direction is taken. A phase function alone says
+    /// nothing more.
+    pub fn unpolarising(nu: f64) -> ReducedMatrix {
+        let a3 = 2.0 * nu / (1.0 + nu * nu);
+        ReducedMatrix {
+            b1: 0.0,
+            a2: 1.0,
+            a3,
+            a4: a3,
+            b2: 0.0,
+        }
+    }
 
     /// Air at scattering cosine `nu` with depolarisation ratio `rho` (Hansen & Travis 1974,
     /// eq. 2.15): a₁ = ¾Δ(1+ν²) + 1 − Δ, b₁ = −¾Δ(1−ν²), a₂ = ¾Δ(1+ν²), a₃ = 3/2·Δν,
@@ -149,6 +155,29 @@ mod tests {
         assert!((mean - 1.0).abs() < 1e-6, "{mean}");
         let p = crate::phase::rayleigh(0.4, rho) * 4.0 * std::f64::consts::PI;
         assert!((a1(0.4) - p).abs() < 1e-12);
+    }
+
+    /// At exact backscatter every plane through the direction will do: a matrix with a₃ = −a₂
+    /// there gives the same light whichever is taken (a plane turned by φ turns both frames by
+    /// φ, and L(φ)·F·L(φ) = F when a₃ = −a₂, b₂ = 0), as air's, a sphere's and the aerosols'
+    /// without a polarising phase do.
+    #[test]
+    fn every_matrix_is_independent_of_the_plane_at_backscatter() {
+        for m in [
+            ReducedMatrix::rayleigh(-1.0, 0.03),
+            ReducedMatrix::unpolarising(-1.0),
+        ] {
+            let f = m.to_mueller();
+            for phi in [0.3, 1.1, -0.7] {
+                let turned = product(&product(&rotation(phi), &f), &rotation(phi));
+                for i in 0..4 {
+                    for j in 0..4 {
+                        assert!((turned[i][j] - f[i][j]).abs() < 1e-12, "{m:?} {phi}");
+                    }
+                }
+            }
+        }
+        assert_eq!(ReducedMatrix::unpolarising(1.0).a3, 1.0);
     }
 
     /// Rotations compose, a half turn is no turn (a Stokes frame and its opposite describe the

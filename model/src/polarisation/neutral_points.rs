@@ -47,8 +47,10 @@ pub struct NeutralPoint {
 }
 
 /// Closer to the sun or the antisolar point than this (degrees) a zero is theirs, not a
-/// neutral point: single scattering's own.
-pub const MIN_ANGLE_FROM_SUN_DEG: f64 = 1.5;
+/// neutral point: single scattering's own, placed by the planes through a square of pixel
+/// centres to within about a pixel (2° on a 96-pixel dome). The neutral points lie 8° or more
+/// away.
+pub const MIN_ANGLE_FROM_SUN_DEG: f64 = 3.0;
 
 /// The points between the pixel centres of a `width` × `height` field where Q and U (row-major,
 /// one per pixel, `None` outside the view) both vanish: in each square of four neighbouring
@@ -87,8 +89,11 @@ pub fn zeros(qu: &[Option<[f64; 2]>], width: usize, height: usize) -> Vec<(f64, 
             }
             let dx = (-a1 * c2 + a2 * c1) / det;
             let dy = (-b1 * a2 + b2 * a1) / det;
-            if (0.0..=1.0).contains(&dx) && (0.0..=1.0).contains(&dy) {
-                out.push((x as f64 + 0.5 + dx, y as f64 + 0.5 + dy));
+            let at = (x as f64 + 0.5 + dx, y as f64 + 0.5 + dy);
+            // A zero on an edge or a corner is found by each square it bounds: once is enough.
+            let known = |p: &(f64, f64)| (p.0 - at.0).hypot(p.1 - at.1) < 0.5;
+            if (0.0..=1.0).contains(&dx) && (0.0..=1.0).contains(&dy) && !out.iter().any(known) {
+                out.push(at);
             }
         }
     }
@@ -176,6 +181,14 @@ mod tests {
             "{found:?}"
         );
         assert!(zeros(&field(100.0), w, h).is_empty());
+        // A zero on a pixel centre is a corner of four squares: found once.
+        let on_centre: Vec<Option<[f64; 2]>> = (0..w * h)
+            .map(|i| {
+                let (x, y) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
+                Some([x - 20.5, y - 14.5])
+            })
+            .collect();
+        assert_eq!(zeros(&on_centre, w, h), vec![(20.5, 14.5)]);
         let mut holed = field(0.0);
         holed[14 * w + 10] = None;
         assert_eq!(zeros(&holed, w, h).len(), 1);
