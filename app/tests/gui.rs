@@ -17,8 +17,10 @@ fn harness_with(layout: Layout, size: egui::Vec2) -> Harness<'static, ExplorerAp
     let mut h = Harness::builder()
         .with_size(size)
         // Grids settle their column widths over a few frames, more when timing labels change
-        // width from frame to frame on a loaded machine (seen: 15 steps).
-        .with_max_steps(24)
+        // width from frame to frame on a loaded machine (seen: 15 steps), and more again on
+        // the Polarisation tab with the Performance table open: its lines read the view back,
+        // which redraws a frame drawn in tiles at full resolution (seen: 27 steps).
+        .with_max_steps(36)
         .wgpu_setup({
             let mut setup = egui_kittest::wgpu::default_wgpu_setup();
             atmoscope::gui::ask_for_what_the_engine_uses(&mut setup);
