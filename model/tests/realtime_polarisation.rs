@@ -67,10 +67,9 @@ fn degree(s: [f64; 3]) -> Option<f64> {
 /// A model with multiple scattering (Hillaire's) against the vector path tracer over a dome,
 /// the sun at 30° and at 5°, in clear air and in rural haze: the mean absolute difference of
 /// the degree of polarisation within 0.08 and its 95th percentile within 0.2, beyond 15° from
-/// the sun (when written: 0.062 and 0.122 in clear air over the default grey ground of albedo
-/// 0.3, whose light the correction does not tell apart; 0.031 and 0.070 in the haze;
-/// `bench polarisation` measures every model view by view). A march of evenly spaced samples
-/// put the haze inside its first sample and the haze's mean error at 0.12.
+/// the sun. Clear air over the default grey ground (albedo 0.3), whose light the correction does
+/// not tell apart, comes nearest the bound; `bench polarisation` measures every model view by
+/// view, and docs/measurements/polarisation-2026-12-06.md logs both.
 #[test]
 fn the_real_time_degree_follows_the_vector_path_tracer() {
     let size = 16;

@@ -32,10 +32,10 @@ use glam::DVec3;
 /// β: the share of the higher orders' light polarised like single scattering's.
 pub const MS_LIKE_SINGLE: f64 = 0.44;
 
-/// α: the higher orders' vertical polarisation, per unit sin²θ_v. A least-squares fit of the
-/// degree over clear and hazy skies gives 0.09, clear skies alone 0.20; 0.15 keeps the degree's
-/// error within 0.016 on average in both and puts the neutral points nearer where the vector
-/// tracer has them.
+/// α: the higher orders' vertical polarisation, per unit sin²θ_v. Between the best fits of the
+/// degree over clear and hazy skies together and over clear skies alone: the vertical part is
+/// what moves the neutral points off the sun, and the smaller fit left Arago's point below
+/// the horizon at sunset (the fits are in the measurement log named in the module's docs).
 pub const MS_VERTICAL: f64 = 0.15;
 
 /// Midpoint samples of single scattering along a view ray ([`view_step`]).
