@@ -152,10 +152,10 @@ fn sky_stokes(layer: u32, dir: vec3<f32>, e_up: vec3<f32>, i_model: vec4<f32>) -
     return out;
 }
 
-// What passes the camera's polarising filter of batch `layer`'s light l along dir seen at the
-// view's point (x, y) (the sun's disk, unpolarised, within l; sky its sky part alone).
-fn through_polariser(layer: u32, x: f32, y: f32, dir: vec3<f32>, l: vec4<f32>, sky: vec4<f32>) -> vec4<f32> {
-    let s = sky_stokes(layer, dir, image_up(x, y, dir), sky);
+// What passes the camera's polarising filter of batch `layer`'s light l along dir, with e_up
+// up in the picture there (the sun's disk, unpolarised, within l; sky its sky part alone).
+fn through_polariser(layer: u32, dir: vec3<f32>, e_up: vec3<f32>, l: vec4<f32>, sky: vec4<f32>) -> vec4<f32> {
+    let s = sky_stokes(layer, dir, e_up, sky);
     let angle = 2.0 * globals.sunlight.y;
     return 0.5 * (l + s.q * cos(angle) + s.u * sin(angle));
 }

@@ -69,7 +69,8 @@ fn shade(x: f32, y: f32, dir: vec3<f32>, disk: DiskInPixel) -> vec3<f32> {
     var rgb = vec3<f32>(0.0);
     var stokes = vec3<f32>(0.0);
     var up = vec3<f32>(0.0);
-    if POLARISATION == POLARISATION_STOKES {
+    // Once per pixel, whatever the number of batches.
+    if POLARISATION != POLARISATION_OFF {
         up = image_up(x, y, dir);
     }
     for (var layer = 0u; layer < batch_count(); layer++) {
@@ -81,7 +82,7 @@ fn shade(x: f32, y: f32, dir: vec3<f32>, disk: DiskInPixel) -> vec3<f32> {
                 * disk_radiance(disk, batches[layer].wavelengths_nm);
         }
         if POLARISATION == POLARISATION_FILTER {
-            l = through_polariser(layer, x, y, dir, l, sky);
+            l = through_polariser(layer, dir, up, l, sky);
         }
         if POLARISATION == POLARISATION_STOKES {
             let s = sky_stokes(layer, dir, up, sky);
