@@ -267,6 +267,15 @@ impl ReferenceRender {
     /// Adds `spp` paths to every pixel. Returns false, leaving the pass partly done, when
     /// `cancel` was set meanwhile (what was added stays valid).
     pub fn run_pass(&mut self, spp: u32, cancel: &AtomicBool) -> bool {
+        self.run_rows(spp, 0..self.height, cancel)
+    }
+
+    /// [`Self::run_pass`] for the pixel rows `rows` only (clamped to the image), so that a pass
+    /// can be spread over several calls: each pixel draws its paths from its own index and
+    /// count, so a pass run in bands of rows adds exactly what it adds in one go.
+    pub fn run_rows(&mut self, spp: u32, rows: std::ops::Range<u32>, cancel: &AtomicBool) -> bool {
+        let first = rows.start.min(self.height);
+        let end = rows.end.clamp(first, self.height);
         let tracer = PathTracer::with_prepared(
             &self.atmosphere,
             self.sun,
@@ -277,15 +286,17 @@ impl ReferenceRender {
         let (w, h, seed, camera) = (self.width, self.height, self.seed, self.camera);
         let spectral = &self.spectral;
         let vector = self.stokes.is_some();
+        let band = first as usize * w as usize..end as usize * w as usize;
         let stokes_rows: Vec<Option<&mut [[f64; 4]]>> = match self.stokes.as_mut() {
-            Some(s) => s.chunks_mut(w as usize).map(Some).collect(),
-            None => (0..h).map(|_| None).collect(),
+            Some(s) => s[band.clone()].chunks_mut(w as usize).map(Some).collect(),
+            None => (first..end).map(|_| None).collect(),
         };
-        self.pixels
+        self.pixels[band]
             .par_chunks_mut(w as usize)
             .zip(stokes_rows)
             .enumerate()
-            .for_each(|(y, (row, mut stokes_row))| {
+            .for_each(|(row_in_band, (row, mut stokes_row))| {
+                let y = first as usize + row_in_band;
                 if cancel.load(Ordering::Relaxed) {
                     return;
                 }
@@ -445,6 +456,40 @@ mod tests {
             * fine_step;
         let error = (coarse / fine - 1.0).abs();
         assert!(error < 1e-6, "cells {coarse} against {fine}: {error:e}");
+    }
+
+    /// The web explorer spreads a pass over frames in bands of rows: bands in any order, out
+    /// of range ones included, add exactly what one pass adds, Stokes sums too.
+    #[test]
+    fn a_pass_in_bands_of_rows_adds_what_one_pass_adds() {
+        let scene = Scene::default();
+        let render = || {
+            ReferenceRender::new(
+                &scene,
+                Projection::Fisheye,
+                6,
+                5,
+                9,
+                PathTracerSettings::default(),
+            )
+            .with_stokes()
+        };
+        let go = AtomicBool::new(false);
+        let mut whole = render();
+        assert!(whole.run_pass(2, &go));
+        let mut banded = render();
+        for rows in [3..9, 0..1, 1..3, 7..2] {
+            assert!(banded.run_rows(2, rows, &go));
+        }
+        assert_eq!(banded.samples_per_pixel(), 2);
+        for (a, b) in whole.pixels().iter().zip(banded.pixels()) {
+            assert_eq!(
+                (a.samples, a.xyz_sum, a.y_sum_sq),
+                (b.samples, b.xyz_sum, b.y_sum_sq)
+            );
+        }
+        assert_eq!(whole.stokes_y(), banded.stokes_y());
+        assert!(whole.pixels().iter().any(|p| p.xyz_sum[1] > 0.0));
     }
 
     #[test]
