@@ -5,7 +5,7 @@
 
 use crate::engine::TimingSource;
 use crate::prelude::{WORKGROUP_SIZE, wgsl_prelude};
-use std::time::Instant;
+use web_time::Instant;
 
 /// The compiled floor pass.
 pub struct FloorPass {

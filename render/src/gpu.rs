@@ -38,6 +38,16 @@ pub fn required_limits(base: wgpu::Limits) -> wgpu::Limits {
     }
 }
 
+/// Whether `adapter` can give the engine what it asks for ([`required_limits`]); the web
+/// explorer asks before it opens, to explain a refusal instead of failing later.
+pub fn check_adapter(adapter: &wgpu::Adapter) -> Result<(), GpuError> {
+    let offered = adapter.limits().max_storage_buffers_per_shader_stage;
+    if offered < STORAGE_BUFFERS_PER_STAGE {
+        return Err(GpuError::TooFewStorageBuffers(offered));
+    }
+    Ok(())
+}
+
 /// A device and queue with the adapter they came from.
 pub struct GpuContext {
     pub adapter: wgpu::Adapter,
@@ -45,9 +55,14 @@ pub struct GpuContext {
     pub queue: wgpu::Queue,
 }
 
-/// Features the engine uses when present.
+/// Features the engine uses when present. In the browser none: reading timestamps back would
+/// wait for the GPU, which a web page cannot do, so timing falls back to wall time there.
 pub fn optional_features() -> wgpu::Features {
-    wgpu::Features::TIMESTAMP_QUERY
+    if cfg!(target_arch = "wasm32") {
+        wgpu::Features::empty()
+    } else {
+        wgpu::Features::TIMESTAMP_QUERY
+    }
 }
 
 impl GpuContext {
@@ -61,10 +76,7 @@ impl GpuContext {
             ..Default::default()
         }))
         .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
-        let offered = adapter.limits().max_storage_buffers_per_shader_stage;
-        if offered < STORAGE_BUFFERS_PER_STAGE {
-            return Err(GpuError::TooFewStorageBuffers(offered));
-        }
+        check_adapter(&adapter)?;
         let features = adapter.features() & optional_features();
         let (device, queue) =
             pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {

@@ -9,10 +9,17 @@ pub enum ReadbackError {
     Poll(#[from] wgpu::PollError),
     #[error("the read-back buffer could not be read: {0}")]
     Range(String),
+    /// In the browser only: the bytes are on their way; ask again next frame (module `browser`).
+    #[error("the read-back is on its way: the next frame has it")]
+    Pending,
 }
+
+#[cfg(target_arch = "wasm32")]
+pub use browser::{set_waker, written};
 
 /// Every texel of every layer/slice of `texture` (mip 0), tightly packed, in the order
 /// layer/slice, row, column.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn read_texture(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -71,6 +78,7 @@ pub fn read_texture(
 /// The bands of rows (first row, row count) of an image `height` rows high, `padded` bytes a
 /// row, each small enough for one buffer of at most `max_buffer` bytes: a large view exceeds
 /// the device's largest buffer (256 MiB by default) long before its largest texture.
+#[cfg_attr(target_arch = "wasm32", allow(dead_code))]
 fn bands(height: u32, padded: u32, max_buffer: u64) -> Vec<(u32, u32)> {
     let band = (max_buffer / u64::from(padded)).clamp(1, u64::from(height.max(1))) as u32;
     (0..height)
@@ -128,6 +136,7 @@ pub fn read_buffer_u32(
     )?))
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 fn read_buffer(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -145,6 +154,7 @@ fn read_buffer(
     map(device, &buffer)
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 fn map(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>, ReadbackError> {
     let (tx, rx) = std::sync::mpsc::channel();
     buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
@@ -158,4 +168,164 @@ fn map(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>, Readback
         .get_mapped_range()
         .map_err(|e| ReadbackError::Range(e.to_string()))?;
     Ok(data.to_vec())
+}
+
+/// `read_texture` in the browser: the whole texture in one copy (a browser's largest buffer,
+/// 256 MiB at least, holds any view it can show), as a request (module `browser`).
+#[cfg(target_arch = "wasm32")]
+pub fn read_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+) -> Result<Vec<u8>, ReadbackError> {
+    let size = texture.size();
+    let texel = texture
+        .format()
+        .block_copy_size(None)
+        .expect("colour formats have a copy size");
+    let row = size.width * texel;
+    let padded =
+        row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let bytes = u64::from(padded) * u64::from(size.height) * u64::from(size.depth_or_array_layers);
+    let data = browser::read(
+        browser::Source::Texture(texture.clone()),
+        device,
+        queue,
+        bytes,
+        |encoder, buffer| {
+            encoder.copy_texture_to_buffer(
+                texture.as_image_copy(),
+                wgpu::TexelCopyBufferInfo {
+                    buffer,
+                    layout: wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(padded),
+                        rows_per_image: Some(size.height),
+                    },
+                },
+                size,
+            );
+        },
+    )?;
+    Ok(data
+        .chunks_exact(padded as usize)
+        .flat_map(|chunk| &chunk[..row as usize])
+        .copied()
+        .collect())
+}
+
+#[cfg(target_arch = "wasm32")]
+fn read_buffer(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    source: &wgpu::Buffer,
+) -> Result<Vec<u8>, ReadbackError> {
+    browser::read(
+        browser::Source::Buffer(source.clone()),
+        device,
+        queue,
+        source.size(),
+        |encoder, buffer| encoder.copy_buffer_to_buffer(source, 0, buffer, 0, source.size()),
+    )
+}
+
+/// Read-backs in a web page, which cannot block until the GPU is done: the browser maps a
+/// buffer only once the page has gone back to its event loop. A read is therefore a request.
+/// The first call copies the source and starts mapping, and answers [`ReadbackError::Pending`];
+/// when the mapping is done the waker ([`set_waker`]: the window asks for a frame) runs, and
+/// the next call answers the bytes. [`written`] forgets every read, done or on its way, so the
+/// bytes answered always show what the source holds now.
+#[cfg(target_arch = "wasm32")]
+mod browser {
+    use super::ReadbackError;
+    use std::cell::RefCell;
+    use std::collections::HashMap;
+    use std::sync::{Arc, Mutex};
+
+    /// What is read back.
+    #[derive(Clone, PartialEq, Eq, Hash)]
+    pub(super) enum Source {
+        Texture(wgpu::Texture),
+        Buffer(wgpu::Buffer),
+    }
+
+    /// Set by the mapping's callback (which wgpu wants `Send`, hence not an `Rc`).
+    type Mapped = Arc<Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>;
+
+    enum Read {
+        OnItsWay(wgpu::Buffer, Mapped),
+        Done(Vec<u8>),
+    }
+
+    thread_local! {
+        static READS: RefCell<HashMap<Source, Read>> = RefCell::new(HashMap::new());
+        static WAKER: RefCell<Option<Box<dyn Fn()>>> = const { RefCell::new(None) };
+    }
+
+    /// Notes that the GPU may have changed what any source holds (the engine calls it after
+    /// each frame that ran passes): every read so far is stale.
+    pub fn written() {
+        READS.with_borrow_mut(HashMap::clear);
+    }
+
+    /// What runs when a mapping is done: the window asks itself for a frame.
+    pub fn set_waker(wake: impl Fn() + 'static) {
+        WAKER.with_borrow_mut(|w| *w = Some(Box::new(wake)));
+    }
+
+    pub(super) fn read(
+        source: Source,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        bytes: u64,
+        copy: impl FnOnce(&mut wgpu::CommandEncoder, &wgpu::Buffer),
+    ) -> Result<Vec<u8>, ReadbackError> {
+        READS.with_borrow_mut(|reads| {
+            let finished = match reads.get(&source) {
+                Some(Read::Done(data)) => return Ok(data.clone()),
+                Some(Read::OnItsWay(buffer, mapped)) => {
+                    match mapped.lock().ok().and_then(|mut m| m.take()) {
+                        None => return Err(ReadbackError::Pending),
+                        Some(result) => result.map(|()| buffer.clone()),
+                    }
+                }
+                None => {
+                    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some("read-back"),
+                        size: bytes,
+                        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                        mapped_at_creation: false,
+                    });
+                    let mut encoder = device.create_command_encoder(&Default::default());
+                    copy(&mut encoder, &buffer);
+                    queue.submit([encoder.finish()]);
+                    let mapped: Mapped = Arc::new(Mutex::new(None));
+                    let done = mapped.clone();
+                    buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+                        if let Ok(mut d) = done.lock() {
+                            *d = Some(r);
+                        }
+                        WAKER.with_borrow(|w| w.as_ref().map(|wake| wake()));
+                    });
+                    reads.insert(source, Read::OnItsWay(buffer, mapped));
+                    return Err(ReadbackError::Pending);
+                }
+            };
+            let buffer = match finished {
+                Ok(buffer) => buffer,
+                Err(e) => {
+                    reads.remove(&source);
+                    return Err(ReadbackError::Map(e));
+                }
+            };
+            let data = buffer
+                .slice(..)
+                .get_mapped_range()
+                .map_err(|e| ReadbackError::Range(e.to_string()))?
+                .to_vec();
+            buffer.unmap();
+            reads.insert(source, Read::Done(data.clone()));
+            Ok(data)
+        })
+    }
 }

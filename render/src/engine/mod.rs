@@ -48,7 +48,8 @@ use atmoscope_model::white_balance;
 use glam::DVec3;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::{Duration, Instant};
+use std::time::Duration;
+use web_time::Instant;
 
 use changes::*;
 use dispatch::*;
@@ -408,7 +409,18 @@ impl Engine {
     pub fn try_render(&mut self, scene: &Scene, view: &View) -> Result<&FrameStats, EngineError> {
         let device = self.device.clone();
         match capture(&device, || self.render_frame(scene, view)) {
-            Ok(Ok(())) => Ok(&self.stats),
+            Ok(Ok(())) => {
+                // What a web page reads back must show this frame (`readback::written`).
+                #[cfg(target_arch = "wasm32")]
+                if self.stats.dispatched > 0
+                    || !self.stats.run.is_empty()
+                    || self.stats.rebuild_done
+                    || self.refine.is_some()
+                {
+                    crate::readback::written();
+                }
+                Ok(&self.stats)
+            }
             Ok(Err(e)) => {
                 if matches!(e, EngineError::CannotDraw(_)) {
                     // Nothing ran for this scene: no earlier model's passes on show.
