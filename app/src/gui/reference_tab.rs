@@ -1,9 +1,10 @@
 //! The Reference tab: the spectral path tracer (`model::reference`) rendering the current
-//! perspective view progressively off the UI thread, with its samples per pixel and noise, next
+//! perspective view progressively off the UI thread (in a browser, in bands of rows between
+//! frames), with its samples per pixel and noise, next
 //! to the real-time render at the same size and the CIEDE2000 map between them.
 
 use super::gpu_view::{Gpu, GpuView};
-use super::jobs::Job;
+use super::jobs::{Job, Step};
 use atmoscope_eval::metrics::{DisplaySetup, delta_e2000_map};
 use atmoscope_model::Scene;
 use atmoscope_model::camera::Projection;
@@ -15,7 +16,6 @@ use atmoscope_render::views::false_colour;
 use eframe::egui::{self, Vec2};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
-use std::time::Duration;
 
 use super::state::{DELTA_E_SCALE_MAX, REFERENCE_SIZES, REFERENCE_SPP_RANGE, ReferenceSettings};
 
@@ -108,26 +108,44 @@ impl ReferenceTab {
             .clamp(*REFERENCE_SPP_RANGE.start(), *REFERENCE_SPP_RANGE.end());
         let visible = Arc::new(AtomicBool::new(true));
         let shown = visible.clone();
-        let job = Job::spawn(format!("path tracing {w}×{h}"), ctx, move |progress| {
-            let mut render = ReferenceRender::new(
-                &s,
-                Projection::Perspective,
-                w,
-                h,
-                1,
-                PathTracerSettings::default(),
-            );
-            while render.samples_per_pixel() < target {
-                // A hidden tab costs nothing: wait until it is shown again.
-                while !shown.load(Ordering::Relaxed) {
-                    if progress.cancelled() {
-                        return;
-                    }
-                    std::thread::sleep(Duration::from_millis(50));
-                }
-                if !render.run_pass(SPP_PER_PASS, progress.cancel_flag()) {
-                    return;
-                }
+        // The tracer goes through each pass in bands of rows: natively a band is the whole
+        // image (a thread's loop); in a browser it is steered to half a frame's share of work.
+        let mut render: Option<ReferenceRender> = None;
+        let mut next_row = 0;
+        let mut band_rows = if cfg!(target_arch = "wasm32") { 1 } else { h };
+        let job = Job::spawn_steps(format!("path tracing {w}×{h}"), ctx, move |progress| {
+            if progress.cancelled() {
+                return Step::Done(());
+            }
+            // A hidden tab costs nothing: wait until it is shown again.
+            if !shown.load(Ordering::Relaxed) {
+                return Step::Wait;
+            }
+            let render = render.get_or_insert_with(|| {
+                ReferenceRender::new(
+                    &s,
+                    Projection::Perspective,
+                    w,
+                    h,
+                    1,
+                    PathTracerSettings::default(),
+                )
+            });
+            if next_row == 0 && render.samples_per_pixel() >= target {
+                return Step::Done(());
+            }
+            let end = (next_row + band_rows).min(h);
+            let started = web_time::Instant::now();
+            if !render.run_rows(SPP_PER_PASS, next_row..end, progress.cancel_flag()) {
+                return Step::Done(());
+            }
+            if cfg!(target_arch = "wasm32") {
+                let per_row = started.elapsed().as_secs_f64() / f64::from(end - next_row);
+                let aim = 0.5 * super::jobs::FRAME_BUDGET.as_secs_f64();
+                band_rows = ((aim / per_row.max(1e-9)) as u32).clamp(1, h);
+            }
+            next_row = end % h;
+            if next_row == 0 {
                 let snapshot = Snapshot {
                     rgb: render.linear_srgb(),
                     spp: render.samples_per_pixel(),
@@ -138,6 +156,7 @@ impl ReferenceTab {
                 }
                 progress.set(render.samples_per_pixel() as f32 / target as f32);
             }
+            Step::Again
         });
         self.run = Some(Run {
             scene: scene.clone(),
