@@ -13,7 +13,14 @@ pub fn dir(kind: &str) -> PathBuf {
     let base = std::env::var_os("XDG_CACHE_HOME")
         .map(PathBuf::from)
         .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
-        .unwrap_or_else(std::env::temp_dir);
+        // A browser page has no folders at all (asking for one panics there): it caches nothing.
+        .unwrap_or_else(|| {
+            if cfg!(target_arch = "wasm32") {
+                PathBuf::new()
+            } else {
+                std::env::temp_dir()
+            }
+        });
     base.join("atmoscope").join(kind)
 }
 

@@ -291,6 +291,8 @@ pub const PALETTE: [plotters::style::RGBColor; 10] = [
 
 /// Writes a chart as `<stem>.svg` and `<stem>.png` in folder `$out`, `$draw` drawing it on
 /// each backend (a plotters `DrawingBackend`) at `$size`; evaluates to `anyhow::Result<()>`.
+/// The subcommands' charts: native only.
+#[cfg(not(target_arch = "wasm32"))]
 macro_rules! chart_files {
     ($out:expr, $stem:expr, $size:expr, |$backend:ident| $draw:expr) => {{
         use plotters::prelude::{BitMapBackend, SVGBackend};
@@ -311,10 +313,12 @@ macro_rules! chart_files {
         })()
     }};
 }
+#[cfg(not(target_arch = "wasm32"))]
 pub(crate) use chart_files;
 
 /// Registers the font egui ships as plotters' "sans-serif" (charts, captions), once, so that
 /// text looks the same on every machine.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn register_font() {
     use std::sync::Once;
     static ONCE: Once = Once::new();
@@ -328,6 +332,10 @@ pub fn register_font() {
         );
     });
 }
+
+/// In a browser plotters draws text with the page's own fonts.
+#[cfg(target_arch = "wasm32")]
+pub fn register_font() {}
 
 /// The caption of an exported view: the scene's name, the model, the wavelength set, the
 /// exposure and tone map, the sun's elevation and the camera's altitude.

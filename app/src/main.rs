@@ -1,9 +1,19 @@
 //! `atmoscope`: without arguments it opens the explorer on the default scene; subcommands
-//! work headless on the same model (see `atmoscope --help`).
+//! work headless on the same model (see `atmoscope --help`). Built for `wasm32` it is the
+//! explorer in a browser page (`web/`).
 
+#[cfg(not(target_arch = "wasm32"))]
 use atmoscope::cli::{Cli, Command, bench::Bench};
+#[cfg(not(target_arch = "wasm32"))]
 use clap::Parser;
 
+/// In a browser: the explorer on the page's canvas (`web/`).
+#[cfg(target_arch = "wasm32")]
+fn main() {
+    atmoscope::web::start();
+}
+
+#[cfg(not(target_arch = "wasm32"))]
 fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
     let opens_window = matches!(
@@ -22,6 +32,7 @@ fn main() -> std::process::ExitCode {
 /// no display session it prints "XDG_RUNTIME_DIR is invalid or not set" twice. A headless
 /// command chooses its adapter itself (`render::gpu`), so it turns the layer off, unless the
 /// user has set `NODEVICE_SELECT` either way.
+#[cfg(not(target_arch = "wasm32"))]
 fn quiet_the_device_select_layer() {
     if std::env::var_os("NODEVICE_SELECT").is_none() {
         // SAFETY: the first thing `main` does after parsing the arguments, before any thread

@@ -72,6 +72,12 @@ impl BenchTab {
     pub fn with_shipped_results(mut self) -> BenchTab {
         self.fallback = crate::shipped::near_program(Path::new(crate::shipped::BENCH_RESULTS))
             .filter(|p| p.is_file());
+        // A web page has no files beside it: the results are built in.
+        #[cfg(target_arch = "wasm32")]
+        self.load_text(
+            Path::new(crate::shipped::BENCH_RESULTS),
+            include_str!("../../../docs/bench/results.csv"),
+        );
         self
     }
 
@@ -82,10 +88,20 @@ impl BenchTab {
     /// Reads `results.csv` from `path` (a regular file of at most [`MAX_RESULTS_BYTES`]); a
     /// bad file is reported and shows nothing.
     pub fn load(&mut self, path: &Path) {
+        match atmoscope_model::files::read_text_limited(path, MAX_RESULTS_BYTES) {
+            Ok(text) => self.load_text(path, &text),
+            Err(e) => {
+                self.results = Some(Err(format!("{}: {e}", path.display())));
+                self.view = None;
+            }
+        }
+    }
+
+    /// Shows the results in `text`, read from `path`.
+    fn load_text(&mut self, path: &Path, text: &str) {
         self.results = Some(
-            atmoscope_model::files::read_text_limited(path, MAX_RESULTS_BYTES)
+            parse_csv(text)
                 .map_err(|e| format!("{}: {e}", path.display()))
-                .and_then(|text| parse_csv(&text).map_err(|e| format!("{}: {e}", path.display())))
                 .map(|rows| (rows, path.to_path_buf())),
         );
         self.view = None;
@@ -210,6 +226,10 @@ impl BenchTab {
                     ui.ctx()
                         .request_repaint_after(std::time::Duration::from_millis(200));
                 }
+                // A web page cannot start the benchmark's program.
+                None if cfg!(target_arch = "wasm32") => {
+                    ui.label("In the browser this tab shows the shipped results: `atmoscope bench methods` runs in the desktop app.");
+                }
                 None => {
                     if ui
                         .button("Run quick benchmark")
@@ -220,6 +240,7 @@ impl BenchTab {
                     }
                 }
             }
+            #[cfg(not(target_arch = "wasm32"))]
             if ui.button("Open results…").clicked()
                 && let Some(p) = rfd::FileDialog::new()
                     .add_filter("bench results", &["csv"])

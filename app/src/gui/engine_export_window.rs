@@ -139,11 +139,12 @@ impl EngineExportWindow {
                         notice = Some(format!("copied the {} parameters", self.target.label()));
                     }
                     if ui.button("Save…").clicked()
-                        && let Some(path) = rfd::FileDialog::new()
-                            .set_title("Save the engine's parameters")
-                            .add_filter(self.target.label(), &[self.target.extension()])
-                            .set_file_name(format!("atmosphere.{}", self.target.extension()))
-                            .save_file()
+                        && let Some(path) = super::files::save_dialog(
+                            "Save the engine's parameters",
+                            self.target.label(),
+                            self.target.extension(),
+                            &format!("atmosphere.{}", self.target.extension()),
+                        )
                     {
                         notice = Some(match crate::files::write_atomic(&path, text.as_bytes()) {
                             Ok(()) => format!("wrote {}", path.display()),

@@ -1,5 +1,6 @@
 //! Presets and exports from the window: native dialogs (rfd), and the writes themselves, which
-//! run off the UI thread. Exports: the active view as displayed (PNG), its linear radiance (EXR),
+//! run off the UI thread. In a browser, what is written is downloaded under a name chosen here,
+//! and a preset to open comes from the browser's file picker (`web::pick_preset`). Exports: the active view as displayed (PNG), its linear radiance (EXR),
 //! and an equirectangular panorama (EXR) rendered by an engine of its own on the window's device.
 
 use super::gpu_view::Gpu;
@@ -44,11 +45,22 @@ impl ExportKind {
     }
 }
 
-pub fn pick_preset_to_open() -> Option<PathBuf> {
-    rfd::FileDialog::new()
-        .set_title("Open a preset")
-        .add_filter("Atmoscope preset", &["ron"])
-        .pick_file()
+/// The preset file the user chose to open; in a browser it comes later, from
+/// `web::take_picked`.
+pub fn pick_preset_to_open(ctx: &eframe::egui::Context) -> Option<PathBuf> {
+    #[cfg(target_arch = "wasm32")]
+    {
+        crate::web::pick_preset(ctx);
+        None
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        let _ = ctx;
+        rfd::FileDialog::new()
+            .set_title("Open a preset")
+            .add_filter("Atmoscope preset", &["ron"])
+            .pick_file()
+    }
 }
 
 pub fn pick_preset_to_save(scene: &Scene) -> Option<PathBuf> {
@@ -63,19 +75,37 @@ pub fn pick_preset_to_save(scene: &Scene) -> Option<PathBuf> {
             }
         })
         .collect();
-    rfd::FileDialog::new()
-        .set_title("Save the scene as a preset")
-        .add_filter("Atmoscope preset", &["ron"])
-        .set_file_name(format!("{name}.ron"))
-        .save_file()
+    save_dialog(
+        "Save the scene as a preset",
+        "Atmoscope preset",
+        "ron",
+        &format!("{name}.ron"),
+    )
 }
 
 pub fn pick_export(kind: ExportKind) -> Option<PathBuf> {
+    save_dialog(
+        kind.title(),
+        kind.extension(),
+        kind.extension(),
+        &format!("atmoscope.{}", kind.extension()),
+    )
+}
+
+/// Where to save a file: the user's choice.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn save_dialog(title: &str, filter: &str, extension: &str, name: &str) -> Option<PathBuf> {
     rfd::FileDialog::new()
-        .set_title(kind.title())
-        .add_filter(kind.extension(), &[kind.extension()])
-        .set_file_name(format!("atmoscope.{}", kind.extension()))
+        .set_title(title)
+        .add_filter(filter, &[extension])
+        .set_file_name(name)
         .save_file()
+}
+
+/// In a browser, the name of the download (the browser asks where, if it asks).
+#[cfg(target_arch = "wasm32")]
+pub fn save_dialog(_title: &str, _filter: &str, _extension: &str, name: &str) -> Option<PathBuf> {
+    Some(PathBuf::from(name))
 }
 
 /// Writes RGBA8 rows as a PNG, dropping alpha, with `caption` burned in below (None: none).

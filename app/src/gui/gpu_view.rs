@@ -8,7 +8,8 @@ use atmoscope_render::{Engine, EngineError, FrameStats, View};
 use eframe::egui;
 use eframe::egui_wgpu::{self, wgpu};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+use web_time::Instant;
 
 /// The device egui renders with, shared by every engine of the window.
 #[derive(Clone)]
@@ -59,7 +60,10 @@ impl Gpu {
             renderer: rs.renderer.clone(),
             adapter: format!("{} ({:?}, {:?})", info.name, info.backend, info.device_type),
             software: info.device_type == wgpu::DeviceType::Cpu,
-            rebuild_slice: Some(crate::engine_setup::REBUILD_SLICE),
+            // In a browser the GPU works in a process of its own: a whole build never stalls
+            // the page, while slices would be paced by frames the compositor may make slow.
+            rebuild_slice: (!cfg!(target_arch = "wasm32"))
+                .then_some(crate::engine_setup::REBUILD_SLICE),
             budget: FrameBudget::default(),
         }
     }

@@ -170,6 +170,8 @@ impl LutTab {
                     });
                     self.error = None;
                 }
+                // A browser's read-back: the waker draws the next frame when it has come.
+                Err(e) if e.is_pending() => {}
                 Err(e) => self.error = Some(e.to_string()),
             }
         }

@@ -25,6 +25,7 @@ pub mod thumbnails;
 
 use crate::lessons::{self, Lesson, LessonError};
 use crate::presets::load_shipped;
+#[cfg(not(target_arch = "wasm32"))]
 use crate::scene_args::SceneArgs;
 use atmoscope_model::Scene;
 use compare_tab::CompareTab;
@@ -38,9 +39,10 @@ use reference_tab::ReferenceTab;
 use state::angles_of;
 pub use state::{Command, Layout, Tab};
 use std::path::{Path, PathBuf};
+#[cfg(not(target_arch = "wasm32"))]
 use std::process::ExitCode;
-use std::time::Instant;
 use summary_panel::SummaryPanel;
+use web_time::Instant;
 
 /// Storage keys of the last scene and layout.
 pub const SCENE_KEY: &str = "scene";
@@ -160,7 +162,11 @@ impl ExplorerApp {
             last_frame: None,
             ui_frame_ms: 0.0,
             meter: None,
-            frame_log: std::env::var_os("ATMOSCOPE_FRAME_LOG").is_some(),
+            frame_log: if cfg!(target_arch = "wasm32") {
+                crate::web_query("frame_log").is_some()
+            } else {
+                std::env::var_os("ATMOSCOPE_FRAME_LOG").is_some()
+            },
             lessons: lessons::shipped(),
             lesson: None,
             thumbnails: thumbnails::Thumbnails::default(),
@@ -191,6 +197,28 @@ impl ExplorerApp {
         }
     }
 
+    /// Loads a preset from its contents (picked in a browser's file dialog, or dropped on
+    /// the page), as [`Self::load_file`] does from a file.
+    fn load_bytes(&mut self, name: &str, bytes: &[u8]) {
+        use atmoscope_model::scene::MAX_PRESET_BYTES;
+        let text = if bytes.len() as u64 > MAX_PRESET_BYTES {
+            Err(format!(
+                "{name}: {} bytes, more than a preset's {MAX_PRESET_BYTES}",
+                bytes.len()
+            ))
+        } else {
+            std::str::from_utf8(bytes).map_err(|e| format!("{name}: not UTF-8 text ({e})"))
+        };
+        match text.and_then(|t| Scene::from_ron(t, Path::new(name)).map_err(|e| e.to_string())) {
+            Ok(scene) => {
+                self.scene = scene;
+                self.message = None;
+                self.notice = Some(format!("loaded {name}"));
+            }
+            Err(e) => self.message = Some(e),
+        }
+    }
+
     /// Applies what a panel asked for: the one place the explorer's state changes on a user's
     /// behalf.
     pub fn apply(&mut self, ctx: &egui::Context, command: Command) {
@@ -213,10 +241,13 @@ impl ExplorerApp {
                 None => self.message = Some(format!("no shipped preset {name}")),
             },
             Command::LoadFile(path) => self.load_file(&path),
-            Command::SaveFile(path) => match self.scene.save(&path) {
-                Ok(()) => self.notice = Some(format!("saved {}", path.display())),
-                Err(e) => self.message = Some(e.to_string()),
-            },
+            Command::LoadBytes { name, bytes } => self.load_bytes(&name, &bytes),
+            Command::SaveFile(path) => {
+                match crate::files::write_atomic(&path, (self.scene.to_ron() + "\n").as_bytes()) {
+                    Ok(()) => self.notice = Some(format!("saved {}", path.display())),
+                    Err(e) => self.message = Some(format!("{e:#}")),
+                }
+            }
             Command::CopyRon => {
                 ctx.copy_text(self.scene.to_ron());
                 self.notice = Some("copied the scene as RON".into());
@@ -224,6 +255,9 @@ impl ExplorerApp {
             Command::Export(kind, path) => self.export(ctx, kind, path),
             Command::Inspect { tab, x, y } => self.inspect(ctx, tab, x, y),
             Command::StartLesson(i) => self.start_lesson(i),
+            // A browser page cannot wait for a GPU read-back, which the thumbnails' renders
+            // need: its preset menu lists names only.
+            Command::WantThumbnails if cfg!(target_arch = "wasm32") => {}
             Command::WantThumbnails => {
                 if let Some(views) = &self.views {
                     self.thumbnails
@@ -346,6 +380,17 @@ impl ExplorerApp {
         views.main.render_complete(&self.scene, &view);
         let (w, h) = (view.width, view.height);
         let label = format!("exporting {}", path.display());
+        // In a browser the image comes back from the GPU a frame later: the export waits.
+        let read = match kind {
+            ExportKind::Png => views.main.display_rgba8().map(|_| ()),
+            ExportKind::Exr => views.main.radiance().map(|_| ()),
+            ExportKind::PanoramaExr | ExportKind::Timelapse => Ok(()),
+        };
+        if read.as_ref().is_err_and(|e| e.is_pending()) {
+            self.pending_exports.push((kind, path));
+            ctx.request_repaint();
+            return;
+        }
         let job = match kind {
             ExportKind::Png => match views.main.display_rgba8() {
                 Ok(rgba) => {
@@ -507,7 +552,7 @@ impl ExplorerApp {
                 commands.push(Command::Export(ExportKind::Png, p));
             }
             if i.consume_shortcut(&ctrl(Key::O))
-                && let Some(p) = files::pick_preset_to_open()
+                && let Some(p) = files::pick_preset_to_open(ctx)
             {
                 commands.push(Command::LoadFile(p));
             }
@@ -543,7 +588,15 @@ impl ExplorerApp {
             });
         }
         for file in ctx.input(|i| i.raw.dropped_files.clone()) {
+            // A browser reads a dropped file's contents later, as it does a picked one's.
+            #[cfg(target_arch = "wasm32")]
+            crate::web::read_dropped(ctx, file);
+            #[cfg(not(target_arch = "wasm32"))]
             commands.push(Command::LoadFile(file.path().to_path_buf()));
+        }
+        #[cfg(target_arch = "wasm32")]
+        if let Some((name, bytes)) = crate::web::take_picked() {
+            commands.push(Command::LoadBytes { name, bytes });
         }
         commands
     }
@@ -553,7 +606,7 @@ impl ExplorerApp {
         egui::MenuBar::new().ui(ui, |ui| {
             ui.menu_button("File", |ui| {
                 if ui.button("Open preset…  (Ctrl+O)").clicked() {
-                    commands.extend(files::pick_preset_to_open().map(Command::LoadFile));
+                    commands.extend(files::pick_preset_to_open(ui.ctx()).map(Command::LoadFile));
                 }
                 if ui.button("Save preset…  (Ctrl+S)").clicked() {
                     commands.extend(files::pick_preset_to_save(&self.scene).map(Command::SaveFile));
@@ -568,6 +621,13 @@ impl ExplorerApp {
                     (ExportKind::PanoramaExr, ""),
                     (ExportKind::Timelapse, ""),
                 ] {
+                    // The panorama and the time-lapse render beside the window, waiting for
+                    // the GPU, which a web page cannot do.
+                    if cfg!(target_arch = "wasm32")
+                        && matches!(kind, ExportKind::PanoramaExr | ExportKind::Timelapse)
+                    {
+                        continue;
+                    }
                     if ui.button(format!("{}…{key}", kind.title())).clicked() {
                         commands.extend(files::pick_export(kind).map(|p| Command::Export(kind, p)));
                     }
@@ -715,7 +775,7 @@ impl ExplorerApp {
         let rebuild = s.rebuild.map_or(String::new(), |p| {
             format!(", rebuilding {}/{}", p.done, p.total)
         });
-        eprintln!(
+        let line = format!(
             "frame: tab {:?}, view {:?}, passes run [{}], skipped {}, frame wall {wall:.1} ms, UI interval {:.1} ms{rebuild}",
             self.layout.tab,
             views.main.view().map(|v| (v.width, v.height)),
@@ -723,6 +783,11 @@ impl ExplorerApp {
             s.skipped.len(),
             self.ui_frame_ms
         );
+        // A web page has no standard error: its console instead (`?frame_log`).
+        #[cfg(target_arch = "wasm32")]
+        web_sys::console::log_1(&line.into());
+        #[cfg(not(target_arch = "wasm32"))]
+        eprintln!("{line}");
     }
 }
 
@@ -862,6 +927,15 @@ impl eframe::App for ExplorerApp {
             // The next slice of the tables, or the full resolution, goes with the next frame.
             ctx.request_repaint();
         }
+        #[cfg(target_arch = "wasm32")]
+        if self.layout.tab == Tab::Sky
+            && self
+                .views
+                .as_ref()
+                .is_some_and(|v| v.main.view().is_some() && !v.main.settling())
+        {
+            crate::web::mark_first_frame();
+        }
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
@@ -889,6 +963,7 @@ fn note_overflow(
 
 /// Opens the explorer. The scene comes from the command line when any scene option is given,
 /// else from the last session, else the built-in default.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn run(args: SceneArgs) -> anyhow::Result<ExitCode> {
     let from_args = args.preset.is_some() || std::env::args().len() > 1;
     let scene = if from_args { Some(args.scene()?) } else { None };
@@ -935,6 +1010,7 @@ pub fn restore(storage: Option<&dyn eframe::Storage>, from_args: Option<Scene>) 
     )
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 fn wgpu_options() -> eframe::egui_wgpu::WgpuConfiguration {
     let mut config = eframe::egui_wgpu::WgpuConfiguration::default();
     ask_for_what_the_engine_uses(&mut config.wgpu_setup);

@@ -3,11 +3,10 @@
 //! at the end the report is written and the window closes.
 
 use super::{Command, ExplorerApp, GpuView, Views};
-use crate::gui_bench::{Action, GuiBenchArgs, StepResult, script, to_csv, to_markdown};
+use crate::gui_bench::{Action, GuiBenchArgs, StepResult, steps, to_csv, to_markdown};
 use atmoscope_model::Scene;
 use eframe::egui;
-use std::process::ExitCode;
-use std::time::Instant;
+use web_time::Instant;
 
 /// Frames a step records at least, so that a step whose action starts work a frame later
 /// (a tab's first engine) is not taken as settled before it begins.
@@ -22,6 +21,8 @@ pub struct Session {
     last_frame: Option<Instant>,
     results: Vec<StepResult>,
     timeout_s: f64,
+    /// Where the report goes (a web page reports on itself instead).
+    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
     out: std::path::PathBuf,
     /// Whether the report was written, once the session is over (read after the window
     /// closes).
@@ -35,7 +36,7 @@ type Outcome = std::sync::Arc<std::sync::Mutex<Option<anyhow::Result<()>>>>;
 impl Session {
     pub fn new(args: &GuiBenchArgs, outcome: Outcome) -> Session {
         Session {
-            steps: script(&args.models.0, args.model),
+            steps: steps(args),
             step: 0,
             started: None,
             last_frame: None,
@@ -77,6 +78,17 @@ impl Session {
                     return;
                 };
                 result.intervals_ms.extend(interval);
+                if let Action::Turn(frames) = action {
+                    // One degree a frame; the step ends after its frames, whatever they took.
+                    let camera = &mut app.scene.camera;
+                    camera.heading_deg = (camera.heading_deg + 1.0).rem_euclid(360.0);
+                    if result.intervals_ms.len() >= frames as usize {
+                        result.settled = true;
+                        self.step += 1;
+                        self.started = None;
+                    }
+                    return;
+                }
                 let settled = result.intervals_ms.len() >= MIN_FRAMES
                     && !app.views.as_ref().is_some_and(Views::settling)
                     && !app.thumbnails.loading();
@@ -97,20 +109,25 @@ impl Session {
             .as_ref()
             .map_or_else(|| "no GPU".to_string(), |v| v.gpu.adapter.clone());
         let md = to_markdown(&self.results, &adapter);
+        let csv = to_csv(&self.results);
         print!("{md}");
+        // A web page reports on itself, for the browser test to read (`web/tests`).
+        #[cfg(target_arch = "wasm32")]
+        let written = {
+            crate::web::report_bench(&md, &csv);
+            Ok(())
+        };
+        #[cfg(not(target_arch = "wasm32"))]
         let written = std::fs::create_dir_all(&self.out)
             .map_err(anyhow::Error::from)
-            .and_then(|()| {
-                crate::files::write_atomic(
-                    &self.out.join("gui.csv"),
-                    to_csv(&self.results).as_bytes(),
-                )
-            })
+            .and_then(|()| crate::files::write_atomic(&self.out.join("gui.csv"), csv.as_bytes()))
             .and_then(|()| crate::files::write_atomic(&self.out.join("gui.md"), md.as_bytes()));
+        #[cfg(not(target_arch = "wasm32"))]
         if written.is_ok() {
             eprintln!("bench gui: wrote {}", self.out.display());
         }
         // The thumbnails were rendered into a folder of the session's own.
+        #[cfg(not(target_arch = "wasm32"))]
         let _ = std::fs::remove_dir_all(&app.thumbnail_dir);
         if let Ok(mut slot) = self.outcome.lock() {
             *slot = Some(written);
@@ -146,12 +163,15 @@ fn take(app: &mut ExplorerApp, ctx: &egui::Context, action: &Action) {
             app.apply(ctx, Command::LoadPreset(name));
             app.scene.render.method = method;
         }
+        // The frames turn the camera (`Session::frame`).
+        Action::Turn(_) => {}
     }
 }
 
 /// Runs the session in the explorer's window; fails when the report could not be written or
 /// the window closed before the end.
-pub fn run(args: GuiBenchArgs) -> anyhow::Result<ExitCode> {
+#[cfg(not(target_arch = "wasm32"))]
+pub fn run(args: GuiBenchArgs) -> anyhow::Result<std::process::ExitCode> {
     let outcome: Outcome = std::sync::Arc::new(std::sync::Mutex::new(None));
     let shared = outcome.clone();
     let options = eframe::NativeOptions {
@@ -188,7 +208,7 @@ pub fn run(args: GuiBenchArgs) -> anyhow::Result<ExitCode> {
         .map_err(|_| anyhow::anyhow!("the session's report was lost"))?
         .take();
     match result {
-        Some(Ok(())) => Ok(ExitCode::SUCCESS),
+        Some(Ok(())) => Ok(std::process::ExitCode::SUCCESS),
         Some(Err(e)) => Err(e),
         None => anyhow::bail!("the window closed before the session ended"),
     }

@@ -155,6 +155,11 @@ pub enum Command {
     LoadPreset(&'static str),
     /// Load a preset file; on any error the scene stays as it was.
     LoadFile(PathBuf),
+    /// Load a preset from its contents (a browser's file picker or a file dropped on the page).
+    LoadBytes {
+        name: String,
+        bytes: Vec<u8>,
+    },
     SaveFile(PathBuf),
     CopyRon,
     Export(ExportKind, PathBuf),
