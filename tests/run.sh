@@ -32,11 +32,25 @@ export LP_NUM_THREADS="${LP_NUM_THREADS:-2}"
 # Two tiers. Without arguments this is the fast tier CI runs: units, GPU/CPU twins, the
 # scheduler, the GUI and the command line. `--research` adds the research tier: the tests
 # marked `#[ignore = "research tier: …"]` (accuracy over the view suite, AOD ranges, the fits,
-# Leenman's replay, long stress runs), to run whenever the physics changes (docs/testing.md).
+# Leenman's replay, long stress runs) and the web explorer in headless Chromium, to run
+# whenever the physics changes (docs/testing.md).
 research=""
 if [ "${1:-}" = "--research" ]; then
     shift
     research=1
+fi
+
+# The explorer also builds for the browser (web/README.md): the fast tier checks that it
+# compiles for wasm32; the research tier runs it in headless Chromium (web/tests/run.sh).
+if ! rustup target list --installed 2>/dev/null | grep -qx wasm32-unknown-unknown; then
+    rustup target add wasm32-unknown-unknown >&2 ||
+        echo "tests/run.sh: the web check needs Rust's wasm32 target: rustup target add wasm32-unknown-unknown" >&2
+fi
+if rustup target list --installed 2>/dev/null | grep -qx wasm32-unknown-unknown || [ "${CI:-}" = true ]; then
+    cargo check --locked --target wasm32-unknown-unknown -p atmoscope
+fi
+if [ -n "$research" ]; then
+    bash web/tests/run.sh
 fi
 
 # cargo-nextest runs each test in a process of its own and keeps both cores busy to the end

@@ -1,0 +1,244 @@
+// The web explorer in headless Chromium, on SwiftShader's WebGPU (web/tests/README.md).
+//
+//   node browser.mjs            the test: first frame, a sky at noon, a sunset preset chosen
+//                               through the menu, the LUTs tab, no console error
+//   node browser.mjs --bench    the Sky view's frame time (`bench gui --script sky-frames`)
+//
+// It serves web/dist (built by `bash web/run --build-only`) itself, on a free local port.
+// Environment: CHROMIUM (default /usr/bin/chromium), ATMOSCOPE_WEB_DIST (default ../dist),
+// ATMOSCOPE_WEB_OUT (screenshots and the report; default ./out), ATMOSCOPE_BENCH_MODEL.
+
+import { chromium } from "playwright-core";
+import { PNG } from "pngjs";
+import http from "node:http";
+import fs from "node:fs";
+import path from "node:path";
+import { fileURLToPath } from "node:url";
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const dist = path.resolve(process.env.ATMOSCOPE_WEB_DIST ?? path.join(here, "..", "dist"));
+const out = path.resolve(process.env.ATMOSCOPE_WEB_OUT ?? path.join(here, "out"));
+const bench = process.argv.includes("--bench");
+// The window the explorer's layout was laid out for (the desktop window's size too).
+const VIEWPORT = { width: 1280, height: 800 };
+// SwiftShader runs WebGPU on the CPU: the first frame builds every table there.
+const FIRST_FRAME_TIMEOUT_MS = 240_000;
+// Where the explorer's default layout puts things in a 1280×800 page on its first visit (the
+// welcome window open): a layout change moves them, and the screenshots this test writes show
+// where they went.
+const AT = {
+  startExploring: { x: 487, y: 574 },
+  presetMenu: { x: 67, y: 61 },
+  presets: { "clear-noon": { x: 45, y: 157 }, "urban-sunset": { x: 52, y: 364 } },
+  lutsTab: { x: 500, y: 12 },
+  // The Sky view's centre, and the LUTs tab's table image.
+  sky: { x: 843, y: 402 },
+  lutArea: { x0: 420, y0: 60, x1: 1270, y1: 770 },
+};
+
+function fail(message) {
+  console.error(`web test: ${message}`);
+  process.exit(1);
+}
+
+for (const file of ["index.html", "atmoscope.js", "atmoscope_bg.wasm"]) {
+  if (!fs.existsSync(path.join(dist, file))) {
+    fail(`${path.join(dist, file)} is missing: build the page with \`bash web/run --build-only\``);
+  }
+}
+fs.mkdirSync(out, { recursive: true });
+
+const TYPES = { ".html": "text/html", ".js": "text/javascript", ".wasm": "application/wasm" };
+const server = http.createServer((req, res) => {
+  const name = decodeURIComponent(new URL(req.url, "http://x").pathname).replace(/^\/+/, "") || "index.html";
+  const file = path.join(dist, path.normalize(name));
+  if (!file.startsWith(dist) || !fs.existsSync(file) || !fs.statSync(file).isFile()) {
+    res.writeHead(404).end();
+    return;
+  }
+  res.writeHead(200, { "Content-Type": TYPES[path.extname(file)] ?? "application/octet-stream" });
+  fs.createReadStream(file).pipe(res);
+});
+await new Promise((resolve) => server.listen(0, "127.0.0.1", resolve));
+const origin = `http://127.0.0.1:${server.address().port}`;
+
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
+  headless: true,
+  args: [
+    "--headless=new",
+    "--enable-unsafe-webgpu",
+    "--use-webgpu-adapter=swiftshader",
+    // Without a GPU process of its own (GL and Vulkan, both SwiftShader's) the page is
+    // composited in software, and a WebGPU canvas never reaches the screen or a screenshot.
+    "--ignore-gpu-blocklist",
+    "--use-angle=swiftshader",
+    "--enable-features=Vulkan",
+    "--use-vulkan=swiftshader",
+    "--no-sandbox",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--disable-quic",
+  ],
+});
+
+let code = 0;
+try {
+  code = bench ? await benchmark() : await test();
+} catch (e) {
+  console.error(`web test: ${e.stack ?? e}`);
+  code = 1;
+} finally {
+  await browser.close();
+  server.close();
+}
+process.exit(code);
+
+// A page with its console errors collected.
+async function open(query = "") {
+  const page = await browser.newPage({ viewport: VIEWPORT });
+  const errors = [];
+  page.on("console", (m) => {
+    if (m.type() === "error") errors.push(m.text());
+    else if (process.env.VERBOSE) console.log(`console.${m.type()}: ${m.text()}`);
+  });
+  page.on("pageerror", (e) => errors.push(String(e)));
+  const started = Date.now();
+  await page.goto(`${origin}/${query}`);
+  const first = await Promise.race([
+    page.waitForSelector("body[data-first-frame-ms]", { timeout: FIRST_FRAME_TIMEOUT_MS }).then(() => "frame"),
+    page.waitForSelector("#problem:not([hidden])", { timeout: FIRST_FRAME_TIMEOUT_MS }).then(() => "problem"),
+  ]);
+  if (first === "problem") {
+    throw new Error(`the page shows a problem: ${await page.textContent("#problem")}`);
+  }
+  const firstFrameMs = Number(await page.getAttribute("body", "data-first-frame-ms"));
+  console.log(`web test: first frame after ${firstFrameMs} ms (page load to a complete sky; ${Date.now() - started} ms in all)`);
+  return { page, errors, firstFrameMs };
+}
+
+// The pixels of a screenshot of the page.
+async function pixels(page, name) {
+  const png = await page.screenshot();
+  fs.writeFileSync(path.join(out, `${name}.png`), png);
+  return PNG.sync.read(png);
+}
+
+// The mean colour over a square of `r` pixels around (x, y).
+function meanColour(img, x, y, r = 6) {
+  const sum = [0, 0, 0];
+  let n = 0;
+  for (let j = y - r; j <= y + r; j++) {
+    for (let i = x - r; i <= x + r; i++) {
+      const k = 4 * (j * img.width + i);
+      for (let c = 0; c < 3; c++) sum[c] += img.data[k + c];
+      n++;
+    }
+  }
+  return sum.map((v) => v / n);
+}
+
+// Waits until `check(img)` holds of a screenshot, taking one a second.
+async function until(page, name, check, timeoutMs, what) {
+  const end = Date.now() + timeoutMs;
+  for (;;) {
+    const img = await pixels(page, name);
+    const verdict = check(img);
+    if (verdict.ok) return verdict;
+    if (Date.now() > end) throw new Error(`${what}: ${verdict.why}`);
+    await page.waitForTimeout(1000);
+  }
+}
+
+
+// A click as a hand makes it: the pointer comes to rest first, so that egui has seen it there
+// in a frame of its own before the button goes down.
+async function click(page, at, settleMs = 1000) {
+  await page.mouse.move(at.x, at.y, { steps: 4 });
+  await page.waitForTimeout(400);
+  await page.mouse.down();
+  await page.waitForTimeout(150);
+  await page.mouse.up();
+  await page.waitForTimeout(settleMs);
+}
+
+async function choosePreset(page, name) {
+  await click(page, AT.presetMenu);
+  await click(page, AT.presets[name]);
+}
+
+// Distinct colours (5 bits a channel) over the LUTs tab's area: a table drawn has many, the
+// tab's text alone few.
+function lutColours(img) {
+  const seen = new Set();
+  for (let y = AT.lutArea.y0; y < AT.lutArea.y1; y += 4) {
+    for (let x = AT.lutArea.x0; x < AT.lutArea.x1; x += 4) {
+      const k = 4 * (y * img.width + x);
+      seen.add(((img.data[k] >> 3) << 10) | ((img.data[k + 1] >> 3) << 5) | (img.data[k + 2] >> 3));
+    }
+  }
+  return seen.size;
+}
+
+function rgbText(c) {
+  return `rgb(${c.map((v) => v.toFixed(0)).join(", ")})`;
+}
+
+async function test() {
+  const { page, errors, firstFrameMs } = await open();
+  await click(page, AT.startExploring);
+
+  await choosePreset(page, "clear-noon");
+  const noon = await until(page, "1-noon", (img) => {
+    const c = meanColour(img, AT.sky.x, AT.sky.y);
+    return { ok: c[2] > 1.6 * c[0] && c[2] > 80, why: `the sky's centre is ${rgbText(c)}, not blue`, c };
+  }, 60_000, "a clear noon");
+  console.log(`web test: clear noon, the sky's centre ${rgbText(noon.c)}`);
+
+  await choosePreset(page, "urban-sunset");
+  const sunset = await until(page, "2-sunset", (img) => {
+    const c = meanColour(img, AT.sky.x, AT.sky.y);
+    // Reddened: red over blue at least twice what it was at noon, and red above blue.
+    const ratio = c[0] / Math.max(c[2], 1);
+    return { ok: c[0] > c[2] && ratio > 2 * (noon.c[0] / noon.c[2]), why: `the sky's centre is ${rgbText(c)}, not reddened`, c };
+  }, 60_000, "an urban sunset");
+  console.log(`web test: urban sunset, the sky's centre ${rgbText(sunset.c)}`);
+
+  await click(page, AT.lutsTab);
+  await until(page, "3-luts", (img) => {
+    const colours = lutColours(img);
+    return { ok: colours > 150, why: `the LUTs tab shows ${colours} colours, no table` };
+  }, 60_000, "the LUTs tab");
+  console.log("web test: the LUTs tab draws its table");
+
+  // The layout and the scene are kept in the browser's storage: a reload opens on the LUTs
+  // tab again, with the sunset's tables.
+  await page.reload();
+  await until(page, "4-reloaded", (img) => {
+    const colours = lutColours(img);
+    return { ok: colours > 150, why: `after a reload the LUTs tab shows ${colours} colours, no table` };
+  }, 60_000, "the layout kept over a reload");
+  console.log("web test: a reload keeps the layout");
+
+  const problem = await page.isVisible("#problem");
+  if (problem) throw new Error(`the page shows a problem: ${await page.textContent("#problem")}`);
+  if (errors.length) {
+    console.error(`web test: ${errors.length} console error(s):\n  ${errors.join("\n  ")}`);
+    return 1;
+  }
+  fs.writeFileSync(path.join(out, "result.json"), JSON.stringify({ firstFrameMs, noon: noon.c, sunset: sunset.c }, null, 2));
+  console.log(`web test: passed (screenshots in ${out})`);
+  return 0;
+}
+
+async function benchmark() {
+  const model = process.env.ATMOSCOPE_BENCH_MODEL ?? "hillaire";
+  const { page } = await open(`?bench=sky-frames&model=${model}`);
+  await page.waitForSelector("body[data-bench-csv]", { timeout: 600_000 });
+  const csv = await page.getAttribute("body", "data-bench-csv");
+  fs.writeFileSync(path.join(out, "bench-sky-frames.csv"), csv);
+  console.log(csv);
+  return 0;
+}
