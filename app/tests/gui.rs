@@ -1607,3 +1607,60 @@ fn the_engine_export_window_copies_parameters_and_measures_them() {
         h.render().expect("rendered").save(&path).expect("saved");
     }
 }
+
+/// The window shows the view as it exports it. egui-wgpu takes an image's bytes for
+/// sRGB-encoded colour, so the display texture goes to it as it is; an sRGB view of it had the
+/// bytes decoded twice and every sky on screen darker than its PNG. The view is found in the
+/// window by its rows (it lies below the menu bar, pixel for pixel), and each row's mean colour
+/// must match the PNG's within a few levels of 255.
+#[test]
+fn the_window_shows_the_view_as_its_png() {
+    let layout = Layout {
+        full_view: true,
+        ..test_layout()
+    };
+    let mut h = harness_with(layout, egui::vec2(480.0, 360.0));
+    let window = h.render().expect("rendered");
+    let views = views(&h);
+    let view = views.main.view().expect("drawn");
+    let display = views.main.display_rgba8().expect("display");
+    let (w, rows) = (view.width as usize, view.height as usize);
+    assert!(
+        w <= window.width() as usize && rows <= window.height() as usize,
+        "the view {w}×{rows} is larger than the window: it is scaled"
+    );
+    // Mean colour of row y over columns x0..x0 + w.
+    let row_mean = |pixel: &dyn Fn(usize, usize) -> [u8; 4], x0: usize, y: usize| {
+        (0..3)
+            .map(|c| (x0..x0 + w).map(|x| f64::from(pixel(x, y)[c])).sum::<f64>() / w as f64)
+            .collect::<Vec<_>>()
+    };
+    let in_png = |x: usize, y: usize| {
+        let i = 4 * (y * w + x);
+        [display[i], display[i + 1], display[i + 2], 255]
+    };
+    let in_window = |x: usize, y: usize| window.get_pixel(x as u32, y as u32).0;
+    let png_rows: Vec<_> = (0..rows).map(|y| row_mean(&in_png, 0, y)).collect();
+    let x0 = (window.width() as usize - w) / 2;
+    let window_rows: Vec<_> = (0..window.height() as usize)
+        .map(|y| row_mean(&in_window, x0, y))
+        .collect();
+    let (offset, worst) = (0..=window_rows.len() - rows)
+        .map(|y0| {
+            let worst = png_rows
+                .iter()
+                .zip(&window_rows[y0..])
+                .flat_map(|(p, s)| (0..3).map(move |c| (s[c] - p[c]).abs()))
+                .fold(0.0, f64::max);
+            (y0, worst)
+        })
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .expect("a place for the view");
+    assert!(
+        worst < 3.0,
+        "the window's rows differ from the PNG's by up to {worst:.1} levels (view at row {offset})"
+    );
+    // The sky is neither black nor white, so the two encodings would differ.
+    let mean: f64 = png_rows.iter().map(|p| p[2]).sum::<f64>() / rows as f64;
+    assert!((40.0..215.0).contains(&mean), "mean blue {mean:.0}");
+}

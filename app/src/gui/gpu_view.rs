@@ -171,21 +171,21 @@ impl GpuView {
     }
 
     fn bind_texture(&mut self) {
-        let Some(srgb) = self.engine.display_view_srgb() else {
+        let Some(display) = self.engine.display_view() else {
             return;
         };
         let mut renderer = self.gpu.renderer.write();
         match self.texture {
             Some(id) => renderer.update_egui_texture_from_wgpu_texture(
                 &self.gpu.device,
-                &srgb,
+                &display,
                 wgpu::FilterMode::Linear,
                 id,
             ),
             None => {
                 self.texture = Some(renderer.register_native_texture(
                     &self.gpu.device,
-                    &srgb,
+                    &display,
                     wgpu::FilterMode::Linear,
                 ))
             }

@@ -503,13 +503,13 @@ impl Engine {
         self.target.as_ref().map(|t| &t.display)
     }
 
-    /// A sampled view of the displayed image that decodes its sRGB bytes to linear colour, for
-    /// compositors that work in linear light (egui-wgpu). Recreated when the view's size changes.
-    pub fn display_view_srgb(&self) -> Option<wgpu::TextureView> {
+    /// A sampled view of the displayed image, its sRGB-encoded bytes as they are: what egui-wgpu
+    /// takes for an image of the UI (Rgba8Unorm, not an sRGB view, which would decode the
+    /// bytes once more and darken the picture). Recreated when the view's size changes.
+    pub fn display_view(&self) -> Option<wgpu::TextureView> {
         self.display_texture().map(|t| {
             t.create_view(&wgpu::TextureViewDescriptor {
-                label: Some("display (sRGB view)"),
-                format: Some(wgpu::TextureFormat::Rgba8UnormSrgb),
+                label: Some("display (sampled)"),
                 usage: Some(wgpu::TextureUsages::TEXTURE_BINDING),
                 ..Default::default()
             })

@@ -25,7 +25,7 @@ impl Target {
         size: [u32; 2],
         sky_tile: u32,
     ) -> Target {
-        let texture = |label, format, view_formats: &[wgpu::TextureFormat]| {
+        let texture = |label, format| {
             device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
                 size: wgpu::Extent3d {
@@ -40,16 +40,11 @@ impl Target {
                 usage: wgpu::TextureUsages::STORAGE_BINDING
                     | wgpu::TextureUsages::TEXTURE_BINDING
                     | wgpu::TextureUsages::COPY_SRC,
-                view_formats,
+                view_formats: &[],
             })
         };
-        let radiance = texture("radiance", wgpu::TextureFormat::Rgba32Float, &[]);
-        // The sRGB view lets a UI sample the encoded bytes as linear colour (egui decodes).
-        let display = texture(
-            "display",
-            wgpu::TextureFormat::Rgba8Unorm,
-            &[wgpu::TextureFormat::Rgba8UnormSrgb],
-        );
+        let radiance = texture("radiance", wgpu::TextureFormat::Rgba32Float);
+        let display = texture("display", wgpu::TextureFormat::Rgba8Unorm);
         let radiance_view = radiance.create_view(&Default::default());
         let display_view = display.create_view(&Default::default());
         let histogram = device.create_buffer(&wgpu::BufferDescriptor {
