@@ -187,6 +187,7 @@ function rgbText(c) {
 }
 
 async function test() {
+  await withoutWebgpu();
   const { page, errors, firstFrameMs } = await open();
   await click(page, AT.startExploring);
 
@@ -205,6 +206,19 @@ async function test() {
     return { ok: c[0] > c[2] && ratio > 2 * (noon.c[0] / noon.c[2]), why: `the sky's centre is ${rgbText(c)}, not reddened`, c };
   }, 60_000, "an urban sunset");
   console.log(`web test: urban sunset, the sky's centre ${rgbText(sunset.c)}`);
+
+  // Exports are downloads: the view as displayed (PNG) and its radiance (EXR).
+  const shotSize = await exportAs(page, "Control+E", "atmoscope.png", (bytes) => {
+    const png = PNG.sync.read(bytes);
+    return `${png.width}×${png.height}`;
+  });
+  await exportAs(page, "Control+Shift+E", "atmoscope.exr", (bytes) => {
+    // OpenEXR's magic number.
+    if (bytes.readUInt32LE(0) !== 20000630) throw new Error("atmoscope.exr is not an OpenEXR file");
+    return `${bytes.length} bytes`;
+  });
+  console.log(`web test: exported the view as PNG (${shotSize}) and EXR`);
+  await pixels(page, "2-exported");
 
   await click(page, AT.lutsTab);
   await until(page, "3-luts", (img) => {
@@ -231,6 +245,42 @@ async function test() {
   fs.writeFileSync(path.join(out, "result.json"), JSON.stringify({ firstFrameMs, noon: noon.c, sunset: sunset.c }, null, 2));
   console.log(`web test: passed (screenshots in ${out})`);
   return 0;
+}
+
+// Presses `keys` and waits for the browser to download `name`; `check` reads its bytes.
+async function exportAs(page, keys, name, check) {
+  const [download] = await Promise.all([
+    page.waitForEvent("download", { timeout: 60_000 }),
+    page.keyboard.press(keys),
+  ]);
+  if (download.suggestedFilename() !== name) {
+    throw new Error(`${keys} downloaded ${download.suggestedFilename()}, not ${name}`);
+  }
+  const file = path.join(out, name);
+  await download.saveAs(file);
+  return check(fs.readFileSync(file));
+}
+
+// A browser without WebGPU gets a page that says so, and no canvas.
+async function withoutWebgpu() {
+  const plain = await chromium.launch({
+    executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
+    headless: true,
+    args: ["--no-sandbox", "--disable-background-networking", "--disable-component-update", "--disable-features=WebGPU"],
+  });
+  try {
+    const page = await plain.newPage({ viewport: VIEWPORT });
+    await page.goto(`${origin}/`);
+    await page.waitForSelector("#problem:not([hidden])", { timeout: 60_000 });
+    const text = await page.textContent("#problem");
+    if (!/WebGPU/.test(text) || !(await page.isHidden("#atmoscope"))) {
+      throw new Error(`without WebGPU the page says: ${text}`);
+    }
+    await page.screenshot({ path: path.join(out, "0-no-webgpu.png") });
+    console.log(`web test: without WebGPU the page says: ${text.slice(0, 90)}…`);
+  } finally {
+    await plain.close();
+  }
 }
 
 async function benchmark() {
