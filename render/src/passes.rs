@@ -457,6 +457,11 @@ impl TableBuffers {
         self.tables.iter().find(|(t, _)| t.id == id).map(|(_, b)| b)
     }
 
+    /// Every table's buffer.
+    pub fn table_buffers(&self) -> impl Iterator<Item = &wgpu::Buffer> {
+        self.tables.iter().map(|(_, b)| b)
+    }
+
     /// Group 1 of table pass `i`.
     pub fn group(&self, i: usize) -> Option<&wgpu::BindGroup> {
         self.groups.get(i).and_then(|g| g.as_ref())

@@ -17,6 +17,13 @@ pub enum ReadbackError {
 #[cfg(target_arch = "wasm32")]
 pub use browser::{set_waker, written};
 
+/// What a read-back reads: a texture or a buffer (in a browser, the key of its request).
+#[derive(Clone, Copy)]
+pub enum Source<'a> {
+    Texture(&'a wgpu::Texture),
+    Buffer(&'a wgpu::Buffer),
+}
+
 /// Every texel of every layer/slice of `texture` (mip 0), tightly packed, in the order
 /// layer/slice, row, column.
 #[cfg(not(target_arch = "wasm32"))]
@@ -233,8 +240,8 @@ fn read_buffer(
 /// buffer only once the page has gone back to its event loop. A read is therefore a request.
 /// The first call copies the source and starts mapping, and answers [`ReadbackError::Pending`];
 /// when the mapping is done the waker ([`set_waker`]: the window asks for a frame) runs, and
-/// the next call answers the bytes. [`written`] forgets every read, done or on its way, so the
-/// bytes answered always show what the source holds now.
+/// the next call answers the bytes. [`written`] forgets the reads of the sources the GPU wrote,
+/// done or on their way, so the bytes answered always show what a source holds now.
 #[cfg(target_arch = "wasm32")]
 mod browser {
     use super::ReadbackError;
@@ -242,12 +249,16 @@ mod browser {
     use std::collections::HashMap;
     use std::sync::{Arc, Mutex};
 
-    /// What is read back.
+    /// What is read back, owned: the key of its read.
     #[derive(Clone, PartialEq, Eq, Hash)]
     pub(super) enum Source {
         Texture(wgpu::Texture),
         Buffer(wgpu::Buffer),
     }
+
+    /// Reads kept at most: past that, all are dropped (those of sources no engine holds any
+    /// more, a rebuild's old tables say, would otherwise keep their buffers alive).
+    const MAX_READS: usize = 64;
 
     /// Set by the mapping's callback (which wgpu wants `Send`, hence not an `Rc`).
     type Mapped = Arc<Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>;
@@ -262,10 +273,17 @@ mod browser {
         static WAKER: RefCell<Option<Box<dyn Fn()>>> = const { RefCell::new(None) };
     }
 
-    /// Notes that the GPU may have changed what any source holds (the engine calls it after
-    /// each frame that ran passes): every read so far is stale.
-    pub fn written() {
-        READS.with_borrow_mut(HashMap::clear);
+    /// Notes that the GPU may have changed what `sources` hold (an engine calls it with its
+    /// own after each frame that ran passes): their reads so far are stale.
+    pub fn written(sources: &[super::Source]) {
+        READS.with_borrow_mut(|reads| {
+            for source in sources {
+                reads.remove(&match *source {
+                    super::Source::Texture(t) => Source::Texture(t.clone()),
+                    super::Source::Buffer(b) => Source::Buffer(b.clone()),
+                });
+            }
+        });
     }
 
     /// What runs when a mapping is done: the window asks itself for a frame.
@@ -307,6 +325,9 @@ mod browser {
                         }
                         WAKER.with_borrow(|w| w.as_ref().map(|wake| wake()));
                     });
+                    if reads.len() >= MAX_READS {
+                        reads.clear();
+                    }
                     reads.insert(source, Read::OnItsWay(buffer, mapped));
                     return Err(ReadbackError::Pending);
                 }
@@ -321,11 +342,14 @@ mod browser {
             let data = buffer
                 .slice(..)
                 .get_mapped_range()
-                .map_err(|e| ReadbackError::Range(e.to_string()))?
-                .to_vec();
+                .map(|range| range.to_vec())
+                .map_err(|e| ReadbackError::Range(e.to_string()));
             buffer.unmap();
-            reads.insert(source, Read::Done(data.clone()));
-            Ok(data)
+            match &data {
+                Ok(bytes) => reads.insert(source, Read::Done(bytes.clone())),
+                Err(_) => reads.remove(&source),
+            };
+            data
         })
     }
 }

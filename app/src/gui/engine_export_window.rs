@@ -2,7 +2,7 @@
 //! (`engine_export`), to copy or save, and how close each engine can come to the scene's full
 //! physics, measured over the view suite in the background.
 
-use super::jobs::Job;
+use super::jobs::{Job, Step};
 use crate::engine_export::{Target, ViewError, fidelity, mean_delta_e};
 use atmoscope_model::Scene;
 use atmoscope_model::scene::{AtmosphereSettings, Quality, SunSettings, ToneMap};
@@ -178,23 +178,41 @@ impl EngineExportWindow {
     fn start(&mut self, ctx: &egui::Context, scene: &Scene) {
         let k = measure_key(self.target, scene);
         let (target, scene, views) = (self.target, scene.clone(), self.views.clone());
-        let text = target.write(&scene);
-        let job = Job::spawn(
+        let exported = target
+            .read(&target.write(&scene))
+            .map_err(|e| format!("{e:#}"));
+        // Natively the views are drawn in parallel in one step; in a browser, which has one
+        // thread, a view a step, so that the page stays live and Cancel works.
+        let chunk = if cfg!(target_arch = "wasm32") {
+            1
+        } else {
+            views.len().max(1)
+        };
+        let (mut next, mut errors) = (0, Vec::new());
+        let job = Job::spawn_steps(
             format!("measuring the {} parameters", target.label()),
             ctx,
             move |p| {
-                let exported = target.read(&text).map_err(|e| format!("{e:#}"))?;
-                let done = AtomicUsize::new(0);
+                let exported = match &exported {
+                    Ok(e) => e,
+                    Err(e) => return Step::Done(Err(e.clone())),
+                };
+                let end = (next + chunk).min(views.len());
+                let done = AtomicUsize::new(next);
                 let go_on = |_: &str| {
                     let n = done.fetch_add(1, Ordering::Relaxed) + 1;
                     p.set(n as f32 / views.len() as f32);
                     !p.cancelled()
                 };
-                let errors = fidelity(&scene, &exported, &views, &go_on);
+                errors.extend(fidelity(&scene, exported, &views[next..end], &go_on));
+                next = end;
                 if p.cancelled() {
-                    return Err("measurement cancelled".into());
+                    Step::Done(Err("measurement cancelled".into()))
+                } else if next < views.len() {
+                    Step::Again
+                } else {
+                    Step::Done(Ok(std::mem::take(&mut errors)))
                 }
-                Ok(errors)
             },
         );
         self.measure = Some((k, Measure::Running(job)));

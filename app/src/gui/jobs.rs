@@ -4,9 +4,9 @@
 //!
 //! A browser page has no threads (WebAssembly threads need headers a static host cannot be
 //! relied on to send), so there a job runs on the UI thread between frames: work given as
-//! steps ([`Job::spawn_steps`]) takes at most [`FRAME_BUDGET`] of each frame and the page
-//! stays live; work given whole ([`Job::spawn`]) runs in the frame after it was asked for,
-//! once its progress bar has been drawn.
+//! steps ([`Job::spawn_steps`]) runs steps in each frame until [`FRAME_BUDGET`] has passed (a
+//! step begun before then finishes) and the page stays live; work given whole ([`Job::spawn`])
+//! runs in one go in the frame after it was asked for.
 
 use eframe::egui;
 use std::sync::Arc;

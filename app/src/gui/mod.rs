@@ -242,12 +242,10 @@ impl ExplorerApp {
             },
             Command::LoadFile(path) => self.load_file(&path),
             Command::LoadBytes { name, bytes } => self.load_bytes(&name, &bytes),
-            Command::SaveFile(path) => {
-                match crate::files::write_atomic(&path, (self.scene.to_ron() + "\n").as_bytes()) {
-                    Ok(()) => self.notice = Some(format!("saved {}", path.display())),
-                    Err(e) => self.message = Some(format!("{e:#}")),
-                }
-            }
+            Command::SaveFile(path) => match save_preset(&self.scene, &path) {
+                Ok(()) => self.notice = Some(format!("saved {}", path.display())),
+                Err(e) => self.message = Some(e),
+            },
             Command::CopyRon => {
                 ctx.copy_text(self.scene.to_ron());
                 self.notice = Some("copied the scene as RON".into());
@@ -381,15 +379,18 @@ impl ExplorerApp {
         let (w, h) = (view.width, view.height);
         let label = format!("exporting {}", path.display());
         // In a browser the image comes back from the GPU a frame later: the export waits.
-        let read = match kind {
-            ExportKind::Png => views.main.display_rgba8().map(|_| ()),
-            ExportKind::Exr => views.main.radiance().map(|_| ()),
-            ExportKind::PanoramaExr | ExportKind::Timelapse => Ok(()),
-        };
-        if read.as_ref().is_err_and(|e| e.is_pending()) {
-            self.pending_exports.push((kind, path));
-            ctx.request_repaint();
-            return;
+        #[cfg(target_arch = "wasm32")]
+        {
+            let read = match kind {
+                ExportKind::Png => views.main.display_rgba8().map(|_| ()),
+                ExportKind::Exr => views.main.radiance().map(|_| ()),
+                ExportKind::PanoramaExr | ExportKind::Timelapse => Ok(()),
+            };
+            if read.is_err_and(|e| e.is_pending()) {
+                self.pending_exports.push((kind, path));
+                ctx.request_repaint();
+                return;
+            }
         }
         let job = match kind {
             ExportKind::Png => match views.main.display_rgba8() {
@@ -946,6 +947,15 @@ impl eframe::App for ExplorerApp {
         eframe::set_value(storage, SCENE_KEY, &self.scene);
         eframe::set_value(storage, LAYOUT_KEY, &self.layout);
     }
+}
+
+/// Saves `scene` as a preset at `path`; in a browser, downloads it under that name.
+fn save_preset(scene: &Scene, path: &Path) -> Result<(), String> {
+    #[cfg(target_arch = "wasm32")]
+    return crate::files::write_atomic(path, (scene.to_ron() + "\n").as_bytes())
+        .map_err(|e| format!("{e:#}"));
+    #[cfg(not(target_arch = "wasm32"))]
+    scene.save(path).map_err(|e| e.to_string())
 }
 
 /// Notes `panel` if what `ui` holds came out wider than `room`, the rect it was given (egui

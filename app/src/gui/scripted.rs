@@ -54,10 +54,11 @@ impl Session {
         let now = Instant::now();
         let interval = self.last_frame.map(|t| (now - t).as_secs_f64() * 1e3);
         self.last_frame = Some(now);
-        ctx.request_repaint();
+        // A web page stays open after the session: it then draws only when asked.
         if self.over {
             return;
         }
+        ctx.request_repaint();
         let Some(action) = self.steps.get(self.step).cloned() else {
             self.finish(app, ctx);
             return;

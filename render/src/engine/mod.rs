@@ -417,7 +417,7 @@ impl Engine {
                     || self.stats.rebuild_done
                     || self.refine.is_some()
                 {
-                    crate::readback::written();
+                    self.forget_reads();
                 }
                 Ok(&self.stats)
             }
@@ -485,6 +485,25 @@ impl Engine {
             };
         }
         &self.stats
+    }
+
+    /// In a browser: forgets the read-backs of this engine's images and tables, which its
+    /// frame may have written.
+    #[cfg(target_arch = "wasm32")]
+    fn forget_reads(&self) {
+        use crate::readback::Source;
+        let mut sources = Vec::new();
+        if let Some(t) = &self.target {
+            sources.extend([
+                Source::Texture(&t.radiance),
+                Source::Texture(&t.display),
+                Source::Buffer(&t.histogram),
+            ]);
+        }
+        if let Some(a) = &self.atmosphere {
+            sources.extend(a.tables.table_buffers().map(Source::Buffer));
+        }
+        crate::readback::written(&sources);
     }
 
     /// Blocks until the GPU has finished all submitted work.
