@@ -49,9 +49,6 @@ fi
 if rustup target list --installed 2>/dev/null | grep -qx wasm32-unknown-unknown || [ "${CI:-}" = true ]; then
     cargo check --locked --target wasm32-unknown-unknown -p atmoscope
 fi
-if [ -n "$research" ]; then
-    bash web/tests/run.sh
-fi
 
 # cargo-nextest runs each test in a process of its own and keeps both cores busy to the end
 # (.config/nextest.toml); cargo test runs the binaries one after another, each waiting on its
@@ -71,4 +68,7 @@ else
         fi
     fi
     cargo test --workspace --locked "$@"
+fi
+if [ -n "$research" ]; then
+    bash web/tests/run.sh
 fi

@@ -1,7 +1,9 @@
 // The web explorer in headless Chromium, on SwiftShader's WebGPU (web/tests/README.md).
 //
-//   node browser.mjs            the test: first frame, a sky at noon, a sunset preset chosen
-//                               through the menu, the LUTs tab, no console error
+//   node browser.mjs            the test: the page without WebGPU, then with it the first
+//                               frame, a noon and a sunset preset chosen through the menu,
+//                               the exports, the LUTs tab, a reload, the Reference tab, and
+//                               no console error (web/tests/README.md)
 //   node browser.mjs --bench    the Sky view's frame time (`bench gui --script sky-frames`)
 //
 // It serves web/dist (built by `bash web/run --build-only`) itself, on a free local port.
@@ -55,7 +57,7 @@ const TYPES = { ".html": "text/html", ".js": "text/javascript", ".wasm": "applic
 const server = http.createServer((req, res) => {
   const name = decodeURIComponent(new URL(req.url, "http://x").pathname).replace(/^\/+/, "") || "index.html";
   const file = path.join(dist, path.normalize(name));
-  if (!file.startsWith(dist) || !fs.existsSync(file) || !fs.statSync(file).isFile()) {
+  if (!file.startsWith(dist + path.sep) || !fs.existsSync(file) || !fs.statSync(file).isFile()) {
     res.writeHead(404).end();
     return;
   }

@@ -18,6 +18,9 @@ if [ ${#missing[@]} -gt 0 ]; then
         exit 1
     fi
 fi
+# The browser this script found is the one the test drives.
+CHROMIUM="$(command -v "${CHROMIUM:-chromium}")"
+export CHROMIUM
 bash ../run --build-only
 npm ci --no-audit --no-fund --silent
 node browser.mjs "$@"
