@@ -24,6 +24,19 @@ pub enum Source<'a> {
     Buffer(&'a wgpu::Buffer),
 }
 
+/// Bytes of a row of `texture`'s texels, and of that row padded as a copy into a buffer
+/// needs it.
+fn row_bytes(texture: &wgpu::Texture) -> (u32, u32) {
+    let texel = texture
+        .format()
+        .block_copy_size(None)
+        .expect("colour formats have a copy size");
+    let row = texture.size().width * texel;
+    let padded =
+        row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    (row, padded)
+}
+
 /// Every texel of every layer/slice of `texture` (mip 0), tightly packed, in the order
 /// layer/slice, row, column.
 #[cfg(not(target_arch = "wasm32"))]
@@ -33,13 +46,7 @@ pub fn read_texture(
     texture: &wgpu::Texture,
 ) -> Result<Vec<u8>, ReadbackError> {
     let size = texture.size();
-    let texel = texture
-        .format()
-        .block_copy_size(None)
-        .expect("colour formats have a copy size");
-    let row = size.width * texel;
-    let padded =
-        row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let (row, padded) = row_bytes(texture);
     let images = size.depth_or_array_layers;
     let mut out = Vec::with_capacity(row as usize * size.height as usize * images as usize);
     for layer in 0..images {
@@ -186,13 +193,7 @@ pub fn read_texture(
     texture: &wgpu::Texture,
 ) -> Result<Vec<u8>, ReadbackError> {
     let size = texture.size();
-    let texel = texture
-        .format()
-        .block_copy_size(None)
-        .expect("colour formats have a copy size");
-    let row = size.width * texel;
-    let padded =
-        row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let (row, padded) = row_bytes(texture);
     let bytes = u64::from(padded) * u64::from(size.height) * u64::from(size.depth_or_array_layers);
     let data = browser::read(
         browser::Source::Texture(texture.clone()),
