@@ -4,7 +4,7 @@
 use eframe::egui;
 use serde::{Deserialize, Serialize};
 
-/// The centre tabs, with their shortcut keys 1–8.
+/// The centre tabs, with their shortcut keys 1–9.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 pub enum Tab {
     #[default]
@@ -16,10 +16,11 @@ pub enum Tab {
     Luts,
     Reference,
     Bench,
+    Measured,
 }
 
 impl Tab {
-    pub const ALL: [Tab; 8] = [
+    pub const ALL: [Tab; 9] = [
         Tab::Sky,
         Tab::Fisheye,
         Tab::Luminance,
@@ -28,6 +29,7 @@ impl Tab {
         Tab::Luts,
         Tab::Reference,
         Tab::Bench,
+        Tab::Measured,
     ];
 
     pub fn label(self) -> &'static str {
@@ -40,6 +42,7 @@ impl Tab {
             Tab::Luts => "LUTs",
             Tab::Reference => "Reference",
             Tab::Bench => "Bench",
+            Tab::Measured => "Measured",
         }
     }
 
@@ -65,11 +68,14 @@ impl Tab {
             Tab::Bench => {
                 "Every model's frame time against its error from the path tracer, from `atmoscope bench methods`; click a point to render that model."
             }
+            Tab::Measured => {
+                "A measured sky (spectroradiometer scans) beside the model's, each measured direction coloured by the model's error; click one for its spectra."
+            }
         }
     }
 
     pub fn key(self) -> egui::Key {
-        const KEYS: [egui::Key; 8] = [
+        const KEYS: [egui::Key; 9] = [
             egui::Key::Num1,
             egui::Key::Num2,
             egui::Key::Num3,
@@ -78,6 +84,7 @@ impl Tab {
             egui::Key::Num6,
             egui::Key::Num7,
             egui::Key::Num8,
+            egui::Key::Num9,
         ];
         KEYS[Tab::ALL.iter().position(|&t| t == self).unwrap_or(0)]
     }

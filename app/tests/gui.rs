@@ -1664,3 +1664,51 @@ fn the_window_shows_the_view_as_its_png() {
     let mean: f64 = png_rows.iter().map(|p| p[2]).sum::<f64>() / rows as f64;
     assert!((40.0..215.0).contains(&mean), "mean blue {mean:.0}");
 }
+
+#[test]
+fn the_measured_tab_scores_a_scan_and_a_clicked_direction_shows_its_spectra() {
+    let mut h = harness();
+    // A fit that builds at once: the tab evaluates the scene's model.
+    h.state_mut().scene.render.method = atmoscope_model::scene::Method::Preetham;
+    h.get_by_label("Measured").click();
+    h.run();
+    assert_eq!(h.state().layout.tab, Tab::Measured);
+    for _ in 0..600 {
+        h.run();
+        if h.state().measured.evaluation.is_some() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
+    h.run();
+    let e = h.state().measured.evaluation.as_ref().expect("the scan was evaluated");
+    let ids: Vec<&str> = e.result.sources.iter().map(|s| s.id).collect();
+    assert_eq!(ids, ["preetham", "path-tracer"]);
+    assert!(e.result.sources.iter().all(|s| !s.errors.radiance.is_empty()));
+    assert!(h.query_by_label_contains("Median |error| of spectral radiance").is_some());
+    // A click on a measured direction of the model's dome selects it and plots its spectra.
+    let (scan, first) = (e.result.scan, e.result.scored[0]);
+    let days = atmoscope_eval::measured::files::read_folder(&h.state().measured.folder).expect("the shipped day");
+    let d = &days[0].scans[scan].directions[first];
+    let rect = h.state().measured.model_dome_rect.expect("the dome is drawn");
+    let at = atmoscope::gui::measured_tab::dome_point(rect, d.azimuth_deg, d.elevation_deg);
+    for pressed in [true, false] {
+        h.input_mut().events.push(egui::Event::PointerMoved(at));
+        h.input_mut().events.push(egui::Event::PointerButton {
+            pos: at,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+        h.run();
+    }
+    assert_eq!(h.state().measured.selected, Some(0));
+    assert!(h.query_by_label_contains(&format!("Sample {}:", d.sample)).is_some());
+    // The scan's scene goes to the other tabs: the sun by the scan's date and time.
+    h.get_by_label("Use this scan's scene").click();
+    h.run();
+    let scene = &h.state().scene;
+    assert!(matches!(scene.sun, atmoscope_model::scene::SunSettings::Date { time, .. } if time.year == 2013));
+    assert_eq!(scene.atmosphere.aerosol.kind, AerosolType::Custom);
+    assert_eq!(scene.render.method, atmoscope_model::scene::Method::Preetham);
+}

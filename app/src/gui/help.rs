@@ -8,8 +8,8 @@ use eframe::egui;
 /// "Shortcuts" table lists the same rows (a test compares them).
 pub const SHORTCUTS: &[(&str, &str)] = &[
     (
-        "1 – 8",
-        "Sky, Fisheye, Luminance, Polarisation, Compare, LUTs, Reference, Bench",
+        "1 – 9",
+        "Sky, Fisheye, Luminance, Polarisation, Compare, LUTs, Reference, Bench, Measured",
     ),
     (
         "S / I / P",

@@ -13,6 +13,7 @@ pub mod help;
 pub mod inspector;
 pub mod jobs;
 pub mod lut_tab;
+pub mod measured_tab;
 pub mod performance_panel;
 pub mod polarisation_overlay;
 pub mod reference_tab;
@@ -122,6 +123,8 @@ pub struct ExplorerApp {
     pub overflowed: Vec<&'static str>,
     /// File → Export to engine.
     pub engine_export: engine_export_window::EngineExportWindow,
+    /// The Measured tab: a measured sky beside the model's.
+    pub measured: measured_tab::MeasuredTab,
 }
 
 /// A lesson the user started: its window stays until closed and its numbers follow the scene.
@@ -175,6 +178,7 @@ impl ExplorerApp {
             session: None,
             overflowed: Vec::new(),
             engine_export: Default::default(),
+            measured: measured_tab::MeasuredTab::new(),
         }
     }
 
@@ -531,6 +535,7 @@ impl ExplorerApp {
             || tracing
             || self.thumbnails.loading()
             || self.engine_export.running()
+            || self.measured.busy()
     }
 
     fn shortcuts(&mut self, ctx: &egui::Context) -> Vec<Command> {
@@ -697,6 +702,9 @@ impl ExplorerApp {
         if self.layout.tab == Tab::Bench {
             return self.bench.show(ui, &self.scene);
         }
+        if self.layout.tab == Tab::Measured {
+            return self.measured.show(ui, &self.scene);
+        }
         let Some(views) = &mut self.views else {
             ui.label("Atmoscope needs eframe's wgpu renderer to draw the views.");
             return Vec::new();
@@ -734,7 +742,7 @@ impl ExplorerApp {
                 reference.show(ui, &self.scene, &mut self.layout.reference);
                 Vec::new()
             }
-            Tab::Bench => Vec::new(),
+            Tab::Bench | Tab::Measured => Vec::new(),
         }
     }
 

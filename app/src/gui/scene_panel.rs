@@ -457,7 +457,12 @@ fn sun(ui: &mut egui::Ui, s: &mut Scene) {
             longitude_deg,
         } => {
             ui.horizontal(|ui| {
-                ui.add(DragValue::new(&mut time.year).range(limits::DATE_YEAR.range()));
+                // A prefix names the value for screen readers as for the eye.
+                ui.add(
+                    DragValue::new(&mut time.year)
+                        .range(limits::DATE_YEAR.range())
+                        .prefix("year "),
+                );
                 ui.add(
                     DragValue::new(&mut time.month)
                         .range(1..=12)

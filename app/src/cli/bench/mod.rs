@@ -6,6 +6,8 @@ mod clear_sky;
 mod clear_sky_charts;
 mod gpu;
 mod leenman;
+mod measured;
+mod measured_charts;
 mod methods;
 mod path_tracer;
 mod polarisation;
@@ -45,6 +47,12 @@ pub enum Bench {
     /// A–D), every model he compares and ours; leenman.csv and leenman.md with his value
     /// beside ours.
     Leenman(leenman::LeenmanBench),
+    /// Every model and the path tracer against measured spectral sky radiance (Kider et al.
+    /// 2014 or any folder in its format): the sun placed from time and place, the aerosol from
+    /// AERONET, the pyranometer or a cross-validated fit; per model the median and 95th
+    /// percentile of the radiance error over 360–720 nm, luminance, chromaticity, zenith
+    /// luminance and global irradiance; measured.md, measured.json, a CSV per scan, charts.
+    Measured(measured::MeasuredBench),
     /// A scripted session of the explorer in its window: a fresh start with each model, every
     /// tab, the preset list and a preset loaded; the longest and 99th-percentile UI frame
     /// interval per step (gui.csv, gui.md). Needs a display (Xvfb where there is none).
@@ -62,6 +70,7 @@ pub fn run(bench: &Bench) -> anyhow::Result<ExitCode> {
         Bench::Leenman(args) => leenman::run(args),
         Bench::Transmittance(args) => transmittance::run(args),
         Bench::Polarisation(args) => polarisation::run(args),
+        Bench::Measured(args) => measured::run(args),
         // The session plays in the explorer's window, which `atmoscope::run` opens for it.
         Bench::Gui(_) => anyhow::bail!("`bench gui` runs from the atmoscope command"),
     }

@@ -1,0 +1,122 @@
+//! Each aerosol retrieval finds again the optical depth of a synthetic sky, and the
+//! cross-validated fit never scores a direction it was fitted on.
+
+use atmoscope_eval::measured::files::{self, Day, GhiSample};
+use atmoscope_eval::measured::retrieve::{self, AerosolSource};
+use atmoscope_eval::measured::run::{self, Settings};
+use atmoscope_eval::measured::sky::{self, Aerosol, Site, Source};
+use atmoscope_eval::measured::{broadband, score};
+
+fn shipped_day() -> Day {
+    let mut days = files::read_folder(&atmoscope_eval::measured::shipped_folder()).expect("the shipped day");
+    days.remove(0)
+}
+
+fn settings(aerosol: AerosolSource) -> Settings {
+    Settings {
+        site: Site::CORNELL,
+        aerosol: Some(aerosol),
+        sources: Vec::new(),
+        model_nm: run::default_model_nm(),
+        fit_spp: 48,
+        irradiance_strata: 6,
+    }
+}
+
+/// The shipped day's scan 10 (noon), its measured spectra replaced by the path tracer's sky at
+/// `aod550` (`spp` paths, a seed of its own) in every direction.
+fn synthetic_day(aod550: f64, spp: u64) -> (Day, usize) {
+    let mut day = shipped_day();
+    let i = 10;
+    let scan = day.scans[i].clone();
+    let (_, sun_az) = run::sun_theory(&day, &scan, &Site::CORNELL);
+    let aerosol = Aerosol { aod550, ..retrieve::shape(&day, &scan) };
+    let scene = sky::scene(&day, &scan, &Site::CORNELL, &aerosol);
+    let views: Vec<_> = (0..scan.directions.len()).map(|d| run::view_of(&scan, d, sun_az)).collect();
+    let nm = day.wavelengths_nm.clone();
+    let sky = sky::radiance(&scene, Source::PathTracer { spp, seed: 99 }, &views, &nm)
+        .expect("the path tracer draws every scene");
+    for (d, l) in day.scans[i].directions.iter_mut().zip(sky) {
+        d.radiance = l;
+    }
+    (day, i)
+}
+
+#[test]
+fn the_aeronet_retrieval_takes_the_photometer_s_depth_at_the_scan_s_time() {
+    let mut day = shipped_day();
+    let scan = day.scans[0].clone();
+    for r in &mut day.aeronet {
+        r.tau440 = 0.2;
+        r.angstrom = 1.4;
+    }
+    let got = retrieve::from_aeronet(&day, &scan).expect("records");
+    let want = 0.2 * (550.0_f64 / 440.0).powf(-1.4);
+    assert!((got.aerosol.aod550 - want).abs() < 1e-12, "{} against {want}", got.aerosol.aod550);
+    assert!((got.aerosol.angstrom - 1.4).abs() < 1e-12);
+    day.aeronet.clear();
+    assert!(retrieve::from_aeronet(&day, &scan).is_err());
+}
+
+#[test]
+fn the_pyranometer_retrieval_finds_the_depth_of_a_synthetic_irradiance() {
+    let mut day = shipped_day();
+    let i = 5;
+    let scan = day.scans[i].clone();
+    let truth = Aerosol { aod550: 0.23, ..retrieve::shape(&day, &scan) };
+    let scene = sky::scene(&day, &scan, &Site::CORNELL, &truth);
+    let ghi = broadband::global(&retrieve::broadband_inputs(&scene, &Site::CORNELL, &truth)).expect("sun up");
+    day.pyranometer = vec![GhiSample { time_local: scan.time_local, ghi_w_m2: ghi }];
+    let got = retrieve::from_pyranometer(&day, i, &Site::CORNELL).expect("a reading");
+    assert!((got.aerosol.aod550 - 0.23).abs() < 1e-6, "{}", got.aerosol.aod550);
+    day.pyranometer.clear();
+    assert!(retrieve::from_pyranometer(&day, i, &Site::CORNELL).is_err());
+}
+
+#[test]
+fn the_fit_finds_the_depth_of_a_path_traced_sky_within_0_03() {
+    for aod in [0.08, 0.3] {
+        let (day, i) = synthetic_day(aod, 64);
+        let result = run::evaluate(&day, i, &settings(AerosolSource::Fit)).expect("a fit");
+        let got = result.retrieved.aerosol.aod550;
+        assert!((got - aod).abs() < 0.03, "AOD {aod}: fitted {got}");
+    }
+}
+
+#[test]
+fn the_fit_never_scores_a_direction_it_was_fitted_on() {
+    let day = shipped_day();
+    let i = 3;
+    let settings = settings(AerosolSource::Fit);
+    let result = run::evaluate(&day, i, &settings).expect("a fit");
+    assert!(!result.fitted_on.is_empty() && !result.scored.is_empty());
+    assert!(result.scored.iter().all(|d| !result.fitted_on.contains(d)), "a direction in both halves");
+
+    // Whatever the held-out half holds, the fit comes out the same: it never reads it.
+    let mut poisoned = day.clone();
+    for &d in &result.scored {
+        for l in &mut poisoned.scans[i].directions[d].radiance {
+            *l *= 50.0;
+        }
+    }
+    let fit = |day: &Day| {
+        run::retrieve(day, i, AerosolSource::Fit, &settings, &result.fitted_on, result.sun_azimuth_deg)
+            .expect("a fit")
+            .aerosol
+            .aod550
+    };
+    assert_eq!(fit(&day), fit(&poisoned));
+    // And what it is scored on is the held-out half alone.
+    let (zenith, _) = run::sun_theory(&day, &day.scans[i], &Site::CORNELL);
+    let usable = score::scored_directions(&day.scans[i], zenith, result.sun_azimuth_deg);
+    assert_eq!(result.scored, score::Split::alternate(&usable).score);
+}
+
+#[test]
+fn the_sun_s_azimuth_of_a_path_traced_sky_is_its_own() {
+    let (day, i) = synthetic_day(0.15, 32);
+    let scan = &day.scans[i];
+    let (_, theory) = run::sun_theory(&day, scan, &Site::CORNELL);
+    let got = run::sun_azimuth_from_symmetry(&day, scan, theory + 8.0);
+    assert!((got - theory).abs() < 1.0, "theory {theory}°, from the symmetry {got}°");
+}
