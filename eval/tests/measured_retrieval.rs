@@ -120,3 +120,25 @@ fn the_sun_s_azimuth_of_a_path_traced_sky_is_its_own() {
     let got = run::sun_azimuth_from_symmetry(&day, scan, theory + 8.0);
     assert!((got - theory).abs() < 1.0, "theory {theory}°, from the symmetry {got}°");
 }
+
+#[test]
+fn the_project_s_sun_agrees_with_noaa_s_in_the_scan_list() {
+    // The scan list carries the sun by NOAA's formulas: a check on the project's own code,
+    // which places the sun from the scan's time and the site.
+    let day = shipped_day();
+    let list = std::fs::read_to_string(atmoscope_eval::measured::shipped_folder().join("scans_2013-05-27.csv"))
+        .expect("the scan list");
+    let noaa: Vec<(f64, f64)> = list
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let c: Vec<f64> = l.split(',').skip(3).map(|x| x.parse().expect("a number")).collect();
+            (c[0], c[1])
+        })
+        .collect();
+    assert_eq!(noaa.len(), day.scans.len());
+    for (scan, (zenith, azimuth)) in day.scans.iter().zip(noaa) {
+        let (z, a) = run::sun_theory(&day, scan, &Site::CORNELL);
+        assert!((z - zenith).abs() < 0.02 && (a - azimuth).abs() < 0.05, "{}: {z} {a} against {zenith} {azimuth}", scan.time_local);
+    }
+}
