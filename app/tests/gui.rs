@@ -1704,6 +1704,10 @@ fn the_measured_tab_scores_a_scan_and_a_clicked_direction_shows_its_spectra() {
     }
     assert_eq!(h.state().measured.selected, Some(0));
     assert!(h.query_by_label_contains(&format!("Sample {}:", d.sample)).is_some());
+    if let Some(dir) = std::env::var_os("ATMOSCOPE_SCREENSHOTS") {
+        // For the docs: the tab with a direction's spectra.
+        h.render().expect("rendered").save(Path::new(&dir).join("explorer-measured.png")).expect("saved");
+    }
     // The scan's scene goes to the other tabs: the sun by the scan's date and time.
     h.get_by_label("Use this scan's scene").click();
     h.run();

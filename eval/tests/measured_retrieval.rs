@@ -18,7 +18,7 @@ fn settings(aerosol: AerosolSource) -> Settings {
         aerosol: Some(aerosol),
         sources: Vec::new(),
         model_nm: run::default_model_nm(),
-        fit_spp: 48,
+        fit_spp: 32,
         irradiance_strata: 6,
     }
 }

@@ -4,15 +4,14 @@
 //! - `pyranometer`: the optical depth at which the broadband model of Bird & Hulstrom (1981)
 //!   ([`super::broadband`]) gives the pyranometer's global irradiance during the scan: no
 //!   radiance is used, so the sky that follows is a prediction;
-//! - `fit`: the optical depth at which the path tracer's sky is closest to the scan's radiance
-//!   (least squares in ln L) on one half of its directions ([`super::score::Split`]); the sky is
-//!   then scored on the other half only.
+//! - `fit`: the optical depth and single-scattering albedo at which the path tracer's sky is
+//!   closest to the scan's radiance (least squares in ln L) on one half of its directions
+//!   ([`super::score::Split`]); the sky is then scored on the other half only.
 
 use super::aeronet;
 use super::broadband;
 use super::files::{Day, Scan};
 use super::sky::{self, Aerosol, Site, Source, View};
-use super::symmetry::golden_section;
 use atmoscope_model::Scene;
 use std::fmt;
 
@@ -141,18 +140,32 @@ pub const FIT_NM: [f64; 8] = [380.0, 420.0, 460.0, 500.0, 550.0, 600.0, 650.0, 7
 /// Range of optical depths at 550 nm the fit searches.
 pub const FIT_AOD_RANGE: (f64, f64) = (0.0, 1.5);
 
-/// The optical depth at 550 nm at which the path tracer's sky (`scene_at(aod)`, `spp` paths
-/// per direction and batch, one seed for every trial so the misfit is smooth in the depth)
-/// fits `measured` (spectra at [`FIT_NM`], one per view) best in ln L. It reads nothing but the
-/// views and spectra it is given: the caller hands it one half of a split.
-pub fn fit_aod550(
-    scene_at: impl Fn(f64) -> Scene,
+/// Range of single-scattering albedos the fit searches.
+pub const FIT_SSA_RANGE: (f64, f64) = (0.6, 1.0);
+
+/// The optical depth at 550 nm and the single-scattering albedo at which the path tracer's sky
+/// (`scene_at(aod, ssa)`, `spp` paths per direction and batch, one seed for every trial so the
+/// misfit is smooth) fits `measured` (spectra at [`FIT_NM`], one per view) best in ln L, by
+/// Nelder–Mead within [`FIT_AOD_RANGE`] and [`FIT_SSA_RANGE`]. It reads nothing but the views
+/// and spectra it is given: the caller hands it one half of a split.
+pub fn fit_aerosol(
+    scene_at: impl Fn(f64, f64) -> Scene,
     views: &[View],
     measured: &[Vec<f64>],
     spp: u64,
-) -> f64 {
-    let misfit = |aod: f64| -> f64 {
-        let Ok(model) = sky::radiance(&scene_at(aod), Source::PathTracer { spp, seed: 7 }, views, &FIT_NM) else {
+    start: (f64, f64),
+) -> (f64, f64) {
+    let clamp = |x: &[f64]| {
+        (
+            x[0].clamp(FIT_AOD_RANGE.0, FIT_AOD_RANGE.1),
+            x[1].clamp(FIT_SSA_RANGE.0, FIT_SSA_RANGE.1),
+        )
+    };
+    let misfit = |x: &[f64]| -> f64 {
+        let (aod, ssa) = clamp(x);
+        // Outside the ranges the misfit grows with the distance, so the simplex comes back.
+        let outside = (x[0] - aod).abs() + (x[1] - ssa).abs();
+        let Ok(model) = sky::radiance(&scene_at(aod, ssa), Source::PathTracer { spp, seed: 7 }, views, &FIT_NM) else {
             return f64::INFINITY;
         };
         let (mut sum, mut n) = (0.0, 0usize);
@@ -164,7 +177,9 @@ pub fn fit_aod550(
                 }
             }
         }
-        if n == 0 { f64::INFINITY } else { sum / n as f64 }
+        if n == 0 { f64::INFINITY } else { sum / n as f64 + outside }
     };
-    golden_section(misfit, FIT_AOD_RANGE.0, FIT_AOD_RANGE.1, 2e-3).clamp(FIT_AOD_RANGE.0, FIT_AOD_RANGE.1)
+    let start = [start.0.clamp(FIT_AOD_RANGE.0, FIT_AOD_RANGE.1), start.1.clamp(FIT_SSA_RANGE.0, FIT_SSA_RANGE.1)];
+    let (best, _) = crate::optimize::nelder_mead(misfit, &start, &[0.05, -0.05], 1e-4, 80);
+    clamp(&best)
 }

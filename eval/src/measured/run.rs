@@ -5,7 +5,7 @@ use super::files::{Day, Scan};
 use super::retrieve::{self, AerosolSource, RetrievalError, Retrieved};
 use super::score::{self, Errors, Split};
 use super::sky::{self, Site, Source, View};
-use super::{broadband, symmetry};
+use super::{aeronet, broadband, symmetry};
 use atmoscope_model::methods;
 use atmoscope_model::sun_position::{self, DateTime};
 
@@ -51,6 +51,8 @@ pub struct SourceScan {
     pub ghi_w_m2: Option<f64>,
     /// Why the model draws nothing for this scene.
     pub refused: Option<String>,
+    /// The turbidity a fitted model took from the scene (its own conversion).
+    pub turbidity: Option<f64>,
 }
 
 /// What a scan says and how each source did.
@@ -147,14 +149,15 @@ pub fn retrieve(
                 .iter()
                 .map(|&i| resample(day, &scan.directions[i].radiance, &retrieve::FIT_NM))
                 .collect();
-            let scene_at = |aod550| {
-                sky::scene(day, scan, &settings.site, &sky::Aerosol { aod550, ..shape })
+            let scene_at = |aod550, ssa| {
+                sky::scene(day, scan, &settings.site, &sky::Aerosol { aod550, ssa, ..shape })
             };
-            let aod550 = retrieve::fit_aod550(scene_at, &views, &measured, settings.fit_spp);
+            let start = aeronet::at(&day.aeronet, scan.time_utc).map_or(0.1, |a| a.aod550);
+            let (aod550, ssa) = retrieve::fit_aerosol(scene_at, &views, &measured, settings.fit_spp, (start, shape.ssa));
             Ok(Retrieved {
                 source,
-                aerosol: sky::Aerosol { aod550, ..shape },
-                note: format!("fitted by the path tracer on {} directions", fit_half.len()),
+                aerosol: sky::Aerosol { aod550, ssa, ..shape },
+                note: format!("optical depth and albedo fitted by the path tracer on {} directions", fit_half.len()),
             })
         }
     }
@@ -217,6 +220,7 @@ pub fn evaluate(day: &Day, scan_index: usize, settings: &Settings) -> Result<Sca
                     zenith_luminance: None,
                     ghi_w_m2: None,
                     refused: Some(why.to_string()),
+                    turbidity: None,
                 },
                 Ok(sky) => {
                     let radiance = sky.radiance(&views);
@@ -237,6 +241,7 @@ pub fn evaluate(day: &Day, scan_index: usize, settings: &Settings) -> Result<Sca
                         zenith_luminance,
                         ghi_w_m2,
                         refused: None,
+                        turbidity: sky.turbidity(),
                     }
                 }
             }

@@ -200,6 +200,12 @@ impl Sky {
         &self.wavelengths_nm
     }
 
+    /// The turbidity a fitted model took from the scene by its own conversion (Preetham,
+    /// Hosek–Wilkie, the CIE sky), 1–10; None for the others.
+    pub fn turbidity(&self) -> Option<f64> {
+        self.model.as_ref().and_then(|m| m.turbidity())
+    }
+
     fn world(&self, v: &View) -> glam::DVec3 {
         self.camera.local_to_world(direction_from_angles(
             90.0 - v.zenith_deg,

@@ -137,6 +137,10 @@ pub struct ModelRow {
     pub samples: usize,
     /// Scans the model refused (outside its domain).
     pub refused_scans: usize,
+    /// The median turbidity a fitted model took from the scans' scenes by its own conversion
+    /// (Preetham, Hosek–Wilkie, the CIE sky); absent for the others.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub turbidity_median: Option<f64>,
 }
 
 #[derive(Serialize, Debug)]
@@ -158,7 +162,7 @@ pub fn model_rows(ids: &[&str], results: &[ScanResult]) -> Vec<ModelRow> {
     ids.iter()
         .map(|&id| {
             let mut errors = Errors::default();
-            let (mut zenith, mut ghi, mut refused) = (Vec::new(), Vec::new(), 0);
+            let (mut zenith, mut ghi, mut refused, mut turbidity) = (Vec::new(), Vec::new(), 0, Vec::new());
             for r in results {
                 let Some(s) = r.sources.iter().find(|s| s.id == id) else { continue };
                 if s.refused.is_some() {
@@ -166,6 +170,7 @@ pub fn model_rows(ids: &[&str], results: &[ScanResult]) -> Vec<ModelRow> {
                     continue;
                 }
                 errors.extend(&s.errors);
+                turbidity.extend(s.turbidity);
                 if let (Some(m), Some(l)) = (r.zenith_luminance_measured, s.zenith_luminance) {
                     zenith.push((l / m - 1.0).abs());
                 }
@@ -183,6 +188,7 @@ pub fn model_rows(ids: &[&str], results: &[ScanResult]) -> Vec<ModelRow> {
                 ghi_median_abs_rel_err: score::quantile(&ghi, 0.5),
                 samples: errors.radiance.len(),
                 refused_scans: refused,
+                turbidity_median: (!turbidity.is_empty()).then(|| score::quantile(&turbidity, 0.5)),
             }
         })
         .collect()
@@ -309,6 +315,10 @@ pub fn summary(report: &Report, settings: &Settings, folder: &std::path::Path) -
     let _ = writeln!(s, "| --- | --- | --- | --- | --- | --- | --- | --- |");
     for m in &models {
         let refused = if m.refused_scans > 0 { format!(" (refused {} scans)", m.refused_scans) } else { String::new() };
+        let refused = match m.turbidity_median {
+            Some(t) => format!("{refused} (turbidity {t:.2})"),
+            None => refused,
+        };
         let _ = writeln!(
             s,
             "| {}{refused} | {} | {} | {} | {:.4} | {} | {} | {} |",
@@ -325,13 +335,13 @@ pub fn summary(report: &Report, settings: &Settings, folder: &std::path::Path) -
     let _ = writeln!(s, "\n## Scans\n");
     let _ = writeln!(
         s,
-        "| date | local time | sun zenith | sun azimuth (symmetry / theory) | aerosol | AOD 550 | Ångström | GHI measured | zenith luminance |"
+        "| date | local time | sun zenith | sun azimuth (symmetry / theory) | aerosol | AOD 550 | Ångström | SSA | GHI measured | zenith luminance |"
     );
-    let _ = writeln!(s, "| --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    let _ = writeln!(s, "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
     for r in &report.scans {
         let _ = writeln!(
             s,
-            "| {} | {} | {:.2}° | {:.2}° / {:.2}° | {} | {:.3} | {:.2} | {} | {} |",
+            "| {} | {} | {:.2}° | {:.2}° / {:.2}° | {} | {:.3} | {:.2} | {:.2} | {} | {} |",
             r.date,
             r.time_local,
             r.sun_zenith_deg,
@@ -340,6 +350,7 @@ pub fn summary(report: &Report, settings: &Settings, folder: &std::path::Path) -
             r.aerosol.source,
             r.aerosol.aod550,
             r.aerosol.angstrom,
+            r.aerosol.single_scattering_albedo,
             r.ghi_measured_w_m2.map_or("–".into(), |g| format!("{g:.1} W/m²")),
             r.zenith_luminance_measured_cd_m2.map_or("–".into(), |l| format!("{l:.0} cd/m²")),
         );
@@ -351,8 +362,8 @@ pub fn summary(report: &Report, settings: &Settings, folder: &std::path::Path) -
         s,
         "\nThe scene of each scan: the sun by date, time and place (zenith angle; azimuth from the \
          sky's symmetry), the site's air column (pressure ratio {:.4}), zonal-mean ozone of the \
-         latitude and month, a grass ground, a Custom aerosol (Henyey–Greenstein, SSA {}, scale \
-         height {} km). GHI: each sky's 360–830 nm irradiance carried to broadband by Bird & \
+         latitude and month, a grass ground, a Custom aerosol (Henyey–Greenstein, SSA {} unless \
+         fitted, scale height {} km). GHI: each sky's 360–830 nm irradiance carried to broadband by Bird & \
          Hulstrom (1981) over the path tracer's band.",
         settings.site.pressure_ratio(),
         sky::DEFAULT_SSA,

@@ -71,8 +71,8 @@ pub fn write(out: &Path, days: &[Day], results: &[(usize, ScanResult)], settings
     Ok(())
 }
 
-/// Four directions of one scan: the zenith, and on the rings the scored directions nearest to
-/// the sun's azimuth, across it and away from it.
+/// Four directions of one scan: the highest scored (the zenith), and on the two lowest rings the
+/// scored directions nearest to the sun's azimuth, across it and away from it.
 fn spectra(out: &Path, day: &Day, r: &ScanResult, settings: &Settings) -> anyhow::Result<()> {
     let scan = &day.scans[r.scan];
     let nearest = |elevation: f64, from_sun: f64| -> Option<usize> {
@@ -89,7 +89,17 @@ fn spectra(out: &Path, day: &Day, r: &ScanResult, settings: &Settings) -> anyhow
             })
             .map(|(k, _)| k)
     };
-    let picks = [nearest(90.0, 0.0), nearest(33.749, 0.0), nearest(33.749, 90.0), nearest(12.1151, 180.0)];
+    // The scan's rings, lowest first, whatever its instrument's elevations.
+    let mut rings: Vec<f64> = r.scored.iter().map(|&i| scan.directions[i].elevation_deg).collect();
+    rings.sort_by(f64::total_cmp);
+    rings.dedup_by(|a, b| (*a - *b).abs() < 1.0);
+    let (lowest, second) = (rings.first().copied().unwrap_or(0.0), rings.get(1).copied().unwrap_or(0.0));
+    let picks = [
+        nearest(rings.last().copied().unwrap_or(90.0), 0.0),
+        nearest(second, 0.0),
+        nearest(second, 90.0),
+        nearest(lowest, 180.0),
+    ];
     for (n, k) in picks.into_iter().flatten().enumerate() {
         let dir = &scan.directions[r.scored[k]];
         let mut series = vec![Series {
