@@ -22,6 +22,7 @@ use atmoscope_model::scene::Method;
 use eframe::egui;
 use egui_plot::{Legend, Line, Plot, PlotPoints};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// The shipped day's folder, relative to the repository.
 pub const SHIPPED: &str = "eval/data/kider_2014";
@@ -39,11 +40,15 @@ pub struct Evaluation {
     /// The model's sky over the dome's cells (linear sRGB, W·m⁻²·sr⁻¹), row-major, None
     /// outside the dome.
     pub model_dome: Vec<Option<[f64; 3]>>,
+    /// The measured sky interpolated over the same cells.
+    pub measured_dome: Vec<Option<[f64; 3]>>,
+    /// The luminance of each measured direction, cd/m².
+    pub measured_luminance: Vec<f64>,
 }
 
 pub struct MeasuredTab {
     pub folder: PathBuf,
-    days: Option<Result<Vec<Day>, String>>,
+    days: Option<Result<Arc<Vec<Day>>, String>>,
     pub day: usize,
     pub scan: usize,
     job: Option<Job<Result<Evaluation, String>>>,
@@ -84,12 +89,11 @@ impl MeasuredTab {
         self.job.as_ref().is_some_and(Job::is_running)
     }
 
-    fn days(&mut self) -> Result<&Vec<Day>, String> {
+    fn days(&mut self) -> Result<Arc<Vec<Day>>, String> {
         let folder = self.folder.clone();
         self.days
-            .get_or_insert_with(|| files::read_folder(&folder).map_err(|e| e.to_string()))
-            .as_ref()
-            .map_err(Clone::clone)
+            .get_or_insert_with(|| files::read_folder(&folder).map(Arc::new).map_err(|e| e.to_string()))
+            .clone()
     }
 
     /// Opens another folder of measured days; what was shown stays if it does not read.
@@ -97,7 +101,7 @@ impl MeasuredTab {
         match files::read_folder(&folder) {
             Ok(days) => {
                 self.folder = folder;
-                self.days = Some(Ok(days));
+                self.days = Some(Ok(Arc::new(days)));
                 (self.day, self.scan) = (0, 0);
                 self.forget();
             }
@@ -137,7 +141,7 @@ impl MeasuredTab {
     pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene) -> Vec<Command> {
         let mut commands = Vec::new();
         let days = match self.days() {
-            Ok(d) => d.clone(),
+            Ok(d) => d,
             Err(e) => {
                 ui.label(format!("No measured skies: {e}"));
                 self.open_button(ui);
@@ -263,13 +267,8 @@ impl MeasuredTab {
                 ));
             }
         }
-        let measured: Vec<[f64; 3]> = scan
-            .directions
-            .iter()
-            .map(|d| score::xyz(&day.wavelengths_nm, &d.radiance).map_or([0.0; 3], xyz_to_linear_srgb))
-            .collect();
-        let exposure = exposure(&run::measured_luminance(day, scan));
-        let lum = run::measured_luminance(day, scan);
+        let lum = &e.measured_luminance;
+        let exposure = exposure(lum);
         let errors: Vec<Option<f64>> = match of(id) {
             Some(s) if s.refused.is_none() => s
                 .radiance
@@ -288,8 +287,7 @@ impl MeasuredTab {
             ui.vertical(|ui| {
                 ui.label("Measured, interpolated between its directions");
                 let (rect, _) = ui.allocate_exact_size(egui::vec2(size, size), egui::Sense::hover());
-                let cells = interpolated_dome(scan, &measured);
-                paint_dome(ui.painter(), rect, &cells, exposure);
+                paint_dome(ui.painter(), rect, &e.measured_dome, exposure);
             });
             ui.vertical(|ui| {
                 ui.label(format!("{}, and its luminance error at each measured direction", methods::info(method).label));
@@ -383,12 +381,20 @@ fn evaluate(day: &Day, d: usize, s: usize, method: Method) -> Result<Evaluation,
     for (cell, l) in cells.into_iter().zip(radiance) {
         model_dome[cell] = score::xyz(&settings.model_nm, &l).map(xyz_to_linear_srgb);
     }
+    let scan = &day.scans[s];
+    let colours: Vec<[f64; 3]> = scan
+        .directions
+        .iter()
+        .map(|d| score::xyz(&day.wavelengths_nm, &d.radiance).map_or([0.0; 3], xyz_to_linear_srgb))
+        .collect();
     Ok(Evaluation {
         day: d,
         scan: s,
         method,
         result,
         model_dome,
+        measured_dome: interpolated_dome(scan, &colours),
+        measured_luminance: run::measured_luminance(day, scan),
     })
 }
 

@@ -53,7 +53,8 @@ pub struct Scan {
 }
 
 impl Scan {
-    /// Offset of the local clock from UTC, hours (local − UTC, −12 to +14).
+    /// Offset of the local clock from UTC, hours (local − UTC), from the two clocks the file
+    /// gives: −12 to +12 (the files carry no date per clock to tell +13 from −11).
     pub fn utc_offset_h(&self) -> f64 {
         let d = (self.time_local.seconds - self.time_utc.seconds) / 3600.0;
         // Days wrap: 01:00 local is 23:00 UTC the day before at +2 h.
