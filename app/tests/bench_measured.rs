@@ -31,23 +31,57 @@ fn one_scan_of_the_shipped_day_gives_the_promised_json_and_files() {
     let scan = &v["scans"][0];
     assert_eq!(scan["date"], "2013-05-27");
     assert_eq!(scan["time_local"], "12:00");
-    assert_eq!(scan["aerosol"]["source"], "aeronet", "the day has an AERONET file");
-    for key in ["sun_zenith_deg", "sun_azimuth_deg", "sun_azimuth_theory_deg"] {
-        assert!(scan[key].as_f64().is_some_and(f64::is_finite), "{key}: {}", scan[key]);
+    assert_eq!(
+        scan["aerosol"]["source"], "aeronet",
+        "the day has an AERONET file"
+    );
+    for key in [
+        "sun_zenith_deg",
+        "sun_azimuth_deg",
+        "sun_azimuth_theory_deg",
+    ] {
+        assert!(
+            scan[key].as_f64().is_some_and(f64::is_finite),
+            "{key}: {}",
+            scan[key]
+        );
     }
     for key in ["aod550", "angstrom"] {
-        assert!(scan["aerosol"][key].as_f64().is_some_and(|x| x > 0.0), "{key}");
+        assert!(
+            scan["aerosol"][key].as_f64().is_some_and(|x| x > 0.0),
+            "{key}"
+        );
     }
-    let ids: Vec<&str> = v["models"].as_array().expect("models").iter().map(|m| m["id"].as_str().expect("id")).collect();
+    let ids: Vec<&str> = v["models"]
+        .as_array()
+        .expect("models")
+        .iter()
+        .map(|m| m["id"].as_str().expect("id"))
+        .collect();
     assert_eq!(ids, ["preetham", "path-tracer"]);
     for m in v["models"].as_array().expect("models") {
-        for key in ["radiance_median_abs_rel_err", "radiance_p95_abs_rel_err", "luminance_median_abs_rel_err"] {
-            assert!(m[key].as_f64().is_some_and(|x| (0.0..10.0).contains(&x)), "{key}: {}", m[key]);
+        for key in [
+            "radiance_median_abs_rel_err",
+            "radiance_p95_abs_rel_err",
+            "luminance_median_abs_rel_err",
+        ] {
+            assert!(
+                m[key].as_f64().is_some_and(|x| (0.0..10.0).contains(&x)),
+                "{key}: {}",
+                m[key]
+            );
         }
         // 360–720 nm at 10 nm over the scan's scored directions.
         assert_eq!(m["samples"].as_u64().expect("samples") % 37, 0);
     }
-    for file in ["measured.md", "measured.json", "scan_2013-05-27_1200.csv", "day_zenith_luminance.png", "spectra_1.png", "dome_preetham.png"] {
+    for file in [
+        "measured.md",
+        "measured.json",
+        "scan_2013-05-27_1200.csv",
+        "day_zenith_luminance.png",
+        "spectra_1.png",
+        "dome_preetham.png",
+    ] {
         assert!(out.path().join(file).is_file(), "{file} was not written");
     }
 }
@@ -60,10 +94,21 @@ fn a_damaged_folder_is_refused_with_its_file_and_line() {
         "date,time_local_edt,time_utc,sample,azimuth_deg,elevation_deg,L350\n2013-05-27,09:30,13:30,0,0,12.1,bad\n",
     )
     .expect("write");
-    let o = atmoscope(&["bench", "measured", "--data", dir.path().to_str().expect("a UTF-8 path")]);
+    let o = atmoscope(&[
+        "bench",
+        "measured",
+        "--data",
+        dir.path().to_str().expect("a UTF-8 path"),
+    ]);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("radiance_2013-05-27.csv:2: L350: `bad` is not a finite number"), "{err}");
+    assert!(
+        err.contains("radiance_2013-05-27.csv:2: L350: `bad` is not a finite number"),
+        "{err}"
+    );
     let o = atmoscope(&["bench", "measured", "--aerosol", "sunshine"]);
-    assert!(String::from_utf8_lossy(&o.stderr).contains("no aerosol source `sunshine` (aeronet, pyranometer, fit)"));
+    assert!(
+        String::from_utf8_lossy(&o.stderr)
+            .contains("no aerosol source `sunshine` (aeronet, pyranometer, fit)")
+    );
 }

@@ -1681,16 +1681,34 @@ fn the_measured_tab_scores_a_scan_and_a_clicked_direction_shows_its_spectra() {
         std::thread::sleep(std::time::Duration::from_millis(100));
     }
     h.run();
-    let e = h.state().measured.evaluation.as_ref().expect("the scan was evaluated");
+    let e = h
+        .state()
+        .measured
+        .evaluation
+        .as_ref()
+        .expect("the scan was evaluated");
     let ids: Vec<&str> = e.result.sources.iter().map(|s| s.id).collect();
     assert_eq!(ids, ["preetham", "path-tracer"]);
-    assert!(e.result.sources.iter().all(|s| !s.errors.radiance.is_empty()));
-    assert!(h.query_by_label_contains("Median |error| of spectral radiance").is_some());
+    assert!(
+        e.result
+            .sources
+            .iter()
+            .all(|s| !s.errors.radiance.is_empty())
+    );
+    assert!(
+        h.query_by_label_contains("Median |error| of spectral radiance")
+            .is_some()
+    );
     // A click on a measured direction of the model's dome selects it and plots its spectra.
     let (scan, first) = (e.result.scan, e.result.scored[0]);
-    let days = atmoscope_eval::measured::files::read_folder(&h.state().measured.folder).expect("the shipped day");
+    let days = atmoscope_eval::measured::files::read_folder(&h.state().measured.folder)
+        .expect("the shipped day");
     let d = &days[0].scans[scan].directions[first];
-    let rect = h.state().measured.model_dome_rect.expect("the dome is drawn");
+    let rect = h
+        .state()
+        .measured
+        .model_dome_rect
+        .expect("the dome is drawn");
     let at = atmoscope::gui::measured_tab::dome_point(rect, d.azimuth_deg, d.elevation_deg);
     for pressed in [true, false] {
         h.input_mut().events.push(egui::Event::PointerMoved(at));
@@ -1703,16 +1721,27 @@ fn the_measured_tab_scores_a_scan_and_a_clicked_direction_shows_its_spectra() {
         h.run();
     }
     assert_eq!(h.state().measured.selected, Some(0));
-    assert!(h.query_by_label_contains(&format!("Sample {}:", d.sample)).is_some());
+    assert!(
+        h.query_by_label_contains(&format!("Sample {}:", d.sample))
+            .is_some()
+    );
     if let Some(dir) = std::env::var_os("ATMOSCOPE_SCREENSHOTS") {
         // For the docs: the tab with a direction's spectra.
-        h.render().expect("rendered").save(Path::new(&dir).join("explorer-measured.png")).expect("saved");
+        h.render()
+            .expect("rendered")
+            .save(Path::new(&dir).join("explorer-measured.png"))
+            .expect("saved");
     }
     // The scan's scene goes to the other tabs: the sun by the scan's date and time.
     h.get_by_label("Use this scan's scene").click();
     h.run();
     let scene = &h.state().scene;
-    assert!(matches!(scene.sun, atmoscope_model::scene::SunSettings::Date { time, .. } if time.year == 2013));
+    assert!(
+        matches!(scene.sun, atmoscope_model::scene::SunSettings::Date { time, .. } if time.year == 2013)
+    );
     assert_eq!(scene.atmosphere.aerosol.kind, AerosolType::Custom);
-    assert_eq!(scene.render.method, atmoscope_model::scene::Method::Preetham);
+    assert_eq!(
+        scene.render.method,
+        atmoscope_model::scene::Method::Preetham
+    );
 }

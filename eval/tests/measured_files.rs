@@ -10,7 +10,9 @@ fn radiance_rows() -> Vec<String> {
     let mut rows = vec![HEADER.to_owned()];
     for (local, utc) in [("09:30", "13:30"), ("09:45", "13:45")] {
         for (sample, az, el) in [(0, 0.0, 12.1151), (1, 348.75, 12.1151), (2, 0.0, 90.0)] {
-            rows.push(format!("2013-05-27,{local},{utc},{sample},{az},{el},0.05,0.06,0.07"));
+            rows.push(format!(
+                "2013-05-27,{local},{utc},{sample},{az},{el},0.05,0.06,0.07"
+            ));
         }
     }
     rows
@@ -49,7 +51,11 @@ fn good_folder() -> tempfile::TempDir {
 
 fn aeronet_rows(tau440: &str) -> Vec<String> {
     let angles = [0.0, 90.0, 180.0];
-    let mut header = vec!["Date(dd-mm-yyyy)".to_owned(), "Time(hh:mm:ss)".into(), "Julian_Day".into()];
+    let mut header = vec![
+        "Date(dd-mm-yyyy)".to_owned(),
+        "Time(hh:mm:ss)".into(),
+        "Julian_Day".into(),
+    ];
     for band in ["442nm", "674nm"] {
         header.extend(angles.iter().map(|a| format!("{a:.4}[{band}]")));
     }
@@ -86,7 +92,10 @@ fn a_good_folder_is_read_whole() {
     assert_eq!(day.ghi_during(1), Some(700.0));
     assert_eq!(day.aeronet.len(), 2);
     assert!((day.aeronet[0].aod550() - 0.12 * (550.0_f64 / 440.0).powf(-1.1)).abs() < 1e-12);
-    let g = day.aeronet[0].asymmetry_g.expect("phase functions at both bands").0;
+    let g = day.aeronet[0]
+        .asymmetry_g
+        .expect("phase functions at both bands")
+        .0;
     assert!(g > 0.0 && g < 1.0, "{g}");
 }
 
@@ -123,37 +132,55 @@ fn with_radiance_row(row: usize, text: &str) -> impl FnOnce(&Path) {
 fn each_damage_is_named_with_its_file_and_line() {
     let cases: Vec<(Box<dyn FnOnce(&Path)>, &str, Option<usize>, &str)> = vec![
         (
-            Box::new(with_radiance_row(2, "2013-05-27,09:30,13:30,1,348.75,12.1151,0.05,oops,0.07")),
+            Box::new(with_radiance_row(
+                2,
+                "2013-05-27,09:30,13:30,1,348.75,12.1151,0.05,oops,0.07",
+            )),
             "radiance_2013-05-27.csv",
             Some(3),
             "L355: `oops` is not a finite number",
         ),
         (
-            Box::new(with_radiance_row(2, "2013-05-27,09:30,13:30,1,348.75,12.1151,0.05,0.06")),
+            Box::new(with_radiance_row(
+                2,
+                "2013-05-27,09:30,13:30,1,348.75,12.1151,0.05,0.06",
+            )),
             "radiance_2013-05-27.csv",
             Some(3),
             "8 cells where the header has 9",
         ),
         (
-            Box::new(with_radiance_row(2, "2013-05-27,09:30,13:30,1,348.75,95,0.05,0.06,0.07")),
+            Box::new(with_radiance_row(
+                2,
+                "2013-05-27,09:30,13:30,1,348.75,95,0.05,0.06,0.07",
+            )),
             "radiance_2013-05-27.csv",
             Some(3),
             "elevation 0–90°",
         ),
         (
-            Box::new(with_radiance_row(2, "2013-05-27,09:30,13:30,0,348.75,12.1151,0.05,0.06,0.07")),
+            Box::new(with_radiance_row(
+                2,
+                "2013-05-27,09:30,13:30,0,348.75,12.1151,0.05,0.06,0.07",
+            )),
             "radiance_2013-05-27.csv",
             Some(3),
             "sample 0 of scan 09:30 appears twice",
         ),
         (
-            Box::new(with_radiance_row(2, "2013-05-27,9h30,13:30,1,348.75,12.1151,0.05,0.06,0.07")),
+            Box::new(with_radiance_row(
+                2,
+                "2013-05-27,9h30,13:30,1,348.75,12.1151,0.05,0.06,0.07",
+            )),
             "radiance_2013-05-27.csv",
             Some(3),
             "`9h30` is not a time of day",
         ),
         (
-            Box::new(with_radiance_row(2, "2013-05-27,09:30,13:30,1,348.75,12.1151,0.05,NaN,0.07")),
+            Box::new(with_radiance_row(
+                2,
+                "2013-05-27,09:30,13:30,1,348.75,12.1151,0.05,NaN,0.07",
+            )),
             "radiance_2013-05-27.csv",
             Some(3),
             "not a finite number",
@@ -165,20 +192,38 @@ fn each_damage_is_named_with_its_file_and_line() {
             "the header must begin",
         ),
         (
-            Box::new(|dir: &Path| write(dir, "scans_2013-05-27.csv", &["date,time_local_edt,time_utc".into(), "2013-05-27,09:30,13:30".into()])),
+            Box::new(|dir: &Path| {
+                write(
+                    dir,
+                    "scans_2013-05-27.csv",
+                    &[
+                        "date,time_local_edt,time_utc".into(),
+                        "2013-05-27,09:30,13:30".into(),
+                    ],
+                )
+            }),
             "scans_2013-05-27.csv",
             None,
             "radiance_2013-05-27.csv has scan 09:45, which this list lacks",
         ),
         (
-            Box::new(|dir: &Path| std::fs::remove_file(dir.join("scans_2013-05-27.csv")).expect("exists")),
+            Box::new(|dir: &Path| {
+                std::fs::remove_file(dir.join("scans_2013-05-27.csv")).expect("exists")
+            }),
             "scans_2013-05-27.csv",
             None,
             "cannot read",
         ),
         (
             Box::new(|dir: &Path| {
-                write(dir, "pyranometer_2013-05-27.csv", &["time_local_edt,global_horizontal_irradiance_w_m2".into(), "09:30:00,-5".into()])
+                write(
+                    dir,
+                    "pyranometer_2013-05-27.csv",
+                    &[
+                        "time_local_edt,global_horizontal_irradiance_w_m2".into(),
+                        "09:30:00,-5".into(),
+                    ],
+                )
             }),
             "pyranometer_2013-05-27.csv",
             Some(2),
@@ -199,7 +244,11 @@ fn each_damage_is_named_with_its_file_and_line() {
     ];
     for (damage, file, line, message) in cases {
         let e = damaged(damage);
-        assert_eq!(e.file.file_name().and_then(|f| f.to_str()), Some(file), "{e}");
+        assert_eq!(
+            e.file.file_name().and_then(|f| f.to_str()),
+            Some(file),
+            "{e}"
+        );
         assert_eq!(e.line, line, "{e}");
         assert!(e.message.contains(message), "expected “{message}” in: {e}");
     }
@@ -209,14 +258,18 @@ fn each_damage_is_named_with_its_file_and_line() {
 fn a_folder_without_days_says_what_it_lacks() {
     let dir = tempfile::tempdir().expect("temporary folder");
     let e = files::read_folder(dir.path()).expect_err("an empty folder");
-    assert!(e.to_string().contains("no radiance_<yyyy-mm-dd>.csv here"), "{e}");
+    assert!(
+        e.to_string().contains("no radiance_<yyyy-mm-dd>.csv here"),
+        "{e}"
+    );
     let e = files::read_folder(&dir.path().join("absent")).expect_err("no folder");
     assert!(e.to_string().contains("cannot read the folder"), "{e}");
 }
 
 #[test]
 fn the_shipped_day_reads_as_its_readme_describes() {
-    let days = files::read_folder(&atmoscope_eval::measured::shipped_folder()).expect("the shipped day");
+    let days =
+        files::read_folder(&atmoscope_eval::measured::shipped_folder()).expect("the shipped day");
     assert_eq!(days.len(), 1);
     let day = &days[0];
     assert_eq!(day.scans.len(), 15);

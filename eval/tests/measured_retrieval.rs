@@ -8,7 +8,8 @@ use atmoscope_eval::measured::sky::{self, Aerosol, Site, Source};
 use atmoscope_eval::measured::{broadband, score};
 
 fn shipped_day() -> Day {
-    let mut days = files::read_folder(&atmoscope_eval::measured::shipped_folder()).expect("the shipped day");
+    let mut days =
+        files::read_folder(&atmoscope_eval::measured::shipped_folder()).expect("the shipped day");
     days.remove(0)
 }
 
@@ -30,9 +31,14 @@ fn synthetic_day(aod550: f64, spp: u64) -> (Day, usize) {
     let i = 10;
     let scan = day.scans[i].clone();
     let (_, sun_az) = run::sun_theory(&day, &scan, &Site::CORNELL);
-    let aerosol = Aerosol { aod550, ..retrieve::shape(&day, &scan) };
+    let aerosol = Aerosol {
+        aod550,
+        ..retrieve::shape(&day, &scan)
+    };
     let scene = sky::scene(&day, &scan, &Site::CORNELL, &aerosol);
-    let views: Vec<_> = (0..scan.directions.len()).map(|d| run::view_of(&scan, d, sun_az)).collect();
+    let views: Vec<_> = (0..scan.directions.len())
+        .map(|d| run::view_of(&scan, d, sun_az))
+        .collect();
     let nm = day.wavelengths_nm.clone();
     let sky = sky::radiance(&scene, Source::PathTracer { spp, seed: 99 }, &views, &nm)
         .expect("the path tracer draws every scene");
@@ -52,7 +58,11 @@ fn the_aeronet_retrieval_takes_the_photometer_s_depth_at_the_scan_s_time() {
     }
     let got = retrieve::from_aeronet(&day, &scan).expect("records");
     let want = 0.2 * (550.0_f64 / 440.0).powf(-1.4);
-    assert!((got.aerosol.aod550 - want).abs() < 1e-12, "{} against {want}", got.aerosol.aod550);
+    assert!(
+        (got.aerosol.aod550 - want).abs() < 1e-12,
+        "{} against {want}",
+        got.aerosol.aod550
+    );
     assert!((got.aerosol.angstrom - 1.4).abs() < 1e-12);
     day.aeronet.clear();
     assert!(retrieve::from_aeronet(&day, &scan).is_err());
@@ -63,12 +73,23 @@ fn the_pyranometer_retrieval_finds_the_depth_of_a_synthetic_irradiance() {
     let mut day = shipped_day();
     let i = 5;
     let scan = day.scans[i].clone();
-    let truth = Aerosol { aod550: 0.23, ..retrieve::shape(&day, &scan) };
+    let truth = Aerosol {
+        aod550: 0.23,
+        ..retrieve::shape(&day, &scan)
+    };
     let scene = sky::scene(&day, &scan, &Site::CORNELL, &truth);
-    let ghi = broadband::global(&retrieve::broadband_inputs(&scene, &Site::CORNELL, &truth)).expect("sun up");
-    day.pyranometer = vec![GhiSample { time_local: scan.time_local, ghi_w_m2: ghi }];
+    let ghi = broadband::global(&retrieve::broadband_inputs(&scene, &Site::CORNELL, &truth))
+        .expect("sun up");
+    day.pyranometer = vec![GhiSample {
+        time_local: scan.time_local,
+        ghi_w_m2: ghi,
+    }];
     let got = retrieve::from_pyranometer(&day, i, &Site::CORNELL).expect("a reading");
-    assert!((got.aerosol.aod550 - 0.23).abs() < 1e-6, "{}", got.aerosol.aod550);
+    assert!(
+        (got.aerosol.aod550 - 0.23).abs() < 1e-6,
+        "{}",
+        got.aerosol.aod550
+    );
     day.pyranometer.clear();
     assert!(retrieve::from_pyranometer(&day, i, &Site::CORNELL).is_err());
 }
@@ -90,7 +111,10 @@ fn the_fit_never_scores_a_direction_it_was_fitted_on() {
     let settings = settings(AerosolSource::Fit);
     let result = run::evaluate(&day, i, &settings).expect("a fit");
     assert!(!result.fitted_on.is_empty() && !result.scored.is_empty());
-    assert!(result.scored.iter().all(|d| !result.fitted_on.contains(d)), "a direction in both halves");
+    assert!(
+        result.scored.iter().all(|d| !result.fitted_on.contains(d)),
+        "a direction in both halves"
+    );
 
     // Whatever the held-out half holds, the fit comes out the same: it never reads it.
     let mut poisoned = day.clone();
@@ -100,10 +124,17 @@ fn the_fit_never_scores_a_direction_it_was_fitted_on() {
         }
     }
     let fit = |day: &Day| {
-        run::retrieve(day, i, AerosolSource::Fit, &settings, &result.fitted_on, result.sun_azimuth_deg)
-            .expect("a fit")
-            .aerosol
-            .aod550
+        run::retrieve(
+            day,
+            i,
+            AerosolSource::Fit,
+            &settings,
+            &result.fitted_on,
+            result.sun_azimuth_deg,
+        )
+        .expect("a fit")
+        .aerosol
+        .aod550
     };
     assert_eq!(fit(&day), fit(&poisoned));
     // And what it is scored on is the held-out half alone.
@@ -118,7 +149,10 @@ fn the_sun_s_azimuth_of_a_path_traced_sky_is_its_own() {
     let scan = &day.scans[i];
     let (_, theory) = run::sun_theory(&day, scan, &Site::CORNELL);
     let got = run::sun_azimuth_from_symmetry(&day, scan, theory + 8.0);
-    assert!((got - theory).abs() < 1.0, "theory {theory}°, from the symmetry {got}°");
+    assert!(
+        (got - theory).abs() < 1.0,
+        "theory {theory}°, from the symmetry {got}°"
+    );
 }
 
 #[test]
@@ -126,19 +160,29 @@ fn the_project_s_sun_agrees_with_noaa_s_in_the_scan_list() {
     // The scan list carries the sun by NOAA's formulas: a check on the project's own code,
     // which places the sun from the scan's time and the site.
     let day = shipped_day();
-    let list = std::fs::read_to_string(atmoscope_eval::measured::shipped_folder().join("scans_2013-05-27.csv"))
-        .expect("the scan list");
+    let list = std::fs::read_to_string(
+        atmoscope_eval::measured::shipped_folder().join("scans_2013-05-27.csv"),
+    )
+    .expect("the scan list");
     let noaa: Vec<(f64, f64)> = list
         .lines()
         .skip(1)
         .map(|l| {
-            let c: Vec<f64> = l.split(',').skip(3).map(|x| x.parse().expect("a number")).collect();
+            let c: Vec<f64> = l
+                .split(',')
+                .skip(3)
+                .map(|x| x.parse().expect("a number"))
+                .collect();
             (c[0], c[1])
         })
         .collect();
     assert_eq!(noaa.len(), day.scans.len());
     for (scan, (zenith, azimuth)) in day.scans.iter().zip(noaa) {
         let (z, a) = run::sun_theory(&day, scan, &Site::CORNELL);
-        assert!((z - zenith).abs() < 0.02 && (a - azimuth).abs() < 0.05, "{}: {z} {a} against {zenith} {azimuth}", scan.time_local);
+        assert!(
+            (z - zenith).abs() < 0.02 && (a - azimuth).abs() < 0.05,
+            "{}: {z} {a} against {zenith} {azimuth}",
+            scan.time_local
+        );
     }
 }

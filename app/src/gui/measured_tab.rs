@@ -92,7 +92,11 @@ impl MeasuredTab {
     fn days(&mut self) -> Result<Arc<Vec<Day>>, String> {
         let folder = self.folder.clone();
         self.days
-            .get_or_insert_with(|| files::read_folder(&folder).map(Arc::new).map_err(|e| e.to_string()))
+            .get_or_insert_with(|| {
+                files::read_folder(&folder)
+                    .map(Arc::new)
+                    .map_err(|e| e.to_string())
+            })
             .clone()
     }
 
@@ -159,10 +163,16 @@ impl MeasuredTab {
                 });
             let scans = days.get(self.day).map_or(&[][..], |d| &d.scans[..]);
             egui::ComboBox::from_label("Scan")
-                .selected_text(scans.get(self.scan).map_or("–".into(), |s| s.time_local.to_string()))
+                .selected_text(
+                    scans
+                        .get(self.scan)
+                        .map_or("–".into(), |s| s.time_local.to_string()),
+                )
                 .show_ui(ui, |ui| {
                     for (i, s) in scans.iter().enumerate() {
-                        changed |= ui.selectable_value(&mut self.scan, i, s.time_local.to_string()).changed();
+                        changed |= ui
+                            .selectable_value(&mut self.scan, i, s.time_local.to_string())
+                            .changed();
                     }
                 });
             if changed {
@@ -172,7 +182,9 @@ impl MeasuredTab {
             self.open_button(ui);
             if ui
                 .button("Use this scan's scene")
-                .on_hover_text("Sets the scene to the scan's date, time, place and aerosol, for every tab")
+                .on_hover_text(
+                    "Sets the scene to the scan's date, time, place and aerosol, for every tab",
+                )
                 .clicked()
                 && let Some(s) = self.scan_scene(scene)
             {
@@ -205,7 +217,10 @@ impl MeasuredTab {
 
     fn open_button(&mut self, ui: &mut egui::Ui) {
         #[cfg(not(target_arch = "wasm32"))]
-        if ui.button("Open folder…").on_hover_text("A folder of measured days in the Kider et al. (2014) format").clicked()
+        if ui
+            .button("Open folder…")
+            .on_hover_text("A folder of measured days in the Kider et al. (2014) format")
+            .clicked()
             && let Some(folder) = rfd::FileDialog::new().pick_folder()
         {
             self.open(folder);
@@ -232,13 +247,22 @@ impl MeasuredTab {
 
     fn start(&mut self, ctx: &egui::Context, days: &[Day], method: Method) {
         let (d, s) = (self.day, self.scan);
-        let Some(day) = days.get(d).cloned() else { return };
+        let Some(day) = days.get(d).cloned() else {
+            return;
+        };
         if s >= day.scans.len() {
             return;
         }
         self.selected = None;
-        let label = format!("{} {} with {}", day.date, day.scans[s].time_local, methods::info(method).label);
-        self.job = Some(Job::spawn(label, ctx, move |_| evaluate(&day, d, s, method)));
+        let label = format!(
+            "{} {} with {}",
+            day.date,
+            day.scans[s].time_local,
+            methods::info(method).label
+        );
+        self.job = Some(Job::spawn(label, ctx, move |_| {
+            evaluate(&day, d, s, method)
+        }));
     }
 
     fn draw(&mut self, ui: &mut egui::Ui, day: &Day, method: Method) {
@@ -275,7 +299,8 @@ impl MeasuredTab {
                 .iter()
                 .zip(&r.scored)
                 .map(|(l, &i)| {
-                    score::xyz(&run::default_model_nm(), l).map(|c| score::luminance(c) / lum[i] - 1.0)
+                    score::xyz(&run::default_model_nm(), l)
+                        .map(|c| score::luminance(c) / lum[i] - 1.0)
                 })
                 .collect(),
             _ => vec![None; r.scored.len()],
@@ -286,25 +311,40 @@ impl MeasuredTab {
         ui.horizontal(|ui| {
             ui.vertical(|ui| {
                 ui.label("Measured, interpolated between its directions");
-                let (rect, _) = ui.allocate_exact_size(egui::vec2(size, size), egui::Sense::hover());
+                let (rect, _) =
+                    ui.allocate_exact_size(egui::vec2(size, size), egui::Sense::hover());
                 paint_dome(ui.painter(), rect, &e.measured_dome, exposure);
             });
             ui.vertical(|ui| {
-                ui.label(format!("{}, and its luminance error at each measured direction", methods::info(method).label));
-                let (rect, response) = ui.allocate_exact_size(egui::vec2(size, size), egui::Sense::click());
+                ui.label(format!(
+                    "{}, and its luminance error at each measured direction",
+                    methods::info(method).label
+                ));
+                let (rect, response) =
+                    ui.allocate_exact_size(egui::vec2(size, size), egui::Sense::click());
                 dome_rect = Some(rect);
                 paint_dome(ui.painter(), rect, &e.model_dome, exposure);
                 for (k, &i) in r.scored.iter().enumerate() {
                     let d = &scan.directions[i];
                     let p = dome_point(rect, d.azimuth_deg, d.elevation_deg);
                     let fill = errors[k].map_or(egui::Color32::GRAY, error_colour);
-                    ui.painter().circle(p, 5.0, fill, egui::Stroke::new(1.0, egui::Color32::DARK_GRAY));
+                    ui.painter().circle(
+                        p,
+                        5.0,
+                        fill,
+                        egui::Stroke::new(1.0, egui::Color32::DARK_GRAY),
+                    );
                     if self.selected == Some(k) {
-                        ui.painter().circle_stroke(p, 8.0, egui::Stroke::new(2.0, egui::Color32::YELLOW));
+                        ui.painter().circle_stroke(
+                            p,
+                            8.0,
+                            egui::Stroke::new(2.0, egui::Color32::YELLOW),
+                        );
                     }
                 }
                 let sun = dome_point(rect, r.sun_azimuth_deg, 90.0 - r.sun_zenith_deg);
-                ui.painter().circle_filled(sun, 6.0, egui::Color32::from_rgb(250, 210, 0));
+                ui.painter()
+                    .circle_filled(sun, 6.0, egui::Color32::from_rgb(250, 210, 0));
                 if response.clicked()
                     && let Some(pos) = response.interact_pointer_pos()
                 {
@@ -314,7 +354,10 @@ impl MeasuredTab {
                         .enumerate()
                         .map(|(k, &i)| {
                             let d = &scan.directions[i];
-                            (k, dome_point(rect, d.azimuth_deg, d.elevation_deg).distance(pos))
+                            (
+                                k,
+                                dome_point(rect, d.azimuth_deg, d.elevation_deg).distance(pos),
+                            )
                         })
                         .filter(|(_, dist)| *dist < 14.0)
                         .min_by(|a, b| a.1.total_cmp(&b.1))
@@ -329,12 +372,20 @@ impl MeasuredTab {
         }
         if let Some(k) = self.selected {
             let d = &scan.directions[r.scored[k]];
-            ui.label(format!("Sample {}: azimuth {:.1}°, elevation {:.1}°", d.sample, d.azimuth_deg, d.elevation_deg));
+            ui.label(format!(
+                "Sample {}: azimuth {:.1}°, elevation {:.1}°",
+                d.sample, d.azimuth_deg, d.elevation_deg
+            ));
             let model_nm = run::default_model_nm();
             let line = |nm: &[f64], l: &[f64], name: &str| {
                 Line::new(
                     name.to_owned(),
-                    PlotPoints::from_iter(nm.iter().zip(l).filter(|(w, _)| **w >= 360.0).map(|(w, l)| [*w, *l])),
+                    PlotPoints::from_iter(
+                        nm.iter()
+                            .zip(l)
+                            .filter(|(w, _)| **w >= 360.0)
+                            .map(|(w, l)| [*w, *l]),
+                    ),
                 )
             };
             Plot::new("measured_spectra")
@@ -360,7 +411,10 @@ impl Default for MeasuredTab {
 
 /// The scan held against `method` and the path tracer, and the model's dome.
 fn evaluate(day: &Day, d: usize, s: usize, method: Method) -> Result<Evaluation, String> {
-    let mut sources = vec![Source::PathTracer { spp: TAB_SPP, seed: 1 }];
+    let mut sources = vec![Source::PathTracer {
+        spp: TAB_SPP,
+        seed: 1,
+    }];
     if methods::info(method).is_realtime() {
         sources.insert(0, Source::Model(method));
     }
@@ -373,7 +427,12 @@ fn evaluate(day: &Day, d: usize, s: usize, method: Method) -> Result<Evaluation,
         irradiance_strata: 6,
     };
     let result = run::evaluate(day, s, &settings).map_err(|e| e.to_string())?;
-    let scene = sky::scene(day, &day.scans[s], &settings.site, &result.retrieved.aerosol);
+    let scene = sky::scene(
+        day,
+        &day.scans[s],
+        &settings.site,
+        &result.retrieved.aerosol,
+    );
     let (views, cells) = dome_views(result.sun_azimuth_deg);
     let sky = sky::Sky::new(&scene, sources[0], &settings.model_nm).map_err(|e| e.to_string())?;
     let radiance = sky.radiance(&views);
@@ -425,7 +484,10 @@ fn dome_views(sun_azimuth_deg: f64) -> (Vec<View>, Vec<usize>) {
 
 /// The measured colour over the dome's cells: inverse-square-distance weights of the scan's
 /// directions (sample 0 left out) on the sphere.
-fn interpolated_dome(scan: &atmoscope_eval::measured::files::Scan, colours: &[[f64; 3]]) -> Vec<Option<[f64; 3]>> {
+fn interpolated_dome(
+    scan: &atmoscope_eval::measured::files::Scan,
+    colours: &[[f64; 3]],
+) -> Vec<Option<[f64; 3]>> {
     let unit = |az: f64, el: f64| atmoscope_model::geometry::direction_from_angles(el, az);
     let points: Vec<(glam::DVec3, [f64; 3])> = scan
         .directions
@@ -452,18 +514,32 @@ fn interpolated_dome(scan: &atmoscope_eval::measured::files::Scan, colours: &[[f
 /// The factor that brings the scan's median luminance to mid-grey after the tone map.
 fn exposure(luminance_cd_m2: &[f64]) -> f64 {
     let median = score::quantile(luminance_cd_m2, 0.5);
-    if median > 0.0 { 0.6 * 683.0 / median } else { 1.0 }
+    if median > 0.0 {
+        0.6 * 683.0 / median
+    } else {
+        1.0
+    }
 }
 
-fn paint_dome(painter: &egui::Painter, rect: egui::Rect, cells: &[Option<[f64; 3]>], exposure: f64) {
+fn paint_dome(
+    painter: &egui::Painter,
+    rect: egui::Rect,
+    cells: &[Option<[f64; 3]>],
+    exposure: f64,
+) {
     let n = DOME_CELLS as usize;
     let cell = rect.width() / n as f32;
     painter.circle_filled(rect.center(), rect.width() / 2.0, egui::Color32::BLACK);
     for (i, c) in cells.iter().enumerate() {
         let Some(rgb) = c else { continue };
-        let [r, g, b] = rgb.map(|x| (255.0 * srgb_encode(1.0 - (-exposure * x.max(0.0)).exp())).round() as u8);
+        let [r, g, b] =
+            rgb.map(|x| (255.0 * srgb_encode(1.0 - (-exposure * x.max(0.0)).exp())).round() as u8);
         let min = rect.min + egui::vec2((i % n) as f32 * cell, (i / n) as f32 * cell);
-        painter.rect_filled(egui::Rect::from_min_size(min, egui::vec2(cell + 0.5, cell + 0.5)), 0.0, egui::Color32::from_rgb(r, g, b));
+        painter.rect_filled(
+            egui::Rect::from_min_size(min, egui::vec2(cell + 0.5, cell + 0.5)),
+            0.0,
+            egui::Color32::from_rgb(r, g, b),
+        );
     }
 }
 
@@ -479,8 +555,16 @@ fn error_colour(e: f64) -> egui::Color32 {
     let t = (e / 0.5).clamp(-1.0, 1.0) as f32;
     let mix = |a: f32, b: f32, t: f32| (a + (b - a) * t).round() as u8;
     if t < 0.0 {
-        egui::Color32::from_rgb(mix(255.0, 33.0, -t), mix(255.0, 102.0, -t), mix(255.0, 172.0, -t))
+        egui::Color32::from_rgb(
+            mix(255.0, 33.0, -t),
+            mix(255.0, 102.0, -t),
+            mix(255.0, 172.0, -t),
+        )
     } else {
-        egui::Color32::from_rgb(mix(255.0, 178.0, t), mix(255.0, 24.0, t), mix(255.0, 43.0, t))
+        egui::Color32::from_rgb(
+            mix(255.0, 178.0, t),
+            mix(255.0, 24.0, t),
+            mix(255.0, 43.0, t),
+        )
     }
 }

@@ -67,7 +67,11 @@ pub fn at(records: &[AeronetRecord], time_utc: Clock) -> Option<AerosolAt> {
         Some(i) => {
             let (a, b) = (&records[i - 1], &records[i]);
             let span = b.time_utc.seconds - a.time_utc.seconds;
-            let w = if span > 0.0 { (t - a.time_utc.seconds) / span } else { 0.0 };
+            let w = if span > 0.0 {
+                (t - a.time_utc.seconds) / span
+            } else {
+                0.0
+            };
             (a, b, w)
         }
     };
@@ -101,7 +105,11 @@ pub fn read(file: &Path) -> Result<Vec<AeronetRecord>, MeasuredError> {
             MeasuredError::new(file, Some(header_at + 1), format!("no column `{name}`"))
         })
     };
-    let (time_col, tau_col, alpha_col) = (find("Time(hh:mm:ss)")?, find("tau440(measured)")?, find("alpha440-870")?);
+    let (time_col, tau_col, alpha_col) = (
+        find("Time(hh:mm:ss)")?,
+        find("tau440(measured)")?,
+        find("alpha440-870")?,
+    );
     // The phase function's columns: `<angle>[442nm]` and `<angle>[674nm]`.
     let phase_columns = |band: &str| -> Vec<(usize, f64)> {
         columns
@@ -122,12 +130,22 @@ pub fn read(file: &Path) -> Result<Vec<AeronetRecord>, MeasuredError> {
             return Err(MeasuredError::new(
                 file,
                 Some(n),
-                format!("{} cells where the header has {}", cells.len(), columns.len()),
+                format!(
+                    "{} cells where the header has {}",
+                    cells.len(),
+                    columns.len()
+                ),
             ));
         }
-        let (day, month, year) = parse_date(cells[0])
-            .ok_or_else(|| MeasuredError::new(file, Some(n), format!("date `{}` is not dd:mm:yyyy", cells[0])))?;
-        let time_utc = Clock::parse(cells[time_col]).map_err(|e| MeasuredError::new(file, Some(n), e))?;
+        let (day, month, year) = parse_date(cells[0]).ok_or_else(|| {
+            MeasuredError::new(
+                file,
+                Some(n),
+                format!("date `{}` is not dd:mm:yyyy", cells[0]),
+            )
+        })?;
+        let time_utc =
+            Clock::parse(cells[time_col]).map_err(|e| MeasuredError::new(file, Some(n), e))?;
         let value = |col: usize, name: &str, range: std::ops::RangeInclusive<f64>| {
             cells[col]
                 .parse::<f64>()
@@ -146,7 +164,15 @@ pub fn read(file: &Path) -> Result<Vec<AeronetRecord>, MeasuredError> {
         let g = |cols: &[(usize, f64)]| -> Option<f64> {
             let points: Vec<(f64, f64)> = cols
                 .iter()
-                .map(|&(c, angle)| Some((angle, cells[c].parse::<f64>().ok().filter(|v| v.is_finite() && *v >= 0.0)?)))
+                .map(|&(c, angle)| {
+                    Some((
+                        angle,
+                        cells[c]
+                            .parse::<f64>()
+                            .ok()
+                            .filter(|v| v.is_finite() && *v >= 0.0)?,
+                    ))
+                })
                 .collect::<Option<_>>()?;
             asymmetry(&points)
         };
@@ -166,9 +192,16 @@ pub fn read(file: &Path) -> Result<Vec<AeronetRecord>, MeasuredError> {
 
 fn parse_date(s: &str) -> Option<(u32, u32, i32)> {
     let mut it = s.split([':', '-']);
-    let (d, m, y) = (it.next()?.parse().ok()?, it.next()?.parse().ok()?, it.next()?.parse().ok()?);
-    (it.next().is_none() && (1..=31).contains(&d) && (1..=12).contains(&m) && (1900..=2100).contains(&y))
-        .then_some((d, m, y))
+    let (d, m, y) = (
+        it.next()?.parse().ok()?,
+        it.next()?.parse().ok()?,
+        it.next()?.parse().ok()?,
+    );
+    (it.next().is_none()
+        && (1..=31).contains(&d)
+        && (1..=12).contains(&m)
+        && (1900..=2100).contains(&y))
+    .then_some((d, m, y))
 }
 
 /// The asymmetry parameter ⟨cos θ⟩ of a phase function tabulated at scattering angles
@@ -198,8 +231,12 @@ mod tests {
     #[test]
     fn the_asymmetry_of_henyey_greenstein_is_its_g() {
         for g in [0.0, 0.5, 0.7] {
-            let hg = |t: f64| (1.0 - g * g) / (1.0 + g * g - 2.0 * g * t.to_radians().cos()).powf(1.5);
-            let points: Vec<(f64, f64)> = (0..=720).map(|i| f64::from(i) * 0.25).map(|t| (t, hg(t))).collect();
+            let hg =
+                |t: f64| (1.0 - g * g) / (1.0 + g * g - 2.0 * g * t.to_radians().cos()).powf(1.5);
+            let points: Vec<(f64, f64)> = (0..=720)
+                .map(|i| f64::from(i) * 0.25)
+                .map(|t| (t, hg(t)))
+                .collect();
             let got = asymmetry(&points).expect("spans the sphere");
             assert!((got - g).abs() < 2e-3, "g {g}: {got}");
         }
@@ -211,16 +248,30 @@ mod tests {
             year: 2013,
             month: 5,
             day: 27,
-            time_utc: Clock { seconds: f64::from(h * 3600) },
+            time_utc: Clock {
+                seconds: f64::from(h * 3600),
+            },
             tau440,
             angstrom: 1.0,
             asymmetry_g: None,
         };
         let records = [record(10, 0.1), record(12, 0.3)];
-        let mid = at(&records, Clock { seconds: 11.0 * 3600.0 }).expect("records");
+        let mid = at(
+            &records,
+            Clock {
+                seconds: 11.0 * 3600.0,
+            },
+        )
+        .expect("records");
         assert!((mid.aod550 - 0.2 * 440.0 / 550.0).abs() < 1e-12);
         assert!((mid.hours_to_record - 1.0).abs() < 1e-12);
-        let late = at(&records, Clock { seconds: 15.0 * 3600.0 }).expect("records");
+        let late = at(
+            &records,
+            Clock {
+                seconds: 15.0 * 3600.0,
+            },
+        )
+        .expect("records");
         assert!((late.aod550 - 0.3 * 440.0 / 550.0).abs() < 1e-12);
         assert!((late.hours_to_record - 3.0).abs() < 1e-12);
     }

@@ -65,7 +65,13 @@ pub fn irradiance(i: &Inputs) -> Option<(f64, f64)> {
     let t_scattered = t_aerosol / t_absorbed;
     let e0 = SOLAR_CONSTANT_W_M2 * i.sunlight_scale;
     let direct = 0.9662 * e0 * cos_z * t_rayleigh * t_ozone * t_gases * t_water * t_aerosol;
-    let sky = 0.79 * e0 * cos_z * t_ozone * t_gases * t_water * t_absorbed
+    let sky = 0.79
+        * e0
+        * cos_z
+        * t_ozone
+        * t_gases
+        * t_water
+        * t_absorbed
         * (0.5 * (1.0 - t_rayleigh) + FORWARD_SCATTERING * (1.0 - t_scattered))
         / (1.0 - m + m.powf(1.02));
     let sky_albedo = 0.0685 + (1.0 - FORWARD_SCATTERING) * (1.0 - t_scattered);
@@ -152,8 +158,25 @@ mod tests {
     #[test]
     fn more_aerosol_and_more_water_darken_the_ground() {
         let g = |i: Inputs| global(&i).expect("sun up");
-        assert!(g(Inputs { aod500: 0.3, aod380: 0.4, ..noon() }) < g(noon()));
-        assert!(g(Inputs { water_cm: 3.0, ..noon() }) < g(noon()));
-        assert_eq!(irradiance(&Inputs { sun_zenith_deg: 95.0, ..noon() }), None);
+        assert!(
+            g(Inputs {
+                aod500: 0.3,
+                aod380: 0.4,
+                ..noon()
+            }) < g(noon())
+        );
+        assert!(
+            g(Inputs {
+                water_cm: 3.0,
+                ..noon()
+            }) < g(noon())
+        );
+        assert_eq!(
+            irradiance(&Inputs {
+                sun_zenith_deg: 95.0,
+                ..noon()
+            }),
+            None
+        );
     }
 }

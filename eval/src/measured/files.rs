@@ -154,8 +154,9 @@ pub fn read_folder(dir: &Path) -> Result<Vec<Day>, MeasuredError> {
 
 fn read_day(dir: &Path, date: &str, aeronet: &[AeronetRecord]) -> Result<Day, MeasuredError> {
     let radiance_file = dir.join(format!("radiance_{date}.csv"));
-    let (year, month, day) = parse_date(date)
-        .ok_or_else(|| MeasuredError::new(&radiance_file, None, "the name's date is not yyyy-mm-dd"))?;
+    let (year, month, day) = parse_date(date).ok_or_else(|| {
+        MeasuredError::new(&radiance_file, None, "the name's date is not yyyy-mm-dd")
+    })?;
     let (wavelengths_nm, mut scans) = read_radiance(&radiance_file, date)?;
     let scans_file = dir.join(format!("scans_{date}.csv"));
     let listed = read_scan_list(&scans_file, date)?;
@@ -230,7 +231,13 @@ fn number(file: &Path, line: usize, column: &str, s: &str) -> Result<f64, Measur
         .parse::<f64>()
         .ok()
         .filter(|v| v.is_finite())
-        .ok_or_else(|| MeasuredError::new(file, Some(line), format!("{column}: `{s}` is not a finite number")))
+        .ok_or_else(|| {
+            MeasuredError::new(
+                file,
+                Some(line),
+                format!("{column}: `{s}` is not a finite number"),
+            )
+        })
 }
 
 type Scans = BTreeMap<Clock, Scan>;
@@ -245,7 +252,10 @@ fn read_radiance(file: &Path, date: &str) -> Result<(Vec<f64>, Scans), MeasuredE
         return Err(MeasuredError::new(
             file,
             Some(*header_line),
-            format!("the header must begin {} and go on with L<nm> columns", RADIANCE_COLUMNS.join(",")),
+            format!(
+                "the header must begin {} and go on with L<nm> columns",
+                RADIANCE_COLUMNS.join(",")
+            ),
         ));
     }
     let mut wavelengths_nm = Vec::new();
@@ -254,9 +264,19 @@ fn read_radiance(file: &Path, date: &str) -> Result<(Vec<f64>, Scans), MeasuredE
             .strip_prefix('L')
             .and_then(|w| w.parse::<f64>().ok())
             .filter(|w| (200.0..=2500.0).contains(w))
-            .ok_or_else(|| MeasuredError::new(file, Some(*header_line), format!("column `{c}` is not L<nm>, 200–2500 nm")))?;
+            .ok_or_else(|| {
+                MeasuredError::new(
+                    file,
+                    Some(*header_line),
+                    format!("column `{c}` is not L<nm>, 200–2500 nm"),
+                )
+            })?;
         if wavelengths_nm.last().is_some_and(|&last| w <= last) {
-            return Err(MeasuredError::new(file, Some(*header_line), "the wavelengths must increase"));
+            return Err(MeasuredError::new(
+                file,
+                Some(*header_line),
+                "the wavelengths must increase",
+            ));
         }
         wavelengths_nm.push(w);
     }
@@ -267,17 +287,31 @@ fn read_radiance(file: &Path, date: &str) -> Result<(Vec<f64>, Scans), MeasuredE
             return Err(MeasuredError::new(
                 file,
                 Some(*n),
-                format!("{} cells where the header has {}", cells.len(), columns.len()),
+                format!(
+                    "{} cells where the header has {}",
+                    cells.len(),
+                    columns.len()
+                ),
             ));
         }
         if cells[0] != date {
-            return Err(MeasuredError::new(file, Some(*n), format!("date `{}` in the file of {date}", cells[0])));
+            return Err(MeasuredError::new(
+                file,
+                Some(*n),
+                format!("date `{}` in the file of {date}", cells[0]),
+            ));
         }
-        let local = Clock::parse(cells[1]).map_err(|e| MeasuredError::new(file, Some(*n), format!("time_local_edt: {e}")))?;
-        let utc = Clock::parse(cells[2]).map_err(|e| MeasuredError::new(file, Some(*n), format!("time_utc: {e}")))?;
-        let sample = cells[3]
-            .parse::<u32>()
-            .map_err(|_| MeasuredError::new(file, Some(*n), format!("sample: `{}` is not a whole number", cells[3])))?;
+        let local = Clock::parse(cells[1])
+            .map_err(|e| MeasuredError::new(file, Some(*n), format!("time_local_edt: {e}")))?;
+        let utc = Clock::parse(cells[2])
+            .map_err(|e| MeasuredError::new(file, Some(*n), format!("time_utc: {e}")))?;
+        let sample = cells[3].parse::<u32>().map_err(|_| {
+            MeasuredError::new(
+                file,
+                Some(*n),
+                format!("sample: `{}` is not a whole number", cells[3]),
+            )
+        })?;
         let azimuth_deg = number(file, *n, "azimuth_deg", cells[4])?;
         let elevation_deg = number(file, *n, "elevation_deg", cells[5])?;
         if !(0.0..=360.0).contains(&azimuth_deg) || !(0.0..=90.0).contains(&elevation_deg) {
@@ -298,10 +332,18 @@ fn read_radiance(file: &Path, date: &str) -> Result<(Vec<f64>, Scans), MeasuredE
             directions: Vec::new(),
         });
         if scan.time_utc != utc {
-            return Err(MeasuredError::new(file, Some(*n), "time_utc differs within the scan"));
+            return Err(MeasuredError::new(
+                file,
+                Some(*n),
+                "time_utc differs within the scan",
+            ));
         }
         if scan.directions.iter().any(|d| d.sample == sample) {
-            return Err(MeasuredError::new(file, Some(*n), format!("sample {sample} of scan {local} appears twice")));
+            return Err(MeasuredError::new(
+                file,
+                Some(*n),
+                format!("sample {sample} of scan {local} appears twice"),
+            ));
         }
         scan.directions.push(Direction {
             sample,
@@ -323,18 +365,35 @@ fn read_scan_list(file: &Path, date: &str) -> Result<Vec<(Clock, Clock)>, Measur
     };
     let columns: Vec<&str> = header.split(',').map(str::trim).collect();
     if columns.len() < 3 || columns[..3] != RADIANCE_COLUMNS[..3] {
-        return Err(MeasuredError::new(file, Some(*header_line), "the header must begin date,time_local_edt,time_utc"));
+        return Err(MeasuredError::new(
+            file,
+            Some(*header_line),
+            "the header must begin date,time_local_edt,time_utc",
+        ));
     }
     body.iter()
         .map(|(n, row)| {
             let cells: Vec<&str> = row.split(',').map(str::trim).collect();
             if cells.len() != columns.len() {
-                return Err(MeasuredError::new(file, Some(*n), format!("{} cells where the header has {}", cells.len(), columns.len())));
+                return Err(MeasuredError::new(
+                    file,
+                    Some(*n),
+                    format!(
+                        "{} cells where the header has {}",
+                        cells.len(),
+                        columns.len()
+                    ),
+                ));
             }
             if cells[0] != date {
-                return Err(MeasuredError::new(file, Some(*n), format!("date `{}` in the file of {date}", cells[0])));
+                return Err(MeasuredError::new(
+                    file,
+                    Some(*n),
+                    format!("date `{}` in the file of {date}", cells[0]),
+                ));
             }
-            let local = Clock::parse(cells[1]).map_err(|e| MeasuredError::new(file, Some(*n), e))?;
+            let local =
+                Clock::parse(cells[1]).map_err(|e| MeasuredError::new(file, Some(*n), e))?;
             let utc = Clock::parse(cells[2]).map_err(|e| MeasuredError::new(file, Some(*n), e))?;
             Ok((local, utc))
         })
@@ -361,9 +420,16 @@ fn read_pyranometer(file: &Path) -> Result<Vec<GhiSample>, MeasuredError> {
             let time_local = Clock::parse(t).map_err(|e| MeasuredError::new(file, Some(*n), e))?;
             let ghi_w_m2 = number(file, *n, "global_horizontal_irradiance_w_m2", v)?;
             if !(0.0..=2000.0).contains(&ghi_w_m2) {
-                return Err(MeasuredError::new(file, Some(*n), format!("{ghi_w_m2} W/m² lies outside 0–2000")));
+                return Err(MeasuredError::new(
+                    file,
+                    Some(*n),
+                    format!("{ghi_w_m2} W/m² lies outside 0–2000"),
+                ));
             }
-            Ok(GhiSample { time_local, ghi_w_m2 })
+            Ok(GhiSample {
+                time_local,
+                ghi_w_m2,
+            })
         })
         .collect()
 }

@@ -24,7 +24,11 @@ pub enum AerosolSource {
 }
 
 impl AerosolSource {
-    pub const ALL: [AerosolSource; 3] = [AerosolSource::Aeronet, AerosolSource::Pyranometer, AerosolSource::Fit];
+    pub const ALL: [AerosolSource; 3] = [
+        AerosolSource::Aeronet,
+        AerosolSource::Pyranometer,
+        AerosolSource::Fit,
+    ];
 
     /// The command line's name.
     pub fn name(self) -> &'static str {
@@ -82,14 +86,18 @@ pub fn shape(day: &Day, scan: &Scan) -> Aerosol {
 
 /// The aerosol from the AERONET records of the scan's day.
 pub fn from_aeronet(day: &Day, scan: &Scan) -> Result<Retrieved, RetrievalError> {
-    let at = aeronet::at(&day.aeronet, scan.time_utc).ok_or_else(|| RetrievalError::NoAeronet(day.date.clone()))?;
+    let at = aeronet::at(&day.aeronet, scan.time_utc)
+        .ok_or_else(|| RetrievalError::NoAeronet(day.date.clone()))?;
     Ok(Retrieved {
         source: AerosolSource::Aeronet,
         aerosol: Aerosol {
             aod550: at.aod550,
             ..shape(day, scan)
         },
-        note: format!("AERONET, {:.1} h from the nearest record", at.hours_to_record),
+        note: format!(
+            "AERONET, {:.1} h from the nearest record",
+            at.hours_to_record
+        ),
     })
 }
 
@@ -111,16 +119,26 @@ pub fn broadband_inputs(scene: &Scene, site: &Site, aerosol: &Aerosol) -> broadb
 }
 
 /// The aerosol whose broadband global irradiance is the pyranometer's mean during the scan.
-pub fn from_pyranometer(day: &Day, scan_index: usize, site: &Site) -> Result<Retrieved, RetrievalError> {
+pub fn from_pyranometer(
+    day: &Day,
+    scan_index: usize,
+    site: &Site,
+) -> Result<Retrieved, RetrievalError> {
     let scan = &day.scans[scan_index];
     let label = format!("{} {}", day.date, scan.time_local);
-    let measured = day.ghi_during(scan_index).ok_or_else(|| RetrievalError::NoPyranometer(label.clone()))?;
+    let measured = day
+        .ghi_during(scan_index)
+        .ok_or_else(|| RetrievalError::NoPyranometer(label.clone()))?;
     let shape = shape(day, scan);
     let scene = sky::scene(day, scan, site, &shape);
     let inputs = broadband_inputs(&scene, site, &shape);
     let aod550 = broadband::aod550_from_global(measured, &inputs, shape.angstrom)
         .ok_or(RetrievalError::SunTooLow(label))?;
-    let clean = broadband::global(&broadband::Inputs { aod380: 0.0, aod500: 0.0, ..inputs });
+    let clean = broadband::global(&broadband::Inputs {
+        aod380: 0.0,
+        aod500: 0.0,
+        ..inputs
+    });
     let note = match clean {
         Some(g) if aod550 == 0.0 => format!(
             "none: the pyranometer's {measured:.1} W/m² is {:.1} % above an aerosol-free sky's (Bird & Hulstrom 1981)",
@@ -165,7 +183,12 @@ pub fn fit_aerosol(
         let (aod, ssa) = clamp(x);
         // Outside the ranges the misfit grows with the distance, so the simplex comes back.
         let outside = (x[0] - aod).abs() + (x[1] - ssa).abs();
-        let Ok(model) = sky::radiance(&scene_at(aod, ssa), Source::PathTracer { spp, seed: 7 }, views, &FIT_NM) else {
+        let Ok(model) = sky::radiance(
+            &scene_at(aod, ssa),
+            Source::PathTracer { spp, seed: 7 },
+            views,
+            &FIT_NM,
+        ) else {
             return f64::INFINITY;
         };
         let (mut sum, mut n) = (0.0, 0usize);
@@ -177,9 +200,16 @@ pub fn fit_aerosol(
                 }
             }
         }
-        if n == 0 { f64::INFINITY } else { sum / n as f64 + outside }
+        if n == 0 {
+            f64::INFINITY
+        } else {
+            sum / n as f64 + outside
+        }
     };
-    let start = [start.0.clamp(FIT_AOD_RANGE.0, FIT_AOD_RANGE.1), start.1.clamp(FIT_SSA_RANGE.0, FIT_SSA_RANGE.1)];
+    let start = [
+        start.0.clamp(FIT_AOD_RANGE.0, FIT_AOD_RANGE.1),
+        start.1.clamp(FIT_SSA_RANGE.0, FIT_SSA_RANGE.1),
+    ];
     let (best, _) = crate::optimize::nelder_mead(misfit, &start, &[0.05, -0.05], 1e-4, 80);
     clamp(&best)
 }

@@ -126,7 +126,9 @@ pub fn view_of(scan: &Scan, index: usize, sun_azimuth_deg: f64) -> View {
 /// A measured spectrum at other wavelengths, linear between its own.
 pub fn resample(day: &Day, radiance: &[f64], nm: &[f64]) -> Vec<f64> {
     let s = score::spectrum(&day.wavelengths_nm, radiance);
-    nm.iter().map(|&w| s.as_ref().map_or(f64::NAN, |s| s.sample(w))).collect()
+    nm.iter()
+        .map(|&w| s.as_ref().map_or(f64::NAN, |s| s.sample(w)))
+        .collect()
 }
 
 /// The scan's aerosol from `source`.
@@ -144,20 +146,45 @@ pub fn retrieve(
         AerosolSource::Pyranometer => retrieve::from_pyranometer(day, scan_index, &settings.site),
         AerosolSource::Fit => {
             let shape = retrieve::shape(day, scan);
-            let views: Vec<View> = fit_half.iter().map(|&i| view_of(scan, i, sun_azimuth_deg)).collect();
+            let views: Vec<View> = fit_half
+                .iter()
+                .map(|&i| view_of(scan, i, sun_azimuth_deg))
+                .collect();
             let measured: Vec<Vec<f64>> = fit_half
                 .iter()
                 .map(|&i| resample(day, &scan.directions[i].radiance, &retrieve::FIT_NM))
                 .collect();
             let scene_at = |aod550, ssa| {
-                sky::scene(day, scan, &settings.site, &sky::Aerosol { aod550, ssa, ..shape })
+                sky::scene(
+                    day,
+                    scan,
+                    &settings.site,
+                    &sky::Aerosol {
+                        aod550,
+                        ssa,
+                        ..shape
+                    },
+                )
             };
             let start = aeronet::at(&day.aeronet, scan.time_utc).map_or(0.1, |a| a.aod550);
-            let (aod550, ssa) = retrieve::fit_aerosol(scene_at, &views, &measured, settings.fit_spp, (start, shape.ssa));
+            let (aod550, ssa) = retrieve::fit_aerosol(
+                scene_at,
+                &views,
+                &measured,
+                settings.fit_spp,
+                (start, shape.ssa),
+            );
             Ok(Retrieved {
                 source,
-                aerosol: sky::Aerosol { aod550, ssa, ..shape },
-                note: format!("optical depth and albedo fitted by the path tracer on {} directions", fit_half.len()),
+                aerosol: sky::Aerosol {
+                    aod550,
+                    ssa,
+                    ..shape
+                },
+                note: format!(
+                    "optical depth and albedo fitted by the path tracer on {} directions",
+                    fit_half.len()
+                ),
             })
         }
     }
@@ -165,7 +192,11 @@ pub fn retrieve(
 
 /// The aerosol source `evaluate` uses for `day` when none is asked for.
 pub fn default_source(day: &Day) -> AerosolSource {
-    if day.aeronet.is_empty() { AerosolSource::Pyranometer } else { AerosolSource::Aeronet }
+    if day.aeronet.is_empty() {
+        AerosolSource::Pyranometer
+    } else {
+        AerosolSource::Aeronet
+    }
 }
 
 /// Holds scan `scan_index` of `day` against every source of `settings`.
@@ -176,7 +207,11 @@ pub fn default_source(day: &Day) -> AerosolSource {
 /// stops at 830 nm, the pyranometer's at 2800 nm. The path tracer's figure is therefore the
 /// broadband model's; each model's differs from it as its band's sky differs from the path
 /// tracer's.
-pub fn evaluate(day: &Day, scan_index: usize, settings: &Settings) -> Result<ScanResult, RetrievalError> {
+pub fn evaluate(
+    day: &Day,
+    scan_index: usize,
+    settings: &Settings,
+) -> Result<ScanResult, RetrievalError> {
     let scan = &day.scans[scan_index];
     let (sun_zenith_deg, sun_azimuth_theory_deg) = sun_theory(day, scan, &settings.site);
     let sun_azimuth_deg = sun_azimuth_from_symmetry(day, scan, sun_azimuth_theory_deg);
@@ -189,19 +224,43 @@ pub fn evaluate(day: &Day, scan_index: usize, settings: &Settings) -> Result<Sca
         }
         _ => (usable, Vec::new()),
     };
-    let retrieved = retrieve(day, scan_index, source, settings, &fitted_on, sun_azimuth_deg)?;
+    let retrieved = retrieve(
+        day,
+        scan_index,
+        source,
+        settings,
+        &fitted_on,
+        sun_azimuth_deg,
+    )?;
     let scene = sky::scene(day, scan, &settings.site, &retrieved.aerosol);
-    let views: Vec<View> = scored.iter().map(|&i| view_of(scan, i, sun_azimuth_deg)).collect();
-    let measured: Vec<&[f64]> = scored.iter().map(|&i| scan.directions[i].radiance.as_slice()).collect();
-    let zenith = scored.iter().position(|&i| scan.directions[i].elevation_deg > 89.9);
-    let zenith_luminance_measured =
-        zenith.and_then(|z| score::xyz(&day.wavelengths_nm, measured[z])).map(score::luminance);
+    let views: Vec<View> = scored
+        .iter()
+        .map(|&i| view_of(scan, i, sun_azimuth_deg))
+        .collect();
+    let measured: Vec<&[f64]> = scored
+        .iter()
+        .map(|&i| scan.directions[i].radiance.as_slice())
+        .collect();
+    let zenith = scored
+        .iter()
+        .position(|&i| scan.directions[i].elevation_deg > 89.9);
+    let zenith_luminance_measured = zenith
+        .and_then(|z| score::xyz(&day.wavelengths_nm, measured[z]))
+        .map(score::luminance);
 
     // The broadband scale of the irradiance: Bird & Hulstrom over the path tracer's band.
-    let truth_band = sky::Sky::new(&scene, Source::PathTracer { spp: 16, seed: 3 }, &settings.model_nm)
-        .ok()
-        .map(|s| s.horizontal_irradiance(settings.irradiance_strata));
-    let broadband = broadband::global(&retrieve::broadband_inputs(&scene, &settings.site, &retrieved.aerosol));
+    let truth_band = sky::Sky::new(
+        &scene,
+        Source::PathTracer { spp: 16, seed: 3 },
+        &settings.model_nm,
+    )
+    .ok()
+    .map(|s| s.horizontal_irradiance(settings.irradiance_strata));
+    let broadband = broadband::global(&retrieve::broadband_inputs(
+        &scene,
+        &settings.site,
+        &retrieved.aerosol,
+    ));
     let to_broadband = match (truth_band, broadband) {
         (Some(b), Some(g)) if b.global() > 0.0 => Some(g / b.global()),
         _ => None,
@@ -225,13 +284,20 @@ pub fn evaluate(day: &Day, scan_index: usize, settings: &Settings) -> Result<Sca
                 Ok(sky) => {
                     let radiance = sky.radiance(&views);
                     let modelled: Vec<&[f64]> = radiance.iter().map(Vec::as_slice).collect();
-                    let errors = score::compare(&day.wavelengths_nm, &measured, &settings.model_nm, &modelled);
+                    let errors = score::compare(
+                        &day.wavelengths_nm,
+                        &measured,
+                        &settings.model_nm,
+                        &modelled,
+                    );
                     let zenith_luminance = zenith
                         .and_then(|z| score::xyz(&settings.model_nm, &radiance[z]))
                         .map(score::luminance);
                     let band = match source {
                         Source::PathTracer { .. } => truth_band,
-                        Source::Model(_) => Some(sky.horizontal_irradiance(settings.irradiance_strata)),
+                        Source::Model(_) => {
+                            Some(sky.horizontal_irradiance(settings.irradiance_strata))
+                        }
                     };
                     let ghi_w_m2 = band.zip(to_broadband).map(|(b, k)| b.global() * k);
                     SourceScan {

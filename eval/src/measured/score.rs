@@ -44,7 +44,10 @@ pub struct Split {
 
 impl Split {
     pub fn alternate(directions: &[usize]) -> Split {
-        let (fit, score) = directions.iter().enumerate().partition::<Vec<_>, _>(|(i, _)| i % 2 == 0);
+        let (fit, score) = directions
+            .iter()
+            .enumerate()
+            .partition::<Vec<_>, _>(|(i, _)| i % 2 == 0);
         Split {
             fit: fit.into_iter().map(|(_, &d)| d).collect(),
             score: score.into_iter().map(|(_, &d)| d).collect(),
@@ -122,7 +125,8 @@ pub fn compare(
             e.luminance.push((cl.y / cm.y - 1.0).abs());
         }
         if let (Some(a), Some(b)) = (uv(cm), uv(cl)) {
-            e.chromaticity.push(((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt());
+            e.chromaticity
+                .push(((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt());
         }
     }
     e
@@ -137,7 +141,11 @@ pub fn quantile(v: &[f64], q: f64) -> f64 {
     v.sort_by(f64::total_cmp);
     let x = q.clamp(0.0, 1.0) * (v.len() - 1) as f64;
     let (i, f) = (x.floor() as usize, x.fract());
-    if i + 1 < v.len() { v[i] + f * (v[i + 1] - v[i]) } else { v[i] }
+    if i + 1 < v.len() {
+        v[i] + f * (v[i + 1] - v[i])
+    } else {
+        v[i]
+    }
 }
 
 #[cfg(test)]
@@ -149,7 +157,10 @@ mod tests {
         let nm: Vec<f64> = (0..=96).map(|i| 350.0 + 5.0 * f64::from(i)).collect();
         let measured: Vec<f64> = nm.iter().map(|w| 0.1 * (500.0 / w).powi(4)).collect();
         let model_nm: Vec<f64> = (0..=47).map(|i| 360.0 + 10.0 * f64::from(i)).collect();
-        let modelled: Vec<f64> = model_nm.iter().map(|w| 1.1 * 0.1 * (500.0 / w).powi(4)).collect();
+        let modelled: Vec<f64> = model_nm
+            .iter()
+            .map(|w| 1.1 * 0.1 * (500.0 / w).powi(4))
+            .collect();
         let e = compare(&nm, &[&measured], &model_nm, &[&modelled]);
         // 360–720 nm at 10 nm: 37 wavelengths.
         assert_eq!(e.radiance.len(), 37);
@@ -173,7 +184,9 @@ mod tests {
     fn quantiles_interpolate_between_order_statistics() {
         assert_eq!(quantile(&[3.0, 1.0, 2.0], 0.5), 2.0);
         assert_eq!(quantile(&[1.0, 2.0, 3.0, 4.0], 0.5), 2.5);
-        assert!((quantile(&(0..=100).map(f64::from).collect::<Vec<_>>(), 0.95) - 95.0).abs() < 1e-12);
+        assert!(
+            (quantile(&(0..=100).map(f64::from).collect::<Vec<_>>(), 0.95) - 95.0).abs() < 1e-12
+        );
         assert!(quantile(&[], 0.5).is_nan());
     }
 }

@@ -222,7 +222,9 @@ impl Sky {
                 .map(|b| {
                     views
                         .par_iter()
-                        .map(|v| model.radiance(b, (self.camera.position, h), self.world(v), self.sun))
+                        .map(|v| {
+                            model.radiance(b, (self.camera.position, h), self.world(v), self.sun)
+                        })
                         .collect()
                 })
                 .collect(),
@@ -276,7 +278,9 @@ impl Sky {
         let weights = trapezoid_weights(&self.wavelengths_nm);
         let (mut direct, mut diffuse) = (0.0, 0.0);
         for (i, &w) in self.wavelengths_nm.iter().enumerate() {
-            let t = self.atm.transmittance_to_sun(&self.atm.optics(w), self.camera.position, self.sun);
+            let t =
+                self.atm
+                    .transmittance_to_sun(&self.atm.optics(w), self.camera.position, self.sun);
             direct += weights[i] * self.atm.solar_irradiance(w, Some(BAND_NM)) * t * mu_s;
             let mean = sky.iter().map(|l| l[i]).sum::<f64>() / views.len() as f64;
             diffuse += weights[i] * std::f64::consts::PI * mean;
@@ -332,8 +336,16 @@ pub fn trapezoid_weights(wavelengths_nm: &[f64]) -> Vec<f64> {
     let n = wavelengths_nm.len();
     (0..n)
         .map(|i| {
-            let lo = if i > 0 { wavelengths_nm[i] - wavelengths_nm[i - 1] } else { 0.0 };
-            let hi = if i + 1 < n { wavelengths_nm[i + 1] - wavelengths_nm[i] } else { 0.0 };
+            let lo = if i > 0 {
+                wavelengths_nm[i] - wavelengths_nm[i - 1]
+            } else {
+                0.0
+            };
+            let hi = if i + 1 < n {
+                wavelengths_nm[i + 1] - wavelengths_nm[i]
+            } else {
+                0.0
+            };
             0.5 * (lo + hi)
         })
         .collect()

@@ -52,9 +52,15 @@ pub fn sun_azimuth_deg(samples: &[Sample], theory_deg: f64) -> Option<f64> {
 /// zenith and rings too sparse to interpolate are left out.
 fn rings(samples: &[Sample]) -> Vec<Vec<(f64, f64)>> {
     let mut rings: Vec<(f64, Vec<(f64, f64)>)> = Vec::new();
-    for s in samples.iter().filter(|s| s.value > 0.0 && s.value.is_finite() && s.elevation_deg < 89.0) {
+    for s in samples
+        .iter()
+        .filter(|s| s.value > 0.0 && s.value.is_finite() && s.elevation_deg < 89.0)
+    {
         let point = (s.azimuth_deg.rem_euclid(360.0), s.value.ln());
-        match rings.iter_mut().find(|(e, _)| (e - s.elevation_deg).abs() < 0.5) {
+        match rings
+            .iter_mut()
+            .find(|(e, _)| (e - s.elevation_deg).abs() < 0.5)
+        {
             Some((_, r)) => r.push(point),
             None => rings.push((s.elevation_deg, vec![point])),
         }
@@ -144,7 +150,11 @@ mod tests {
                 let gamma = v.dot(sun).clamp(-1.0, 1.0).acos();
                 let value = (1.0 + 4.0 * (-gamma / 0.4).exp() + gamma.cos().powi(2))
                     * (1.0 + 0.5 * (-e.sin() / 0.3).exp());
-                Sample { azimuth_deg: az, elevation_deg: el, value }
+                Sample {
+                    azimuth_deg: az,
+                    elevation_deg: el,
+                    value,
+                }
             })
             .collect()
     }
@@ -164,12 +174,19 @@ mod tests {
         let got = sun_azimuth_deg(&sky(123.4), 150.0).expect("rings");
         assert!((got - 123.4).abs() < 0.1, "{got}");
         let got = sun_azimuth_deg(&sky(123.4), 303.4 + 60.0).expect("rings");
-        assert!((got - 303.4).abs() < 0.1, "the anti-solar axis when the theory says so: {got}");
+        assert!(
+            (got - 303.4).abs() < 0.1,
+            "the anti-solar axis when the theory says so: {got}"
+        );
     }
 
     #[test]
     fn a_scan_without_rings_has_no_axis() {
-        let only_zenith = [Sample { azimuth_deg: 0.0, elevation_deg: 90.0, value: 1.0 }];
+        let only_zenith = [Sample {
+            azimuth_deg: 0.0,
+            elevation_deg: 90.0,
+            value: 1.0,
+        }];
         assert_eq!(sun_azimuth_deg(&only_zenith, 100.0), None);
     }
 }

@@ -59,7 +59,9 @@ pub struct SourceList(pub Vec<Source>);
 fn parse_sources(list: &str) -> Result<SourceList, String> {
     let tracer = Source::PathTracer { spp: 0, seed: 1 };
     if list == "all" {
-        let mut v: Vec<Source> = methods::realtime().map(|m| Source::Model(m.method)).collect();
+        let mut v: Vec<Source> = methods::realtime()
+            .map(|m| Source::Model(m.method))
+            .collect();
         v.push(tracer);
         return Ok(SourceList(v));
     }
@@ -74,13 +76,18 @@ fn parse_sources(list: &str) -> Result<SourceList, String> {
 }
 
 fn parse_aerosol(s: &str) -> Result<AerosolSource, String> {
-    AerosolSource::from_name(s).ok_or_else(|| format!("no aerosol source `{s}` (aeronet, pyranometer, fit)"))
+    AerosolSource::from_name(s)
+        .ok_or_else(|| format!("no aerosol source `{s}` (aeronet, pyranometer, fit)"))
 }
 
 fn parse_site(s: &str) -> Result<Site, String> {
     let v: Vec<f64> = s
         .split(',')
-        .map(|x| x.trim().parse::<f64>().map_err(|_| format!("`{x}` is not a number")))
+        .map(|x| {
+            x.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("`{x}` is not a number"))
+        })
         .collect::<Result<_, _>>()?;
     let [latitude_deg, longitude_deg, altitude_m] = v[..] else {
         return Err("expected LAT,LON,ALT_M".into());
@@ -89,12 +96,18 @@ fn parse_site(s: &str) -> Result<Site, String> {
         return Err(format!("latitude {latitude_deg}° is outside −90 to 90°"));
     }
     if !(-180.0..=180.0).contains(&longitude_deg) {
-        return Err(format!("longitude {longitude_deg}° is outside −180 to 180°"));
+        return Err(format!(
+            "longitude {longitude_deg}° is outside −180 to 180°"
+        ));
     }
     if !(0.0..=5000.0).contains(&altitude_m) {
         return Err(format!("altitude {altitude_m} m is outside 0 to 5000 m"));
     }
-    Ok(Site { latitude_deg, longitude_deg, altitude_m })
+    Ok(Site {
+        latitude_deg,
+        longitude_deg,
+        altitude_m,
+    })
 }
 
 /// One scan as the JSON reports it.
@@ -162,9 +175,12 @@ pub fn model_rows(ids: &[&str], results: &[ScanResult]) -> Vec<ModelRow> {
     ids.iter()
         .map(|&id| {
             let mut errors = Errors::default();
-            let (mut zenith, mut ghi, mut refused, mut turbidity) = (Vec::new(), Vec::new(), 0, Vec::new());
+            let (mut zenith, mut ghi, mut refused, mut turbidity) =
+                (Vec::new(), Vec::new(), 0, Vec::new());
             for r in results {
-                let Some(s) = r.sources.iter().find(|s| s.id == id) else { continue };
+                let Some(s) = r.sources.iter().find(|s| s.id == id) else {
+                    continue;
+                };
                 if s.refused.is_some() {
                     refused += 1;
                     continue;
@@ -217,7 +233,10 @@ pub fn scan_row(day: &Day, r: &ScanResult) -> ScanRow {
 }
 
 pub fn run(args: &MeasuredBench) -> anyhow::Result<ExitCode> {
-    let folder = args.data.clone().unwrap_or_else(atmoscope_eval::measured::shipped_folder);
+    let folder = args
+        .data
+        .clone()
+        .unwrap_or_else(atmoscope_eval::measured::shipped_folder);
     let days = files::read_folder(&folder)?;
     if let Some(out) = &args.out {
         crate::files::check_writable(out)?;
@@ -227,7 +246,10 @@ pub fn run(args: &MeasuredBench) -> anyhow::Result<ExitCode> {
         .0
         .iter()
         .map(|s| match s {
-            Source::PathTracer { seed, .. } => Source::PathTracer { spp: args.spp, seed: *seed },
+            Source::PathTracer { seed, .. } => Source::PathTracer {
+                spp: args.spp,
+                seed: *seed,
+            },
             m => *m,
         })
         .collect();
@@ -242,13 +264,18 @@ pub fn run(args: &MeasuredBench) -> anyhow::Result<ExitCode> {
     let mut chosen: Vec<(usize, usize)> = Vec::new();
     for (d, day) in days.iter().enumerate() {
         for (s, scan) in day.scans.iter().enumerate() {
-            if args.scans.is_empty() || args.scans.iter().any(|t| *t == scan.time_local.to_string()) {
+            if args.scans.is_empty() || args.scans.iter().any(|t| *t == scan.time_local.to_string())
+            {
                 chosen.push((d, s));
             }
         }
     }
     if chosen.is_empty() {
-        bail!("--scans: no scan of {} starts at {}", folder.display(), args.scans.join(", "));
+        bail!(
+            "--scans: no scan of {} starts at {}",
+            folder.display(),
+            args.scans.join(", ")
+        );
     }
     let mut results: Vec<(usize, ScanResult)> = Vec::new();
     let mut skipped = Vec::new();
@@ -262,17 +289,30 @@ pub fn run(args: &MeasuredBench) -> anyhow::Result<ExitCode> {
             // record) is left out and named; the others are still scored.
             Err(e) => {
                 eprintln!("bench measured: {label} left out: {e}");
-                skipped.push(SkippedScan { scan: label, reason: e.to_string() });
+                skipped.push(SkippedScan {
+                    scan: label,
+                    reason: e.to_string(),
+                });
             }
         }
     }
     if results.is_empty() {
-        bail!("no scan could be scored: {}", skipped.iter().map(|s| format!("{}: {}", s.scan, s.reason)).collect::<Vec<_>>().join("; "));
+        bail!(
+            "no scan could be scored: {}",
+            skipped
+                .iter()
+                .map(|s| format!("{}: {}", s.scan, s.reason))
+                .collect::<Vec<_>>()
+                .join("; ")
+        );
     }
     let ids: Vec<&str> = settings.sources.iter().map(run::source_id).collect();
     let all: Vec<ScanResult> = results.iter().map(|(_, r)| r.clone()).collect();
     let report = Report {
-        scans: results.iter().map(|(d, r)| scan_row(&days[*d], r)).collect(),
+        scans: results
+            .iter()
+            .map(|(d, r)| scan_row(&days[*d], r))
+            .collect(),
         models: model_rows(&ids, &all),
         skipped,
     };
@@ -289,7 +329,11 @@ pub fn run(args: &MeasuredBench) -> anyhow::Result<ExitCode> {
 }
 
 fn pct(x: f64) -> String {
-    if x.is_finite() { format!("{:.1} %", 100.0 * x) } else { "–".into() }
+    if x.is_finite() {
+        format!("{:.1} %", 100.0 * x)
+    } else {
+        "–".into()
+    }
 }
 
 /// The Markdown summary: the models ranked by their median radiance error, then the scans.
@@ -307,14 +351,21 @@ pub fn summary(report: &Report, settings: &Settings, folder: &std::path::Path) -
         SUN_EXCLUSION_DEG
     );
     let mut models = report.models.clone();
-    models.sort_by(|a, b| a.radiance_median_abs_rel_err.total_cmp(&b.radiance_median_abs_rel_err));
+    models.sort_by(|a, b| {
+        a.radiance_median_abs_rel_err
+            .total_cmp(&b.radiance_median_abs_rel_err)
+    });
     let _ = writeln!(
         s,
         "| model | radiance median | radiance p95 | luminance median | Δu′v′ median | zenith luminance | GHI | samples |"
     );
     let _ = writeln!(s, "| --- | --- | --- | --- | --- | --- | --- | --- |");
     for m in &models {
-        let refused = if m.refused_scans > 0 { format!(" (refused {} scans)", m.refused_scans) } else { String::new() };
+        let refused = if m.refused_scans > 0 {
+            format!(" (refused {} scans)", m.refused_scans)
+        } else {
+            String::new()
+        };
         let refused = match m.turbidity_median {
             Some(t) => format!("{refused} (turbidity {t:.2})"),
             None => refused,
@@ -337,7 +388,10 @@ pub fn summary(report: &Report, settings: &Settings, folder: &std::path::Path) -
         s,
         "| date | local time | sun zenith | sun azimuth (symmetry / theory) | aerosol | AOD 550 | Ångström | SSA | GHI measured | zenith luminance |"
     );
-    let _ = writeln!(s, "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    let _ = writeln!(
+        s,
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+    );
     for r in &report.scans {
         let _ = writeln!(
             s,
@@ -351,8 +405,10 @@ pub fn summary(report: &Report, settings: &Settings, folder: &std::path::Path) -
             r.aerosol.aod550,
             r.aerosol.angstrom,
             r.aerosol.single_scattering_albedo,
-            r.ghi_measured_w_m2.map_or("–".into(), |g| format!("{g:.1} W/m²")),
-            r.zenith_luminance_measured_cd_m2.map_or("–".into(), |l| format!("{l:.0} cd/m²")),
+            r.ghi_measured_w_m2
+                .map_or("–".into(), |g| format!("{g:.1} W/m²")),
+            r.zenith_luminance_measured_cd_m2
+                .map_or("–".into(), |l| format!("{l:.0} cd/m²")),
         );
     }
     for k in &report.skipped {
@@ -382,7 +438,10 @@ fn write_outputs(
 ) -> anyhow::Result<()> {
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     crate::files::write_atomic(&out.join("measured.md"), summary.as_bytes())?;
-    crate::files::write_atomic(&out.join("measured.json"), serde_json::to_string_pretty(report)?.as_bytes())?;
+    crate::files::write_atomic(
+        &out.join("measured.json"),
+        serde_json::to_string_pretty(report)?.as_bytes(),
+    )?;
     for (d, r) in results {
         let day = &days[*d];
         let scan = &day.scans[r.scan];
@@ -393,8 +452,14 @@ fn write_outputs(
         for s in r.sources.iter().filter(|s| s.refused.is_none()) {
             for (k, &i) in r.scored.iter().enumerate() {
                 let dir = &scan.directions[i];
-                let l = score::xyz(&settings.model_nm, &s.radiance[k]).map_or(f64::NAN, score::luminance);
-                let e = score::compare(&day.wavelengths_nm, &[&dir.radiance], &settings.model_nm, &[&s.radiance[k]]);
+                let l = score::xyz(&settings.model_nm, &s.radiance[k])
+                    .map_or(f64::NAN, score::luminance);
+                let e = score::compare(
+                    &day.wavelengths_nm,
+                    &[&dir.radiance],
+                    &settings.model_nm,
+                    &[&s.radiance[k]],
+                );
                 let _ = writeln!(
                     csv,
                     "{},{},{},{},{:.6e},{:.6e},{:.5},{:.5}",
@@ -409,7 +474,11 @@ fn write_outputs(
                 );
             }
         }
-        let name = format!("scan_{}_{}.csv", day.date, scan.time_local.to_string().replace(':', ""));
+        let name = format!(
+            "scan_{}_{}.csv",
+            day.date,
+            scan.time_local.to_string().replace(':', "")
+        );
         crate::files::write_atomic(&out.join(name), csv.as_bytes())?;
     }
     measured_charts::write(out, days, results, settings)

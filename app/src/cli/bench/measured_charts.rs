@@ -17,25 +17,41 @@ struct Series {
     points: Vec<(f64, f64)>,
 }
 
-pub fn write(out: &Path, days: &[Day], results: &[(usize, ScanResult)], settings: &Settings) -> anyhow::Result<()> {
+pub fn write(
+    out: &Path,
+    days: &[Day],
+    results: &[(usize, ScanResult)],
+    settings: &Settings,
+) -> anyhow::Result<()> {
     crate::images::register_font();
-    let ids: Vec<&str> = results.first().map_or(Vec::new(), |(_, r)| r.sources.iter().map(|s| s.id).collect());
+    let ids: Vec<&str> = results.first().map_or(Vec::new(), |(_, r)| {
+        r.sources.iter().map(|s| s.id).collect()
+    });
     let hour = |d: usize, r: &ScanResult| days[d].scans[r.scan].time_local.hours();
-    let over_day = |measured: &dyn Fn(&ScanResult) -> Option<f64>, modelled: &dyn Fn(&ScanResult, &str) -> Option<f64>| {
+    let over_day = |measured: &dyn Fn(&ScanResult) -> Option<f64>,
+                    modelled: &dyn Fn(&ScanResult, &str) -> Option<f64>| {
         let mut v = vec![Series {
             label: "measured".into(),
-            points: results.iter().filter_map(|(d, r)| Some((hour(*d, r), measured(r)?))).collect(),
+            points: results
+                .iter()
+                .filter_map(|(d, r)| Some((hour(*d, r), measured(r)?)))
+                .collect(),
         }];
         for id in &ids {
             v.push(Series {
                 label: (*id).into(),
-                points: results.iter().filter_map(|(d, r)| Some((hour(*d, r), modelled(r, id)?))).collect(),
+                points: results
+                    .iter()
+                    .filter_map(|(d, r)| Some((hour(*d, r), modelled(r, id)?)))
+                    .collect(),
             });
         }
         v
     };
     let source = |r: &ScanResult, id: &str| r.sources.iter().find(|s| s.id == id).cloned();
-    let zenith = over_day(&|r| r.zenith_luminance_measured, &|r, id| source(r, id)?.zenith_luminance);
+    let zenith = over_day(&|r| r.zenith_luminance_measured, &|r, id| {
+        source(r, id)?.zenith_luminance
+    });
     chart_files!(out, "day_zenith_luminance", (960, 640), |backend| lines(
         backend,
         "Zenith luminance over the day",
@@ -64,9 +80,12 @@ pub fn write(out: &Path, days: &[Day], results: &[(usize, ScanResult)], settings
     };
     for id in &ids {
         let stem = format!("dome_{id}");
-        chart_files!(out, &stem, (300 * picked.len().max(1) as u32, 340), |backend| domes(
-            backend, days, &picked, id, settings
-        ))?;
+        chart_files!(
+            out,
+            &stem,
+            (300 * picked.len().max(1) as u32, 340),
+            |backend| domes(backend, days, &picked, id, settings)
+        )?;
     }
     Ok(())
 }
@@ -90,10 +109,17 @@ fn spectra(out: &Path, day: &Day, r: &ScanResult, settings: &Settings) -> anyhow
             .map(|(k, _)| k)
     };
     // The scan's rings, lowest first, whatever its instrument's elevations.
-    let mut rings: Vec<f64> = r.scored.iter().map(|&i| scan.directions[i].elevation_deg).collect();
+    let mut rings: Vec<f64> = r
+        .scored
+        .iter()
+        .map(|&i| scan.directions[i].elevation_deg)
+        .collect();
     rings.sort_by(f64::total_cmp);
     rings.dedup_by(|a, b| (*a - *b).abs() < 1.0);
-    let (lowest, second) = (rings.first().copied().unwrap_or(0.0), rings.get(1).copied().unwrap_or(0.0));
+    let (lowest, second) = (
+        rings.first().copied().unwrap_or(0.0),
+        rings.get(1).copied().unwrap_or(0.0),
+    );
     let picks = [
         nearest(rings.last().copied().unwrap_or(90.0), 0.0),
         nearest(second, 0.0),
@@ -115,7 +141,13 @@ fn spectra(out: &Path, day: &Day, r: &ScanResult, settings: &Settings) -> anyhow
         for s in r.sources.iter().filter(|s| s.refused.is_none()) {
             series.push(Series {
                 label: s.id.into(),
-                points: settings.model_nm.iter().copied().zip(s.radiance[k].iter().copied()).filter(|p| p.1 > 0.0).collect(),
+                points: settings
+                    .model_nm
+                    .iter()
+                    .copied()
+                    .zip(s.radiance[k].iter().copied())
+                    .filter(|p| p.1 > 0.0)
+                    .collect(),
             });
         }
         let title = format!(
@@ -138,13 +170,31 @@ fn spectra(out: &Path, day: &Day, r: &ScanResult, settings: &Settings) -> anyhow
     Ok(())
 }
 
-fn lines<B: DrawingBackend>(backend: B, title: &str, x_desc: &str, y_desc: &str, series: &[Series]) -> anyhow::Result<()> {
+fn lines<B: DrawingBackend>(
+    backend: B,
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    series: &[Series],
+) -> anyhow::Result<()> {
     let err = |e: plotters::drawing::DrawingAreaErrorKind<B::ErrorType>| anyhow!("chart: {e}");
     let root = backend.into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
-    let all: Vec<(f64, f64)> = series.iter().flat_map(|s| s.points.iter().copied()).filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
-    let (x0, x1) = all.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.0), b.max(p.0)));
-    let (y0, y1) = all.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.1), b.max(p.1)));
+    let all: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|s| s.points.iter().copied())
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+        .collect();
+    let (x0, x1) = all
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.0), b.max(p.0))
+        });
+    let (y0, y1) = all
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.1), b.max(p.1))
+        });
     if !(x0.is_finite() && y0.is_finite() && x1 > x0) {
         return Ok(());
     }
@@ -171,13 +221,21 @@ fn lines<B: DrawingBackend>(backend: B, title: &str, x_desc: &str, y_desc: &str,
         };
         let style = colour.stroke_width(width);
         let drawn = if i / PALETTE.len() % 2 == 1 {
-            chart.draw_series(DashedLineSeries::new(s.points.clone(), 6, 4, style)).map_err(err)?
+            chart
+                .draw_series(DashedLineSeries::new(s.points.clone(), 6, 4, style))
+                .map_err(err)?
         } else {
-            chart.draw_series(LineSeries::new(s.points.clone(), style)).map_err(err)?
+            chart
+                .draw_series(LineSeries::new(s.points.clone(), style))
+                .map_err(err)?
         };
-        drawn.label(s.label.clone()).legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], style));
+        drawn
+            .label(s.label.clone())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], style));
         if s.label == "measured" {
-            chart.draw_series(s.points.iter().map(|p| Circle::new(*p, 3, colour.filled()))).map_err(err)?;
+            chart
+                .draw_series(s.points.iter().map(|p| Circle::new(*p, 3, colour.filled())))
+                .map_err(err)?;
         }
     }
     chart
@@ -199,9 +257,17 @@ fn error_colour(e: f64) -> RGBColor {
     let t = (e / DOME_RANGE).clamp(-1.0, 1.0);
     let mix = |a: f64, b: f64, t: f64| (a + (b - a) * t).round() as u8;
     if t < 0.0 {
-        RGBColor(mix(255.0, 33.0, -t), mix(255.0, 102.0, -t), mix(255.0, 172.0, -t))
+        RGBColor(
+            mix(255.0, 33.0, -t),
+            mix(255.0, 102.0, -t),
+            mix(255.0, 172.0, -t),
+        )
     } else {
-        RGBColor(mix(255.0, 178.0, t), mix(255.0, 24.0, t), mix(255.0, 43.0, t))
+        RGBColor(
+            mix(255.0, 178.0, t),
+            mix(255.0, 24.0, t),
+            mix(255.0, 43.0, t),
+        )
     }
 }
 
@@ -224,40 +290,78 @@ fn domes<B: DrawingBackend>(
         let day = &days[*d];
         let scan = &day.scans[r.scan];
         let (pw, ph) = panel.dim_in_pixel();
-        let (cx, cy, radius) = (pw as i32 / 2, ph as i32 / 2 + 10, (pw.min(ph) as i32) / 2 - 24);
+        let (cx, cy, radius) = (
+            pw as i32 / 2,
+            ph as i32 / 2 + 10,
+            (pw.min(ph) as i32) / 2 - 24,
+        );
         let at = |azimuth_deg: f64, elevation_deg: f64| {
             let rr = f64::from(radius) * (90.0 - elevation_deg) / 90.0;
             let a = azimuth_deg.to_radians();
-            (cx + (rr * a.sin()).round() as i32, cy - (rr * a.cos()).round() as i32)
+            (
+                cx + (rr * a.sin()).round() as i32,
+                cy - (rr * a.cos()).round() as i32,
+            )
         };
         panel
-            .draw(&Circle::new((cx, cy), radius, ShapeStyle::from(&BLACK).stroke_width(1)))
+            .draw(&Circle::new(
+                (cx, cy),
+                radius,
+                ShapeStyle::from(&BLACK).stroke_width(1),
+            ))
             .map_err(err)?;
         panel
-            .draw(&Text::new(format!("{id} {} {}", day.date, scan.time_local), (8, 4), ("sans-serif", 14)))
+            .draw(&Text::new(
+                format!("{id} {} {}", day.date, scan.time_local),
+                (8, 4),
+                ("sans-serif", 14),
+            ))
             .map_err(err)?;
-        let Some(s) = r.sources.iter().find(|s| s.id == id) else { continue };
+        let Some(s) = r.sources.iter().find(|s| s.id == id) else {
+            continue;
+        };
         if let Some(why) = &s.refused {
-            panel.draw(&Text::new(format!("refused: {why}"), (8, 24), ("sans-serif", 10))).map_err(err)?;
+            panel
+                .draw(&Text::new(
+                    format!("refused: {why}"),
+                    (8, 24),
+                    ("sans-serif", 10),
+                ))
+                .map_err(err)?;
             continue;
         }
         let lum = atmoscope_eval::measured::run::measured_luminance(day, scan);
         for (k, &i) in r.scored.iter().enumerate() {
             let dir = &scan.directions[i];
-            let l = score::xyz(&settings.model_nm, &s.radiance[k]).map_or(f64::NAN, score::luminance);
+            let l =
+                score::xyz(&settings.model_nm, &s.radiance[k]).map_or(f64::NAN, score::luminance);
             let e = l / lum[i] - 1.0;
             if !e.is_finite() {
                 continue;
             }
             let p = at(dir.azimuth_deg, dir.elevation_deg);
-            panel.draw(&Circle::new(p, 8, error_colour(e).filled())).map_err(err)?;
-            panel.draw(&Circle::new(p, 8, ShapeStyle::from(&RGBColor(90, 90, 90)).stroke_width(1))).map_err(err)?;
+            panel
+                .draw(&Circle::new(p, 8, error_colour(e).filled()))
+                .map_err(err)?;
+            panel
+                .draw(&Circle::new(
+                    p,
+                    8,
+                    ShapeStyle::from(&RGBColor(90, 90, 90)).stroke_width(1),
+                ))
+                .map_err(err)?;
         }
         let sun = at(r.sun_azimuth_deg, 90.0 - r.sun_zenith_deg);
-        panel.draw(&Circle::new(sun, 6, RGBColor(240, 200, 0).filled())).map_err(err)?;
+        panel
+            .draw(&Circle::new(sun, 6, RGBColor(240, 200, 0).filled()))
+            .map_err(err)?;
     }
     root.draw(&Text::new(
-        format!("luminance error: blue −{:.0} % … red +{:.0} %", 100.0 * DOME_RANGE, 100.0 * DOME_RANGE),
+        format!(
+            "luminance error: blue −{:.0} % … red +{:.0} %",
+            100.0 * DOME_RANGE,
+            100.0 * DOME_RANGE
+        ),
         (8, 322),
         ("sans-serif", 12),
     ))
