@@ -242,6 +242,33 @@ fn number(file: &Path, line: usize, column: &str, s: &str) -> Result<f64, Measur
 
 type Scans = BTreeMap<Clock, Scan>;
 
+/// The cells of data row `line` of a file whose first column is the date: as many as the
+/// header has, the first of them `date`.
+fn dated_cells<'a>(
+    file: &Path,
+    line: usize,
+    row: &'a str,
+    columns: usize,
+    date: &str,
+) -> Result<Vec<&'a str>, MeasuredError> {
+    let cells: Vec<&str> = row.split(',').map(str::trim).collect();
+    if cells.len() != columns {
+        return Err(MeasuredError::new(
+            file,
+            Some(line),
+            format!("{} cells where the header has {columns}", cells.len()),
+        ));
+    }
+    if cells[0] != date {
+        return Err(MeasuredError::new(
+            file,
+            Some(line),
+            format!("date `{}` in the file of {date}", cells[0]),
+        ));
+    }
+    Ok(cells)
+}
+
 fn read_radiance(file: &Path, date: &str) -> Result<(Vec<f64>, Scans), MeasuredError> {
     let rows = lines(file)?;
     let Some(((header_line, header), body)) = rows.split_first() else {
@@ -282,25 +309,7 @@ fn read_radiance(file: &Path, date: &str) -> Result<(Vec<f64>, Scans), MeasuredE
     }
     let mut scans = Scans::new();
     for (n, row) in body {
-        let cells: Vec<&str> = row.split(',').map(str::trim).collect();
-        if cells.len() != columns.len() {
-            return Err(MeasuredError::new(
-                file,
-                Some(*n),
-                format!(
-                    "{} cells where the header has {}",
-                    cells.len(),
-                    columns.len()
-                ),
-            ));
-        }
-        if cells[0] != date {
-            return Err(MeasuredError::new(
-                file,
-                Some(*n),
-                format!("date `{}` in the file of {date}", cells[0]),
-            ));
-        }
+        let cells = dated_cells(file, *n, row, columns.len(), date)?;
         let local = Clock::parse(cells[1])
             .map_err(|e| MeasuredError::new(file, Some(*n), format!("time_local_edt: {e}")))?;
         let utc = Clock::parse(cells[2])
@@ -373,25 +382,7 @@ fn read_scan_list(file: &Path, date: &str) -> Result<Vec<(Clock, Clock)>, Measur
     }
     body.iter()
         .map(|(n, row)| {
-            let cells: Vec<&str> = row.split(',').map(str::trim).collect();
-            if cells.len() != columns.len() {
-                return Err(MeasuredError::new(
-                    file,
-                    Some(*n),
-                    format!(
-                        "{} cells where the header has {}",
-                        cells.len(),
-                        columns.len()
-                    ),
-                ));
-            }
-            if cells[0] != date {
-                return Err(MeasuredError::new(
-                    file,
-                    Some(*n),
-                    format!("date `{}` in the file of {date}", cells[0]),
-                ));
-            }
+            let cells = dated_cells(file, *n, row, columns.len(), date)?;
             let local =
                 Clock::parse(cells[1]).map_err(|e| MeasuredError::new(file, Some(*n), e))?;
             let utc = Clock::parse(cells[2]).map_err(|e| MeasuredError::new(file, Some(*n), e))?;

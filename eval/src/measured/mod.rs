@@ -21,7 +21,7 @@ pub mod score;
 pub mod sky;
 pub mod symmetry;
 
-/// The folder of the shipped day, Kider et al. (2014) over Cornell on 2013-05-27.
+/// The folder of the day that ships with the project (Kider et al. 2014, Cornell).
 pub fn shipped_folder() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/kider_2014")
 }

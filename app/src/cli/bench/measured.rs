@@ -22,7 +22,7 @@ use std::process::ExitCode;
 pub struct MeasuredBench {
     /// A folder of measured days: radiance_<date>.csv and scans_<date>.csv, optionally
     /// pyranometer_<date>.csv and an AERONET .pfn file (default: the shipped day, Kider et
-    /// al. 2014 over Cornell on 2013-05-27).
+    /// al. 2014 over Cornell).
     #[arg(long, value_name = "DIR")]
     pub data: Option<PathBuf>,
     /// Models, comma-separated: registry ids and `path-tracer`, or `all` (every real-time
