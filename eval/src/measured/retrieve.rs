@@ -161,11 +161,39 @@ pub const FIT_AOD_RANGE: (f64, f64) = (0.0, 1.5);
 /// Range of single-scattering albedos the fit searches.
 pub const FIT_SSA_RANGE: (f64, f64) = (0.6, 1.0);
 
+/// Optical depths at 550 nm and albedos of the coarse grid the fit's simplex starts from.
+const FIT_START_AOD: [f64; 7] = [0.03, 0.08, 0.15, 0.25, 0.4, 0.65, 1.0];
+const FIT_START_SSA: [f64; 3] = [0.8, 0.9, 0.97];
+
+/// What [`fit_aerosol`] minimises: the mean squared ln ratio of the path tracer's sky over
+/// `scene` (`spp` paths per direction and batch, the fit's one seed) to `measured` (spectra at
+/// [`FIT_NM`], one per view), over the samples where both are positive; infinite where there
+/// are none or the path tracer refuses the scene.
+pub fn fit_misfit(scene: &Scene, views: &[View], measured: &[Vec<f64>], spp: u64) -> f64 {
+    let Ok(model) = sky::radiance(scene, Source::PathTracer { spp, seed: 7 }, views, &FIT_NM)
+    else {
+        return f64::INFINITY;
+    };
+    let (mut sum, mut n) = (0.0, 0usize);
+    for (m, l) in measured.iter().zip(&model) {
+        for (m, l) in m.iter().zip(l) {
+            if *m > 0.0 && *l > 0.0 {
+                sum += (l / m).ln().powi(2);
+                n += 1;
+            }
+        }
+    }
+    if n == 0 {
+        f64::INFINITY
+    } else {
+        sum / n as f64
+    }
+}
+
 /// The optical depth at 550 nm and the single-scattering albedo at which the path tracer's sky
-/// (`scene_at(aod, ssa)`, `spp` paths per direction and batch, one seed for every trial so the
-/// misfit is smooth) fits `measured` (spectra at [`FIT_NM`], one per view) best in ln L, by
-/// Nelder–Mead within [`FIT_AOD_RANGE`] and [`FIT_SSA_RANGE`]. It reads nothing but the views
-/// and spectra it is given: the caller hands it one half of a split.
+/// over `scene_at(aod, ssa)` fits `measured` best by [`fit_misfit`] (one seed for every trial,
+/// so the misfit is smooth), by Nelder–Mead within [`FIT_AOD_RANGE`] and [`FIT_SSA_RANGE`]. It
+/// reads nothing but the views and spectra it is given: the caller hands it one half of a split.
 pub fn fit_aerosol(
     scene_at: impl Fn(f64, f64) -> Scene,
     views: &[View],
@@ -183,33 +211,27 @@ pub fn fit_aerosol(
         let (aod, ssa) = clamp(x);
         // Outside the ranges the misfit grows with the distance, so the simplex comes back.
         let outside = (x[0] - aod).abs() + (x[1] - ssa).abs();
-        let Ok(model) = sky::radiance(
-            &scene_at(aod, ssa),
-            Source::PathTracer { spp, seed: 7 },
-            views,
-            &FIT_NM,
-        ) else {
-            return f64::INFINITY;
-        };
-        let (mut sum, mut n) = (0.0, 0usize);
-        for (m, l) in measured.iter().zip(&model) {
-            for (m, l) in m.iter().zip(l) {
-                if *m > 0.0 && *l > 0.0 {
-                    sum += (l / m).ln().powi(2);
-                    n += 1;
-                }
-            }
-        }
-        if n == 0 {
-            f64::INFINITY
-        } else {
-            sum / n as f64 + outside
-        }
+        fit_misfit(&scene_at(aod, ssa), views, measured, spp) + outside
     };
-    let start = [
-        start.0.clamp(FIT_AOD_RANGE.0, FIT_AOD_RANGE.1),
-        start.1.clamp(FIT_SSA_RANGE.0, FIT_SSA_RANGE.1),
-    ];
-    let (best, _) = crate::optimize::nelder_mead(misfit, &start, &[0.05, -0.05], 1e-4, 80);
+    // The valley where depth trades against albedo is long and narrow, and one seed for every
+    // trial still leaves the misfit rough on the scale of the path tracer's noise, so a simplex
+    // started anywhere stops in the nearest dip. It starts instead at the best of `start` and a
+    // coarse grid over both ranges.
+    let grid = FIT_START_AOD
+        .iter()
+        .flat_map(|&aod| FIT_START_SSA.iter().map(move |&ssa| [aod, ssa]));
+    let start = std::iter::once([start.0, start.1])
+        .chain(grid)
+        .map(|x| {
+            let x = [
+                x[0].clamp(FIT_AOD_RANGE.0, FIT_AOD_RANGE.1),
+                x[1].clamp(FIT_SSA_RANGE.0, FIT_SSA_RANGE.1),
+            ];
+            (misfit(&x), x)
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, x)| x)
+        .unwrap_or([start.0, start.1]);
+    let (best, _) = crate::optimize::nelder_mead(&misfit, &start, &[0.05, -0.05], 1e-4, 80);
     clamp(&best)
 }

@@ -131,6 +131,25 @@ pub fn resample(day: &Day, radiance: &[f64], nm: &[f64]) -> Vec<f64> {
         .collect()
 }
 
+/// The views of the directions `fit_half` of `scan` and their measured spectra at
+/// [`retrieve::FIT_NM`]: what the fit compares.
+pub fn fit_spectra(
+    day: &Day,
+    scan: &Scan,
+    fit_half: &[usize],
+    sun_azimuth_deg: f64,
+) -> (Vec<View>, Vec<Vec<f64>>) {
+    let views = fit_half
+        .iter()
+        .map(|&i| view_of(scan, i, sun_azimuth_deg))
+        .collect();
+    let measured = fit_half
+        .iter()
+        .map(|&i| resample(day, &scan.directions[i].radiance, &retrieve::FIT_NM))
+        .collect();
+    (views, measured)
+}
+
 /// The scan's aerosol from `source`.
 pub fn retrieve(
     day: &Day,
@@ -146,14 +165,7 @@ pub fn retrieve(
         AerosolSource::Pyranometer => retrieve::from_pyranometer(day, scan_index, &settings.site),
         AerosolSource::Fit => {
             let shape = retrieve::shape(day, scan);
-            let views: Vec<View> = fit_half
-                .iter()
-                .map(|&i| view_of(scan, i, sun_azimuth_deg))
-                .collect();
-            let measured: Vec<Vec<f64>> = fit_half
-                .iter()
-                .map(|&i| resample(day, &scan.directions[i].radiance, &retrieve::FIT_NM))
-                .collect();
+            let (views, measured) = fit_spectra(day, scan, fit_half, sun_azimuth_deg);
             let scene_at = |aod550, ssa| {
                 sky::scene(
                     day,
