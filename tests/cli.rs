@@ -3,6 +3,11 @@
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
+/// The GPU tests' policy, shared with the render crate's: when a missing adapter fails the
+/// run, and the count of skips.
+#[path = "../render/tests/common/mod.rs"]
+mod gpu;
+
 fn atmoscope(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_atmoscope"))
         .args(args)
@@ -593,18 +598,12 @@ fn reference_writes_exr_and_preview_and_caches_and_compare_reads_them() {
     );
 }
 
-/// Whether a missing GPU adapter must fail the run (CI) rather than skip.
-fn gpu_required() -> bool {
-    std::env::var("CI").is_ok_and(|v| v == "true" || v == "1")
-        || std::env::var("ATMOSCOPE_REQUIRE_GPU").is_ok_and(|v| v == "1")
-}
-
 /// Whether a command failed only for want of a GPU where none is required (then the test
-/// says SKIPPED and stops).
+/// says SKIPPED, is counted as skipped, and stops).
 fn skipped_without_gpu(o: &Output) -> bool {
-    let skip = !o.status.success() && stderr(o).contains("GPU adapter") && !gpu_required();
+    let skip = !o.status.success() && stderr(o).contains("GPU adapter") && !gpu::gpu_required();
     if skip {
-        eprintln!("SKIPPED: {}", stderr(o));
+        gpu::skip(&stderr(o));
     }
     skip
 }
