@@ -14,7 +14,7 @@ mod probe;
 pub mod progress;
 mod reference;
 mod render;
-mod sky_probe;
+pub mod sky_probe;
 mod stress;
 mod timelapse;
 
