@@ -548,7 +548,12 @@ fn the_scene_panel_chooses_the_cie_sky_type() {
 
 #[test]
 fn the_lut_tab_reads_every_table() {
-    let mut h = harness();
+    // The tables are the same at any render scale; the views draw a sixteenth of the texels.
+    let layout = Layout {
+        render_scale: 0.25,
+        ..test_layout()
+    };
+    let mut h = harness_with(layout, egui::vec2(1280.0, 1000.0));
     h.key_press(egui::Key::Num6);
     h.run();
     assert_eq!(h.state().layout.tab, Tab::Luts);
@@ -1430,7 +1435,13 @@ fn step_until_settled(h: &mut Harness<'static, ExplorerApp>, what: &str) -> (usi
 /// until the first image, which then appears. The fast tier covers every model on the Sky tab
 /// and every tab with Bruneton's (the longest build); the research tier every pair.
 fn frames_keep_coming(models: &[atmoscope_model::scene::Method], tabs: &[Tab]) {
-    let mut h = harness_with(test_layout(), egui::vec2(800.0, 500.0));
+    // Slicing and the builds are the same at any render scale; the views draw a sixteenth of
+    // the texels.
+    let layout = Layout {
+        render_scale: 0.25,
+        ..test_layout()
+    };
+    let mut h = harness_with(layout, egui::vec2(800.0, 500.0));
     h.state_mut()
         .set_rebuild_slices(Some(atmoscope::engine_setup::REBUILD_SLICE));
     h.state_mut().scene.render.quality = atmoscope_model::scene::Quality::Low;
@@ -1440,6 +1451,7 @@ fn frames_keep_coming(models: &[atmoscope_model::scene::Method], tabs: &[Tab]) {
             h.state_mut().scene.render.method = method;
             h.state_mut().layout.tab = tab;
             h.state_mut().layout.compare.a_method = method;
+            let drawn = views(&h).main.generation();
             let (building, said_building) = step_until_settled(&mut h, &what);
             // A build of more than a few frames says so (a floating label shows from its
             // second frame).
@@ -1449,8 +1461,16 @@ fn frames_keep_coming(models: &[atmoscope_model::scene::Method], tabs: &[Tab]) {
                     "{what}: {building} frames, never \"Building\""
                 );
             }
+            // The view drew this model's image: a frame after the switch, by an engine built
+            // for it (a texture alone would still hold the previous model's).
             if matches!(tab, Tab::Sky | Tab::Fisheye | Tab::Luminance) {
-                assert!(views(&h).main.texture().is_some(), "{what}: no image");
+                let main = &views(&h).main;
+                assert!(main.generation() > drawn, "{what}: no new image");
+                assert_eq!(
+                    main.engine().method().map(|m| m.method),
+                    Some(method),
+                    "{what}: the image is not this model's"
+                );
             }
         }
     }

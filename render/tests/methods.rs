@@ -9,7 +9,7 @@ use atmoscope_eval::metrics::{DisplaySetup, compare};
 use atmoscope_model::camera::{Camera, Projection};
 use atmoscope_model::colour::{linear_srgb_to_xyz, srgb_decode};
 use atmoscope_model::methods::shared::{Lut, moving_sky, viewpoint};
-use atmoscope_model::methods::{self, CannotDraw, Inputs, ModelInfo};
+use atmoscope_model::methods::{self, CannotDraw, Inputs, ModelInfo, SkyModel};
 use atmoscope_model::scene::{
     FittedConstants, Method, Quality, Scene, SunSettings, ToneMap, WavelengthSet,
 };
@@ -562,16 +562,39 @@ fn rendered_views_match_the_cpu_twin() {
         ),
         ("from 400 km", space, Projection::Perspective, 48, 32),
     ];
-    for ((name, scene, projection, w, h), model) in cases
-        .iter()
-        .flat_map(|c| methods::realtime().map(move |m| (c, m)))
-    {
-        let scene = with(model, scene);
-        if refused(&scene) {
-            continue;
+    // One engine per model draws its cases in turn, rebuilding what each change needs; and a
+    // twin whose tables hold no viewpoint is built once per atmosphere, as the engine's are
+    // (building Bruneton's, Elek's and Haber's twins is most of this test's time).
+    for model in methods::realtime() {
+        let mut engine = Engine::new(&gpu.device, &gpu.queue);
+        let mut twin: Option<(Scene, Box<dyn SkyModel>)> = None;
+        for (name, scene, projection, w, h) in &cases {
+            let scene = with(model, scene);
+            if refused(&scene) {
+                continue;
+            }
+            let name = format!("{} {name}", model.id);
+            let camera = Camera::new(
+                &scene.camera,
+                scene.atmosphere.planet_radius_km * 1000.0,
+                *projection,
+            );
+            let atmosphere = Scene {
+                camera: Default::default(),
+                ..scene.clone()
+            };
+            let reusable =
+                !model.reads_viewpoint() && twin.as_ref().is_some_and(|(a, _)| *a == atmosphere);
+            if !reusable {
+                let built = methods::build(&scene, &camera).expect("a real-time model");
+                twin = Some((atmosphere, built));
+            }
+            let (_, built) = twin.as_ref().expect("built above");
+            engine.render(&scene, &View::new(*projection, *w, *h));
+            let gpu_image = radiance_image(&engine);
+            let cpu_image = methods::render_with(built.as_ref(), &scene, &camera, *w, *h);
+            assert_images_match(&name, &gpu_image, &cpu_image, *w, *h);
         }
-        let name = format!("{} {name}", model.id);
-        assert_render_matches_the_twin(&gpu, &name, &scene, *projection, *w, *h);
     }
 }
 
@@ -673,10 +696,17 @@ fn assert_engine_matches_the_twin(
     engine.render(scene, &View::new(projection, w, h));
     let gpu_image = radiance_image(engine);
     let cpu_image = methods::render(scene, projection, w, h).expect("a real-time model");
-    let (c, _) = compare(&gpu_image, &cpu_image, w, h, DisplaySetup::default());
+    assert_images_match(name, &gpu_image, &cpu_image, w, h);
+    gpu_image
+}
+
+/// The GPU's image within the twin's: a mean ΔE2000 under 0.3 and at most 1 % of the pixels
+/// off by more than 1 % in luminance.
+fn assert_images_match(name: &str, gpu_image: &[[f64; 3]], cpu_image: &[[f64; 3]], w: u32, h: u32) {
+    let (c, _) = compare(gpu_image, cpu_image, w, h, DisplaySetup::default());
     let off = gpu_image
         .iter()
-        .zip(&cpu_image)
+        .zip(cpu_image)
         .filter(|(g, c)| {
             let (lg, lc) = (luminance(**g), luminance(**c));
             (lg - lc).abs() > 0.01 * lc.abs() + 1e-6
@@ -697,7 +727,6 @@ fn assert_engine_matches_the_twin(
         off * 100 <= gpu_image.len(),
         "{name}: {off} pixels differ by more than 1 % in luminance"
     );
-    gpu_image
 }
 
 /// Bruneton from space with the sun past its tables' 102° where the rays enter the air
@@ -1930,12 +1959,17 @@ fn a_rebuild_in_slices_gives_the_same_tables_as_a_whole_one() {
             }
             let progress = stats.rebuild.expect("progress while rebuilding");
             assert!(progress.done <= progress.total, "{}", model.id);
-            assert_eq!(
-                radiance_image(&sliced),
-                old_image,
-                "{}: the old image stays",
-                model.id
-            );
+            // Nothing but the swap at the end writes the image, so one overwritten mid-build
+            // would stay overwritten: reading it back every 16th frame finds it (a read-back
+            // waits for the GPU, and Bruneton's rebuild takes thousands of slices).
+            if frames % 16 == 0 {
+                assert_eq!(
+                    radiance_image(&sliced),
+                    old_image,
+                    "{}: the old image stays",
+                    model.id
+                );
+            }
             frames += 1;
         }
         let passes = gpu_method(model.method).expect("real-time").passes.len();
