@@ -1522,14 +1522,26 @@ fn the_first_start_welcomes_once_and_help_brings_the_welcome_back() {
     h.get_by_label("Welcome to Atmoscope");
 }
 
-/// Every panel's widgets fit its width on every tab at 1280×800 and 1920×1080, with both side
-/// panels and the Performance table open: controls wrap rather than run off a tab (the app
-/// notes any panel whose contents came out wider than the panel). What is taller scrolls.
+/// Every panel's widgets fit its width on every tab at 1280×800, with both side panels and
+/// the Performance table open: controls wrap rather than run off a tab (the app notes any
+/// panel whose contents came out wider than the panel). What is taller scrolls.
 #[test]
 fn no_widget_of_any_tab_lies_outside_the_window() {
+    no_widget_outside(&[egui::vec2(1280.0, 800.0)]);
+}
+
+/// The same at 1920×1080, where the panels have more room (and the docs' screenshots at that
+/// size come from).
+#[test]
+#[ignore = "research tier: every tab's layout at a second window size"]
+fn no_widget_of_any_tab_lies_outside_a_full_hd_window() {
+    no_widget_outside(&[egui::vec2(1920.0, 1080.0)]);
+}
+
+fn no_widget_outside(sizes: &[egui::Vec2]) {
     let mut overflows = Vec::new();
     let screenshots = std::env::var_os("ATMOSCOPE_SCREENSHOTS");
-    for size in [egui::vec2(1280.0, 800.0), egui::vec2(1920.0, 1080.0)] {
+    for &size in sizes {
         let layout = Layout {
             show_performance: true,
             // The widgets are the same at any render scale; the views draw a sixteenth of the

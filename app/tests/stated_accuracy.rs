@@ -58,7 +58,8 @@ fn every_model_keeps_its_stated_error_of_the_path_tracer_in_a_hazy_daylight_sky(
         };
         for (&(v, _), &(t, se)) in values.iter().zip(&truth) {
             let error = (v / t - 1.0).abs();
-            if error >= bound + 3.0 * se / t {
+            // Written so that a NaN fails too.
+            if !(error < bound + 3.0 * se / t) {
                 failures.push(format!(
                     "{}: {v:.4e} against the path tracer's {t:.4e} ± {se:.1e}: {:.1} % off, stated {:.0} %",
                     model.id,
