@@ -223,15 +223,11 @@ pub fn fit_aerosol(
     let start = std::iter::once([start.0, start.1])
         .chain(grid)
         .map(|x| {
-            let x = [
-                x[0].clamp(FIT_AOD_RANGE.0, FIT_AOD_RANGE.1),
-                x[1].clamp(FIT_SSA_RANGE.0, FIT_SSA_RANGE.1),
-            ];
-            (misfit(&x), x)
+            let (aod, ssa) = clamp(&x);
+            (misfit(&[aod, ssa]), [aod, ssa])
         })
         .min_by(|a, b| a.0.total_cmp(&b.0))
-        .map(|(_, x)| x)
-        .unwrap_or([start.0, start.1]);
+        .map_or([start.0, start.1], |(_, x)| x);
     let (best, _) = crate::optimize::nelder_mead(&misfit, &start, &[0.05, -0.05], 1e-4, 80);
     clamp(&best)
 }
