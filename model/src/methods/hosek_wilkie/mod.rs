@@ -423,7 +423,8 @@ mod tests {
 
     /// Values worked out apart from this code, from the CSV tables and the formula of the
     /// module's documentation (a separate script: Bézier weights C(5,k)·x^k·(1−x)^(5−k) with
-    /// x = (elevation/90°)^(1/3), linear in turbidity and albedo):
+    /// x = (elevation/90°)^(1/3), linear in turbidity and albedo). They are the output of
+    /// `tests/scripts/hosek_wilkie_golden_values.py` (`python3` from the repository root):
     /// - 560 nm, T = 3, albedo 0, sun at the zenith (x = 1: the last control point alone),
     ///   looking at the zenith (θ = γ = 0): 0.133330 W·m⁻²·sr⁻¹·nm⁻¹;
     /// - 440 nm, T = 2.5, albedo 0.5, sun 11.25° up (x = 1/2: all six points), θ = 60°,

@@ -105,8 +105,11 @@ mod tests {
     use glam::DVec3;
 
     /// The second order adds light everywhere in the sky and on the ground, most where the
-    /// single-scattered light is faint (away from the sun, at blue wavelengths), and less
-    /// than the single scattering it is gathered from in a clear daylight sky.
+    /// single-scattered light is faint (away from the sun) and most at blue wavelengths, and
+    /// less than the single scattering it is gathered from in a clear daylight sky. The path
+    /// tracer's second order (`probe --max-order 2` over `--max-order 1`, default scene, sun
+    /// 30°, 8 192 paths) adds 63–77 % of the single scattering 20° up opposite the sun and
+    /// 23–40 % 5° up beside it, and 30 % (680 nm) to 54 % (440 nm) 80° up: the same order.
     #[test]
     fn the_second_order_adds_light_below_the_first() {
         let p = params();
@@ -114,20 +117,38 @@ mod tests {
         let (single, both) = (super::super::nishita::build(&p, vp), build(&p, vp));
         let position = DVec3::new(0.0, 0.0, p.bottom_radius_m + 10.0);
         let sun = direction_from_angles(30.0, 0.0);
-        for (elevation, azimuth) in [(80.0, 120.0), (20.0, 180.0), (5.0, 10.0), (-10.0, 90.0)] {
+        // The share the second order adds per lane (Spectral4's lanes: 640, 580, 510, 450 nm).
+        let added = |elevation: f64, azimuth: f64| {
             let dir = direction_from_angles(elevation, azimuth);
             let (a, b) = (
                 single.radiance(0, (position, 10.0), dir, sun),
                 both.radiance(0, (position, 10.0), dir, sun),
             );
-            for i in 0..4 {
+            [0, 1, 2, 3].map(|i| b[i] / a[i] - 1.0)
+        };
+        for (elevation, azimuth) in [(80.0, 120.0), (20.0, 180.0), (5.0, 10.0), (-10.0, 90.0)] {
+            let share = added(elevation, azimuth);
+            for (i, s) in share.iter().enumerate() {
                 assert!(
-                    b[i] > a[i] * 1.02 && b[i] < a[i] * 2.5,
-                    "{elevation}° {azimuth}° lane {i}: {} vs {}",
-                    b[i],
-                    a[i]
+                    (0.02..1.0).contains(s),
+                    "{elevation}° {azimuth}° lane {i}: adds {s:.3}"
                 );
             }
+            // Most in the blue: the share grows from the longest wavelength to the shortest.
+            assert!(
+                share.windows(2).all(|w| w[1] > w[0]),
+                "{elevation}° {azimuth}°: {share:.3?}"
+            );
+        }
+        // Most where faint: opposite the sun at least half as much again as beside it.
+        let (faint, bright) = (added(20.0, 180.0), added(5.0, 10.0));
+        for i in 0..4 {
+            assert!(
+                faint[i] > 1.5 * bright[i],
+                "lane {i}: {:.3} opposite the sun, {:.3} beside it",
+                faint[i],
+                bright[i]
+            );
         }
     }
 }
