@@ -2129,51 +2129,75 @@ fn zenith_over(method: &str, ground: &str) -> Vec<f64> {
     )
 }
 
-/// How much fresh snow (visible albedo 0.90) raises the default sky's zenith radiance over
-/// the grey ground (0.3), at 450, 550 and 650 nm, by `method`.
-fn snow_increase(method: &str) -> Vec<f64> {
-    let grey = zenith_over(method, "grey");
-    let snow = zenith_over(method, "fresh-snow");
-    grey.iter().zip(&snow).map(|(g, s)| s / g - 1.0).collect()
+/// The zenith radiance at 450, 550 and 650 nm by `method` over the grey ground, fresh snow and
+/// grass, in that order; the three grounds run at once (Bruneton's CPU twin at medium quality
+/// takes about half a minute a ground).
+fn zenith_over_grounds(method: &str) -> [Vec<f64>; 3] {
+    std::thread::scope(|s| {
+        ["grey", "fresh-snow", "grass"]
+            .map(|ground| s.spawn(move || zenith_over(method, ground)))
+            .map(|h| h.join().expect("probe thread"))
+    })
+}
+
+/// Over each wavelength, `over / under − 1`.
+fn change(over: &[f64], under: &[f64]) -> Vec<f64> {
+    over.iter().zip(under).map(|(o, u)| o / u - 1.0).collect()
+}
+
+/// Fresh snow (visible albedo 0.90) raises the default sky's zenith radiance over the grey
+/// ground (0.3), and grass (dark but for its green peak) lowers it, as the path tracer gives:
+///
+/// - the tracer: snow adds 20–45 %, most in the blue (the air, which scatters back towards the
+///   ground as much as forward, carries more of the sky there than the aerosol, which scatters
+///   little back); grass lowers the zenith at every wavelength, least at its green 550 nm;
+/// - Bruneton's ground bounce, which scatters with the real phase functions, follows the
+///   tracer's snow within 15 % at each wavelength and grass's green peak;
+/// - Hillaire's follows the tracer's snow within 60 %: its higher orders scatter the light
+///   from the ground isotropically, as the paper does, so the aerosol sends too much of it back
+///   down, most in the red, and its increase grows towards the red where the tracer's shrinks
+///   (docs/models/hillaire.md).
+///
+/// The tracer's many paths with the same seed over every ground keep the ratios' noise well
+/// under the bounds (docs/measurements/artists-2026-12-06.md).
+#[test]
+fn fresh_snow_brightens_the_zenith_by_what_the_path_tracer_gives() {
+    let [grey, snow, grass] = zenith_over_grounds("path-tracer");
+    let truth = change(&snow, &grey);
+    for t in &truth {
+        assert!((0.2..0.45).contains(t), "path tracer: snow adds {t:.3}");
+    }
+    assert!(
+        truth[0] > truth[1] && truth[1] > truth[2],
+        "path tracer: snow adds {truth:.3?} at 450, 550, 650 nm"
+    );
+    let assert_green = |model: &str, darker: &[f64]| {
+        assert!(
+            darker.iter().all(|d| *d < 0.0) && darker[1] > darker[0] && darker[1] > darker[2],
+            "{model}: grass changes the zenith by {darker:.3?} at 450, 550, 650 nm"
+        );
+    };
+    assert_green("path tracer", &change(&grass, &grey));
+
+    let [grey_b, snow_b, grass_b] = zenith_over_grounds("bruneton");
+    assert_snow_increase_within("bruneton", &change(&snow_b, &grey_b), 0.15, &truth);
+    assert_green("bruneton", &change(&grass_b, &grey_b));
+
+    let hillaire = change(
+        &zenith_over("hillaire", "fresh-snow"),
+        &zenith_over("hillaire", "grey"),
+    );
+    assert_snow_increase_within("hillaire", &hillaire, 0.6, &truth);
 }
 
 /// Asserts that `model`'s snow increase lies within `bound` of the path tracer's `truth`.
-fn assert_snow_increase_within(model: &str, bound: f64, truth: &[f64]) {
-    for (m, t) in snow_increase(model).iter().zip(truth) {
+fn assert_snow_increase_within(model: &str, increase: &[f64], bound: f64, truth: &[f64]) {
+    for (m, t) in increase.iter().zip(truth) {
         assert!(
             (m / t - 1.0).abs() < bound,
             "{model}: snow adds {m:.3}, the path tracer {t:.3}"
         );
     }
-}
-
-/// Fresh snow raises the zenith radiance over the grey ground by what the path tracer gives:
-/// Hillaire's isotropic higher orders within 60 % of the path tracer's increase (measured:
-/// docs/measurements/artists-2026-12-06.md). Grass, darker than the grey ground in the
-/// visible, lowers it.
-#[test]
-fn fresh_snow_brightens_the_zenith_by_what_the_path_tracer_gives() {
-    // Many paths and the same seed over both grounds keep the ratios' noise well under the
-    // bounds (docs/measurements/artists-2026-12-06.md).
-    let truth = snow_increase("path-tracer");
-    for t in &truth {
-        assert!((0.2..0.45).contains(t), "path tracer: snow adds {t:.3}");
-    }
-    assert_snow_increase_within("hillaire", 0.6, &truth);
-    let grey = zenith_over("path-tracer", "grey");
-    let grass = zenith_over("path-tracer", "grass");
-    assert!(
-        grass.iter().zip(&grey).all(|(g, r)| g < r),
-        "{grass:?} {grey:?}"
-    );
-}
-
-/// Bruneton's ground bounce follows the path tracer's snow within 15 % of its increase (its
-/// CPU twin at medium quality takes about 20 s a ground).
-#[test]
-#[ignore = "research tier: Bruneton's CPU twin against the path tracer over two grounds"]
-fn brunetons_ground_bounce_follows_the_path_tracers_snow() {
-    assert_snow_increase_within("bruneton", 0.15, &snow_increase("path-tracer"));
 }
 
 /// `export-engine` writes each engine's snippet (to a file atomically, or stdout) for the

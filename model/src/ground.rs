@@ -212,7 +212,11 @@ mod tests {
         let grey = GroundType::Grey.visible_albedo(0.3, sun);
         assert!((grey - 0.3).abs() < 1e-12, "grey is the scene's: {grey}");
         assert_eq!(GroundType::Grey.stated_visible_albedo(), None);
-        assert_eq!(INDEPENDENT.len(), GroundType::ALL.len() - 1, "every measured ground");
+        assert_eq!(
+            INDEPENDENT.len(),
+            GroundType::ALL.len() - 1,
+            "every measured ground"
+        );
         for (g, independent) in INDEPENDENT {
             let a = g.visible_albedo(0.3, sun);
             assert!(
@@ -231,7 +235,10 @@ mod tests {
                 GroundType::Ocean => 0.03..0.10,
                 _ => continue,
             };
-            assert!(published.contains(&a), "{g:?}: {a:.4} outside Oke's {published:?}");
+            assert!(
+                published.contains(&a),
+                "{g:?}: {a:.4} outside Oke's {published:?}"
+            );
         }
     }
 
