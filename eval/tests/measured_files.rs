@@ -10,8 +10,13 @@ fn radiance_rows() -> Vec<String> {
     let mut rows = vec![HEADER.to_owned()];
     for (local, utc) in [("09:30", "13:30"), ("09:45", "13:45")] {
         for (sample, az, el) in [(0, 0.0, 12.1151), (1, 348.75, 12.1151), (2, 0.0, 90.0)] {
+            // Each direction its own spectrum, so that rows or columns read in the wrong
+            // place show.
+            let l = 0.05 + 0.1 * f64::from(sample);
             rows.push(format!(
-                "2013-05-27,{local},{utc},{sample},{az},{el},0.05,0.06,0.07"
+                "2013-05-27,{local},{utc},{sample},{az},{el},{l:.2},{:.2},{:.2}",
+                l + 0.01,
+                l + 0.02
             ));
         }
     }
@@ -49,8 +54,15 @@ fn good_folder() -> tempfile::TempDir {
     dir
 }
 
+/// The asymmetry parameters of the phase functions `aeronet_rows` writes at 442 and 674 nm.
+const G_442_674: (f64, f64) = (0.70, 0.60);
+
 fn aeronet_rows(tau440: &str) -> Vec<String> {
-    let angles = [0.0, 90.0, 180.0];
+    // Henyey–Greenstein phase functions every 2.5°, of a g of their own at each band.
+    let angles: Vec<f64> = (0..=72).map(|i| 2.5 * f64::from(i)).collect();
+    let hg = |g: f64, theta: f64| {
+        (1.0 - g * g) / (1.0 + g * g - 2.0 * g * theta.to_radians().cos()).powf(1.5)
+    };
     let mut header = vec![
         "Date(dd-mm-yyyy)".to_owned(),
         "Time(hh:mm:ss)".into(),
@@ -62,7 +74,9 @@ fn aeronet_rows(tau440: &str) -> Vec<String> {
     header.extend(["alpha440-870".into(), "tau440(measured)".into()]);
     let record = |time: &str| {
         let mut r = vec!["27:05:2013".to_owned(), time.into(), "147.5".into()];
-        r.extend(["3.0", "1.0", "0.5", "3.0", "1.0", "0.5"].map(String::from));
+        for g in [G_442_674.0, G_442_674.1] {
+            r.extend(angles.iter().map(|&a| format!("{:.6}", hg(g, a))));
+        }
         r.extend(["1.1".into(), tau440.into()]);
         r.join(",")
     };
@@ -86,7 +100,13 @@ fn a_good_folder_is_read_whole() {
     assert_eq!(day.wavelengths_nm, [350.0, 355.0, 360.0]);
     assert_eq!(day.scans.len(), 2);
     assert_eq!(day.scans[0].directions.len(), 3);
-    assert_eq!(day.scans[0].directions[2].radiance, [0.05, 0.06, 0.07]);
+    let d = &day.scans[0].directions[1];
+    assert_eq!(
+        (d.sample, d.azimuth_deg, d.elevation_deg),
+        (1, 348.75, 12.1151)
+    );
+    assert_eq!(d.radiance, [0.15, 0.16, 0.17]);
+    assert_eq!(day.scans[1].directions[2].radiance, [0.25, 0.26, 0.27]);
     assert!((day.scans[0].utc_offset_h() + 4.0).abs() < 1e-12);
     assert_eq!(day.ghi_during(0), Some(651.0));
     assert_eq!(day.ghi_during(1), Some(700.0));
@@ -94,9 +114,11 @@ fn a_good_folder_is_read_whole() {
     assert!((day.aeronet[0].aod550() - 0.12 * (550.0_f64 / 440.0).powf(-1.1)).abs() < 1e-12);
     let g = day.aeronet[0]
         .asymmetry_g
-        .expect("phase functions at both bands")
-        .0;
-    assert!(g > 0.0 && g < 1.0, "{g}");
+        .expect("phase functions at both bands");
+    assert!(
+        (g.0 - G_442_674.0).abs() < 0.02 && (g.1 - G_442_674.1).abs() < 0.02,
+        "{g:?} against {G_442_674:?}"
+    );
 }
 
 #[test]

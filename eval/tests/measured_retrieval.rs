@@ -48,16 +48,30 @@ fn synthetic_day(aod550: f64, spp: u64) -> (Day, usize) {
     (day, i)
 }
 
+/// The depth is the photometer's at the scan's UTC time, between the two records around it:
+/// every record is given a depth of its own, so that another time (the local clock's, or the
+/// weights the wrong way round) gives another depth.
 #[test]
 fn the_aeronet_retrieval_takes_the_photometer_s_depth_at_the_scan_s_time() {
     let mut day = shipped_day();
     let scan = day.scans[0].clone();
-    for r in &mut day.aeronet {
-        r.tau440 = 0.2;
+    for (k, r) in day.aeronet.iter_mut().enumerate() {
+        r.tau440 = 0.1 + 0.05 * k as f64;
         r.angstrom = 1.4;
     }
+    let t = scan.time_utc.seconds;
+    let after = day
+        .aeronet
+        .iter()
+        .position(|r| r.time_utc.seconds > t)
+        .expect("a record after the scan");
+    assert!(after > 0, "a record before the scan");
+    let (a, b) = (&day.aeronet[after - 1], &day.aeronet[after]);
+    let w = (t - a.time_utc.seconds) / (b.time_utc.seconds - a.time_utc.seconds);
+    assert!((0.05..0.95).contains(&w), "the scan lies at a record: {w}");
+    let tau440 = a.tau440 + w * (b.tau440 - a.tau440);
     let got = retrieve::from_aeronet(&day, &scan).expect("records");
-    let want = 0.2 * (550.0_f64 / 440.0).powf(-1.4);
+    let want = tau440 * (550.0_f64 / 440.0).powf(-1.4);
     assert!(
         (got.aerosol.aod550 - want).abs() < 1e-12,
         "{} against {want}",
@@ -162,10 +176,40 @@ fn the_fit_never_scores_a_direction_it_was_fitted_on() {
         .aod550
     };
     assert_eq!(fit(&day), fit(&poisoned));
-    // And what it is scored on is the held-out half alone.
-    let (zenith, _) = run::sun_theory(&day, &day.scans[i], &Site::CORNELL);
-    let usable = score::scored_directions(&day.scans[i], zenith, result.sun_azimuth_deg);
+    // The evaluation's own fit is that one, on that half.
+    assert_eq!(result.retrieved.aerosol.aod550, fit(&day));
+    // And what it is scored on is the held-out half alone, of the directions that are scored:
+    // not the sample every scan reads wrong, none within 10° of the sun, and some near it left
+    // out (the sun is up in the scan's sky).
+    let scan = &day.scans[i];
+    let (zenith, _) = run::sun_theory(&day, scan, &Site::CORNELL);
+    let usable = score::scored_directions(scan, zenith, result.sun_azimuth_deg);
     assert_eq!(result.scored, score::Split::alternate(&usable).score);
+    let unit = |elevation: f64, azimuth: f64| {
+        let (e, a) = (elevation.to_radians(), azimuth.to_radians());
+        [e.cos() * a.sin(), e.cos() * a.cos(), e.sin()]
+    };
+    let sun = unit(90.0 - zenith, result.sun_azimuth_deg);
+    let from_sun_deg = |d: &files::Direction| {
+        let v = unit(d.elevation_deg, d.azimuth_deg);
+        let cos = v[0] * sun[0] + v[1] * sun[1] + v[2] * sun[2];
+        cos.clamp(-1.0, 1.0).acos().to_degrees()
+    };
+    let near_sun = scan
+        .directions
+        .iter()
+        .filter(|d| from_sun_deg(d) <= 10.0)
+        .count();
+    assert!(near_sun > 0, "no direction near the sun to leave out");
+    for &d in &usable {
+        let direction = &scan.directions[d];
+        assert_ne!(direction.sample, 0, "the bad sample is scored");
+        assert!(
+            from_sun_deg(direction) > 10.0,
+            "direction {d} is scored near the sun"
+        );
+    }
+    assert_eq!(usable.len(), scan.directions.len() - 1 - near_sun);
 }
 
 #[test]

@@ -167,6 +167,15 @@ mod tests {
         assert!(e.radiance.iter().all(|x| (x - 0.1).abs() < 1e-9));
         assert!((e.luminance[0] - 0.1).abs() < 2e-3, "{}", e.luminance[0]);
         assert!(e.chromaticity[0] < 1e-3, "{}", e.chromaticity[0]);
+        // The control: a model redder than the measurement (its spectrum tilted by λ/500 nm)
+        // is off in colour too.
+        let redder: Vec<f64> = model_nm
+            .iter()
+            .zip(&modelled)
+            .map(|(w, l)| l * w / 500.0)
+            .collect();
+        let e = compare(&nm, &[&measured], &model_nm, &[&redder]);
+        assert!(e.chromaticity[0] > 0.01, "{}", e.chromaticity[0]);
     }
 
     #[test]

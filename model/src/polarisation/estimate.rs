@@ -110,6 +110,7 @@ mod tests {
         };
         let (runs, per_run) = (400, 200);
         let (mut degrees, mut angles, mut reported) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut means_i, mut means_q, mut reported_iq) = (Vec::new(), Vec::new(), Vec::new());
         for _ in 0..runs {
             let mut m = StokesMean::default();
             for _ in 0..per_run {
@@ -125,6 +126,9 @@ mod tests {
             degrees.push(e.mean.degree_of_polarization());
             angles.push(e.mean.angle_of_polarization_deg().rem_euclid(180.0));
             reported.push((e.degree_std_error, e.angle_std_error_deg));
+            means_i.push(e.mean.i);
+            means_q.push(e.mean.q);
+            reported_iq.push((e.std_error[0], e.std_error[1]));
         }
         let spread = |v: &[f64]| {
             let mean = v.iter().sum::<f64>() / v.len() as f64;
@@ -134,6 +138,13 @@ mod tests {
             |f: fn(&(f64, f64)) -> f64| reported.iter().map(f).sum::<f64>() / reported.len() as f64;
         let (sd_degree, sd_angle) = (spread(&degrees), spread(&angles));
         let (se_degree, se_angle) = (mean_reported(|r| r.0), mean_reported(|r| r.1));
+        let (sd_i, sd_q) = (spread(&means_i), spread(&means_q));
+        let mean_of = |f: fn(&(f64, f64)) -> f64| {
+            reported_iq.iter().map(f).sum::<f64>() / reported_iq.len() as f64
+        };
+        let (se_i, se_q) = (mean_of(|r| r.0), mean_of(|r| r.1));
+        assert!((se_i / sd_i - 1.0).abs() < 0.15, "I: {se_i} vs {sd_i}");
+        assert!((se_q / sd_q - 1.0).abs() < 0.15, "Q: {se_q} vs {sd_q}");
         assert!(
             (se_degree / sd_degree - 1.0).abs() < 0.15,
             "{se_degree} vs {sd_degree}"
