@@ -52,6 +52,30 @@ fn one_scan_of_the_shipped_day_gives_the_promised_json_and_files() {
             "{key}"
         );
     }
+    // The depth is AERONET's at the scan's time.
+    let days =
+        atmoscope_eval::measured::files::read_folder(&atmoscope_eval::measured::shipped_folder())
+            .expect("the shipped day");
+    let noon = days[0]
+        .scans
+        .iter()
+        .find(|s| s.time_local.seconds == 12.0 * 3600.0)
+        .expect("the 12:00 scan");
+    let aeronet = atmoscope_eval::measured::retrieve::from_aeronet(&days[0], noon)
+        .expect("records")
+        .aerosol
+        .aod550;
+    let aod550 = scan["aerosol"]["aod550"].as_f64().expect("aod550");
+    assert!(
+        (aod550 - aeronet).abs() < 1e-12,
+        "{aod550} against AERONET's {aeronet}"
+    );
+    // Of the scan's 81 directions, the bad sample and those within 10° of the sun (24.9° from
+    // the zenith at noon) are not scored.
+    let scored = scan["directions_scored"]
+        .as_u64()
+        .expect("directions_scored");
+    assert!((70..80).contains(&scored), "{scored} directions scored");
     let ids: Vec<&str> = v["models"]
         .as_array()
         .expect("models")
@@ -72,7 +96,7 @@ fn one_scan_of_the_shipped_day_gives_the_promised_json_and_files() {
             );
         }
         // 360–720 nm at 10 nm over the scan's scored directions.
-        assert_eq!(m["samples"].as_u64().expect("samples") % 37, 0);
+        assert_eq!(m["samples"].as_u64(), Some(37 * scored));
     }
     for file in [
         "measured.md",

@@ -1870,11 +1870,17 @@ fn the_measured_tab_scores_a_scan_and_a_clicked_direction_shows_its_spectra() {
         h.query_by_label_contains("Median |error| of spectral radiance")
             .is_some()
     );
-    // A click on a measured direction of the model's dome selects it and plots its spectra.
-    let (scan, first) = (e.result.scan, e.result.scored[0]);
+    // A click on a measured direction of the model's dome selects it and plots its spectra:
+    // one in the middle of the list, so that the nearest direction is found, not the first.
+    let k = e.result.scored.len() / 2;
+    let (scan, clicked, aod550) = (
+        e.result.scan,
+        e.result.scored[k],
+        e.result.retrieved.aerosol.aod550,
+    );
     let days = atmoscope_eval::measured::files::read_folder(&h.state().measured.folder)
         .expect("the shipped day");
-    let d = &days[0].scans[scan].directions[first];
+    let d = &days[0].scans[scan].directions[clicked];
     let rect = h
         .state()
         .measured
@@ -1891,7 +1897,7 @@ fn the_measured_tab_scores_a_scan_and_a_clicked_direction_shows_its_spectra() {
         });
         h.run();
     }
-    assert_eq!(h.state().measured.selected, Some(0));
+    assert_eq!(h.state().measured.selected, Some(k));
     assert!(
         h.query_by_label_contains(&format!("Sample {}:", d.sample))
             .is_some()
@@ -1903,14 +1909,29 @@ fn the_measured_tab_scores_a_scan_and_a_clicked_direction_shows_its_spectra() {
             .save(Path::new(&dir).join("explorer-measured.png"))
             .expect("saved");
     }
-    // The scan's scene goes to the other tabs: the sun by the scan's date and time.
+    // The scan's scene goes to the other tabs: the sun by the scan's date and local time, and
+    // the aerosol the evaluation retrieved.
     h.get_by_label("Use this scan's scene").click();
     h.run();
     let scene = &h.state().scene;
+    let measured = &days[0].scans[scan];
+    let atmoscope_model::scene::SunSettings::Date { time, .. } = scene.sun else {
+        panic!("the sun by date: {:?}", scene.sun)
+    };
+    assert_eq!(
+        (time.year, time.month, time.day),
+        (days[0].year, days[0].month, days[0].day)
+    );
     assert!(
-        matches!(scene.sun, atmoscope_model::scene::SunSettings::Date { time, .. } if time.year == 2013)
+        (time.hour - measured.time_local.seconds / 3600.0).abs() < 1e-9,
+        "{time:?}"
+    );
+    assert!(
+        (time.utc_offset_h - measured.utc_offset_h()).abs() < 1e-9,
+        "{time:?}"
     );
     assert_eq!(scene.atmosphere.aerosol.kind, AerosolType::Custom);
+    assert_eq!(scene.atmosphere.aerosol.aod550, aod550);
     assert_eq!(
         scene.render.method,
         atmoscope_model::scene::Method::Preetham

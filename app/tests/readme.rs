@@ -274,38 +274,55 @@ fn every_shortcut_the_readme_names_is_one_of_the_help_menu() {
 }
 
 /// The command lines of the fenced blocks of `text` that start with `atmoscope `, each as its
-/// words up to a `#` comment.
+/// words up to a `#` comment, a word's shell quotes taken off (no example quotes a space). A
+/// synopsis (`[--out FILE]`, `bevy|unreal`) is not a command and is left out.
 fn shown_commands(text: &str) -> Vec<Vec<&str>> {
     text.split("```")
         .skip(1)
         .step_by(2)
         .flat_map(str::lines)
-        .filter(|l| l.starts_with("atmoscope "))
+        .filter(|l| l.starts_with("atmoscope ") && !l.contains('[') && !l.contains('|'))
         .map(|l| {
-            l.split('#')
+            l.split(" #")
                 .next()
                 .unwrap_or("")
                 .split_whitespace()
+                .map(|w| w.trim_matches('\''))
                 .collect()
         })
         .collect()
 }
 
 #[test]
-fn every_command_the_readme_shows_parses_and_its_presets_are_shipped() {
-    let commands = shown_commands(README);
-    assert!(!commands.is_empty(), "the README shows no command");
-    for words in commands {
-        if let Err(e) = Cli::try_parse_from(&words) {
-            panic!("the README shows `{}`: {e}", words.join(" "));
-        }
-        for pair in words.windows(2).filter(|w| w[0] == "--preset") {
-            let file = format!("{}.ron", pair[1]);
-            assert!(
-                matches!(atmoscope::presets::load_shipped(&file), Some(Ok(_))),
-                "the README shows the preset {}, which is not shipped",
-                pair[1]
-            );
+fn every_command_the_readme_and_the_guide_show_parses_and_its_presets_are_shipped() {
+    for (file, text) in [("README.md", README), ("docs/guide.md", GUIDE)] {
+        let commands = shown_commands(text);
+        assert!(!commands.is_empty(), "{file} shows no command");
+        for words in commands {
+            if let Err(e) = Cli::try_parse_from(&words) {
+                panic!("{file} shows `{}`: {e}", words.join(" "));
+            }
+            for pair in words.windows(2).filter(|w| w[0] == "--preset") {
+                let preset = format!("{}.ron", pair[1]);
+                assert!(
+                    matches!(atmoscope::presets::load_shipped(&preset), Some(Ok(_))),
+                    "{file} shows the preset {}, which is not shipped",
+                    pair[1]
+                );
+            }
         }
     }
+}
+
+/// The Help menu's row of tab keys (which the guide's table repeats) names every tab, in the
+/// order of their keys.
+#[test]
+fn the_help_menu_s_row_of_tab_keys_names_every_tab_in_order() {
+    let (keys, tabs) = SHORTCUTS
+        .iter()
+        .find(|(keys, _)| keys.starts_with("1 "))
+        .expect("the tabs' row");
+    assert_eq!(*keys, format!("1 – {}", Tab::ALL.len()));
+    let labels: Vec<&str> = Tab::ALL.iter().map(|t| t.label()).collect();
+    assert_eq!(tabs.split(", ").collect::<Vec<_>>(), labels);
 }
