@@ -2,8 +2,9 @@
 //
 //   node browser.mjs            the test: the page without WebGPU, then with it the first
 //                               frame, a noon and a sunset preset chosen through the menu,
-//                               the exports, the LUTs tab, a reload, the Reference tab, and
-//                               no console error (web/tests/README.md)
+//                               the exports (the PNG found on the page), the LUTs tab, a
+//                               reload, the Reference tab tracing while frames keep coming,
+//                               and no console error (web/tests/README.md)
 //   node browser.mjs --bench    the Sky view's frame time (`bench gui --script sky-frames`)
 //
 // It serves web/dist (built by `bash web/run --build-only`) itself, on a free local port.
@@ -37,8 +38,10 @@ const AT = {
   // The Sky view's centre, and the LUTs tab's table image.
   sky: { x: 843, y: 402 },
   lutArea: { x0: 420, y0: 60, x1: 1270, y1: 770 },
-  // The Reference tab's path-traced picture (160×90, shown at 280×157).
-  pathTraced: { x0: 416, y0: 117, x1: 692, y1: 270 },
+  // The left strip of the Reference tab's path-traced picture (160×90, shown at 280×157 from
+  // x 414): before the first pass the real-time picture is shown alone from x 488, so this
+  // strip holds the path tracer's picture and nothing else.
+  pathTraced: { x0: 416, y0: 117, x1: 480, y1: 270 },
 };
 
 function fail(message) {
@@ -191,6 +194,52 @@ function lutColours(img) {
   return distinctColours(img, AT.lutArea, 4);
 }
 
+// The mean absolute difference of two screenshots over `area`, levels of 255.
+function meanDifference(a, b, area) {
+  let sum = 0;
+  let n = 0;
+  for (let y = area.y0; y < area.y1; y++) {
+    for (let x = area.x0; x < area.x1; x++) {
+      const k = 4 * (y * a.width + x);
+      for (let c = 0; c < 3; c++) sum += Math.abs(a.data[k + c] - b.data[k + c]);
+      n += 3;
+    }
+  }
+  return sum / n;
+}
+
+// Where `png` lies in the screenshot `img` if it is centred within a few pixels of `centre`:
+// the share of a 5 × 5 grid of its patches whose mean colour is the screen's there within 6
+// levels, at the best offset.
+function findOnScreen(png, img, centre) {
+  const patch = (im, x, y) => meanColour(im, x, y, 3);
+  const grid = [];
+  for (let j = 1; j <= 5; j++) {
+    for (let i = 1; i <= 5; i++) {
+      const x = Math.round((i / 6) * png.width);
+      const y = Math.round((j / 6) * png.height);
+      grid.push({ x, y, colour: patch(png, x, y) });
+    }
+  }
+  let best = { matching: 0, dx: 0, dy: 0 };
+  const x0 = centre.x - Math.floor(png.width / 2);
+  const y0 = centre.y - Math.floor(png.height / 2);
+  for (let dy = -12; dy <= 12; dy++) {
+    for (let dx = -12; dx <= 12; dx++) {
+      let matching = 0;
+      for (const g of grid) {
+        const x = x0 + dx + g.x;
+        const y = y0 + dy + g.y;
+        if (x < 3 || y < 3 || x >= img.width - 3 || y >= img.height - 3) continue;
+        const c = patch(img, x, y);
+        if (c.every((v, k) => Math.abs(v - g.colour[k]) <= 6)) matching++;
+      }
+      if (matching / grid.length > best.matching) best = { matching: matching / grid.length, dx, dy };
+    }
+  }
+  return best;
+}
+
 function rgbText(c) {
   return `rgb(${c.map((v) => v.toFixed(0)).join(", ")})`;
 }
@@ -217,17 +266,20 @@ async function test() {
   console.log(`web test: urban sunset, the sky's centre ${rgbText(sunset.c)}`);
 
   // Exports are downloads: the view as displayed (PNG) and its radiance (EXR).
-  const shotSize = await exportAs(page, "Control+E", "atmoscope.png", (bytes) => {
-    const png = PNG.sync.read(bytes);
-    return `${png.width}×${png.height}`;
-  });
+  const png = await exportAs(page, "Control+E", "atmoscope.png", (bytes) => PNG.sync.read(bytes));
   await exportAs(page, "Control+Shift+E", "atmoscope.exr", (bytes) => {
     // OpenEXR's magic number.
     if (bytes.readUInt32LE(0) !== 20000630) throw new Error("atmoscope.exr is not an OpenEXR file");
     return `${bytes.length} bytes`;
   });
-  console.log(`web test: exported the view as PNG (${shotSize}) and EXR`);
-  await pixels(page, "2-exported");
+  // The PNG is the view on the page: at render scale 1 and one pixel a point the view is
+  // shown pixel for pixel, so the PNG, its size the view's, lies in a screenshot around the
+  // view's centre.
+  const placed = findOnScreen(png, await pixels(page, "2-exported"), AT.sky);
+  if (placed.matching < 0.8) {
+    throw new Error(`the exported PNG (${png.width}×${png.height}) is not the view on the page: at best ${(100 * placed.matching).toFixed(0)} % of its patches match the screen (offset ${placed.dx}, ${placed.dy})`);
+  }
+  console.log(`web test: exported the view as PNG (${png.width}×${png.height}, ${(100 * placed.matching).toFixed(0)} % of its patches as on the page) and EXR`);
 
   await click(page, AT.lutsTab);
   await until(page, "3-luts", (img) => {
@@ -245,11 +297,20 @@ async function test() {
   }, 60_000, "the layout kept over a reload");
   console.log("web test: a reload keeps the layout");
 
-  // The Reference tab's path tracer shares the page's thread a band of rows at a time: frames
-  // keep coming while it traces, and its picture fills in.
+  // The Reference tab's path tracer shares the page's thread a band of rows at a time and
+  // shows its picture after each pass over the image: the first pass fills the picture in;
+  // then, for at least half as long again as the first pass took, frames keep coming and the
+  // picture changes (a later pass ended meanwhile: the tracer was running, not done).
   await click(page, AT.referenceTab);
-  await page.waitForTimeout(3000);
-  const [frames, longestGapMs] = await page.evaluate(() => new Promise((done) => {
+  const clicked = Date.now();
+  await until(page, "5-reference", (img) => {
+    const colours = distinctColours(img, AT.pathTraced, 2);
+    return { ok: colours > 60, why: `the path-traced picture shows ${colours} colours` };
+  }, 120_000, "the Reference tab's path tracer");
+  const firstPassMs = Date.now() - clicked;
+  const windowMs = Math.max(5000, 1.5 * firstPassMs);
+  const tracedBefore = await pixels(page, "5-tracing");
+  const [frames, longestGapMs] = await page.evaluate((windowMs) => new Promise((done) => {
     let n = 0;
     let longest = 0;
     const start = performance.now();
@@ -259,19 +320,20 @@ async function test() {
       longest = Math.max(longest, now - last);
       last = now;
       n++;
-      if (now - start < 5000) requestAnimationFrame(frame);
+      if (now - start < windowMs) requestAnimationFrame(frame);
       else done([n, longest]);
     };
     requestAnimationFrame(frame);
-  }));
-  if (frames < 5 || longestGapMs > 2000) {
-    throw new Error(`while the path tracer runs the page drew ${frames} frames in 5 s, the longest gap ${longestGapMs.toFixed(0)} ms`);
+  }), windowMs);
+  const seconds = windowMs / 1000;
+  if (frames < seconds || longestGapMs > 2000) {
+    throw new Error(`while the path tracer runs the page drew ${frames} frames in ${seconds.toFixed(0)} s, the longest gap ${longestGapMs.toFixed(0)} ms`);
   }
-  await until(page, "5-reference", (img) => {
-    const colours = distinctColours(img, AT.pathTraced, 2);
-    return { ok: colours > 100, why: `the path-traced picture shows ${colours} colours` };
-  }, 120_000, "the Reference tab's path tracer");
-  console.log(`web test: the path tracer runs; the page drew ${frames} frames in 5 s meanwhile, the longest gap ${longestGapMs.toFixed(0)} ms`);
+  const traced = meanDifference(tracedBefore, await pixels(page, "5-traced"), AT.pathTraced);
+  if (!(traced > 1)) {
+    throw new Error(`the path-traced picture did not change over ${seconds.toFixed(0)} s of frames (mean difference ${traced.toFixed(2)} levels; the first pass took ${(firstPassMs / 1000).toFixed(0)} s): the tracer was not running`);
+  }
+  console.log(`web test: the path tracer runs: its first pass in ${(firstPassMs / 1000).toFixed(0)} s; then the page drew ${frames} frames in ${seconds.toFixed(0)} s, the longest gap ${longestGapMs.toFixed(0)} ms, and the picture changed by ${traced.toFixed(1)} levels`);
 
   const problem = await page.isVisible("#problem");
   if (problem) throw new Error(`the page shows a problem: ${await page.textContent("#problem")}`);
