@@ -944,7 +944,6 @@ fn a_timelapse_exports_in_the_background_and_can_be_cancelled() {
     assert_eq!(written as u32, frames);
 }
 
-/// The first number of a view's read-out under the pointer.
 /// The named neutral point's elevation and its angle from `to` (the sun or the antisolar
 /// point), degrees, as the Polarisation tab's legend states them.
 fn neutral_point(h: &Harness<'static, ExplorerApp>, name: &str, to: &str) -> (f64, f64) {
@@ -975,6 +974,7 @@ fn last_frame_shapes(h: &Harness<'static, ExplorerApp>) -> Vec<egui::Shape> {
     out
 }
 
+/// The first number of a view's read-out under the pointer.
 fn read_out(h: &Harness<'static, ExplorerApp>) -> f64 {
     let text = h
         .get_by_label_contains("under the pointer:")
@@ -1039,8 +1039,7 @@ fn the_polarisation_tab_shows_the_degree_the_lines_and_the_neutral_points() {
 
     // The neutral points on the sun's vertical, nearer the sun and the antisolar point than
     // the vector tracer's 16.9° and 17.3° (the real-time correction draws them in: 9.9° and
-    // 10.2° in docs/measurements/polarisation-2026-12-06.md), and farther than single
-    // scattering's own zeros.
+    // 10.2° in docs/measurements/polarisation-2026-12-06.md).
     for (name, to) in [("Arago", "the antisolar point"), ("Babinet", "the sun")] {
         let (elevation, from) = neutral_point(&h, name, to);
         assert!((6.0..15.0).contains(&from), "{name}: {from}° from {to}");
@@ -1055,8 +1054,10 @@ fn the_polarisation_tab_shows_the_degree_the_lines_and_the_neutral_points() {
             "{name}: elevation {elevation}°, {from}° from {to}"
         );
     }
-    // The line field: a line in most cells of the dome, and at the zenith, 88° from the sun,
-    // the electric vector across the sun's vertical, on which both neutral points lie.
+    // The line field: a line in over 40 % of the cells (the dome's circle covers 78 % of its
+    // square, and the weakly polarised cells near the sun and the antisolar point draw none),
+    // and at the zenith, 88° from the sun, the electric vector across the sun's vertical, on
+    // which both neutral points lie.
     let dome = h.get_by_role(egui::accesskit::Role::Image).rect();
     let shapes = last_frame_shapes(&h);
     let lines: Vec<[egui::Pos2; 2]> = shapes
@@ -1760,9 +1761,9 @@ fn the_engine_export_window_copies_parameters_and_measures_them() {
     let errors = h.state().engine_export.errors().expect("measured");
     assert_eq!(errors.len(), 3);
     // `atmoscope export-engine --target unreal` on the default scene: ground-noon 7.76 (its
-    // RGB colours alone 7.69), fisheye-sun10 1.51 (1.40), twilight-6 5.13 (3.59); the suite's
-    // worst view 13.26 (docs/measurements/artists-2026-12-06.md). The parameters add at most
-    // 2 to what the colours cost.
+    // RGB colours alone 7.69), fisheye-sun10 1.51 (1.40), twilight-6 5.13 (3.59)
+    // (docs/measurements/tests-2026-12-08.md); the suite's worst view 13.26. The parameters
+    // add at most 2 to what the colours cost.
     for e in errors {
         assert!(
             e.delta_e2000_mean.is_finite()

@@ -40,9 +40,9 @@ Quick check (2 scenes, 16 directions, 200 paths; under a minute on a debug build
     python3 docs/measurements/polarisation_fit.py --quick
 
 `--data DIR` reads the outputs saved there by `--save DIR` (one JSON per scene and method, the
-tracer's named by its paths) and runs only those missing. `--scenes` takes comma-separated
-tags a fitted scene must all match (clear, rural, albedo0.1, albedo0.3, sun30, sun5, or all);
-the scores are given for every scene loaded.
+tracer's named by its paths, a quick run's marked -quick) and runs only those missing.
+`--scenes` takes comma-separated tags a fitted scene must all match (clear, rural, albedo0.1,
+albedo0.3, sun30, sun5, or all); the scores are given for every scene loaded.
 """
 
 import argparse
@@ -88,7 +88,9 @@ def find_binary(given):
 def probe(args, name, scene_args, method, zeniths, azimuths):
     """The probe's JSON for one scene and method: read from --data if there, else run (and
     keep it under --save)."""
-    file = f"{name}.{method}" + (f"-spp{args.spp}" if method == "path-tracer" else "") + ".json"
+    # The directions are in the name too: a quick run's files never stand in for a full run's.
+    file = (f"{name}.{method}" + (f"-spp{args.spp}" if method == "path-tracer" else "")
+            + ("-quick" if args.quick else "") + ".json")
     if args.data and (Path(args.data) / file).exists():
         return json.loads((Path(args.data) / file).read_text())
     command = [str(find_binary(args.atmoscope)), "probe",

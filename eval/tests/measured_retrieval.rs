@@ -179,8 +179,8 @@ fn the_fit_never_scores_a_direction_it_was_fitted_on() {
     // The evaluation's own fit is that one, on that half.
     assert_eq!(result.retrieved.aerosol.aod550, fit(&day));
     // And what it is scored on is the held-out half alone, of the directions that are scored:
-    // not the sample every scan reads wrong, none within 10° of the sun, and some near it left
-    // out (the sun is up in the scan's sky).
+    // not the sample every scan reads wrong, none near the sun, and some near it left out
+    // (the sun is up in the scan's sky).
     let scan = &day.scans[i];
     let (zenith, _) = run::sun_theory(&day, scan, &Site::CORNELL);
     let usable = score::scored_directions(scan, zenith, result.sun_azimuth_deg);
@@ -198,14 +198,24 @@ fn the_fit_never_scores_a_direction_it_was_fitted_on() {
     let near_sun = scan
         .directions
         .iter()
-        .filter(|d| from_sun_deg(d) <= 10.0)
+        .filter(|d| from_sun_deg(d) <= score::SUN_EXCLUSION_DEG)
         .count();
     assert!(near_sun > 0, "no direction near the sun to leave out");
+    let bad = scan
+        .directions
+        .iter()
+        .filter(|d| d.sample == score::BAD_SAMPLE)
+        .collect::<Vec<_>>();
+    assert!(bad.len() == 1 && from_sun_deg(bad[0]) > score::SUN_EXCLUSION_DEG);
     for &d in &usable {
         let direction = &scan.directions[d];
-        assert_ne!(direction.sample, 0, "the bad sample is scored");
+        assert_ne!(
+            direction.sample,
+            score::BAD_SAMPLE,
+            "the bad sample is scored"
+        );
         assert!(
-            from_sun_deg(direction) > 10.0,
+            from_sun_deg(direction) > score::SUN_EXCLUSION_DEG,
             "direction {d} is scored near the sun"
         );
     }
