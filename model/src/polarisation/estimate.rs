@@ -96,9 +96,9 @@ impl StokesMean {
 mod tests {
     use super::*;
 
-    /// Samples of known spread: the standard errors of the components are theirs, and the
-    /// delta method's standard error of the degree and angle match their spread over many
-    /// independent means.
+    /// Over many independent means of samples of known spread, the standard errors reported
+    /// for I and Q, and the delta method's for the degree and the angle, match the spread of
+    /// the means themselves.
     #[test]
     fn standard_errors_match_the_spread_of_repeated_means() {
         let mut state = 12345u64;
