@@ -2,13 +2,26 @@
 
 use std::fmt;
 
-/// Seconds since midnight on some clock (local or UTC), 0 ≤ seconds < 86 400.
-#[derive(Debug, Clone, Copy, PartialEq, PartialOrd)]
+/// Seconds since midnight on some clock (local or UTC), 0 ≤ seconds < 86 400. Equality and
+/// order are f64's total order, so that they agree with each other.
+#[derive(Debug, Clone, Copy)]
 pub struct Clock {
     pub seconds: f64,
 }
 
+impl PartialEq for Clock {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other).is_eq()
+    }
+}
+
 impl Eq for Clock {}
+
+impl PartialOrd for Clock {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
 
 impl Ord for Clock {
     fn cmp(&self, other: &Self) -> std::cmp::Ordering {
