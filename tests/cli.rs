@@ -2130,8 +2130,7 @@ fn zenith_over(method: &str, ground: &str) -> Vec<f64> {
 }
 
 /// The zenith radiance at 450, 550 and 650 nm by `method` over the grey ground, fresh snow and
-/// grass, in that order; the three grounds run at once (Bruneton's CPU twin at medium quality
-/// takes about half a minute a ground).
+/// grass, in that order; the three grounds run at once, since Bruneton's CPU twin is slow.
 fn zenith_over_grounds(method: &str) -> [Vec<f64>; 3] {
     std::thread::scope(|s| {
         ["grey", "fresh-snow", "grass"]

@@ -1038,8 +1038,8 @@ fn the_polarisation_tab_shows_the_degree_the_lines_and_the_neutral_points() {
     assert!((60.0..95.0).contains(&degree), "{degree} %");
 
     // The neutral points on the sun's vertical, nearer the sun and the antisolar point than
-    // the vector tracer's 16.9° and 17.3° (the real-time correction draws them in: 9.9° and
-    // 10.2° in docs/measurements/polarisation-2026-12-06.md).
+    // the vector path tracer puts them: the real-time correction for the higher orders draws
+    // them in (docs/measurements/polarisation-2026-12-06.md).
     for (name, to) in [("Arago", "the antisolar point"), ("Babinet", "the sun")] {
         let (elevation, from) = neutral_point(&h, name, to);
         assert!((6.0..15.0).contains(&from), "{name}: {from}° from {to}");
@@ -1760,10 +1760,9 @@ fn the_engine_export_window_copies_parameters_and_measures_them() {
     h.run();
     let errors = h.state().engine_export.errors().expect("measured");
     assert_eq!(errors.len(), 3);
-    // `atmoscope export-engine --target unreal` on the default scene: ground-noon 7.76 (its
-    // RGB colours alone 7.69), fisheye-sun10 1.51 (1.40), twilight-6 5.13 (3.59)
-    // (docs/measurements/tests-2026-12-08.md); the suite's worst view 13.26. The parameters
-    // add at most 2 to what the colours cost.
+    // Most of an RGB engine's error is its three wavelengths: the exported parameters may add
+    // a little to what its colours alone cost, never a wrong sky (the views' figures are in
+    // docs/measurements/tests-2026-12-08.md).
     for e in errors {
         assert!(
             e.delta_e2000_mean.is_finite()

@@ -185,6 +185,8 @@ fn the_fit_never_scores_a_direction_it_was_fitted_on() {
     let (zenith, _) = run::sun_theory(&day, scan, &Site::CORNELL);
     let usable = score::scored_directions(scan, zenith, result.sun_azimuth_deg);
     assert_eq!(result.scored, score::Split::alternate(&usable).score);
+    // The angle from the sun by this test's own arithmetic, not the scorer's, so that a slip in
+    // the scorer's geometry shows.
     let unit = |elevation: f64, azimuth: f64| {
         let (e, a) = (elevation.to_radians(), azimuth.to_radians());
         [e.cos() * a.sin(), e.cos() * a.cos(), e.sin()]

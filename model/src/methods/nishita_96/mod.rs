@@ -106,10 +106,9 @@ mod tests {
 
     /// The second order adds light everywhere in the sky and on the ground, most where the
     /// single-scattered light is faint (away from the sun) and most at blue wavelengths, and
-    /// less than the single scattering it is gathered from in a clear daylight sky. The path
-    /// tracer's second order (`probe --max-order 2` over `--max-order 1`, default scene, sun
-    /// 30°, 8 192 paths) adds 63–77 % of the single scattering 20° up opposite the sun and
-    /// 23–40 % 5° up beside it, and 30 % (680 nm) to 54 % (440 nm) 80° up: the same order.
+    /// less than the single scattering it is gathered from in a clear daylight sky, as the path
+    /// tracer's own second order does (`probe --max-order 2` over `--max-order 1`; the
+    /// figures are in docs/measurements/tests-2026-12-08.md).
     #[test]
     fn the_second_order_adds_light_below_the_first() {
         let p = params();
